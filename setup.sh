@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs everything lightcone needs on Debian 12 (bookworm). Safe to run again.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config git clang-format
+  libembree-dev libtbb-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev
+  libstb-dev libopenexr-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y --no-install-recommends "${missing[@]}"
+fi

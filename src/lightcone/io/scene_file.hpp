@@ -1,0 +1,25 @@
+// The JSON scene format (docs/scene-format.md, schema/scene.schema.json) into the scene model.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+struct SceneLoadReport {
+  std::vector<std::string> warnings;  // e.g. degenerate triangles dropped from a mesh
+};
+
+// Parses and validates a scene file. `overrides` are "key.path=value" strings (from --set):
+// the value is parsed as JSON (falling back to a plain string) and replaces the value at that
+// path before validation. Comments are allowed; unknown keys are errors. Relative mesh, texture
+// and sky image paths are resolved against the scene file's folder; a mesh file used by many
+// objects is loaded once. Throws InputError "FILE:LINE: PATH: what is wrong" (for a value that
+// came from --set: "--set PATH: what is wrong").
+Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                      SceneLoadReport& report);
+
+}  // namespace lightcone

@@ -1,0 +1,132 @@
+// The true-state scene: bodies with inertial world-lines in the world frame W, their rest-frame
+// geometry and materials, the camera and the sky. Knows nothing of file formats or renderers.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "lightcone/physics/vec.hpp"
+
+namespace lightcone {
+
+// Linear RGB (Rec. 709 primaries), radiance in the emitter's rest frame.
+struct Rgb {
+  float r = 0, g = 0, b = 0;
+};
+
+// Inertial world-line in W: X(t) = position + velocity (t - time); |velocity| < 1 (c = 1).
+struct WorldLine {
+  double time = 0;
+  Vec3 position;
+  Vec3 velocity;
+
+  Vec3 position_at(double t) const { return position + velocity * (t - time); }
+};
+
+// Triangle mesh in its own coordinates. Shared (stored once) by every object that uses it.
+struct Mesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::array<float, 2>> uvs;  // per vertex; empty when the file has none
+  std::string source;                      // file it came from, for messages
+};
+
+// A linear-RGB image, row-major from the top-left, 3 floats per pixel.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+  std::string source;
+
+  Rgb texel(int x, int y) const {
+    const float* p = &rgb[3 * (static_cast<std::size_t>(y) * width + x)];
+    return {p[0], p[1], p[2]};
+  }
+};
+
+struct Sphere {
+  double radius = 1;
+};
+// Axis-aligned box centred on the origin.
+struct Box {
+  Vec3 size{1, 1, 1};
+};
+// Rectangle in y = 0 centred on the origin, size along x and z.
+struct Plane {
+  double size_x = 1, size_z = 1;
+};
+struct MeshShape {
+  std::shared_ptr<const Mesh> mesh;
+};
+using Shape = std::variant<Sphere, Box, Plane, MeshShape>;
+
+struct SolidColor {
+  Rgb color;
+};
+// Colour index (floor(x/s) + floor(y/s) + floor(z/s)) mod 2 in the shape's own coordinates.
+struct Checker {
+  double size = 1;
+  Rgb colors[2];
+};
+struct Texture {
+  std::shared_ptr<const Image> image;
+};
+struct Material {
+  std::variant<SolidColor, Checker, Texture> pattern = SolidColor{{1, 1, 1}};
+  // The colour is the radiance the surface emits in its rest frame.
+  bool unlit = true;
+};
+
+struct Object {
+  std::string name;
+  Shape shape;
+  WorldLine world_line;  // of the object's origin
+  // In the object's rest frame (axes: W's carried by the pure boost): offset = R (S p).
+  Mat3 rotation;
+  Vec3 scale{1, 1, 1};
+  Material material;
+};
+
+struct Camera {
+  WorldLine world_line;  // the observation event is (world_line.time, world_line.position)
+  // In the camera's rest frame (axes: W's carried by the pure boost).
+  Vec3 forward{0, 0, -1};
+  Vec3 up{0, 1, 0};
+  double fov_degrees = 60;  // vertical
+  int width = 640, height = 360;
+  int samples = 1;
+};
+
+// Procedural celestial grid: lines of constant longitude and latitude in the sky's rest frame.
+struct SkyGrid {
+  double spacing_degrees = 15;
+  double line_width_degrees = 0.4;
+  Rgb line_color{1, 1, 1};
+  Rgb background{0.02f, 0.02f, 0.05f};
+};
+struct SkyImage {
+  std::shared_ptr<const Image> image;  // equirectangular
+};
+
+struct Sky {
+  std::variant<SolidColor, SkyImage, SkyGrid> pattern = SolidColor{{0, 0, 0}};
+  Vec3 velocity;  // the sky's rest frame is the pure boost of W by this velocity
+  Mat3 rotation;  // orientation of the pattern in the sky's rest frame
+};
+
+struct RenderSettings {
+  bool relativity = true;   // false: the classical picture
+  bool light_delay = true;  // false: bodies as they are at the camera's time, in its rest frame
+  double exposure = 0;      // EV
+};
+
+struct Scene {
+  Camera camera;
+  std::vector<Object> objects;
+  Sky sky;
+  RenderSettings render;
+};
+
+}  // namespace lightcone
