@@ -4,7 +4,9 @@
 
 namespace lightcone {
 
-double lorentz_gamma(const Vec3& beta) { return 1.0 / std::sqrt(1.0 - dot(beta, beta)); }
+double lorentz_gamma(const Vec3& beta) {
+  return 1.0 / std::sqrt(1.0 - dot(beta, beta));
+}
 
 Mat4 Mat4::operator*(const Mat4& o) const {
   Mat4 r;

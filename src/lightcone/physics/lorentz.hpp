@@ -13,8 +13,7 @@ double lorentz_gamma(const Vec3& beta);
 
 // A 4x4 matrix acting on (t, x, y, z); index 0 is time. Row-major.
 struct Mat4 {
-  std::array<std::array<double, 4>, 4> m{
-      {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+  std::array<std::array<double, 4>, 4> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
 
   static Mat4 identity() { return {}; }
   Vec4 operator*(const Vec4& v) const {
@@ -59,7 +58,9 @@ BoostRotation decompose_lorentz(const Mat4& lorentz);
 Vec3 velocity_addition(const Vec3& beta_a, const Vec3& beta_b);
 
 // Velocity in the current frame of a world-line whose tangent 4-vector is u (u.t > 0).
-inline Vec3 velocity_of(const Vec4& u) { return u.x / u.t; }
+inline Vec3 velocity_of(const Vec4& u) {
+  return u.x / u.t;
+}
 
 // An affine map of events: e' = linear * e + offset.
 struct AffineMap4 {

@@ -32,22 +32,42 @@ struct Vec3 {
   }
 };
 
-constexpr Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
-constexpr Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
-constexpr Vec3 operator*(Vec3 a, double s) { return a *= s; }
-constexpr Vec3 operator*(double s, Vec3 a) { return a *= s; }
-constexpr Vec3 operator/(const Vec3& a, double s) { return {a.x / s, a.y / s, a.z / s}; }
+constexpr Vec3 operator+(Vec3 a, const Vec3& b) {
+  return a += b;
+}
+constexpr Vec3 operator-(Vec3 a, const Vec3& b) {
+  return a -= b;
+}
+constexpr Vec3 operator*(Vec3 a, double s) {
+  return a *= s;
+}
+constexpr Vec3 operator*(double s, Vec3 a) {
+  return a *= s;
+}
+constexpr Vec3 operator/(const Vec3& a, double s) {
+  return {a.x / s, a.y / s, a.z / s};
+}
 constexpr bool operator==(const Vec3& a, const Vec3& b) {
   return a.x == b.x && a.y == b.y && a.z == b.z;
 }
-constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
-inline Vec3 normalize(const Vec3& a) { return a / length(a); }
-inline Vec3 component_mul(const Vec3& a, const Vec3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-inline Vec3 component_div(const Vec3& a, const Vec3& b) { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
+inline double length(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
+inline Vec3 normalize(const Vec3& a) {
+  return a / length(a);
+}
+inline Vec3 component_mul(const Vec3& a, const Vec3& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+inline Vec3 component_div(const Vec3& a, const Vec3& b) {
+  return {a.x / b.x, a.y / b.y, a.z / b.z};
+}
 
 // Row-major 3x3 matrix.
 struct Mat3 {
@@ -79,10 +99,18 @@ struct Vec4 {
   Vec3 x;
 };
 
-constexpr Vec4 operator+(const Vec4& a, const Vec4& b) { return {a.t + b.t, a.x + b.x}; }
-constexpr Vec4 operator-(const Vec4& a, const Vec4& b) { return {a.t - b.t, a.x - b.x}; }
-constexpr Vec4 operator*(double s, const Vec4& a) { return {s * a.t, s * a.x}; }
+constexpr Vec4 operator+(const Vec4& a, const Vec4& b) {
+  return {a.t + b.t, a.x + b.x};
+}
+constexpr Vec4 operator-(const Vec4& a, const Vec4& b) {
+  return {a.t - b.t, a.x - b.x};
+}
+constexpr Vec4 operator*(double s, const Vec4& a) {
+  return {s * a.t, s * a.x};
+}
 // Minkowski product with signature (+, -, -, -).
-constexpr double minkowski_dot(const Vec4& a, const Vec4& b) { return a.t * b.t - dot(a.x, b.x); }
+constexpr double minkowski_dot(const Vec4& a, const Vec4& b) {
+  return a.t * b.t - dot(a.x, b.x);
+}
 
 }  // namespace lightcone

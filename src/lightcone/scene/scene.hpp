@@ -31,7 +31,7 @@ struct Mesh {
   std::vector<Vec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<std::array<float, 2>> uvs;  // per vertex; empty when the file has none
-  std::string source;                      // file it came from, for messages
+  std::string source;                     // file it came from, for messages
 };
 
 // A linear-RGB image, row-major from the top-left, 3 floats per pixel.

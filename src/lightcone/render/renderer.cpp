@@ -1,0 +1,110 @@
+#include "lightcone/render/renderer.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "lightcone/render/shading.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr int kTileSize = 16;
+
+// Deterministic per-pixel sample positions: a hash-seeded stratified pattern, so that
+// renders are reproducible whatever the thread count.
+std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 33;
+  x *= 0xff51afd7ed558ccdULL;
+  x ^= x >> 33;
+  x *= 0xc4ceb9fe1a85ec53ULL;
+  x ^= x >> 33;
+  return x;
+}
+
+double unit_float(std::uint64_t bits) {
+  return static_cast<double>(bits >> 11) * 0x1.0p-53;
+}
+
+// Offset in [0,1)^2 of sample k of n within pixel (i, j); n = 1 is the pixel centre.
+std::array<double, 2> sample_offset(int i, int j, int k, int n) {
+  if (n == 1) return {0.5, 0.5};
+  const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const std::uint64_t h =
+      mix((static_cast<std::uint64_t>(j) << 40) ^ (static_cast<std::uint64_t>(i) << 20) ^
+          static_cast<std::uint64_t>(k));
+  const int sx = k % strata, sy = (k / strata) % strata;
+  return {(sx + unit_float(h)) / strata, (sy + unit_float(mix(h))) / strata};
+}
+
+}  // namespace
+
+Rgb radiance_along(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u) {
+  const float scale = static_cast<float>(std::exp2(scene.scene->render.exposure));
+  Rgb c;
+  if (const auto hit = tracer.trace(u))
+    c = surface_radiance(*scene.bodies[hit->body].object, *hit);
+  else
+    c = sky_radiance(scene.scene->sky, scene.sky_direction(u));
+  return {c.r * scale, c.g * scale, c.b * scale};
+}
+
+Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<tbb::global_control> limit;
+  if (options.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  options.threads);
+  const ResolvedScene resolved = resolve_scene(scene);
+  const Tracer tracer(resolved);
+
+  const Camera& cam = scene.camera;
+  Image image;
+  image.width = cam.width;
+  image.height = cam.height;
+  image.rgb.assign(static_cast<std::size_t>(cam.width) * cam.height * 3, 0.0f);
+  const int tiles_x = (cam.width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (cam.height + kTileSize - 1) / kTileSize;
+  const std::size_t total = static_cast<std::size_t>(tiles_x) * tiles_y;
+  std::atomic<std::size_t> done{0};
+  const int n = cam.samples;
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1), [&](const auto& range) {
+    for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
+      const int x0 = static_cast<int>(tile % tiles_x) * kTileSize;
+      const int y0 = static_cast<int>(tile / tiles_x) * kTileSize;
+      for (int j = y0; j < std::min(y0 + kTileSize, cam.height); ++j)
+        for (int i = x0; i < std::min(x0 + kTileSize, cam.width); ++i) {
+          double r = 0, g = 0, b = 0;
+          for (int k = 0; k < n; ++k) {
+            const auto o = sample_offset(i, j, k, n);
+            const Rgb c = radiance_along(resolved, tracer,
+                                         look_direction(resolved.camera, i + o[0], j + o[1]));
+            r += c.r;
+            g += c.g;
+            b += c.b;
+          }
+          float* px = &image.rgb[3 * (static_cast<std::size_t>(j) * cam.width + i)];
+          px[0] = static_cast<float>(r / n);
+          px[1] = static_cast<float>(g / n);
+          px[2] = static_cast<float>(b / n);
+        }
+      const std::size_t now = ++done;
+      if (options.progress) options.progress(now, total);
+    }
+  });
+
+  if (stats) {
+    stats->seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->rays = static_cast<std::uint64_t>(cam.width) * cam.height * n;
+  }
+  return image;
+}
+
+}  // namespace lightcone

@@ -1,0 +1,86 @@
+// The per-frame resolved view of a scene: everything the tracer needs, expressed in the trace
+// frame F for one observation event. The true-state Scene stays untouched.
+//
+// F has its origin at the observation event. With relativity on, F is the camera's rest frame
+// (W boosted by the camera velocity); with relativity off, F is W shifted to the observation
+// event and bodies map to their own frames by Galilean transformations. Every camera ray is
+// the family of events s (ray_time, u), s >= 0, with u the look direction in F:
+//   ray_time = -1: the backward null ray (light delay on), s = light travel time in F;
+//   ray_time =  0: the camera's simultaneity hyperplane (light delay off, or classical).
+// Each body maps such an event affinely into its shape's own coordinates, where it is static,
+// so a ray meets it as an ordinary straight ray (shape_origin + s (time_column * ray_time +
+// spatial * u)). The parameter s is common to all bodies, so hits are ordered by it.
+#pragma once
+
+#include <vector>
+
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/render/camera_model.hpp"
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+struct Bounds3 {
+  Vec3 lower, upper;
+};
+
+struct ResolvedBody {
+  const Object* object = nullptr;
+  // Shape coordinates of the event s (ray_time, u): shape_origin + s (ray_offset + spatial u).
+  Vec3 shape_origin;
+  Vec3 ray_offset;  // time column of the map times ray_time
+  Mat3 spatial;
+  // Conservative bounds in F of every point where a camera ray can meet the body.
+  Bounds3 trace_bounds;
+
+  Vec3 shape_direction(const Vec3& u) const { return ray_offset + spatial * u; }
+};
+
+// A body or point at rest in its own frame, seen from F: where it is at F-time 0 and how it
+// moves. Used for bounds and by `locate`.
+struct TraceWorldLine {
+  Vec3 position_at_zero;
+  Vec3 velocity;
+};
+
+struct ResolvedScene {
+  const Scene* scene = nullptr;
+  CameraBasis camera;
+  double ray_time = -1;
+  Vec4 observation_event;  // in W
+  AffineMap4 world_to_trace;
+  AffineMap4 trace_to_world;
+  std::vector<ResolvedBody> bodies;
+  // Look direction in the sky's pattern coordinates of the ray event (ray_time, u):
+  // normalize(sky_time_column * ray_time + sky_spatial * u).
+  Vec3 sky_time_column;
+  Mat3 sky_spatial;
+
+  Vec3 sky_direction(const Vec3& u) const {
+    return normalize(sky_time_column * ray_time + sky_spatial * u);
+  }
+};
+
+ResolvedScene resolve_scene(const Scene& scene);
+
+// The map from W events to the rest frame of a body with world-line `line` (origin at the
+// event (line.time, line.position)), Lorentz or Galilean as the settings say.
+AffineMap4 body_frame_map(const RenderSettings& settings, const WorldLine& line);
+
+// The world-line in F of a point at rest at `rest_point` in a body's frame, where
+// `trace_to_body` maps F events to the body frame.
+TraceWorldLine trace_world_line(const AffineMap4& trace_to_body, const Vec3& rest_point);
+
+// Where a ray event (ray_time, direction) meets a world-line: the ray parameter s >= 0 of the
+// event on the ray that lies on the world-line (ray_time -1: retarded, closed form; 0:
+// simultaneous in F), and the event's position in F.
+struct RayEvent {
+  double s = 0;
+  Vec3 position;
+};
+RayEvent meet_world_line(double ray_time, const TraceWorldLine& line);
+
+// Half extents of a shape's axis-aligned bounds and their centre, in shape coordinates.
+Bounds3 shape_bounds(const Shape& shape);
+
+}  // namespace lightcone

@@ -1,0 +1,325 @@
+#include "lightcone/render/tracer.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace lightcone {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Embree lets the application extend the intersect context; we carry the exact (double) look
+// direction so that the body callbacks do not work from Embree's float copy of it.
+struct TraceContext {
+  RTCIntersectContext embree;
+  const Vec3* look;
+};
+
+struct ShapeRay {
+  Vec3 origin, direction;  // direction is not unit: the parameter is the common s
+};
+
+struct ShapeHit {
+  double s = kInfinity;
+  unsigned prim = 0;
+  float bary_u = 0, bary_v = 0;
+};
+
+bool closest_root(double a, double b, double c, double tnear, double tfar, double& s) {
+  // a s^2 + 2 b s + c = 0, stable roots
+  const double disc = b * b - a * c;
+  if (disc < 0 || a == 0) return false;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  double r0 = q / a, r1 = c / q;
+  if (r0 > r1) std::swap(r0, r1);
+  if (r0 >= tnear && r0 < tfar) return s = r0, true;
+  if (r1 >= tnear && r1 < tfar) return s = r1, true;
+  return false;
+}
+
+bool intersect_sphere(const Sphere& sphere, const ShapeRay& ray, double tnear, double tfar,
+                      double& s) {
+  return closest_root(dot(ray.direction, ray.direction), dot(ray.origin, ray.direction),
+                      dot(ray.origin, ray.origin) - sphere.radius * sphere.radius, tnear, tfar, s);
+}
+
+bool intersect_box(const Box& box, const ShapeRay& ray, double tnear, double tfar, double& s) {
+  double lo = -kInfinity, hi = kInfinity;
+  for (int i = 0; i < 3; ++i) {
+    const double h = box.size[i] * 0.5;
+    if (ray.direction[i] == 0) {
+      if (std::abs(ray.origin[i]) > h) return false;
+      continue;
+    }
+    const double inv = 1.0 / ray.direction[i];
+    double t0 = (-h - ray.origin[i]) * inv, t1 = (h - ray.origin[i]) * inv;
+    if (t0 > t1) std::swap(t0, t1);
+    lo = std::max(lo, t0);
+    hi = std::min(hi, t1);
+  }
+  if (lo > hi) return false;
+  if (lo >= tnear && lo < tfar) return s = lo, true;
+  if (hi >= tnear && hi < tfar) return s = hi, true;
+  return false;
+}
+
+bool intersect_plane(const Plane& plane, const ShapeRay& ray, double tnear, double tfar,
+                     double& s) {
+  if (ray.direction.y == 0) return false;
+  const double t = -ray.origin.y / ray.direction.y;
+  if (!(t >= tnear && t < tfar)) return false;
+  const Vec3 p = ray.origin + ray.direction * t;
+  if (std::abs(p.x) > plane.size_x * 0.5 || std::abs(p.z) > plane.size_z * 0.5) return false;
+  s = t;
+  return true;
+}
+
+std::array<double, 2> sphere_uv(const Vec3& p) {
+  const Vec3 n = normalize(p);
+  return {0.5 + std::atan2(n.x, n.z) / (2 * std::numbers::pi),
+          std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
+}
+
+std::array<double, 2> box_uv(const Box& box, const Vec3& p) {
+  // The face is the axis where the point is relatively farthest out.
+  const Vec3 rel = component_div(p, box.size);
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(rel[i]) > std::abs(rel[axis])) axis = i;
+  if (axis == 0) return {0.5 + rel.z, 0.5 - rel.y};
+  if (axis == 1) return {0.5 + rel.x, 0.5 + rel.z};
+  return {0.5 + rel.x, 0.5 - rel.y};
+}
+
+}  // namespace
+
+struct Tracer::Impl {
+  const ResolvedScene& scene;
+  RTCDevice device = nullptr;
+  RTCScene top = nullptr;
+  std::unordered_map<const Mesh*, RTCScene> mesh_scenes;
+  std::vector<RTCScene> body_mesh_scene;  // per body, null for analytic shapes
+  struct BodyRef {
+    const Impl* impl;
+    unsigned index;
+  };
+  std::vector<BodyRef> body_refs;  // Embree's user data for each body's geometry
+  std::atomic<long long> embree_bytes{0};
+
+  explicit Impl(const ResolvedScene& s) : scene(s) {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error("cannot create the Embree device");
+    rtcSetDeviceMemoryMonitorFunction(
+        device,
+        [](void* user, ssize_t bytes, bool) {
+          static_cast<Impl*>(user)->embree_bytes += bytes;
+          return true;
+        },
+        this);
+    top = rtcNewScene(device);
+    body_mesh_scene.resize(scene.bodies.size(), nullptr);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      body_refs.push_back({this, static_cast<unsigned>(i)});
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape))
+        body_mesh_scene[i] = mesh_scene(*m->mesh);
+      attach_body(static_cast<unsigned>(i));
+    }
+    rtcCommitScene(top);
+    check("building the scene");
+  }
+
+  ~Impl() {
+    for (auto& [mesh, s] : mesh_scenes) rtcReleaseScene(s);
+    if (top) rtcReleaseScene(top);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  void check(const char* what) const {
+    const RTCError e = rtcGetDeviceError(device);
+    if (e != RTC_ERROR_NONE)
+      throw std::runtime_error(std::string("Embree failed while ") + what + " (error " +
+                               std::to_string(static_cast<int>(e)) + ")");
+  }
+
+  RTCScene mesh_scene(const Mesh& mesh) {
+    if (auto it = mesh_scenes.find(&mesh); it != mesh_scenes.end()) return it->second;
+    RTCScene s = rtcNewScene(device);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+      for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(mesh.positions[i][k]);
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                mesh.triangles.size()));
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(s, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(s);
+    check("building a mesh");
+    mesh_scenes.emplace(&mesh, s);
+    return s;
+  }
+
+  void attach_body(unsigned index) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryUserData(g, &body_refs[index]);
+    rtcSetGeometryBoundsFunction(g, &Impl::bounds_callback, nullptr);
+    rtcSetGeometryIntersectFunction(g, &Impl::intersect_callback);
+    rtcSetGeometryOccludedFunction(g, &Impl::occluded_callback);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(top, g, index);
+    rtcReleaseGeometry(g);
+  }
+
+  static void bounds_callback(const RTCBoundsFunctionArguments* args) {
+    const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
+    const Bounds3& b = ref->impl->scene.bodies[ref->index].trace_bounds;
+    // Round outwards so that float bounds still contain the double ones.
+    args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
+    args->bounds_o->lower_y = std::nextafter(static_cast<float>(b.lower.y), -INFINITY);
+    args->bounds_o->lower_z = std::nextafter(static_cast<float>(b.lower.z), -INFINITY);
+    args->bounds_o->upper_x = std::nextafter(static_cast<float>(b.upper.x), INFINITY);
+    args->bounds_o->upper_y = std::nextafter(static_cast<float>(b.upper.y), INFINITY);
+    args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.upper.z), INFINITY);
+  }
+
+  ShapeHit intersect(unsigned index, const Vec3& look, double tnear, double tfar,
+                     RTCIntersectContext* context) const {
+    const ResolvedBody& body = scene.bodies[index];
+    const ShapeRay ray{body.shape_origin, body.shape_direction(look)};
+    ShapeHit hit;
+    double s = 0;
+    struct Visitor {
+      const ShapeRay& ray;
+      double tnear, tfar;
+      double& s;
+      bool operator()(const Sphere& x) const { return intersect_sphere(x, ray, tnear, tfar, s); }
+      bool operator()(const Box& x) const { return intersect_box(x, ray, tnear, tfar, s); }
+      bool operator()(const Plane& x) const { return intersect_plane(x, ray, tnear, tfar, s); }
+      bool operator()(const MeshShape&) const { return false; }
+    };
+    if (RTCScene mesh = body_mesh_scene[index]) {
+      RTCRayHit rh{};
+      rh.ray.org_x = static_cast<float>(ray.origin.x);
+      rh.ray.org_y = static_cast<float>(ray.origin.y);
+      rh.ray.org_z = static_cast<float>(ray.origin.z);
+      rh.ray.dir_x = static_cast<float>(ray.direction.x);
+      rh.ray.dir_y = static_cast<float>(ray.direction.y);
+      rh.ray.dir_z = static_cast<float>(ray.direction.z);
+      rh.ray.tnear = static_cast<float>(tnear);
+      rh.ray.tfar = static_cast<float>(std::min(tfar, 3.0e38));
+      rh.ray.mask = ~0u;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(mesh, context, &rh);
+      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        hit.s = rh.ray.tfar;
+        hit.prim = rh.hit.primID;
+        hit.bary_u = rh.hit.u;
+        hit.bary_v = rh.hit.v;
+      }
+    } else if (std::visit(Visitor{ray, tnear, tfar, s}, body.object->shape)) {
+      hit.s = s;
+    }
+    return hit;
+  }
+
+  static void intersect_callback(const RTCIntersectFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
+    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    auto* context = reinterpret_cast<TraceContext*>(args->context);
+    const ShapeHit hit = ref->impl->intersect(ref->index, *context->look, rh->ray.tnear,
+                                              rh->ray.tfar, args->context);
+    if (!(hit.s < rh->ray.tfar)) return;
+    rh->ray.tfar = static_cast<float>(hit.s);
+    rh->hit.geomID = args->geomID;
+    rh->hit.primID = hit.prim;
+    rh->hit.u = hit.bary_u;
+    rh->hit.v = hit.bary_v;
+    rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  }
+
+  static void occluded_callback(const RTCOccludedFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
+    auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+    auto* context = reinterpret_cast<TraceContext*>(args->context);
+    const ShapeHit hit =
+        ref->impl->intersect(ref->index, *context->look, ray->tnear, ray->tfar, args->context);
+    if (hit.s < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
+  }
+};
+
+}  // namespace lightcone
+
+namespace lightcone {
+
+Tracer::Tracer(const ResolvedScene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+Tracer::~Tracer() = default;
+
+std::size_t Tracer::acceleration_bytes() const {
+  return static_cast<std::size_t>(std::max<long long>(0, impl_->embree_bytes.load()));
+}
+
+std::optional<Hit> Tracer::trace(const Vec3& u) const {
+  TraceContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.look = &u;
+  RTCRayHit rh{};
+  rh.ray.dir_x = static_cast<float>(u.x);
+  rh.ray.dir_y = static_cast<float>(u.y);
+  rh.ray.dir_z = static_cast<float>(u.z);
+  rh.ray.tnear = 0;
+  rh.ray.tfar = INFINITY;
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->top, &context.embree, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+  // Embree chose the body; the hit itself is recomputed in double precision.
+  const unsigned index = rh.hit.geomID;
+  const ResolvedBody& body = impl_->scene.bodies[index];
+  Hit hit;
+  hit.body = static_cast<int>(index);
+  const ShapeRay ray{body.shape_origin, body.shape_direction(u)};
+  if (const auto* m = std::get_if<MeshShape>(&body.object->shape)) {
+    const Mesh& mesh = *m->mesh;
+    const auto& tri = mesh.triangles[rh.hit.primID];
+    const double bu = rh.hit.u, bv = rh.hit.v, bw = 1.0 - bu - bv;
+    hit.shape_point =
+        mesh.positions[tri[0]] * bw + mesh.positions[tri[1]] * bu + mesh.positions[tri[2]] * bv;
+    hit.s = rh.ray.tfar;
+    if (!mesh.uvs.empty())
+      for (int k = 0; k < 2; ++k)
+        hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
+    return hit;
+  }
+  const ShapeHit exact = impl_->intersect(index, u, 0, kInfinity, &context.embree);
+  hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
+  hit.shape_point = ray.origin + ray.direction * hit.s;
+  if (std::holds_alternative<Sphere>(body.object->shape)) {
+    hit.uv = sphere_uv(hit.shape_point);
+  } else if (const auto* box = std::get_if<Box>(&body.object->shape)) {
+    hit.uv = box_uv(*box, hit.shape_point);
+  } else if (const auto* plane = std::get_if<Plane>(&body.object->shape)) {
+    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
+  }
+  return hit;
+}
+
+}  // namespace lightcone

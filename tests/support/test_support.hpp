@@ -1,0 +1,29 @@
+// Helpers shared by the tests: temporary folders, scenes from JSON text, running the CLI.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone::test {
+
+// A fresh, empty folder under the system's temporary folder.
+std::filesystem::path fresh_temp_dir(const std::string& name);
+
+void write_text(const std::filesystem::path& file, const std::string& text);
+
+// Writes `json` to a scene file in a fresh folder and loads it (warnings ignored).
+Scene scene_from_json(const std::string& json);
+
+// A scene file from the repository's scenes/ folder.
+Scene load_repository_scene(const std::string& name);
+
+struct CommandResult {
+  int status = -1;
+  std::string out, err;
+};
+// Runs the built `lightcone` binary with the given arguments (shell-quoted by the caller).
+CommandResult run_lightcone(const std::string& arguments);
+
+}  // namespace lightcone::test
