@@ -89,12 +89,17 @@ std::array<double, 2> sphere_uv(const Vec3& p) {
           std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
 }
 
-std::array<double, 2> box_uv(const Box& box, const Vec3& p) {
-  // The face is the axis where the point is relatively farthest out.
+// The face of the box a surface point lies on: the axis where it is relatively farthest out.
+int box_face_axis(const Box& box, const Vec3& p) {
   const Vec3 rel = component_div(p, box.size);
   int axis = 0;
   for (int i = 1; i < 3; ++i)
     if (std::abs(rel[i]) > std::abs(rel[axis])) axis = i;
+  return axis;
+}
+
+std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
+  const Vec3 rel = component_div(p, box.size);
   if (axis == 0) return {0.5 + rel.z, 0.5 - rel.y};
   if (axis == 1) return {0.5 + rel.x, 0.5 + rel.z};
   return {0.5 + rel.x, 0.5 - rel.y};
@@ -312,11 +317,16 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   const ShapeHit exact = impl_->intersect(index, u, 0, kInfinity, &context.embree);
   hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
   hit.shape_point = ray.origin + ray.direction * hit.s;
+  // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
+  // boundary at the face) do not flip with rounding.
   if (std::holds_alternative<Sphere>(body.object->shape)) {
     hit.uv = sphere_uv(hit.shape_point);
   } else if (const auto* box = std::get_if<Box>(&body.object->shape)) {
-    hit.uv = box_uv(*box, hit.shape_point);
+    const int axis = box_face_axis(*box, hit.shape_point);
+    hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
+    hit.uv = box_uv(*box, hit.shape_point, axis);
   } else if (const auto* plane = std::get_if<Plane>(&body.object->shape)) {
+    hit.shape_point.y = 0;
     hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
   }
   return hit;
