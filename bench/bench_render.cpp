@@ -1,0 +1,148 @@
+// Benchmarks named in the issues. Compare within one run (the machines are shared and noisy):
+//   Street/relativistic vs Street/classical           (relativistic cost, target <= 1.25x)
+//   Swarm/relativistic vs Swarm/classical             (target <= 2x)
+//   Swarm throughput vs StaticStreet throughput       (target >= 1/3)
+//   Memory/instances:1000 vs Memory/instances:1       (acceleration + mesh bytes)
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <map>
+#include <random>
+
+#include "lightcone/io/scene_file.hpp"
+#include "lightcone/render/renderer.hpp"
+#include "lightcone/render/resolved_scene.hpp"
+#include "lightcone/render/tracer.hpp"
+
+using namespace lightcone;
+
+namespace {
+
+Scene street(bool relativity, bool moving) {
+  SceneLoadReport report;
+  Scene s =
+      load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/street.json",
+                      {"camera.width=1920", "camera.height=1080", "camera.samples=1"}, report);
+  s.render.relativity = relativity;
+  if (!moving) s.camera.world_line.velocity = {};
+  return s;
+}
+
+// Icosphere with `levels` subdivisions: 20 * 4^levels triangles.
+std::shared_ptr<Mesh> icosphere(int levels) {
+  auto mesh = std::make_shared<Mesh>();
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  for (const Vec3& p : {Vec3{-1, t, 0}, Vec3{1, t, 0}, Vec3{-1, -t, 0}, Vec3{1, -t, 0},
+                        Vec3{0, -1, t}, Vec3{0, 1, t}, Vec3{0, -1, -t}, Vec3{0, 1, -t},
+                        Vec3{t, 0, -1}, Vec3{t, 0, 1}, Vec3{-t, 0, -1}, Vec3{-t, 0, 1}})
+    mesh->positions.push_back(normalize(p));
+  mesh->triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::minmax(a, b);
+      if (auto it = midpoints.find(key); it != midpoints.end()) return it->second;
+      mesh->positions.push_back(normalize(mesh->positions[a] + mesh->positions[b]));
+      const auto index = static_cast<std::uint32_t>(mesh->positions.size() - 1);
+      midpoints[key] = index;
+      return index;
+    };
+    std::vector<std::array<std::uint32_t, 3>> finer;
+    for (const auto& [a, b, c] : mesh->triangles) {
+      const auto ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      finer.insert(finer.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
+    }
+    mesh->triangles = std::move(finer);
+  }
+  return mesh;
+}
+
+// `count` instances of one ~1280-triangle mesh, moving in random directions at up to 0.9c.
+Scene swarm(int count, bool relativity, int width = 1920, int height = 1080) {
+  static const std::shared_ptr<Mesh> mesh = icosphere(3);
+  Scene s;
+  s.camera.width = width;
+  s.camera.height = height;
+  s.camera.fov_degrees = 70;
+  s.render.relativity = relativity;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < count; ++i) {
+    Object o;
+    o.name = "body-" + std::to_string(i);
+    o.shape = MeshShape{mesh};
+    o.world_line.position = {u(rng) * 40, u(rng) * 22, -30 + u(rng) * 25};
+    Vec3 dir{u(rng), u(rng), u(rng)};
+    o.world_line.velocity = normalize(dir) * (0.9 * std::abs(u(rng)));
+    o.scale = {1.2, 1.2, 1.2};
+    o.material.pattern = SolidColor{{0.8f, 0.6f, 0.3f}};
+    s.objects.push_back(o);
+  }
+  s.sky.pattern = SolidColor{{0.05f, 0.05f, 0.1f}};
+  return s;
+}
+
+void render_and_count(benchmark::State& state, const Scene& scene) {
+  RenderStats stats;
+  for (auto _ : state) {
+    Image image = render_image(scene, RenderOptions{}, &stats);
+    benchmark::DoNotOptimize(image.rgb.data());
+  }
+  state.counters["rays_per_s"] = benchmark::Counter(
+      static_cast<double>(stats.rays) * state.iterations(), benchmark::Counter::kIsRate);
+}
+
+void BM_Street(benchmark::State& state) {
+  render_and_count(state, street(state.range(0) != 0, true));
+}
+BENCHMARK(BM_Street)
+    ->ArgName("relativistic")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+
+void BM_StaticStreet(benchmark::State& state) {
+  render_and_count(state, street(true, false));
+}
+BENCHMARK(BM_StaticStreet)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+void BM_Swarm(benchmark::State& state) {
+  render_and_count(state, swarm(1000, state.range(0) != 0));
+}
+BENCHMARK(BM_Swarm)
+    ->ArgName("relativistic")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+
+// Memory for `instances` uses of one mesh: Embree's acceleration structures plus the mesh.
+void BM_Memory(benchmark::State& state) {
+  const Scene scene = swarm(static_cast<int>(state.range(0)), true, 64, 64);
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const ResolvedScene resolved = resolve_scene(scene);
+    const Tracer tracer(resolved);
+    const Mesh& mesh = *std::get<MeshShape>(scene.objects[0].shape).mesh;
+    bytes = tracer.acceleration_bytes() + mesh.positions.size() * sizeof(Vec3) +
+            mesh.triangles.size() * sizeof(mesh.triangles[0]) +
+            resolved.bodies.size() * sizeof(ResolvedBody) + scene.objects.size() * sizeof(Object);
+  }
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_Memory)
+    ->ArgName("instances")
+    ->Arg(1)
+    ->Arg(1000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
