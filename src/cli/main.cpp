@@ -59,7 +59,7 @@ Vec3 parse_triple(const std::string& option, const std::string& text) {
   return v;
 }
 
-nlohmann::json to_json(const Vec3& v) {
+nlohmann::ordered_json to_json(const Vec3& v) {
   return nlohmann::json::array({v.x, v.y, v.z});
 }
 
@@ -93,9 +93,10 @@ int run_render(const RenderArgs& a) {
   write_images(image, fs::path(a.png),
                a.exr ? std::optional<fs::path>(*a.exr) : std::optional<fs::path>());
   if (a.stats) {
-    const nlohmann::json line = {{"seconds", stats.seconds},
-                                 {"rays", stats.rays},
-                                 {"mrays_per_s", stats.rays / std::max(stats.seconds, 1e-9) / 1e6}};
+    const nlohmann::ordered_json line = {
+        {"seconds", stats.seconds},
+        {"rays", stats.rays},
+        {"mrays_per_s", stats.rays / std::max(stats.seconds, 1e-9) / 1e6}};
     std::fprintf(stderr, "%s\n", line.dump().c_str());
   }
   return 0;
@@ -133,12 +134,12 @@ int run_locate(const LocateArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw InputError(a.scene + ": --object: " + e.what());
   }
-  nlohmann::json out = {{"pixel", {r.pixel_x, r.pixel_y}},
-                        {"direction", to_json(r.direction)},
-                        {"emission_time", nullptr},
-                        {"emission_position", nullptr},
-                        {"distance", nullptr},
-                        {"in_view", r.in_view}};
+  nlohmann::ordered_json out = {{"pixel", {r.pixel_x, r.pixel_y}},
+                                {"direction", to_json(r.direction)},
+                                {"emission_time", nullptr},
+                                {"emission_position", nullptr},
+                                {"distance", nullptr},
+                                {"in_view", r.in_view}};
   if (r.emission_time) out["emission_time"] = *r.emission_time;
   if (r.emission_position) out["emission_position"] = to_json(*r.emission_position);
   if (r.distance) out["distance"] = *r.distance;
