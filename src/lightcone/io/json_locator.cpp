@@ -1,0 +1,164 @@
+#include "lightcone/io/json_locator.hpp"
+
+#include <nlohmann/json.hpp>
+#include <unordered_set>
+
+namespace lightcone {
+
+std::string json_member_path(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+std::string json_element_path(const std::string& parent, std::size_t index) {
+  return parent + "[" + std::to_string(index) + "]";
+}
+
+// A recursive-descent walk over text that is already known to be valid JSON, so it checks
+// nothing and only keeps track of lines and paths.
+class JsonScanner {
+ public:
+  JsonScanner(std::string_view text, JsonLineMap& map) : s_(text), map_(map) {}
+
+  void run() {
+    if (s_.substr(0, 3) == "\xEF\xBB\xBF") i_ = 3;  // nlohmann skips a UTF-8 byte order mark
+    value("", 0, 0);
+  }
+
+ private:
+  // Nothing the scene format reads is nested this deep. Deeper values are skipped without being
+  // recorded so that a hostile file cannot exhaust the stack or fill memory with long paths.
+  static constexpr int kMaxDepth = 32;
+
+  char peek() const { return i_ < s_.size() ? s_[i_] : '\0'; }
+  void advance() {
+    if (i_ >= s_.size()) return;
+    if (s_[i_] == '\n') ++line_;
+    ++i_;
+  }
+
+  // Whitespace and both comment styles that nlohmann accepts with ignore_comments.
+  void skip_space() {
+    while (i_ < s_.size()) {
+      const char c = s_[i_], next = i_ + 1 < s_.size() ? s_[i_ + 1] : '\0';
+      if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
+        advance();
+      } else if (c == '/' && next == '/') {
+        while (i_ < s_.size() && s_[i_] != '\n') advance();
+      } else if (c == '/' && next == '*') {
+        advance(), advance();
+        while (i_ < s_.size() && !(s_[i_] == '*' && peek_at(1) == '/')) advance();
+        advance(), advance();
+      } else {
+        return;
+      }
+    }
+  }
+  char peek_at(std::size_t k) const { return i_ + k < s_.size() ? s_[i_ + k] : '\0'; }
+
+  // Returns the raw token, quotes and escapes included.
+  std::string_view string_token() {
+    const std::size_t start = i_;
+    advance();
+    while (i_ < s_.size() && s_[i_] != '"') {
+      if (s_[i_] == '\\') advance();
+      advance();
+    }
+    advance();
+    return s_.substr(start, i_ - start);
+  }
+
+  static std::string decode_key(std::string_view token) {
+    if (token.find('\\') == std::string_view::npos)
+      return std::string(token.substr(1, token.size() - 2));
+    return nlohmann::json::parse(std::string(token))
+        .get<std::string>();  // the parser knows every escape
+  }
+
+  void value(const std::string& path, int key_line, int depth) {
+    skip_space();
+    map_.lines_[path] = {key_line > 0 ? key_line : line_, line_};
+    const char c = peek();
+    if (depth >= kMaxDepth && (c == '{' || c == '[')) return skip_nested();
+    if (c == '{') {
+      advance();
+      std::unordered_set<std::string> seen;
+      for (skip_space(); peek() == '"'; skip_space()) {
+        const int line = line_;
+        const std::string key = decode_key(string_token());
+        const std::string member = json_member_path(path, key);
+        if (!seen.insert(key).second) map_.duplicates_.push_back({member, line});
+        skip_space();
+        advance();  // ':'
+        value(member, line, depth + 1);
+        skip_space();
+        if (peek() == ',') advance();
+      }
+      advance();  // '}'
+    } else if (c == '[') {
+      advance();
+      skip_space();
+      for (std::size_t index = 0; peek() != ']' && i_ < s_.size(); ++index) {
+        value(json_element_path(path, index), 0, depth + 1);
+        skip_space();
+        if (peek() == ',') advance();
+        skip_space();
+      }
+      advance();  // ']'
+    } else if (c == '"') {
+      string_token();
+    } else {  // number, true, false, null
+      while (i_ < s_.size() &&
+             std::string_view(" \t\r\n,]}/").find(s_[i_]) == std::string_view::npos)
+        advance();
+    }
+  }
+
+  // Skips one object or array iteratively.
+  void skip_nested() {
+    int open = 0;
+    do {
+      skip_space();
+      const char c = peek();
+      if (c == '"') {
+        string_token();
+        continue;
+      }
+      if (c == '{' || c == '[') ++open;
+      if (c == '}' || c == ']') --open;
+      advance();
+    } while (open > 0 && i_ < s_.size());
+  }
+
+  std::string_view s_;
+  JsonLineMap& map_;
+  std::size_t i_ = 0;
+  int line_ = 1;
+};
+
+JsonLineMap::JsonLineMap(std::string_view text) {
+  JsonScanner(text, *this).run();
+}
+
+const JsonLineMap::Lines& JsonLineMap::find(std::string path) const {
+  static const Lines first_line;
+  for (;;) {
+    if (auto it = lines_.find(path); it != lines_.end()) return it->second;
+    if (path.empty()) return first_line;
+    // Drop the last component: "[i]" or ".key" (or the whole path when it has a single key).
+    const std::size_t cut = path.back() == ']' ? path.rfind('[') : path.rfind('.');
+    path.resize(cut == std::string::npos ? 0 : cut);
+  }
+}
+
+int JsonLineMap::value_line(const std::string& path) const {
+  return find(path).value;
+}
+
+int JsonLineMap::key_line(const std::string& path) const {
+  // A key that is not in the text has no key line of its own; its parent's value line is nearer
+  // than the parent's key.
+  if (auto it = lines_.find(path); it != lines_.end()) return it->second.key;
+  return find(path).value;
+}
+
+}  // namespace lightcone

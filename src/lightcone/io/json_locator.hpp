@@ -1,0 +1,50 @@
+// Line numbers for the values of a JSON text. nlohmann::json keeps no source positions, so after
+// a successful parse the text is scanned once more and, for every value, the line where it (and,
+// inside an object, its key) starts is remembered under its readable path: `camera.velocity`,
+// `objects[2].shape.sphere.radius`; the root is "".
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace lightcone {
+
+// The readable path of an object member or an array element. Shared by the locator and its users
+// so that the paths they build always agree.
+std::string json_member_path(const std::string& parent, std::string_view key);
+std::string json_element_path(const std::string& parent, std::size_t index);
+
+class JsonLineMap {
+ public:
+  struct DuplicateKey {
+    std::string path;
+    int line = 0;
+  };
+
+  // `text` must be a JSON document that nlohmann::json accepted (comments allowed).
+  explicit JsonLineMap(std::string_view text);
+
+  // 1-based line where the value at `path` starts. A path that is not in the text (a missing
+  // key) gets the line of its nearest ancestor that is.
+  int value_line(const std::string& path) const;
+  // Line of the key of the member at `path`; the value's line for array elements and the root.
+  int key_line(const std::string& path) const;
+  // Keys repeated within one object (every occurrence after the first), in text order.
+  // nlohmann::json silently keeps the last one, which hides typos, so callers reject them.
+  const std::vector<DuplicateKey>& duplicate_keys() const { return duplicates_; }
+
+ private:
+  friend class JsonScanner;
+  struct Lines {
+    int key = 1, value = 1;
+  };
+  const Lines& find(std::string path) const;
+
+  std::unordered_map<std::string, Lines> lines_;
+  std::vector<DuplicateKey> duplicates_;
+};
+
+}  // namespace lightcone

@@ -1,0 +1,523 @@
+#include "lightcone/io/scene_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "lightcone/io/image_file.hpp"
+#include "lightcone/io/input_error.hpp"
+#include "lightcone/io/json_locator.hpp"
+#include "lightcone/io/mesh_file.hpp"
+#include "lightcone/io/scene_overrides.hpp"
+
+namespace lightcone {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr int kMaxImageSide = 16384;
+constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
+constexpr int kMaxSamples = 65536;
+
+// A value in the document with its readable path; `value` is null when the key is absent, so
+// optional keys keep the scene model's defaults (which are the format's defaults).
+struct Node {
+  const json* value;
+  std::string path;
+};
+
+Node member(const Node& object, const char* key) {
+  const auto it = object.value->find(key);
+  return {it == object.value->end() ? nullptr : &*it, json_member_path(object.path, key)};
+}
+
+Node element(const Node& array, std::size_t index) {
+  return {&(*array.value)[index], json_element_path(array.path, index)};
+}
+
+std::string describe(const json& v) {
+  if (v.is_object()) return "an object";
+  if (v.is_array()) return fmt::format("an array of {} elements", v.size());
+  std::string text = v.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return fmt::format("{} {}", v.type_name(), text);
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string out;
+  for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+  return out;
+}
+
+// Validates the document and builds the scene. Every check names the path of the offending
+// value; the line comes from the locator, or the message blames a --set override.
+class SceneReader {
+ public:
+  SceneReader(const fs::path& file, const JsonLineMap& lines, std::vector<std::string> overridden,
+              SceneLoadReport& report)
+      : file_(file), lines_(lines), overridden_(std::move(overridden)), report_(report) {}
+
+  Scene read(const json& document) {
+    const Node root{&document, ""};
+    object(root, {"$schema", "camera", "objects", "sky", "render"});
+    if (Node schema = member(root, "$schema"); schema.value) string(schema);
+    Scene scene;
+    scene.camera = camera(member(root, "camera"));
+    if (Node objects = member(root, "objects"); objects.value) read_objects(objects, scene);
+    if (Node sky_node = member(root, "sky"); sky_node.value) scene.sky = sky(sky_node);
+    if (Node render_node = member(root, "render"); render_node.value)
+      scene.render = render(render_node);
+    load_assets(scene);
+    return scene;
+  }
+
+ private:
+  // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
+  // a typo near the end does not wait for large files to load first).
+  struct Asset {
+    enum Kind { kMesh, kTexture, kSkyImage } kind;
+    std::size_t object = 0;
+    fs::path file;
+    std::string path;
+  };
+
+  // --- Messages ---------------------------------------------------------------------------
+
+  // An error inside (or around) a value that came from --set is the override's fault, not the
+  // file's; the line of the file would point at the value that was replaced.
+  bool overridden(const std::string& path) const {
+    auto within = [](const std::string& inner, const std::string& outer) {
+      return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+             (inner[outer.size()] == '.' || inner[outer.size()] == '[');
+    };
+    return std::any_of(overridden_.begin(), overridden_.end(), [&](const std::string& o) {
+      return o == path || within(path, o) || within(o, path);
+    });
+  }
+
+  [[noreturn]] void fail_at(const std::string& path, int line, const std::string& what) const {
+    const std::string shown = path.empty() ? "(top level)" : path;
+    if (overridden(path)) throw InputError(fmt::format("--set {}: {}", shown, what));
+    throw InputError(fmt::format("{}:{}: {}: {}", file_.string(), line, shown, what));
+  }
+  [[noreturn]] void fail(const Node& n, const std::string& what) const {
+    fail_at(n.path, lines_.value_line(n.path), what);
+  }
+
+  // --- Typed values -----------------------------------------------------------------------
+
+  const json& need(const Node& n) const {
+    if (!n.value) fail(n, "required key is missing");
+    return *n.value;
+  }
+
+  // Checks that `n` is an object whose keys are all in `allowed`.
+  void object(const Node& n, const std::vector<std::string>& allowed) const {
+    const json& v = need(n);
+    if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
+    for (const auto& item : v.items()) {
+      if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+      const std::string path = json_member_path(n.path, item.key());
+      fail_at(path, lines_.key_line(path),
+              fmt::format("unknown key \"{}\" (expected one of: {})", item.key(), join(allowed)));
+    }
+  }
+
+  // An object with exactly one of `choices` (plus any of `others`); returns the chosen key.
+  std::string one_of(const Node& n, const std::vector<std::string>& choices,
+                     const std::vector<std::string>& others = {}) const {
+    std::vector<std::string> allowed = choices;
+    allowed.insert(allowed.end(), others.begin(), others.end());
+    object(n, allowed);
+    std::vector<std::string> present;
+    for (const auto& c : choices)
+      if (n.value->contains(c)) present.push_back(c);
+    if (present.size() != 1)
+      fail(n, fmt::format("must have exactly one of: {} (found {})", join(choices),
+                          present.empty() ? "none" : join(present)));
+    return present.front();
+  }
+
+  double number(const Node& n) const {
+    const json& v = need(n);
+    if (!v.is_number()) fail(n, fmt::format("must be a number, got {}", describe(v)));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(n, "must be a finite number");
+    return d;
+  }
+
+  double positive(const Node& n) const {
+    const double d = number(n);
+    if (!(d > 0)) fail(n, fmt::format("must be greater than 0, got {}", d));
+    return d;
+  }
+
+  int integer(const Node& n, int lo, int hi) const {
+    const double d = number(n);
+    if (d != std::floor(d) || d < lo || d > hi)
+      fail(n, fmt::format("must be an integer from {} to {}, got {}", lo, hi, n.value->dump()));
+    return static_cast<int>(d);
+  }
+
+  bool boolean(const Node& n) const {
+    const json& v = need(n);
+    if (!v.is_boolean()) fail(n, fmt::format("must be true or false, got {}", describe(v)));
+    return v.get<bool>();
+  }
+
+  std::string string(const Node& n) const {
+    const json& v = need(n);
+    if (!v.is_string()) fail(n, fmt::format("must be a string, got {}", describe(v)));
+    return v.get<std::string>();
+  }
+
+  std::vector<double> numbers(const Node& n, std::size_t count) const {
+    const json& v = need(n);
+    if (!v.is_array() || v.size() != count)
+      fail(n, fmt::format("must be an array of {} numbers, got {}", count, describe(v)));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < count; ++i) out.push_back(number(element(n, i)));
+    return out;
+  }
+
+  Vec3 vec3(const Node& n) const {
+    const auto v = numbers(n, 3);
+    return {v[0], v[1], v[2]};
+  }
+
+  Vec3 positive_vec3(const Node& n) const {
+    vec3(n);  // shape and types first, so that the messages below are about values
+    return {positive(element(n, 0)), positive(element(n, 1)), positive(element(n, 2))};
+  }
+
+  // A unit direction. Scaled by its largest component before normalizing, so that tiny or huge
+  // (but finite) vectors neither underflow to zero nor overflow to infinity.
+  Vec3 direction(const Node& n) const {
+    const Vec3 v = vec3(n);
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (largest == 0) fail(n, "must not be the zero vector");
+    return normalize(v / largest);
+  }
+
+  Vec3 velocity(const Node& n) const {
+    const Vec3 beta = vec3(n);
+    if (!(dot(beta, beta) < 1))
+      fail(n, fmt::format("speed {} must be below the speed of light (1)", length(beta)));
+    return beta;
+  }
+
+  Rgb color(const Node& n) const {
+    vec3(n);
+    float c[3];
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Node component = element(n, i);
+      const double d = number(component);
+      c[i] = static_cast<float>(d);
+      if (d < 0) fail(component, fmt::format("must be >= 0, got {}", d));
+      if (!std::isfinite(c[i]))
+        fail(component, fmt::format("is too large for a colour, got {}", d));
+    }
+    return {c[0], c[1], c[2]};
+  }
+
+  Mat3 rotation(const Node& n) const {
+    object(n, {"axis", "degrees"});
+    const Vec3 axis = direction(member(n, "axis"));
+    return Mat3::rotation(axis, number(member(n, "degrees")) * std::numbers::pi / 180);
+  }
+
+  fs::path file_path(const Node& n) const {
+    const std::string text = string(n);
+    if (text.empty()) fail(n, "must not be empty");
+    const fs::path p(text);
+    return p.is_relative() ? file_.parent_path() / p : p;
+  }
+
+  // --- Sections ---------------------------------------------------------------------------
+
+  Camera camera(const Node& n) const {
+    object(n,
+           {"position", "time", "velocity", "forward", "up", "fov", "width", "height", "samples"});
+    Camera c;
+    c.world_line.position = vec3(member(n, "position"));
+    if (Node t = member(n, "time"); t.value) c.world_line.time = number(t);
+    if (Node v = member(n, "velocity"); v.value) c.world_line.velocity = velocity(v);
+    if (Node f = member(n, "forward"); f.value) c.forward = direction(f);
+    if (Node u = member(n, "up"); u.value) c.up = direction(u);
+    if (length(cross(c.forward, c.up)) < 1e-9) {
+      const Node up = member(n, "up");
+      fail(up, up.value ? "must not be parallel to camera.forward"
+                        : "must not be parallel to camera.forward (up defaults to [0, 1, 0])");
+    }
+    if (Node fov = member(n, "fov"); fov.value) {
+      c.fov_degrees = number(fov);
+      if (!(c.fov_degrees > 0 && c.fov_degrees < 180))
+        fail(fov, fmt::format("must be between 0 and 180 degrees (both excluded), got {}",
+                              c.fov_degrees));
+    }
+    const Node width = member(n, "width"), height = member(n, "height");
+    if (width.value) c.width = integer(width, 1, kMaxImageSide);
+    if (height.value) c.height = integer(height, 1, kMaxImageSide);
+    if (std::int64_t{c.width} * c.height > kMaxPixels)
+      fail(width, fmt::format("{} x {} pixels is more than the limit of {} (2^27)", c.width,
+                              c.height, kMaxPixels));
+    if (Node s = member(n, "samples"); s.value) c.samples = integer(s, 1, kMaxSamples);
+    return c;
+  }
+
+  void read_objects(const Node& n, Scene& scene) {
+    if (!n.value->is_array())
+      fail(n, fmt::format("must be an array of objects, got {}", describe(*n.value)));
+    std::map<std::string, std::string> names;  // name -> path of the object that has it
+    for (std::size_t i = 0; i < n.value->size(); ++i) {
+      const Node o = element(n, i);
+      scene.objects.push_back(read_object(o, i));
+      const auto [it, added] = names.emplace(scene.objects.back().name, o.path);
+      if (!added)
+        fail(member(o, "name"),
+             fmt::format("duplicate object name \"{}\" (also used by {})", it->first, it->second));
+    }
+  }
+
+  Object read_object(const Node& n, std::size_t index) {
+    object(n, {"name", "shape", "position", "time", "velocity", "rotation", "scale", "material"});
+    Object o;
+    const Node name = member(n, "name");
+    o.name = string(name);
+    if (o.name.empty()) fail(name, "must not be empty");
+    o.shape = shape(member(n, "shape"), index);
+    if (Node p = member(n, "position"); p.value) o.world_line.position = vec3(p);
+    if (Node t = member(n, "time"); t.value) o.world_line.time = number(t);
+    if (Node v = member(n, "velocity"); v.value) o.world_line.velocity = velocity(v);
+    if (Node r = member(n, "rotation"); r.value) o.rotation = rotation(r);
+    if (Node s = member(n, "scale"); s.value) {
+      if (s.value->is_number()) {
+        const double k = positive(s);
+        o.scale = {k, k, k};
+      } else {
+        o.scale = positive_vec3(s);
+      }
+    }
+    if (Node m = member(n, "material"); m.value) o.material = material(m, index);
+    return o;
+  }
+
+  Shape shape(const Node& n, std::size_t index) {
+    const std::string kind = one_of(n, {"sphere", "box", "plane", "mesh"});
+    const Node body = member(n, kind.c_str());
+    if (kind == "sphere") {
+      object(body, {"radius"});
+      return Sphere{positive(member(body, "radius"))};
+    }
+    if (kind == "box") {
+      object(body, {"size"});
+      return Box{positive_vec3(member(body, "size"))};
+    }
+    if (kind == "plane") {
+      object(body, {"size"});
+      const Node size = member(body, "size");
+      numbers(size, 2);
+      return Plane{positive(element(size, 0)), positive(element(size, 1))};
+    }
+    object(body, {"file"});
+    const Node file = member(body, "file");
+    assets_.push_back({Asset::kMesh, index, file_path(file), file.path});
+    return MeshShape{};
+  }
+
+  Material material(const Node& n, std::size_t index) {
+    const std::string kind = one_of(n, {"color", "checker", "texture"}, {"unlit"});
+    Material m;
+    if (Node unlit = member(n, "unlit"); unlit.value && !boolean(unlit))
+      fail(unlit, "lit materials are not supported yet; leave \"unlit\" out or set it to true");
+    const Node body = member(n, kind.c_str());
+    if (kind == "color") {
+      m.pattern = SolidColor{color(body)};
+    } else if (kind == "checker") {
+      object(body, {"size", "colors"});
+      Checker checker;
+      checker.size = positive(member(body, "size"));
+      const Node colors = member(body, "colors");
+      if (!need(colors).is_array() || colors.value->size() != 2)
+        fail(colors, fmt::format("must be an array of 2 colours, got {}", describe(*colors.value)));
+      checker.colors[0] = color(element(colors, 0));
+      checker.colors[1] = color(element(colors, 1));
+      m.pattern = checker;
+    } else {
+      assets_.push_back({Asset::kTexture, index, file_path(body), body.path});
+      m.pattern = Texture{};
+    }
+    return m;
+  }
+
+  Sky sky(const Node& n) {
+    const std::string kind = one_of(n, {"color", "image", "grid"}, {"velocity", "rotation"});
+    Sky s;
+    const Node body = member(n, kind.c_str());
+    if (kind == "color") {
+      s.pattern = SolidColor{color(body)};
+    } else if (kind == "image") {
+      assets_.push_back({Asset::kSkyImage, 0, file_path(body), body.path});
+      s.pattern = SkyImage{};
+    } else {
+      object(body, {"spacing", "line_width", "color", "background"});
+      SkyGrid grid;
+      if (Node spacing = member(body, "spacing"); spacing.value) {
+        grid.spacing_degrees = number(spacing);
+        if (!(grid.spacing_degrees > 0 && grid.spacing_degrees <= 90))
+          fail(spacing, fmt::format("must be greater than 0 and at most 90 degrees, got {}",
+                                    grid.spacing_degrees));
+      }
+      if (Node w = member(body, "line_width"); w.value) grid.line_width_degrees = positive(w);
+      if (Node c = member(body, "color"); c.value) grid.line_color = color(c);
+      if (Node b = member(body, "background"); b.value) grid.background = color(b);
+      s.pattern = grid;
+    }
+    if (Node v = member(n, "velocity"); v.value) s.velocity = velocity(v);
+    if (Node r = member(n, "rotation"); r.value) s.rotation = rotation(r);
+    return s;
+  }
+
+  RenderSettings render(const Node& n) const {
+    object(n, {"relativity", "light_delay", "exposure"});
+    RenderSettings r;
+    if (Node v = member(n, "relativity"); v.value) r.relativity = boolean(v);
+    if (Node v = member(n, "light_delay"); v.value) r.light_delay = boolean(v);
+    if (Node v = member(n, "exposure"); v.value) r.exposure = number(v);
+    return r;
+  }
+
+  // --- Files ------------------------------------------------------------------------------
+
+  // Meshes and images are cached by canonical path, so objects naming one file through
+  // different relative paths still share one copy.
+  static fs::path cache_key(const fs::path& file) {
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(file, ec);
+    return ec ? file.lexically_normal() : key;
+  }
+
+  // The loaders' own InputError names the file; prefix where the scene names it. Other errors
+  // from the decoding libraries are about the file too; running out of memory is not.
+  template <class Load>
+  auto load(const Asset& a, Load&& load_file) const {
+    try {
+      return load_file();
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      fail_at(a.path, lines_.value_line(a.path), e.what());
+    }
+  }
+
+  void load_assets(Scene& scene) {
+    std::map<fs::path, std::shared_ptr<const Mesh>> meshes;
+    std::map<fs::path, std::shared_ptr<const Image>> images;
+    for (const Asset& a : assets_) {
+      const fs::path key = cache_key(a.file);
+      if (a.kind == Asset::kMesh) {
+        auto& mesh = meshes[key];
+        if (!mesh) {
+          MeshLoadReport mesh_report;
+          mesh = load(a, [&] { return load_mesh_file(a.file, mesh_report); });
+          if (mesh_report.degenerate_triangles_dropped > 0)
+            report_.warnings.push_back(fmt::format("{}: {} degenerate triangles dropped",
+                                                   a.file.string(),
+                                                   mesh_report.degenerate_triangles_dropped));
+        }
+        std::get<MeshShape>(scene.objects[a.object].shape).mesh = mesh;
+        continue;
+      }
+      auto& image = images[key];
+      if (!image) image = load(a, [&] { return load_image_file(a.file); });
+      if (a.kind == Asset::kTexture)
+        std::get<Texture>(scene.objects[a.object].material.pattern).image = image;
+      else
+        std::get<SkyImage>(scene.sky.pattern).image = image;
+    }
+  }
+
+  const fs::path& file_;
+  const JsonLineMap& lines_;
+  std::vector<std::string> overridden_;  // readable paths that --set replaced
+  SceneLoadReport& report_;
+  std::vector<Asset> assets_;
+};
+
+std::string read_text(const fs::path& file) {
+  auto fail = [&](const std::string& reason) {
+    throw InputError(fmt::format("{}: cannot read scene file: {}", file.string(), reason));
+  };
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) fail("it is a directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail(std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) fail(std::strerror(errno));
+  return text.str();
+}
+
+// nlohmann's DOM builder with the position of the first error recorded. Parsing through this
+// hook, rather than catching json::parse_error, also gives a position to errors that nlohmann
+// throws without one (a number too large for a double, 1e400, is an out_of_range error).
+class PositionedDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
+ public:
+  using json_sax_dom_parser::json_sax_dom_parser;
+
+  template <class Exception>
+  bool parse_error(std::size_t byte, const std::string& /*token*/, const Exception& e) {
+    error_byte = byte;
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error while
+    // parsing ...": the line is reported our way, so keep only the description.
+    error = e.what();
+    if (const std::size_t tag = error.find("] "); tag != std::string::npos) error.erase(0, tag + 2);
+    if (error.rfind("parse error", 0) == 0) error.erase(0, error.find(": ") + 2);
+    return false;
+  }
+
+  std::size_t error_byte = 0;  // 1-based offset of the last character read
+  std::string error;
+};
+
+json parse_document(const fs::path& file, const std::string& text) {
+  json document;
+  PositionedDomParser parser(document);
+  if (json::sax_parse(text, &parser, json::input_format_t::json, /*strict=*/true,
+                      /*ignore_comments=*/true))
+    return document;
+  const std::size_t end = std::min(parser.error_byte > 0 ? parser.error_byte - 1 : 0, text.size());
+  const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
+  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, parser.error));
+}
+
+}  // namespace
+
+Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
+                      SceneLoadReport& report) {
+  const std::string text = read_text(file);
+  json document = parse_document(file, text);
+  const JsonLineMap lines(text);
+  if (!lines.duplicate_keys().empty()) {
+    const auto& d = lines.duplicate_keys().front();
+    throw InputError(fmt::format("{}:{}: {}: duplicate key (each key may appear only once)",
+                                 file.string(), d.line, d.path));
+  }
+
+  std::vector<std::string> overridden;
+  for (const std::string& o : overrides) overridden.push_back(apply_scene_override(document, o));
+  return SceneReader(file, lines, std::move(overridden), report).read(document);
+}
+
+}  // namespace lightcone

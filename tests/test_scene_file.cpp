@@ -1,0 +1,639 @@
+// Tests of the JSON scene format (docs/scene-format.md): how a file maps onto the scene model,
+// --set overrides, and that every kind of bad input is an InputError whose message names the
+// file, the line and the JSON path ("FILE:LINE: PATH: what is wrong").
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lightcone/io/image_file.hpp"
+#include "lightcone/io/input_error.hpp"
+#include "lightcone/io/json_locator.hpp"
+#include "lightcone/io/scene_file.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A single triangle, and the same with one degenerate (repeated-vertex) triangle added.
+constexpr const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+constexpr const char* kTriangleObjWithDegenerate = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n";
+
+class SceneFileTest : public ::testing::Test {
+ protected:
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path file = dir_ / name;
+    fs::create_directories(file.parent_path());
+    test::write_text(file, text);
+    return file;
+  }
+
+  Scene load(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    report_ = {};
+    return load_scene_file(write("scene.json", text), overrides, report_);
+  }
+
+  // The message of the InputError that loading `text` throws, or "" when it loads.
+  std::string error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    try {
+      load(text, overrides);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  // Expects "DIR/scene.json:LINE: PATH: ..." with `fragment` somewhere in the description.
+  void expect_error(const std::string& text, int line, const std::string& path,
+                    const std::string& fragment = "") {
+    const std::string message = error(text);
+    const std::string prefix =
+        fmt::format("{}:{}: {}: ", (dir_ / "scene.json").string(), line, path);
+    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
+    EXPECT_NE(message.find(fragment, prefix.size()), std::string::npos) << message;
+  }
+
+  // Expects "--set PATH: ..." with `fragment` in the description.
+  void expect_set_error(const std::string& text, const std::vector<std::string>& overrides,
+                        const std::string& path, const std::string& fragment = "") {
+    const std::string message = error(text, overrides);
+    const std::string prefix = "--set " + path + ": ";
+    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
+    EXPECT_NE(message.find(fragment, prefix.size()), std::string::npos) << message;
+  }
+
+  fs::path dir_ = test::fresh_temp_dir("scene-file");
+  SceneLoadReport report_;
+};
+
+// Wraps one object (given on the third line) in a valid scene.
+std::string with_object(const std::string& object) {
+  return "{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"objects\": [" + object + "]\n}";
+}
+
+void expect_rgb(const Rgb& c, float r, float g, float b) {
+  EXPECT_FLOAT_EQ(c.r, r);
+  EXPECT_FLOAT_EQ(c.g, g);
+  EXPECT_FLOAT_EQ(c.b, b);
+}
+
+void expect_vec(const Vec3& v, double x, double y, double z, double tolerance = 1e-12) {
+  EXPECT_NEAR(v.x, x, tolerance);
+  EXPECT_NEAR(v.y, y, tolerance);
+  EXPECT_NEAR(v.z, z, tolerance);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Valid scenes
+
+TEST_F(SceneFileTest, FullSceneMapsOntoTheModel) {
+  const Scene s = load(R"({
+    "$schema": "../schema/scene.schema.json",
+    "camera": {"position": [1, 2, 3], "time": 4, "velocity": [0, 0, -0.5],
+               "forward": [0, 0, -2], "up": [0, 3, 0], "fov": 75, "width": 320,
+               "height": 200, "samples": 4},
+    "objects": [
+      {"name": "ball", "shape": {"sphere": {"radius": 2}}, "position": [0, 1, -10],
+       "time": -1, "velocity": [0.6, 0, 0], "material": {"color": [1, 0.5, 0.25], "unlit": true}},
+      {"name": "crate", "shape": {"box": {"size": [1, 2, 3]}}, "scale": 2,
+       "rotation": {"axis": [0, 0, 2], "degrees": 90},
+       "material": {"checker": {"size": 0.5, "colors": [[1, 1, 1], [0, 0, 0.5]]}}},
+      {"name": "floor", "shape": {"plane": {"size": [10, 20]}}, "scale": [1, 2, 3]}
+    ],
+    "sky": {"grid": {"spacing": 30, "line_width": 1, "color": [1, 0, 0],
+                     "background": [0, 0, 0.1]},
+            "velocity": [0, 0.3, 0], "rotation": {"axis": [1, 0, 0], "degrees": 180}},
+    "render": {"relativity": false, "light_delay": false, "exposure": -1.5}
+  })");
+
+  const Camera& c = s.camera;
+  expect_vec(c.world_line.position, 1, 2, 3);
+  EXPECT_EQ(c.world_line.time, 4);
+  expect_vec(c.world_line.velocity, 0, 0, -0.5);
+  expect_vec(c.forward, 0, 0, -1);  // directions are normalized
+  expect_vec(c.up, 0, 1, 0);
+  EXPECT_EQ(c.fov_degrees, 75);
+  EXPECT_EQ(c.width, 320);
+  EXPECT_EQ(c.height, 200);
+  EXPECT_EQ(c.samples, 4);
+
+  ASSERT_EQ(s.objects.size(), 3u);
+  const Object& ball = s.objects[0];
+  EXPECT_EQ(ball.name, "ball");
+  EXPECT_EQ(std::get<Sphere>(ball.shape).radius, 2);
+  expect_vec(ball.world_line.position, 0, 1, -10);
+  EXPECT_EQ(ball.world_line.time, -1);
+  expect_vec(ball.world_line.velocity, 0.6, 0, 0);
+  expect_rgb(std::get<SolidColor>(ball.material.pattern).color, 1, 0.5f, 0.25f);
+  EXPECT_TRUE(ball.material.unlit);
+
+  const Object& crate = s.objects[1];
+  expect_vec(std::get<Box>(crate.shape).size, 1, 2, 3);
+  expect_vec(crate.scale, 2, 2, 2);
+  // 90 degrees about +z, right-handed: x -> y, y -> -x.
+  expect_vec(crate.rotation * Vec3{1, 0, 0}, 0, 1, 0);
+  expect_vec(crate.rotation * Vec3{0, 1, 0}, -1, 0, 0);
+  const Checker& checker = std::get<Checker>(crate.material.pattern);
+  EXPECT_EQ(checker.size, 0.5);
+  expect_rgb(checker.colors[0], 1, 1, 1);
+  expect_rgb(checker.colors[1], 0, 0, 0.5f);
+
+  const Object& floor = s.objects[2];
+  EXPECT_EQ(std::get<Plane>(floor.shape).size_x, 10);
+  EXPECT_EQ(std::get<Plane>(floor.shape).size_z, 20);
+  expect_vec(floor.scale, 1, 2, 3);
+
+  const SkyGrid& grid = std::get<SkyGrid>(s.sky.pattern);
+  EXPECT_EQ(grid.spacing_degrees, 30);
+  EXPECT_EQ(grid.line_width_degrees, 1);
+  expect_rgb(grid.line_color, 1, 0, 0);
+  expect_rgb(grid.background, 0, 0, 0.1f);
+  expect_vec(s.sky.velocity, 0, 0.3, 0);
+  expect_vec(s.sky.rotation * Vec3{0, 1, 0}, 0, -1, 0);
+
+  EXPECT_FALSE(s.render.relativity);
+  EXPECT_FALSE(s.render.light_delay);
+  EXPECT_EQ(s.render.exposure, -1.5);
+  EXPECT_TRUE(report_.warnings.empty());
+}
+
+TEST_F(SceneFileTest, DefaultsAreTheDocumentedOnes) {
+  const Scene s = load(R"({"camera": {"position": [0, 0, 0]},
+                           "objects": [{"name": "a", "shape": {"sphere": {"radius": 1}}}]})");
+  const Camera& c = s.camera;
+  EXPECT_EQ(c.world_line.time, 0);
+  expect_vec(c.world_line.velocity, 0, 0, 0);
+  expect_vec(c.forward, 0, 0, -1);
+  expect_vec(c.up, 0, 1, 0);
+  EXPECT_EQ(c.fov_degrees, 60);
+  EXPECT_EQ(c.width, 640);
+  EXPECT_EQ(c.height, 360);
+  EXPECT_EQ(c.samples, 1);
+
+  const Object& a = s.objects.at(0);
+  expect_vec(a.world_line.position, 0, 0, 0);
+  EXPECT_EQ(a.world_line.time, 0);
+  expect_vec(a.world_line.velocity, 0, 0, 0);
+  expect_vec(a.rotation * Vec3{1, 2, 3}, 1, 2, 3);
+  expect_vec(a.scale, 1, 1, 1);
+  expect_rgb(std::get<SolidColor>(a.material.pattern).color, 1, 1, 1);
+  EXPECT_TRUE(a.material.unlit);
+
+  expect_rgb(std::get<SolidColor>(s.sky.pattern).color, 0, 0, 0);
+  expect_vec(s.sky.velocity, 0, 0, 0);
+  EXPECT_TRUE(s.render.relativity);
+  EXPECT_TRUE(s.render.light_delay);
+  EXPECT_EQ(s.render.exposure, 0);
+}
+
+TEST_F(SceneFileTest, SkyGridDefaultsAndSkyColour) {
+  const Scene grid = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"grid": {}}})");
+  const SkyGrid& g = std::get<SkyGrid>(grid.sky.pattern);
+  EXPECT_EQ(g.spacing_degrees, 15);
+  EXPECT_EQ(g.line_width_degrees, 0.4);
+  expect_rgb(g.line_color, 1, 1, 1);
+  expect_rgb(g.background, 0.02f, 0.02f, 0.05f);
+
+  const Scene plain = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"color": [0, 0.5, 1]}})");
+  expect_rgb(std::get<SolidColor>(plain.sky.pattern).color, 0, 0.5f, 1);
+}
+
+TEST_F(SceneFileTest, CommentsAreAllowedAndDoNotShiftLines) {
+  const std::string text = R"(// a scene { with "braces" and quotes
+{
+  /* block comment spanning
+     two lines: "camera": { */
+  "camera": {"position": [0, 0, 5]}, // trailing
+  "objects": [{"name": "a // not a comment", "shape": {"sphere": {"radius": 1}}}]
+})";
+  const Scene s = load(text);
+  EXPECT_EQ(s.objects.at(0).name, "a // not a comment");
+
+  // An error after the comments is still reported on the right line.
+  expect_error(R"({
+  /* one
+     two */ "camera": {"position": [0, 0, 5]},
+  // "sky": {
+  "sky": {"color": [0, 0, -1]}
+})",
+               5, "sky.color[2]", ">= 0");
+}
+
+TEST_F(SceneFileTest, IntegralFloatsAreIntegers) {
+  EXPECT_EQ(load(R"({"camera": {"position": [0, 0, 0], "width": 32.0}})").camera.width, 32);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Overrides
+
+constexpr const char* kOverrideScene = R"({
+  "camera": {"position": [0, 0, 5], "velocity": [0, 0, 0.1]},
+  "objects": [{"name": "a", "shape": {"sphere": {"radius": 1}}}],
+  "render": {"relativity": true}
+})";
+
+TEST_F(SceneFileTest, OverridesReplaceValues) {
+  const Scene s = load(kOverrideScene, {"render.relativity=false", "camera.velocity=[0,0,0.5]",
+                                        "camera.width=320", "objects.0.velocity=[0.5,0,0]",
+                                        "objects[0].position=[1, 2, 3]", "objects.0.name=renamed"});
+  EXPECT_FALSE(s.render.relativity);
+  expect_vec(s.camera.world_line.velocity, 0, 0, 0.5);
+  EXPECT_EQ(s.camera.width, 320);
+  expect_vec(s.objects.at(0).world_line.velocity, 0.5, 0, 0);
+  expect_vec(s.objects.at(0).world_line.position, 1, 2, 3);
+  EXPECT_EQ(s.objects.at(0).name, "renamed");  // not JSON, so taken as a string
+}
+
+TEST_F(SceneFileTest, OverridesCreateMissingObjectsAndAppendElements) {
+  const Scene s =
+      load(kOverrideScene, {"sky.grid.spacing=10", "render.exposure=2",
+                            R"(objects.1={"name":"b","shape":{"box":{"size":[1,1,1]}}})"});
+  EXPECT_EQ(std::get<SkyGrid>(s.sky.pattern).spacing_degrees, 10);
+  EXPECT_EQ(s.render.exposure, 2);
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.objects[1].name, "b");
+}
+
+TEST_F(SceneFileTest, OverridesPrecedeValidation) {
+  expect_set_error(kOverrideScene, {"camera.velocity=[0,0,1.2]"}, "camera.velocity",
+                   "speed 1.2 must be below the speed of light (1)");
+  expect_set_error(kOverrideScene, {"objects[0].shape.sphere.radius=-1"},
+                   "objects[0].shape.sphere.radius", "greater than 0");
+  expect_set_error(kOverrideScene, {"camera.colour=[1,1,1]"}, "camera.colour", "unknown key");
+  expect_set_error(kOverrideScene, {"camera.width=big"}, "camera.width", "string \"big\"");
+  // An override that makes the file's own value invalid is blamed on the override.
+  expect_set_error(kOverrideScene, {"objects.0.shape.box={\"size\":[1,1,1]}"}, "objects[0].shape",
+                   "exactly one of");
+  // A value the override did not touch is still reported against the file.
+  expect_error(R"({
+  "camera": {"position": [0, 0, 5]},
+  "render": {"exposure": "bright"}
+})",
+               3, "render.exposure", "must be a number");
+  EXPECT_NE(error(R"({"camera": {"position": [0, 0, 5]}, "render": {"exposure": "x"}})",
+                  {"camera.width=10"})
+                .find(":1: render.exposure: "),
+            std::string::npos);
+}
+
+TEST_F(SceneFileTest, MalformedOverrides) {
+  expect_set_error(kOverrideScene, {"render.relativity"}, "render.relativity", "key.path=value");
+  expect_set_error(kOverrideScene, {"camera.position.x.y=1"}, "camera.position.x.y",
+                   "camera.position is an array");
+  expect_set_error(kOverrideScene, {"objects.5.name=x"}, "objects.5.name", "not an index");
+  expect_set_error(kOverrideScene, {"render.relativity.x=1"}, "render.relativity.x",
+                   "render.relativity is a boolean, not an object or array");
+  expect_set_error(kOverrideScene, {"camera..width=1"}, "camera..width", "empty component");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input: each error names the file, the line and the path
+
+TEST_F(SceneFileTest, MissingOrUnreadableFile) {
+  const fs::path missing = dir_ / "nope.json";
+  SceneLoadReport report;
+  try {
+    load_scene_file(missing, {}, report);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(missing.string() + ": cannot read scene file: ", 0), 0u)
+        << e.what();
+  }
+  EXPECT_THROW(load_scene_file(dir_, {}, report), InputError);  // a directory
+}
+
+TEST_F(SceneFileTest, SyntaxErrors) {
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n}\n", 3, "(syntax)", "unexpected '}'");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, NaN]}\n}", 2, "(syntax)", "invalid literal");
+  expect_error("{\n  \"camera\":\n {\"position\": [0, 0, 1e400]}\n}", 3, "(syntax)",
+               "number overflow");
+  expect_error("", 1, "(syntax)", "unexpected end of input");
+  expect_error("{\"camera\": {\"position\": [0, 0, 5]}}\n\n  x", 3, "(syntax)", "invalid literal");
+  // No "[json.exception..." or nlohmann's own line and column.
+  EXPECT_EQ(error("{\n,").find("json.exception"), std::string::npos);
+  EXPECT_EQ(error("{\n,").find("column"), std::string::npos);
+}
+
+TEST_F(SceneFileTest, UnknownKeys) {
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"lights\": []\n}", 3, "lights",
+               "unknown key \"lights\"");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n    \"fovy\": 60}\n}", 3, "camera.fovy",
+               "expected one of: position, time");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "colour": [1, 0, 0]})"),
+               4, "objects[0].colour", "unknown key");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1, "segments": 3}}})"),
+               3, "objects[0].shape.sphere.segments", "unknown key");
+  expect_error(with_object(R"({"name": "a", "shape": {"box": {"size": [1, 1, 1]}},
+    "material": {"color": [1, 1, 1], "shiny": true}})"),
+               4, "objects[0].material.shiny", "unknown key");
+  expect_error("{\"camera\": {\"position\": [0, 0, 5]},\n \"render\": {\"\\u0066oo\": 1}}", 2,
+               "render.foo", "unknown key");
+}
+
+TEST_F(SceneFileTest, DuplicateKeys) {
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n  \"position\": [0, 0, 1]}\n}", 3,
+               "camera.position", "duplicate key");
+}
+
+TEST_F(SceneFileTest, MissingRequiredValues) {
+  expect_error("{\n  \"objects\": []\n}", 1, "camera", "required");
+  expect_error("{\n  \"camera\":\n    {\"fov\": 60}\n}", 3, "camera.position", "required");
+  expect_error(with_object(R"({"shape": {"sphere": {"radius": 1}}})"), 3, "objects[0].name",
+               "required");
+  expect_error(with_object(R"({"name": "a"})"), 3, "objects[0].shape", "required");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {}}})"), 3,
+               "objects[0].shape.sphere.radius", "required");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "rotation": {"axis": [0, 1, 0]}})"),
+               4, "objects[0].rotation.degrees", "required");
+}
+
+TEST_F(SceneFileTest, SpeedsMustBeBelowLight) {
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n    \"velocity\": [0, 0, 1.5]}\n}", 3,
+               "camera.velocity", "speed 1.5 must be below the speed of light (1)");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5], \"velocity\": [-1, 0, 0]}\n}", 2,
+               "camera.velocity", "speed 1 must be below the speed of light (1)");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "velocity": [0.8, 0.8, 0]})"),
+               4, "objects[0].velocity", "below the speed of light");
+  expect_error(
+      "{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"sky\": {\"color\": [0, 0, 0],\n"
+      "    \"velocity\": [0, 1, 0]}\n}",
+      4, "sky.velocity", "speed 1 must be below the speed of light (1)");
+}
+
+TEST_F(SceneFileTest, VectorsAndNumbers) {
+  expect_error("{\n  \"camera\": {\"position\": [0, 5]}\n}", 2, "camera.position",
+               "array of 3 numbers, got an array of 2 elements");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5, 1]}\n}", 2, "camera.position",
+               "array of 3 numbers");
+  expect_error("{\n  \"camera\": {\"position\": 5}\n}", 2, "camera.position", "array of 3 numbers");
+  expect_error("{\n  \"camera\": {\"position\": [0,\n \"5\", 0]}\n}", 3, "camera.position[1]",
+               "must be a number, got string \"5\"");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 0], \"time\": null}\n}", 2, "camera.time",
+               "must be a number, got null");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 0], \"time\": true}\n}", 2, "camera.time",
+               "must be a number");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 0]},\n  \"render\": {\"relativity\": 1}\n}",
+               3, "render.relativity", "true or false");
+  expect_error("{\n  \"camera\": [0, 0, 0]\n}", 2, "camera", "must be an object");
+  expect_error("[1, 2]", 1, "(top level)", "must be an object");
+  expect_error("{\"camera\": {\"position\": [0, 0, 0]},\n \"objects\": {}}", 2, "objects",
+               "must be an array");
+}
+
+TEST_F(SceneFileTest, SizesMustBePositive) {
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": -1}}})"), 3,
+               "objects[0].shape.sphere.radius", "greater than 0, got -1");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 0}}})"), 3,
+               "objects[0].shape.sphere.radius", "greater than 0");
+  expect_error(with_object(R"({"name": "a", "shape": {"box": {"size": [1, 0, 1]}}})"), 3,
+               "objects[0].shape.box.size[1]", "greater than 0");
+  expect_error(with_object(R"({"name": "a", "shape": {"plane": {"size": [1, 1, 1]}}})"), 3,
+               "objects[0].shape.plane.size", "array of 2 numbers");
+  expect_error(with_object(R"({"name": "a", "shape": {"plane": {"size": [-2, 1]}}})"), 3,
+               "objects[0].shape.plane.size[0]", "greater than 0");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "scale": -2})"),
+               4, "objects[0].scale", "greater than 0");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "scale": [1, 1, 0]})"),
+               4, "objects[0].scale[2]", "greater than 0");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "material": {"checker": {"size": 0, "colors": [[1, 1, 1], [0, 0, 0]]}}})"),
+               4, "objects[0].material.checker.size", "greater than 0");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "material": {"checker": {"size": 1, "colors": [[1, 1, 1]]}}})"),
+               4, "objects[0].material.checker.colors", "array of 2 colours");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "material": {"color": [1, -0.5, 1]}})"),
+               4, "objects[0].material.color[1]", ">= 0");
+}
+
+TEST_F(SceneFileTest, CameraLimits) {
+  auto camera = [](const std::string& extra) {
+    return "{\n  \"camera\": {\"position\": [0, 0, 5],\n    " + extra + "}\n}";
+  };
+  expect_error(camera("\"fov\": 0"), 3, "camera.fov", "between 0 and 180");
+  expect_error(camera("\"fov\": 180"), 3, "camera.fov", "between 0 and 180");
+  expect_error(camera("\"fov\": -5"), 3, "camera.fov", "got -5");
+  expect_error(camera("\"width\": 0"), 3, "camera.width", "integer from 1 to 16384, got 0");
+  expect_error(camera("\"width\": 100000"), 3, "camera.width", "got 100000");
+  expect_error(camera("\"height\": 2.5"), 3, "camera.height", "integer");
+  expect_error(camera("\"width\": 16384, \"height\": 16384"), 3, "camera.width", "2^27");
+  expect_error(camera("\"samples\": 0"), 3, "camera.samples", "from 1 to 65536");
+  expect_error(camera("\"forward\": [0, 0, 0]"), 3, "camera.forward", "zero vector");
+  expect_error(camera("\"forward\": [0, 0, -1], \"up\": [0, 0, 2]"), 3, "camera.up", "parallel");
+  // The default up is parallel to this forward; the error names up and the camera's line.
+  expect_error(camera("\"forward\": [0, -1, 0]"), 2, "camera.up", "defaults to");
+}
+
+TEST_F(SceneFileTest, ObjectNamesAndShapes) {
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}}},
+    {"name": "a", "shape": {"sphere": {"radius": 1}}})"),
+               4, "objects[1].name", "duplicate object name \"a\" (also used by objects[0])");
+  expect_error(with_object(R"({"name": "", "shape": {"sphere": {"radius": 1}}})"), 3,
+               "objects[0].name", "must not be empty");
+  expect_error(with_object(R"({"name": "a", "shape": {"cone": {"radius": 1}}})"), 3,
+               "objects[0].shape.cone", "unknown key \"cone\" (expected one of: sphere, box");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1},
+    "box": {"size": [1, 1, 1]}}})"),
+               3, "objects[0].shape",
+               "exactly one of: sphere, box, plane, mesh (found sphere, box)");
+  expect_error(with_object(R"({"name": "a", "shape": {}})"), 3, "objects[0].shape", "found none");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "rotation": {"axis": [0, 0, 0], "degrees": 10}})"),
+               4, "objects[0].rotation.axis", "zero vector");
+}
+
+TEST_F(SceneFileTest, MaterialsAndSky) {
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "material": {"color": [1, 1, 1],
+      "unlit": false}})"),
+               5, "objects[0].material.unlit", "lit materials are not supported yet");
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "material": {"unlit": true}})"),
+               4, "objects[0].material", "exactly one of: color, checker, texture");
+  const std::string camera = "{\n  \"camera\": {\"position\": [0, 0, 5]},\n";
+  expect_error(camera + "  \"sky\": {\"color\": [0, 0, 0], \"grid\": {}}\n}", 3, "sky",
+               "exactly one of: color, image, grid");
+  expect_error(camera + "  \"sky\": {\"grid\": {\"spacing\": 0}}\n}", 3, "sky.grid.spacing",
+               "at most 90");
+  expect_error(camera + "  \"sky\": {\"grid\": {\n\"spacing\": 91}}\n}", 4, "sky.grid.spacing",
+               "at most 90");
+  expect_error(camera + "  \"sky\": {\"grid\": {\"line_width\": 0}}\n}", 3, "sky.grid.line_width",
+               "greater than 0");
+  expect_error(camera + "  \"sky\": {\"image\": \"\"}\n}", 3, "sky.image", "must not be empty");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes and images
+
+TEST_F(SceneFileTest, MeshFilesAreResolvedAndLoadedOnce) {
+  write("meshes/tri.obj", kTriangleObj);
+  const Scene s = load(R"({
+    "camera": {"position": [0, 0, 5]},
+    "objects": [
+      {"name": "a", "shape": {"mesh": {"file": "meshes/tri.obj"}}},
+      {"name": "b", "shape": {"mesh": {"file": "./meshes/../meshes/tri.obj"}}},
+      {"name": "c", "shape": {"mesh": {"file": ")" +
+                       (dir_ / "meshes" / "tri.obj").string() + R"("}}}
+    ]
+  })");
+  const auto& a = std::get<MeshShape>(s.objects.at(0).shape).mesh;
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->triangles.size(), 1u);
+  EXPECT_EQ(std::get<MeshShape>(s.objects.at(1).shape).mesh, a);
+  EXPECT_EQ(std::get<MeshShape>(s.objects.at(2).shape).mesh, a);
+  EXPECT_TRUE(report_.warnings.empty());
+}
+
+TEST_F(SceneFileTest, DroppedDegenerateTrianglesAreReportedOnce) {
+  write("tri.obj", kTriangleObjWithDegenerate);
+  load(with_object(R"({"name": "a", "shape": {"mesh": {"file": "tri.obj"}}},
+                      {"name": "b", "shape": {"mesh": {"file": "tri.obj"}}})"));
+  ASSERT_EQ(report_.warnings.size(), 1u);
+  EXPECT_EQ(report_.warnings[0], (dir_ / "tri.obj").string() + ": 1 degenerate triangles dropped");
+}
+
+TEST_F(SceneFileTest, MeshErrorsAreLocatedInTheScene) {
+  write("tri.obj", kTriangleObj);
+  const std::string text = with_object(R"({"name": "a", "shape": {"mesh": {"file": "tri.obj"}}},
+    {"name": "b", "shape": {"mesh":
+      {"file": "missing.obj"}}})");
+  expect_error(text, 5, "objects[1].shape.mesh.file", "missing.obj");
+  expect_error(with_object(R"({"name": "a", "shape": {"mesh": {"file": 3}}})"), 3,
+               "objects[0].shape.mesh.file", "must be a string");
+  // Every other error is found before any file is loaded.
+  expect_error(with_object(R"({"name": "a", "shape": {"mesh": {"file": "missing.obj"}}},
+    {"name": "b", "shape": {"sphere": {"radius": -1}}})"),
+               4, "objects[1].shape.sphere.radius", "greater than 0");
+}
+
+TEST_F(SceneFileTest, TexturesAndSkyImagesAreSharedAndLocated) {
+  Image image;
+  image.width = 2;
+  image.height = 1;
+  image.rgb = {1, 0, 0, 0, 0, 1};
+  write_images(image, dir_ / "tex.png", std::nullopt);
+  const Scene s = load(R"({
+    "camera": {"position": [0, 0, 5]},
+    "objects": [
+      {"name": "a", "shape": {"sphere": {"radius": 1}}, "material": {"texture": "tex.png"}},
+      {"name": "b", "shape": {"sphere": {"radius": 1}}, "material": {"texture": "./tex.png"}}
+    ],
+    "sky": {"image": "tex.png"}
+  })");
+  const auto& a = std::get<Texture>(s.objects.at(0).material.pattern).image;
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->width, 2);
+  EXPECT_EQ(std::get<Texture>(s.objects.at(1).material.pattern).image, a);
+  EXPECT_EQ(std::get<SkyImage>(s.sky.pattern).image, a);
+
+  expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "material": {"texture": "nope.png"}})"),
+               4, "objects[0].material.texture", "nope.png");
+  expect_error(
+      "{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"sky\": {\"image\": \"nope.exr\"}\n}", 3,
+      "sky.image", "nope.exr");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The documentation and the schema
+
+std::string read_source_file(const std::string& relative) {
+  std::ifstream in(fs::path(LIGHTCONE_SOURCE_DIR) / relative, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST_F(SceneFileTest, DocumentedExampleLoads) {
+  const std::string doc = read_source_file("docs/scene-format.md");
+  const std::size_t start = doc.find("```jsonc\n");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = doc.find("```", start + 9);
+  const Scene s = load(doc.substr(start + 9, end - start - 9));
+  EXPECT_EQ(s.objects.size(), 3u);
+  expect_vec(s.camera.world_line.velocity, 0, 0, -0.9);
+}
+
+// Every object in the schema that lists properties forbids others, like the loader.
+void expect_closed(const nlohmann::json& node, const std::string& where) {
+  if (node.is_object()) {
+    if (node.contains("properties")) {
+      EXPECT_EQ(node.value("additionalProperties", nlohmann::json()), false) << where;
+    }
+    for (const auto& item : node.items()) expect_closed(item.value(), where + "/" + item.key());
+  } else if (node.is_array()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      expect_closed(node[i], where + "/" + std::to_string(i));
+  }
+}
+
+TEST(SceneSchema, IsClosedEverywhere) {
+  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  EXPECT_EQ(schema.at("$schema"), "https://json-schema.org/draft/2020-12/schema");
+  expect_closed(schema, "");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The line locator on its own
+
+TEST(JsonLineMap, RecordsValueAndKeyLines) {
+  const JsonLineMap lines(R"({
+  "a": {"b": [1,
+              {"c": "x\"}{[" }],
+    "d"
+      : /* { */ 2},
+  // "e": 1,
+  "e":
+    [[3]]
+})");
+  EXPECT_EQ(lines.value_line(""), 1);
+  EXPECT_EQ(lines.value_line("a"), 2);
+  EXPECT_EQ(lines.value_line("a.b"), 2);
+  EXPECT_EQ(lines.value_line("a.b[0]"), 2);
+  EXPECT_EQ(lines.value_line("a.b[1]"), 3);
+  EXPECT_EQ(lines.value_line("a.b[1].c"), 3);
+  EXPECT_EQ(lines.key_line("a.d"), 4);
+  EXPECT_EQ(lines.value_line("a.d"), 5);
+  EXPECT_EQ(lines.key_line("e"), 7);
+  EXPECT_EQ(lines.value_line("e"), 8);
+  EXPECT_EQ(lines.value_line("e[0][0]"), 8);
+  // Paths not in the text fall back to their nearest ancestor.
+  EXPECT_EQ(lines.value_line("a.b[1].missing"), 3);
+  EXPECT_EQ(lines.value_line("a.d.x[4]"), 5);
+  EXPECT_EQ(lines.key_line("a.nope"), 2);
+  EXPECT_EQ(lines.value_line("zzz"), 1);
+  EXPECT_TRUE(lines.duplicate_keys().empty());
+}
+
+TEST(JsonLineMap, FindsDuplicateKeysAndSurvivesDeepNesting) {
+  const JsonLineMap dup("{\"a\": 1,\n \"b\": {\"c\": 1, \"c\": 2},\n \"a\": 3}");
+  ASSERT_EQ(dup.duplicate_keys().size(), 2u);
+  EXPECT_EQ(dup.duplicate_keys()[0].path, "b.c");
+  EXPECT_EQ(dup.duplicate_keys()[0].line, 2);
+  EXPECT_EQ(dup.duplicate_keys()[1].path, "a");
+  EXPECT_EQ(dup.duplicate_keys()[1].line, 3);
+
+  const std::string deep =
+      "{\"a\":" + std::string(100000, '[') + std::string(100000, ']') + ",\n\"b\": 1}";
+  const JsonLineMap lines(deep);
+  EXPECT_EQ(lines.value_line("b"), 2);
+}
+
+}  // namespace
+}  // namespace lightcone
