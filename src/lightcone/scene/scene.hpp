@@ -30,7 +30,9 @@ struct WorldLine {
 struct Mesh {
   std::vector<Vec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<std::array<float, 2>> uvs;  // per vertex; empty when the file has none
+  // Per vertex, empty when the file has none; (0, 0) is the top-left of the image (glTF's
+  // convention; OBJ and PLY v is flipped on loading).
+  std::vector<std::array<float, 2>> uvs;
   std::string source;                     // file it came from, for messages
 };
 

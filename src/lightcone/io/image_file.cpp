@@ -1,0 +1,253 @@
+// Images: PNG/JPEG/BMP/TGA/HDR read through stb_image and PNG written through stb_image_write
+// (both implemented in Debian's libstb, so no *_IMPLEMENTATION here); EXR through OpenEXR.
+#include "lightcone/io/image_file.hpp"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <fmt/format.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "lightcone/io/input_error.hpp"
+
+namespace lightcone {
+
+double srgb_encode(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+}
+
+double srgb_decode(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& file, std::string_view what) {
+  throw InputError(fmt::format("{}: {}", file.string(), what));
+}
+
+std::vector<unsigned char> read_bytes(const fs::path& file) {
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) fail(file, "is a directory, not an image");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail(file, fmt::format("cannot open: {}", std::strerror(errno)));
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  if (in.bad()) fail(file, "read error");
+  return bytes;
+}
+
+bool is_exr(const std::vector<unsigned char>& bytes) {
+  static constexpr unsigned char magic[] = {0x76, 0x2f, 0x31, 0x01};
+  return bytes.size() >= 4 && std::equal(std::begin(magic), std::end(magic), bytes.begin());
+}
+
+std::shared_ptr<Image> load_exr(const fs::path& file) {
+  auto image = std::make_shared<Image>();
+  image->source = file.string();
+  try {
+    Imf::InputFile in(file.c_str());
+    const Imath::Box2i window = in.header().dataWindow();
+    image->width = window.max.x - window.min.x + 1;
+    image->height = window.max.y - window.min.y + 1;
+    image->rgb.assign(3 * static_cast<std::size_t>(image->width) * image->height, 0.0f);
+    const Imf::ChannelList& channels = in.header().channels();
+    const bool rgb =
+        channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+    const bool grey = !rgb && channels.findChannel("Y");
+    if (!rgb && !grey) fail(file, "OpenEXR image has no R, G, B or Y channel");
+    const std::size_t x_stride = 3 * sizeof(float), y_stride = x_stride * image->width;
+    Imf::FrameBuffer frame;
+    // Absent channels of R, G, B read as 0.
+    const char* names[] = {"R", "G", "B"};
+    for (int c = 0; c < (grey ? 1 : 3); ++c)
+      frame.insert(grey ? "Y" : names[c],
+                   Imf::Slice::Make(Imf::FLOAT, image->rgb.data() + c, window, x_stride, y_stride));
+    in.setFrameBuffer(frame);
+    in.readPixels(window.min.y, window.max.y);
+    if (grey)
+      for (std::size_t i = 0; i < image->rgb.size(); i += 3)
+        image->rgb[i + 1] = image->rgb[i + 2] = image->rgb[i];
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail(file, fmt::format("cannot read OpenEXR image ({})", e.what()));
+  }
+  return image;
+}
+
+struct StbFree {
+  void operator()(void* p) const { stbi_image_free(p); }
+};
+
+// Spreads n-channel pixels (grey, grey+alpha, RGB, RGBA) to RGB, decoding each value. stb's own
+// conversion (req_comp = 3) mangles 16-bit PNM in the packaged version, so it is done here.
+template <class T, class Decode>
+void to_rgb(const T* pixels, int channels, Image& image, Decode decode) {
+  const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
+  image.rgb.resize(3 * count);
+  const bool grey = channels < 3;
+  for (std::size_t i = 0; i < count; ++i) {
+    const T* p = pixels + i * channels;
+    for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = decode(p[grey ? 0 : c]);
+  }
+}
+
+std::shared_ptr<Image> load_stb(const fs::path& file, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(file, "image file too large");
+  const auto* data = bytes.data();
+  const int size = static_cast<int>(bytes.size());
+  auto image = std::make_shared<Image>();
+  image->source = file.string();
+  int channels = 0;
+  const auto check = [&](const void* pixels) {
+    if (pixels == nullptr)
+      fail(file, fmt::format("not a readable image ({})", stbi_failure_reason()));
+    if (channels < 1 || channels > 4) fail(file, fmt::format("unsupported {} channels", channels));
+  };
+  if (stbi_is_hdr_from_memory(data, size)) {
+    // Radiance HDR holds linear values already.
+    std::unique_ptr<float, StbFree> pixels(
+        stbi_loadf_from_memory(data, size, &image->width, &image->height, &channels, 0));
+    check(pixels.get());
+    to_rgb(pixels.get(), channels, *image, [](float v) { return v; });
+  } else if (stbi_is_16_bit_from_memory(data, size)) {
+    std::unique_ptr<stbi_us, StbFree> pixels(
+        stbi_load_16_from_memory(data, size, &image->width, &image->height, &channels, 0));
+    check(pixels.get());
+    to_rgb(pixels.get(), channels, *image,
+           [](stbi_us v) { return static_cast<float>(srgb_decode(v / 65535.0)); });
+  } else {
+    std::unique_ptr<stbi_uc, StbFree> pixels(
+        stbi_load_from_memory(data, size, &image->width, &image->height, &channels, 0));
+    check(pixels.get());
+    static const std::array<float, 256> decoded = [] {
+      std::array<float, 256> table;
+      for (int i = 0; i < 256; ++i) table[i] = static_cast<float>(srgb_decode(i / 255.0));
+      return table;
+    }();
+    to_rgb(pixels.get(), channels, *image, [](stbi_uc v) { return decoded[v]; });
+  }
+  return image;
+}
+
+[[noreturn]] void fail_write(const fs::path& target, std::string_view what) {
+  throw std::runtime_error(fmt::format("{}: {}", target.string(), what));
+}
+
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<unsigned char>*>(context);
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  out->insert(out->end(), bytes, bytes + size);
+}
+
+void write_png(const Image& image, const fs::path& temp, const fs::path& target) {
+  std::vector<unsigned char> pixels(image.rgb.size());
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const float v = image.rgb[i];
+    const double clamped = std::isnan(v) ? 0.0 : std::clamp<double>(v, 0.0, 1.0);
+    pixels[i] = static_cast<unsigned char>(std::lround(255 * srgb_encode(clamped)));
+  }
+  // Encoding to memory lets every write error be checked, which stbi_write_png does not do.
+  std::vector<unsigned char> encoded;
+  if (!stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, pixels.data(),
+                              3 * image.width))
+    fail_write(target, "cannot encode PNG image");
+  std::FILE* f = std::fopen(temp.c_str(), "wb");
+  if (f == nullptr)
+    fail_write(target, fmt::format("cannot write PNG image: {}", std::strerror(errno)));
+  const bool written =
+      std::fwrite(encoded.data(), 1, encoded.size(), f) == encoded.size() && std::fflush(f) == 0;
+  const int saved_errno = errno;
+  if (std::fclose(f) != 0 || !written)
+    fail_write(target, fmt::format("cannot write PNG image: {}",
+                                   std::strerror(written ? errno : saved_errno)));
+}
+
+void write_exr(const Image& image, const fs::path& temp, const fs::path& target) {
+  try {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const char* names[] = {"R", "G", "B"};
+    for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    // OpenEXR only reads through these pointers when writing.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
+    const std::size_t x_stride = 3 * sizeof(float), y_stride = x_stride * image.width;
+    Imf::FrameBuffer frame;
+    for (int c = 0; c < 3; ++c)
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride));
+    Imf::OutputFile out(temp.c_str(), header);
+    out.setFrameBuffer(frame);
+    out.writePixels(image.height);
+  } catch (const std::exception& e) {
+    fail_write(target, fmt::format("cannot write OpenEXR image ({})", e.what()));
+  }
+}
+
+fs::path temporary_name(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  fs::path temp = target;
+  temp += fmt::format(".tmp-{}-{}", ::getpid(), counter++);
+  return temp;
+}
+
+}  // namespace
+
+std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
+  const std::vector<unsigned char> bytes = read_bytes(file);
+  return is_exr(bytes) ? load_exr(file) : load_stb(file, bytes);
+}
+
+void write_images(const Image& linear, const std::optional<std::filesystem::path>& png,
+                  const std::optional<std::filesystem::path>& exr) {
+  if (linear.width <= 0 || linear.height <= 0 || linear.width > INT_MAX / 3 ||
+      linear.rgb.size() != 3 * static_cast<std::size_t>(linear.width) * linear.height)
+    throw std::runtime_error(fmt::format("cannot write a {}x{} image holding {} values",
+                                         linear.width, linear.height, linear.rgb.size()));
+  struct Pending {
+    fs::path target, temp;
+    bool renamed = false;
+  };
+  std::vector<Pending> pending;
+  if (png) pending.push_back({*png, temporary_name(*png)});
+  if (exr) pending.push_back({*exr, temporary_name(*exr)});
+  try {
+    if (png) write_png(linear, pending[0].temp, *png);
+    if (exr) write_exr(linear, pending.back().temp, *exr);
+    for (Pending& p : pending) {
+      std::error_code ec;
+      fs::rename(p.temp, p.target, ec);
+      if (ec)
+        fail_write(p.target, fmt::format("cannot move the image into place: {}", ec.message()));
+      p.renamed = true;
+    }
+  } catch (...) {
+    for (const Pending& p : pending) {
+      std::error_code ec;
+      if (!p.renamed) fs::remove(p.temp, ec);
+    }
+    throw;
+  }
+}
+
+}  // namespace lightcone
