@@ -248,6 +248,41 @@ TEST(PenroseTerrell, MovingSphereOutlineIsACircleNotCentredOnItsRetardedCentre) 
   }
 }
 
+TEST(TraceBounds, HoldEveryPointOfAFastBodyWhereTheLightConeMeetsIt) {
+  // Points all over a body's surface, each taken where the camera's past light cone meets its
+  // world-line (the locate machinery, independent of the bounds), must lie inside the box the
+  // BVH culls with; otherwise parts of fast bodies would vanish.
+  Scene s;
+  s.camera.world_line.velocity = {0.1, -0.3, -0.6};
+  const std::vector<Vec3> velocities = {{0.99, 0, 0},    {0, 0, 0.99},     {0, 0, -0.99},
+                                        {0.5, 0.5, 0.5}, {-0.7, 0.1, 0.6}, {0, 0, 0}};
+  for (std::size_t i = 0; i < velocities.size(); ++i) {
+    Object o = make_object("body" + std::to_string(i), Box{{2, 1, 3}},
+                           {-4.0 + 2 * i, 0.5, -6.0 - i}, velocities[i], solid({1, 1, 1}));
+    o.rotation = Mat3::rotation({1, 2, 3}, 0.5 * i);
+    o.scale = {1.5, 0.7, 1.0};
+    s.objects.push_back(o);
+  }
+  for (bool delay : {true, false}) {
+    s.render.light_delay = delay;
+    const ResolvedScene r = resolve_scene(s);
+    for (std::size_t i = 0; i < s.objects.size(); ++i) {
+      const Bounds3& b = r.bodies[i].trace_bounds;
+      for (double x : {-1.0, -0.3, 1.0})
+        for (double y : {-0.5, 0.5})
+          for (double z : {-1.5, 0.2, 1.5}) {
+            const LocateResult l =
+                locate(s, {LocateQuery::Kind::ObjectPoint, s.objects[i].name, {x, y, z}});
+            const Vec3 p = l.direction * *l.distance;
+            for (int k = 0; k < 3; ++k) {
+              EXPECT_GE(p[k], b.lower[k] - 1e-9) << "body " << i;
+              EXPECT_LE(p[k], b.upper[k] + 1e-9) << "body " << i;
+            }
+          }
+    }
+  }
+}
+
 TEST(Locate, AgreesWithTheRendererForAPointOnAMovingRotatedBox) {
   Scene s;
   s.camera.world_line.velocity = {0, 0, -0.6};

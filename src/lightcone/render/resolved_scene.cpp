@@ -34,20 +34,52 @@ Bounds3 empty_bounds() {
   return {{inf, inf, inf}, {-inf, -inf, -inf}};
 }
 
-// Every event where a ray can meet the body lies within `radius` of the centre's position at
-// the same F-time. On the past light cone that F-time is -s with |s - tau_centre| <=
-// radius / (1 - |beta|), since s - |X(-s)| changes at a rate of at least 1 - |beta|.
-Bounds3 trace_bounds(double ray_time, const TraceWorldLine& centre, double radius) {
+// Conservative bounds in F of the events where a ray can meet a body that lies within the ball
+// (rest_centre, radius) of its rest frame. On the backward null ray the event has body time
+// t_b = T - |x_b - o_b| (T, o_b: the observation event in the body frame), so t_b - T lies in
+// [-D - radius, -D + radius] with D = |rest_centre - o_b|. The F position is affine in
+// (t_b, x_b): a segment along the time column plus the image of the ball; the box bounds both.
+// On the simultaneity hyperplane the body is the (contracted) ball around its centre.
+Bounds3 trace_bounds(double ray_time, const AffineMap4& trace_to_body, const Vec3& rest_centre,
+                     double radius) {
   Bounds3 b = empty_bounds();
   if (ray_time == 0) {
-    expand(b, centre.position_at_zero, radius);
+    expand(b, trace_world_line(trace_to_body, rest_centre).position_at_zero, radius);
     return b;
   }
-  const double tau = retarded_delay(centre.position_at_zero, centre.velocity);
-  const double spread = radius / (1.0 - length(centre.velocity));
-  for (double s : {std::max(0.0, tau - spread), tau + spread})
-    expand(b, centre.position_at_zero - centre.velocity * s, radius);
+  const Mat4 to_trace = inverse(trace_to_body.linear);
+  const Vec4 observation = trace_to_body.offset;  // the F origin in body coordinates
+  const Mat3 spatial = to_trace.spatial();
+  const Vec3 along_time = time_column(to_trace);
+  const double d = length(rest_centre - observation.x);
+  const Vec3 centre = spatial * (rest_centre - observation.x);
+  Vec3 half;
+  for (int i = 0; i < 3; ++i)
+    half[i] = radius * length(Vec3{spatial.m[i][0], spatial.m[i][1], spatial.m[i][2]});
+  for (double dt : {-d - radius, -d + radius}) {
+    const Vec3 p = centre + along_time * dt;
+    for (int i = 0; i < 3; ++i) {
+      b.lower[i] = std::min(b.lower[i], p[i] - half[i]);
+      b.upper[i] = std::max(b.upper[i], p[i] + half[i]);
+    }
+  }
   return b;
+}
+
+// Radius of the ball around the shape's bounds centre that holds the scaled shape.
+double scaled_radius(const Shape& shape, const Vec3& scale, const Vec3& centre) {
+  if (const auto* sphere = std::get_if<Sphere>(&shape))
+    return sphere->radius * std::max({std::abs(scale.x), std::abs(scale.y), std::abs(scale.z)});
+  if (const auto* mesh = std::get_if<MeshShape>(&shape)) {
+    double r2 = 0;
+    for (const Vec3& p : mesh->mesh->positions) {
+      const Vec3 q = component_mul(scale, p - centre);
+      r2 = std::max(r2, dot(q, q));
+    }
+    return std::sqrt(r2);
+  }
+  const Bounds3 local = shape_bounds(shape);
+  return length(component_mul(scale, (local.upper - local.lower) * 0.5));
 }
 
 }  // namespace
@@ -120,10 +152,10 @@ ResolvedScene resolve_scene(const Scene& scene) {
 
     const Bounds3 local = shape_bounds(object.shape);
     const Vec3 centre = (local.lower + local.upper) * 0.5;
-    const double radius = length(component_mul(object.scale, (local.upper - local.lower) * 0.5));
+    // Slightly enlarged so that rounding in the maps cannot cut off a grazing hit.
+    const double radius = scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
     const Vec3 rest_centre = object.rotation * component_mul(object.scale, centre);
-    body.trace_bounds =
-        trace_bounds(r.ray_time, trace_world_line(trace_to_body, rest_centre), radius);
+    body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
     r.bodies.push_back(body);
   }
 
