@@ -1,0 +1,86 @@
+// What a ray sees where it ends: the checker contract, texture and sky-image lookups.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lightcone/render/shading.hpp"
+
+namespace lightcone {
+namespace {
+
+// A w x h image whose texel (i, j) has red = i, green = j.
+std::shared_ptr<Image> coordinate_image(int w, int h) {
+  auto image = std::make_shared<Image>();
+  image->width = w;
+  image->height = h;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) image->rgb.insert(image->rgb.end(), {float(i), float(j), 0.f});
+  return image;
+}
+
+TEST(Checker, IndexIsFloorSumModTwoInShapeCoordinates) {
+  Object o;
+  o.material.pattern = Checker{0.5, {{1, 0, 0}, {0, 0, 1}}};
+  auto colour_at = [&](Vec3 p) {
+    Hit hit;
+    hit.shape_point = p;
+    return surface_radiance(o, hit).r;
+  };
+  EXPECT_EQ(colour_at({0.1, 0.1, 0.1}), 1.0f);     // 0+0+0 even
+  EXPECT_EQ(colour_at({0.6, 0.1, 0.1}), 0.0f);     // 1+0+0 odd
+  EXPECT_EQ(colour_at({-0.1, 0.1, 0.1}), 0.0f);    // -1 is odd, the index is non-negative
+  EXPECT_EQ(colour_at({-0.1, -0.1, 0.1}), 1.0f);   // -2 even
+  EXPECT_EQ(colour_at({-0.6, -0.1, -0.1}), 1.0f);  // floor(-1.2) = -2: -2 - 1 - 1 = -4, even
+}
+
+TEST(Texture, BilinearHitsTexelCentresExactlyAndWrapsInU) {
+  const auto image = coordinate_image(4, 2);
+  const Rgb centre = sample_bilinear(*image, (2 + 0.5) / 4, (1 + 0.5) / 2, true);
+  EXPECT_FLOAT_EQ(centre.r, 2);
+  EXPECT_FLOAT_EQ(centre.g, 1);
+  // Halfway between the last and the first column (u wraps).
+  const Rgb seam = sample_bilinear(*image, 0.0, 0.25, true);
+  EXPECT_FLOAT_EQ(seam.r, 1.5f);  // (3 + 0) / 2
+}
+
+TEST(SkyImage, EquirectangularMappingFollowsTheContract) {
+  // u = 0.5 + atan2(d.x, -d.z)/(2 pi), v = acos(d.y)/pi, from the top-left.
+  Sky sky;
+  sky.pattern = SkyImage{coordinate_image(360, 180)};
+  auto texel = [&](Vec3 d) {
+    const Rgb c = sky_radiance(sky, normalize(d));
+    return std::array<double, 2>{c.r, c.g};
+  };
+  // Straight ahead (-z): u = 0.5, v = 0.5 -> between texels 179/180 and 89/90.
+  EXPECT_NEAR(texel({0, 0, -1})[0], 179.5, 1e-3);
+  EXPECT_NEAR(texel({0, 0, -1})[1], 89.5, 1e-3);
+  // +x: u = 0.75 -> 269.5; a little above the horizon: v < 0.5.
+  EXPECT_NEAR(texel({1, 0, 0})[0], 269.5, 1e-3);
+  EXPECT_LT(texel({1, 0.2, 0})[1], 89.5);
+  // -x: u = 0.25.
+  EXPECT_NEAR(texel({-1, 0, 0})[0], 89.5, 1e-3);
+}
+
+TEST(SkyGrid, LinesAtMultiplesOfTheSpacing) {
+  Sky sky;
+  SkyGrid grid;
+  grid.spacing_degrees = 15;
+  grid.line_width_degrees = 1;
+  grid.line_color = {1, 1, 1};
+  grid.background = {0, 0, 0};
+  sky.pattern = grid;
+  auto at = [&](double longitude_deg, double latitude_deg) {
+    const double lo = longitude_deg * M_PI / 180, la = latitude_deg * M_PI / 180;
+    // longitude measured from -z toward +x
+    return sky_radiance(sky,
+                        {std::sin(lo) * std::cos(la), std::sin(la), -std::cos(lo) * std::cos(la)})
+        .r;
+  };
+  EXPECT_EQ(at(7.5, 7.5), 0.0f);   // between lines
+  EXPECT_EQ(at(15.2, 7.5), 1.0f);  // on a meridian
+  EXPECT_EQ(at(7.5, 30.3), 1.0f);  // on a parallel
+  EXPECT_EQ(at(-44.8, 7.5), 1.0f);
+}
+
+}  // namespace
+}  // namespace lightcone
