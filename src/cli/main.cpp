@@ -33,6 +33,7 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides) {
 }
 
 void require_writable_target(const std::string& option, const std::string& path) {
+  if (fs::is_directory(path)) throw InputError(option + " " + path + ": is a folder, not a file");
   const fs::path parent = fs::absolute(fs::path(path)).parent_path();
   if (!fs::is_directory(parent))
     throw InputError(option + " " + path + ": folder " + parent.string() + " does not exist");
@@ -162,7 +163,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--height", render.height, "Override camera.height");
   render_cmd->add_option("--samples", render.samples, "Override camera.samples");
   render_cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 4096));
   render_cmd->add_option("--set", render.overrides, "Override a scene value: key.path=value");
   render_cmd->add_flag("--stats", render.stats, "Print one JSON line of timing to stderr");
   render_cmd->add_flag("--quiet", render.quiet, "No progress bar");
@@ -178,11 +179,18 @@ int main(int argc, char** argv) {
                          "x,y,z of a direction at infinity, in the sky's rest frame");
   locate_cmd->add_option("--set", loc.overrides, "Override a scene value: key.path=value");
 
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "render" &&
+      std::string(argv[1]) != "locate") {
+    std::fprintf(stderr, "lightcone: unknown command '%s' (use render or locate; see --help)\n",
+                 argv[1]);
+    return kBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "lightcone: %s (see --help)\n", e.what());
+    return kBadInput;
   }
   try {
     if (*render_cmd) return run_render(render);

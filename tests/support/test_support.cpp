@@ -1,12 +1,17 @@
 #include "support/test_support.hpp"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <thread>
 
 #include "lightcone/io/scene_file.hpp"
 
@@ -57,6 +62,46 @@ CommandResult run_lightcone(const std::string& arguments) {
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.out = read_all(dir / "out");
   r.err = read_all(dir / "err");
+  fs::remove_all(dir);
+  return r;
+}
+
+CommandResult run_lightcone_on_terminal(const std::string& arguments) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0)
+    throw std::runtime_error("cannot open a pseudo-terminal");
+  const std::string terminal = ptsname(master);
+  // Kept open here so that the terminal is never hung up while the reader waits on it.
+  const int slave = open(terminal.c_str(), O_RDWR | O_NOCTTY);
+  if (slave < 0) throw std::runtime_error("cannot open " + terminal);
+  std::string received;
+  std::atomic<bool> finished{false};
+  // Drains the terminal while the command runs, so a chatty program never blocks on it.
+  std::thread reader([&] {
+    char buffer[4096];
+    for (;;) {
+      pollfd p{master, POLLIN, 0};
+      if (poll(&p, 1, 50) > 0 && (p.revents & POLLIN)) {
+        const ssize_t n = read(master, buffer, sizeof buffer);
+        if (n <= 0) break;
+        received.append(buffer, static_cast<std::size_t>(n));
+      } else if (finished) {
+        break;
+      }
+    }
+  });
+  const fs::path dir = fresh_temp_dir("tty");
+  const std::string command = std::string("'") + LIGHTCONE_BINARY + "' " + arguments + " >'" +
+                              (dir / "out").string() + "' 2>'" + terminal + "' </dev/null";
+  const int raw = std::system(command.c_str());
+  finished = true;
+  reader.join();
+  close(slave);
+  close(master);
+  CommandResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = read_all(dir / "out");
+  r.err = received;
   fs::remove_all(dir);
   return r;
 }

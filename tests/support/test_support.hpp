@@ -25,5 +25,8 @@ struct CommandResult {
 };
 // Runs the built `lightcone` binary with the given arguments (shell-quoted by the caller).
 CommandResult run_lightcone(const std::string& arguments);
+// The same with stderr on a pseudo-terminal (so the program sees a terminal there); `err` is what
+// the terminal received (its line discipline turns "\n" into "\r\n").
+CommandResult run_lightcone_on_terminal(const std::string& arguments);
 
 }  // namespace lightcone::test

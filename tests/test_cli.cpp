@@ -1,0 +1,883 @@
+// The `lightcone` command through the real binary: bad input (exit status 2, one message that
+// names the file, line and JSON path, nothing written), valid renders (sizes, options, the PNG
+// and EXR value contract, --stats, the progress bar), `locate` and --help.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lightcone/io/image_file.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CommandResult;
+using test::run_lightcone;
+
+// One key per line, so that every value has a known line:
+//  1 {                                    11 "name": "ball"
+//  2   "camera": {                        12 "shape"
+//  3     "position"                       13 "position"
+//  4     "velocity"                       14 "velocity"
+//  5     "fov"                            15 "material"
+//  6     "width"                          16 }
+//  7     "height"                         17 ],
+//  8   },                                 18 "sky"
+//  9   "objects": [                       19 "render"
+// 10     {                                20 }
+// A green ball of radius 2 at rest 10 ahead of a camera at rest, on a blue sky.
+const std::string kScene = R"({
+  "camera": {
+    "position": [0, 0, 0],
+    "velocity": [0, 0, 0],
+    "fov": 30,
+    "width": 64,
+    "height": 48
+  },
+  "objects": [
+    {
+      "name": "ball",
+      "shape": {"sphere": {"radius": 2}},
+      "position": [0, 0, -10],
+      "velocity": [0, 0, 0],
+      "material": {"color": [0, 1, 0]}
+    }
+  ],
+  "sky": {"color": [0, 0, 1]},
+  "render": {"exposure": 0}
+}
+)";
+
+// `text` with the one occurrence of `from` replaced by `to`.
+std::string edited(const std::string& text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "no '" << from << "' in the scene";
+  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << "'" << from << "' is not unique";
+  if (at == std::string::npos) return text;
+  return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+std::string quoted(const fs::path& p) {
+  std::string q = "'";
+  q += p.string();
+  q += "'";
+  return q;
+}
+
+std::size_t line_count(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// The 8-bit value the PNG holds for a pixel read back as linear (load_image_file decodes sRGB).
+int png_byte(float linear) {
+  for (int i = 0; i < 256; ++i)
+    if (static_cast<float>(srgb_decode(i / 255.0)) == linear) return i;
+  return -1;
+}
+
+Rgb pixel(const Image& image, int x, int y) {
+  return image.texel(x, y);
+}
+
+class CliTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::fresh_temp_dir("cli");
+    out_ = dir_ / "out";
+    fs::create_directories(out_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write_scene(const std::string& json, const std::string& name = "scene.json") {
+    const fs::path file = dir_ / name;
+    test::write_text(file, json);
+    return file;
+  }
+
+  fs::path png() const { return out_ / "image.png"; }
+  fs::path exr() const { return out_ / "image.exr"; }
+
+  // `lightcone render SCENE -o out/image.png --exr out/image.exr EXTRA`.
+  CommandResult render(const fs::path& scene, const std::string& extra = "") const {
+    return run_lightcone("render " + quoted(scene) + " -o " + quoted(png()) + " --exr " +
+                         quoted(exr()) + " " + extra);
+  }
+  CommandResult locate(const fs::path& scene, const std::string& extra) const {
+    return run_lightcone("locate " + quoted(scene) + " " + extra);
+  }
+
+  std::shared_ptr<Image> read_png() const { return load_image_file(png()); }
+  std::shared_ptr<Image> read_exr() const { return load_image_file(exr()); }
+
+  // Nothing in the output folder: no PNG, no EXR, no temporary file; and no temporary file
+  // anywhere else in the test's folder.
+  void expect_nothing_written() const {
+    EXPECT_FALSE(fs::exists(png()));
+    EXPECT_FALSE(fs::exists(exr()));
+    for (const auto& entry : fs::recursive_directory_iterator(dir_)) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+          << "temporary file left behind: " << entry.path();
+      EXPECT_NE(entry.path().parent_path(), out_) << "file written: " << entry.path();
+    }
+  }
+
+  // Exit status 2, exactly one line on stderr that starts with "lightcone: " + `start` and
+  // contains every one of `parts`, nothing on stdout, nothing written.
+  void expect_rejected(const CommandResult& r, const std::string& start,
+                       const std::vector<std::string>& parts = {}) const {
+    EXPECT_TRUE(r.err.starts_with("lightcone: " + start))
+        << "expected 'lightcone: " << start << "...', got: " << r.err;
+    expect_rejected_command_line(r, parts);
+  }
+
+  // The same for a command line that the option parser rejects: the message need not start
+  // with the program's name.
+  void expect_rejected_command_line(const CommandResult& r,
+                                    const std::vector<std::string>& parts) const {
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(line_count(r.err), 1u) << "stderr is not one line:\n" << r.err;
+    EXPECT_TRUE(r.err.ends_with('\n')) << r.err;
+    for (const std::string& part : parts)
+      EXPECT_NE(r.err.find(part), std::string::npos) << "no '" << part << "' in: " << r.err;
+    EXPECT_EQ(r.out, "");
+    expect_nothing_written();
+  }
+
+  fs::path dir_, out_;
+};
+
+// ----------------------------------------------------------------------------------------------
+// Bad scene values: FILE:LINE: PATH: what
+
+struct BadValue {
+  std::string name, from, to;
+  int line;
+  std::string path, what;
+};
+
+TEST_F(CliTest, BadSceneValuesNameFileLineAndPathAndWriteNothing) {
+  const std::vector<BadValue> cases = {
+      {"camera at the speed of light", "\n    \"velocity\": [0, 0, 0]",
+       "\n    \"velocity\": [0, 0, 1]", 4, "camera.velocity",
+       "speed 1 must be below the speed of light"},
+      {"object faster than light", "\n      \"velocity\": [0, 0, 0]",
+       "\n      \"velocity\": [0.8, 0.8, 0]", 14, "objects[0].velocity",
+       "must be below the speed of light"},
+      {"unknown camera key", "\"fov\": 30", "\"fovy\": 30", 5, "camera.fovy",
+       "unknown key \"fovy\""},
+      {"unknown render key", "\"exposure\": 0", "\"exposur\": 0", 19, "render.exposur",
+       "unknown key \"exposur\""},
+      {"fov 0", "\"fov\": 30", "\"fov\": 0", 5, "camera.fov", "between 0 and 180"},
+      {"fov 180", "\"fov\": 30", "\"fov\": 180", 5, "camera.fov", "between 0 and 180"},
+      {"fov negative", "\"fov\": 30", "\"fov\": -10", 5, "camera.fov", "between 0 and 180"},
+      {"negative radius", "\"radius\": 2", "\"radius\": -2", 12, "objects[0].shape.sphere.radius",
+       "must be greater than 0"},
+      {"negative box size", "{\"sphere\": {\"radius\": 2}}", "{\"box\": {\"size\": [1, -2, 1]}}",
+       12, "objects[0].shape.box.size[1]", "must be greater than 0"},
+      {"zero width", "\"width\": 64", "\"width\": 0", 6, "camera.width",
+       "must be an integer from 1 to 16384"},
+      {"absurd width", "\"width\": 64", "\"width\": 100000", 6, "camera.width",
+       "must be an integer from 1 to 16384"},
+      {"fractional width", "\"width\": 64", "\"width\": 64.5", 6, "camera.width",
+       "must be an integer"},
+      {"negative height", "\"height\": 48", "\"height\": -48", 7, "camera.height",
+       "must be an integer from 1 to 16384"},
+      {"too many pixels", "\"width\": 64,\n    \"height\": 48",
+       "\"width\": 16384,\n    \"height\": 16384", 6, "camera.width", "more than the limit"},
+      {"negative colour", "[0, 1, 0]", "[0, -1, 0]", 15, "objects[0].material.color[1]",
+       "must be >= 0"},
+      {"two sky patterns", "\"sky\": {\"color\": [0, 0, 1]}",
+       "\"sky\": {\"color\": [0, 0, 1], \"grid\": {}}", 18, "sky", "exactly one of"},
+      {"missing camera position", "\n    \"position\": [0, 0, 0],", "", 2, "camera.position",
+       "required key is missing"},
+      {"duplicate key", "\"fov\": 30,", "\"fov\": 30,\n    \"fov\": 40,", 6, "camera.fov",
+       "duplicate key"},
+      {"lit material", "{\"color\": [0, 1, 0]}", "{\"color\": [0, 1, 0], \"unlit\": false}", 15,
+       "objects[0].material.unlit", "not supported"},
+  };
+  for (const BadValue& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path scene = write_scene(edited(kScene, c.from, c.to));
+    const std::string where = scene.string() + ":" + std::to_string(c.line) + ": " + c.path + ": ";
+    expect_rejected(render(scene), where, {c.what});
+    // locate reads the scene the same way.
+    expect_rejected(locate(scene, "--world-point 0,0,-10"), where, {c.what});
+  }
+}
+
+TEST_F(CliTest, ExampleFromTheBriefCameraVelocityOnLineFour) {
+  const fs::path scene = write_scene(
+      edited(kScene, "\n    \"velocity\": [0, 0, 0]", "\n    \"velocity\": [0, 0, 1.5]"));
+  const CommandResult r = render(scene);
+  expect_rejected(r, scene.string() + ":4: camera.velocity: ");
+  EXPECT_EQ(r.err, "lightcone: " + scene.string() +
+                       ":4: camera.velocity: speed 1.5 must be below the speed of light (1)\n");
+}
+
+TEST_F(CliTest, SyntaxErrorsNameTheLine) {
+  struct Case {
+    std::string name, from, to;
+    int line;
+    std::string what;
+  };
+  const std::vector<Case> cases = {
+      {"NaN", "\"fov\": 30", "\"fov\": NaN", 5, "invalid literal"},
+      {"Infinity", "\"exposure\": 0", "\"exposure\": Infinity", 19, "invalid literal"},
+      {"number too large for a double", "\"position\": [0, 0, 0]", "\"position\": [0, 0, 1e400]", 3,
+       "1e400"},
+      {"two numbers", "\"fov\": 30", "\"fov\": 3 0", 5, "syntax error"},
+      {"trailing comma", "\"height\": 48", "\"height\": 48,", 8, "syntax error"},
+      {"unterminated string", "\"name\": \"ball\",", "\"name\": \"ball,", 11, "syntax error"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path scene = write_scene(edited(kScene, c.from, c.to));
+    expect_rejected(render(scene),
+                    scene.string() + ":" + std::to_string(c.line) + ": (syntax): ", {c.what});
+  }
+  SCOPED_TRACE("truncated file");
+  const std::string whole = kScene;
+  const fs::path truncated = write_scene(whole.substr(0, whole.find("  \"objects\"")));
+  expect_rejected(render(truncated), truncated.string() + ":9: (syntax): ", {"end of input"});
+}
+
+TEST_F(CliTest, MissingOrUnreadableSceneFile) {
+  const fs::path missing = dir_ / "no-such-scene.json";
+  expect_rejected(render(missing),
+                  missing.string() + ": cannot read scene file: ", {"No such file or directory"});
+  expect_rejected(locate(missing, "--direction 0,0,-1"),
+                  missing.string() + ": cannot read scene file: ");
+
+  const fs::path folder = dir_ / "folder.json";
+  fs::create_directories(folder);
+  expect_rejected(render(folder),
+                  folder.string() + ": cannot read scene file: ", {"it is a directory"});
+
+  if (geteuid() != 0) {  // root reads any file
+    const fs::path locked = write_scene(kScene, "locked.json");
+    fs::permissions(locked, fs::perms::none);
+    expect_rejected(render(locked),
+                    locked.string() + ": cannot read scene file: ", {"Permission denied"});
+  }
+
+  const fs::path empty = write_scene("", "empty.json");
+  expect_rejected(render(empty), empty.string() + ":1: (syntax): ");
+}
+
+TEST_F(CliTest, BadOverridesNameTheSetting) {
+  const fs::path scene = write_scene(kScene);
+  expect_rejected(render(scene, "--set 'camera.velocity=[0,0,1.5]'"),
+                  "--set camera.velocity: ", {"speed 1.5 must be below the speed of light"});
+  expect_rejected(render(scene, "--set camera.fov=NaN"),
+                  "--set camera.fov: ", {"must be a number"});
+  expect_rejected(render(scene, "--set camera.fov=200"),
+                  "--set camera.fov: ", {"between 0 and 180"});
+  expect_rejected(render(scene, "--set camera.fov"), "--set camera.fov: ", {"key.path=value"});
+  expect_rejected(render(scene, "--set camera.fovy=40"),
+                  "--set camera.fovy: ", {"unknown key \"fovy\""});
+  expect_rejected(render(scene, "--set objects.3.velocity=[0,0,0]"), "--set objects");
+  expect_rejected(render(scene, "--samples 0"),
+                  "--set camera.samples: ", {"must be an integer from 1 to 65536"});
+}
+
+// --width and friends are overrides of camera.width; the message names the value.
+TEST_F(CliTest, AbsurdImageSizeOptions) {
+  const fs::path scene = write_scene(kScene);
+  for (const char* option : {"--width 100000", "--width 0", "--height -5"}) {
+    SCOPED_TRACE(option);
+    const CommandResult r = render(scene, option);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(line_count(r.err), 1u) << r.err;
+    EXPECT_TRUE(r.err.find("camera.width") != std::string::npos ||
+                r.err.find("camera.height") != std::string::npos)
+        << r.err;
+    expect_nothing_written();
+  }
+  const CommandResult both = render(scene, "--width 16384 --height 16384");
+  expect_rejected(both, "--set camera.width: ", {"more than the limit"});
+}
+
+// ----------------------------------------------------------------------------------------------
+// Broken meshes and images: FILE:LINE: PATH: <the loader's message>
+
+std::string binary_ply_triangle() {
+  std::string data =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  data.append(reinterpret_cast<const char*>(v), sizeof v);
+  data.push_back(3);
+  const std::int32_t f[3] = {0, 1, 2};
+  data.append(reinterpret_cast<const char*>(f), sizeof f);
+  return data;
+}
+
+TEST_F(CliTest, BrokenMeshesAndMissingTextures) {
+  const std::string mesh_scene =
+      edited(kScene, "{\"sphere\": {\"radius\": 2}}", "{\"mesh\": {\"file\": \"MESH\"}}");
+  auto scene_with_mesh = [&](const std::string& file) {
+    return write_scene(edited(mesh_scene, "MESH", file));
+  };
+  const std::string where_mesh = ":12: objects[0].shape.mesh.file: ";
+
+  {
+    SCOPED_TRACE("OBJ index out of range");
+    test::write_text(dir_ / "broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 9\n");
+    const fs::path scene = scene_with_mesh("broken.obj");
+    expect_rejected(render(scene), scene.string() + where_mesh,
+                    {(dir_ / "broken.obj").string() + ":5: vertex index 9 out of range"});
+  }
+  {
+    SCOPED_TRACE("truncated binary PLY");
+    std::string data = binary_ply_triangle();
+    test::write_text(dir_ / "whole.ply", data);
+    data.resize(data.size() - 6);
+    test::write_text(dir_ / "truncated.ply", data);
+    // The whole file renders (so it is the truncation that is rejected).
+    const CommandResult ok = render(scene_with_mesh("whole.ply"));
+    EXPECT_EQ(ok.status, 0) << ok.err;
+    fs::remove(png());
+    fs::remove(exr());
+    const fs::path scene = scene_with_mesh("truncated.ply");
+    expect_rejected(render(scene), scene.string() + where_mesh,
+                    {(dir_ / "truncated.ply").string() + ": unexpected end of file"});
+  }
+  {
+    SCOPED_TRACE("missing mesh file");
+    const fs::path scene = scene_with_mesh("nowhere.obj");
+    expect_rejected(render(scene), scene.string() + where_mesh,
+                    {(dir_ / "nowhere.obj").string() + ": cannot open"});
+  }
+  {
+    SCOPED_TRACE("unknown mesh format");
+    test::write_text(dir_ / "mesh.stl", "solid x\n");
+    const fs::path scene = scene_with_mesh("mesh.stl");
+    expect_rejected(render(scene), scene.string() + where_mesh, {"unsupported mesh format"});
+  }
+  {
+    SCOPED_TRACE("missing texture");
+    const fs::path scene =
+        write_scene(edited(kScene, "{\"color\": [0, 1, 0]}", "{\"texture\": \"missing.png\"}"));
+    expect_rejected(render(scene), scene.string() + ":15: objects[0].material.texture: ",
+                    {(dir_ / "missing.png").string() + ": cannot open"});
+  }
+  {
+    SCOPED_TRACE("texture that is not an image");
+    test::write_text(dir_ / "garbage.png", "this is not a PNG");
+    const fs::path scene =
+        write_scene(edited(kScene, "{\"color\": [0, 1, 0]}", "{\"texture\": \"garbage.png\"}"));
+    expect_rejected(render(scene), scene.string() + ":15: objects[0].material.texture: ",
+                    {(dir_ / "garbage.png").string() + ": "});
+  }
+  {
+    SCOPED_TRACE("missing sky image");
+    const fs::path scene = write_scene(
+        edited(kScene, "\"sky\": {\"color\": [0, 0, 1]}", "\"sky\": {\"image\": \"sky.exr\"}"));
+    expect_rejected(render(scene), scene.string() + ":18: sky.image: ",
+                    {(dir_ / "sky.exr").string() + ": cannot open"});
+  }
+}
+
+TEST_F(CliTest, DegenerateTrianglesAreDroppedWithAWarning) {
+  // A quad (two good triangles), a repeated index and a zero-area triangle.
+  test::write_text(dir_ / "quad.obj",
+                   "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\nv 0 0 0\n"
+                   "f 1 2 3 4\nf 1 1 2\nf 1 5 3\n");
+  const fs::path scene = write_scene(
+      edited(kScene, "{\"sphere\": {\"radius\": 2}}", "{\"mesh\": {\"file\": \"quad.obj\"}}"));
+  const CommandResult r = render(scene);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "lightcone: warning: " + (dir_ / "quad.obj").string() +
+                       ": 2 degenerate triangles dropped\n");
+  ASSERT_TRUE(fs::exists(png()));
+  // The remaining quad fills the frame with the mesh's green.
+  const auto image = read_exr();
+  EXPECT_EQ(pixel(*image, 0, 0).g, 1.0f);
+  EXPECT_EQ(pixel(*image, 0, 0).b, 0.0f);
+}
+
+// ----------------------------------------------------------------------------------------------
+// Bad command lines
+
+TEST_F(CliTest, UnknownSubcommandOrOptionAndMissingArguments) {
+  const fs::path scene = write_scene(kScene);
+  // The message names what is wrong: the unknown subcommand or option, the missing argument.
+  expect_rejected_command_line(run_lightcone("frobnicate " + quoted(scene)), {"frobnicate"});
+  expect_rejected_command_line(run_lightcone(""), {"subcommand"});
+  expect_rejected_command_line(render(scene, "--bogus"), {"--bogus"});
+  expect_rejected_command_line(run_lightcone("render " + quoted(scene)), {"--output"});
+  expect_rejected_command_line(run_lightcone("render -o " + quoted(png())), {"scene"});
+  expect_rejected_command_line(render(scene, "--width abc"), {"--width", "abc"});
+  expect_rejected_command_line(render(scene, "--threads -1"), {"--threads"});
+  expect_rejected_command_line(locate(scene, "--world-point 0,0,-10 --bogus"), {"--bogus"});
+}
+
+TEST_F(CliTest, OutputFolderThatDoesNotExist) {
+  const fs::path scene = write_scene(kScene);
+  const fs::path nowhere = dir_ / "nowhere";
+  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " +
+                                        quoted(nowhere / "image.png") + " --exr " + quoted(exr()));
+  expect_rejected(r, "-o ", {nowhere.string(), "does not exist"});
+  EXPECT_FALSE(fs::exists(nowhere));
+
+  // A valid PNG target is not written either when the EXR's folder is missing.
+  const CommandResult e = run_lightcone("render " + quoted(scene) + " -o " + quoted(png()) +
+                                        " --exr " + quoted(nowhere / "image.exr"));
+  expect_rejected(e, "--exr ", {nowhere.string(), "does not exist"});
+  EXPECT_FALSE(fs::exists(nowhere));
+}
+
+// An output path that names a folder is bad input too; the images are written nowhere and no
+// temporary file is left beside the target.
+TEST_F(CliTest, OutputThatIsAFolder) {
+  const fs::path scene = write_scene(kScene);
+  const fs::path folder = out_ / "image.png";
+  fs::create_directories(folder);
+  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " + quoted(folder) +
+                                        " --exr " + quoted(exr()));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find(folder.string()), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(exr()));
+  EXPECT_TRUE(fs::is_empty(folder));
+  for (const auto& entry : fs::directory_iterator(out_))
+    EXPECT_EQ(entry.path(), folder) << "left behind: " << entry.path();
+}
+
+TEST_F(CliTest, LocateRejectsBadQueries) {
+  const fs::path scene = write_scene(kScene);
+  for (const char* bad : {"1,2", "1,2,x", "1,2,3,4", "1,,3", "1,2,nan", "1,2,inf", "'1 2 3'"}) {
+    SCOPED_TRACE(bad);
+    expect_rejected(locate(scene, std::string("--object ball --point ") + bad), "--point ",
+                    {"expected three numbers x,y,z"});
+  }
+  expect_rejected(locate(scene, "--world-point 0,0"), "--world-point ", {"expected three numbers"});
+  expect_rejected(locate(scene, "--direction 0,0,0"), "--direction: ", {"zero"});
+  expect_rejected(locate(scene, "--object nosuch --point 0,0,0"),
+                  scene.string() + ": --object: ", {"no object named 'nosuch'"});
+  expect_rejected(locate(scene, "--point 0,0,0"), "locate: ", {"--object"});
+  expect_rejected(locate(scene, ""), "locate: ", {"exactly one of"});
+  expect_rejected(locate(scene, "--world-point 0,0,-10 --direction 0,0,-1"),
+                  "locate: ", {"exactly one of"});
+}
+
+// ----------------------------------------------------------------------------------------------
+// Valid renders
+
+TEST_F(CliTest, ValidRenderWritesPngAndExrOfTheRightSizeAndNothingOnStderr) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r = render(scene);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // stderr is not a terminal: no progress bar
+  EXPECT_EQ(r.out, "");
+  const auto png_image = read_png();
+  const auto exr_image = read_exr();
+  EXPECT_EQ(png_image->width, 64);
+  EXPECT_EQ(png_image->height, 48);
+  EXPECT_EQ(exr_image->width, 64);
+  EXPECT_EQ(exr_image->height, 48);
+  // Exactly the two images: no temporary files.
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(out_))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"image.exr", "image.png"}));
+  // The ball in the middle, the blue sky in the corner.
+  EXPECT_EQ(pixel(*exr_image, 32, 24).g, 1.0f);
+  EXPECT_EQ(pixel(*exr_image, 0, 0).b, 1.0f);
+  EXPECT_EQ(pixel(*exr_image, 0, 0).g, 0.0f);
+  EXPECT_EQ(png_byte(pixel(*png_image, 32, 24).g), 255);
+  EXPECT_EQ(png_byte(pixel(*png_image, 32, 24).r), 0);
+}
+
+TEST_F(CliTest, PngOnlyWithoutExr) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " + quoted(png()));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(png()));
+  EXPECT_FALSE(fs::exists(exr()));
+}
+
+TEST_F(CliTest, SizeAndSampleOptionsTakeEffect) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r = render(scene, "--width 20 --height 10 --samples 4 --stats");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_png()->width, 20);
+  EXPECT_EQ(read_png()->height, 10);
+  EXPECT_EQ(read_exr()->width, 20);
+  EXPECT_EQ(read_exr()->height, 10);
+  const auto stats = nlohmann::json::parse(r.err);
+  EXPECT_EQ(stats.at("rays").get<std::uint64_t>(), 20u * 10u * 4u);
+
+  // --set camera.width does the same as --width.
+  const CommandResult s = render(scene, "--set camera.width=24 --set camera.height=12");
+  EXPECT_EQ(s.status, 0) << s.err;
+  EXPECT_EQ(read_png()->width, 24);
+  EXPECT_EQ(read_png()->height, 12);
+}
+
+TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysAndRate) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r = render(scene, "--samples 3 --stats");
+  EXPECT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(line_count(r.err), 1u) << r.err;
+  ASSERT_TRUE(r.err.ends_with('\n'));
+  const auto stats = nlohmann::ordered_json::parse(r.err);
+  ASSERT_TRUE(stats.is_object());
+  std::vector<std::string> keys;
+  for (const auto& item : stats.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"seconds", "rays", "mrays_per_s"}));
+  ASSERT_TRUE(stats["seconds"].is_number());
+  ASSERT_TRUE(stats["rays"].is_number_integer());
+  ASSERT_TRUE(stats["mrays_per_s"].is_number());
+  const double seconds = stats["seconds"].get<double>();
+  EXPECT_GT(seconds, 0.0);
+  EXPECT_LT(seconds, 60.0);
+  EXPECT_EQ(stats["rays"].get<std::uint64_t>(), 64u * 48u * 3u);
+  EXPECT_NEAR(stats["mrays_per_s"].get<double>(), 64 * 48 * 3 / seconds / 1e6,
+              1e-9 * stats["mrays_per_s"].get<double>());
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliTest, SetSkyColourMakesTheBackgroundRed) {
+  const fs::path scene = write_scene(kScene);
+  ASSERT_EQ(render(scene).status, 0);
+  EXPECT_EQ(pixel(*read_exr(), 0, 0).r, 0.0f);
+  const CommandResult r = render(scene, "--set 'sky.color=[1,0,0]'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  const auto png_image = read_png();
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{63, 47}, std::pair{63, 0}}) {
+    EXPECT_EQ(png_byte(pixel(*png_image, x, y).r), 255);
+    EXPECT_EQ(png_byte(pixel(*png_image, x, y).g), 0);
+    EXPECT_EQ(png_byte(pixel(*png_image, x, y).b), 0);
+  }
+  // The ball is still green.
+  EXPECT_EQ(png_byte(pixel(*png_image, 32, 24).g), 255);
+}
+
+// The ball of kScene crossing the view at 0.8c, placed so that the light from its centre that
+// reaches the camera left it at t = -10 straight ahead. It is black on a red sky at rest: black
+// stays black and the sky stays red whatever the Doppler shift, so a pixel tells which it is.
+std::string moving_black_ball() {
+  const std::string moving = edited(kScene, "\n      \"velocity\": [0, 0, 0]",
+                                    "\n      \"velocity\": [0.8, 0, 0],\n      \"time\": -10");
+  return edited(edited(moving, "\"color\": [0, 0, 1]", "\"color\": [1, 0, 0]"),
+                "\"color\": [0, 1, 0]", "\"color\": [0, 0, 0]");
+}
+
+// Relativity and light delay change the picture of the moving ball, and so does the camera's
+// velocity.
+TEST_F(CliTest, SetSwitchesChangeTheImageOfAMovingBody) {
+  const fs::path scene = write_scene(moving_black_ball());
+  auto ball_pixels = [&](const std::string& extra) {
+    const CommandResult r = render(scene, extra);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto image = read_exr();
+    std::vector<int> mask;
+    for (int y = 0; y < image->height; ++y)
+      for (int x = 0; x < image->width; ++x) mask.push_back(pixel(*image, x, y).r < 0.5f);
+    return mask;
+  };
+  auto differing = [](const std::vector<int>& a, const std::vector<int>& b) {
+    int n = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) n += a[i] != b[i];
+    return n;
+  };
+  const auto relativistic = ball_pixels("");
+  const auto classical = ball_pixels("--set render.relativity=false");
+  const auto simultaneous = ball_pixels("--set render.light_delay=false");
+  const auto flying = ball_pixels("--set 'camera.velocity=[0,0,0.5]'");
+  const auto again = ball_pixels("--set render.relativity=true");
+  EXPECT_GT(std::count(relativistic.begin(), relativistic.end(), 1), 100);
+  EXPECT_GT(differing(relativistic, classical), 20);
+  EXPECT_GT(differing(relativistic, simultaneous), 20);
+  EXPECT_GT(differing(relativistic, flying), 20);
+  EXPECT_EQ(differing(relativistic, again), 0);
+}
+
+// A box of colour 0.5 filling the frame, at rest before a camera at rest.
+const std::string kGreyWall = R"({
+  "camera": {"position": [0, 0, 0], "width": 16, "height": 12},
+  "objects": [{
+    "name": "wall",
+    "shape": {"box": {"size": [1000, 1000, 1]}},
+    "position": [0, 0, -5],
+    "material": {"color": [0.5, 0.5, 0.5], "unlit": true}
+  }]
+}
+)";
+
+TEST_F(CliTest, PngAndExrValueContract) {
+  const fs::path scene = write_scene(kGreyWall);
+  struct Case {
+    std::string exposure;
+    float exr;
+    int png;
+  };
+  const int expected_188 = static_cast<int>(std::lround(255 * srgb_encode(0.5)));
+  ASSERT_EQ(expected_188, 188);
+  const std::vector<Case> cases = {
+      {"0", 0.5f, 188},
+      {"1", 1.0f, 255},
+      {"-1", 0.25f, static_cast<int>(std::lround(255 * srgb_encode(0.25)))},
+      {"2", 2.0f, 255},  // the EXR is not clamped; the PNG is
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE("exposure " + c.exposure);
+    const CommandResult r = render(scene, "--set render.exposure=" + c.exposure);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto png_image = read_png();
+    const auto exr_image = read_exr();
+    ASSERT_EQ(png_image->rgb.size(), 16u * 12u * 3u);
+    ASSERT_EQ(exr_image->rgb.size(), 16u * 12u * 3u);
+    for (std::size_t i = 0; i < png_image->rgb.size(); ++i) {
+      ASSERT_EQ(png_byte(png_image->rgb[i]), c.png) << "value " << i;
+      ASSERT_FLOAT_EQ(exr_image->rgb[i], c.exr) << "value " << i;
+    }
+  }
+  EXPECT_EQ(static_cast<int>(std::lround(255 * srgb_encode(0.25))), 137);
+}
+
+TEST_F(CliTest, ThreadCountDoesNotChangeTheImage) {
+  const fs::path scene = write_scene(kScene);
+  ASSERT_EQ(render(scene, "--samples 4").status, 0);
+  const std::vector<float> all = read_exr()->rgb;
+  const CommandResult one = render(scene, "--samples 4 --threads 1");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(read_exr()->rgb, all);
+}
+
+TEST_F(CliTest, ProgressBarOnlyOnATerminalAndNotWithQuiet) {
+  const fs::path scene = write_scene(kScene);
+  const std::string args =
+      "render " + quoted(scene) + " -o " + quoted(png()) + " --width 128 --height 96";
+  const CommandResult shown = test::run_lightcone_on_terminal(args);
+  EXPECT_EQ(shown.status, 0) << shown.err;
+  EXPECT_NE(shown.err.find("rendering ["), std::string::npos) << shown.err;
+  EXPECT_NE(shown.err.find("100%"), std::string::npos) << shown.err;
+  EXPECT_TRUE(fs::exists(png()));
+
+  const CommandResult quiet = test::run_lightcone_on_terminal(args + " --quiet");
+  EXPECT_EQ(quiet.status, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+
+  // --stats with --quiet on a terminal: only the JSON line.
+  const CommandResult stats = test::run_lightcone_on_terminal(args + " --quiet --stats");
+  EXPECT_EQ(stats.status, 0) << stats.err;
+  EXPECT_TRUE(stats.err.starts_with("{\"seconds\":")) << stats.err;
+  EXPECT_EQ(line_count(stats.err), 1u) << stats.err;
+}
+
+// ----------------------------------------------------------------------------------------------
+// --help
+
+TEST_F(CliTest, HelpForTheProgramAndEachSubcommand) {
+  const CommandResult program = run_lightcone("--help");
+  EXPECT_EQ(program.status, 0) << program.err;
+  for (const char* word : {"render", "locate"})
+    EXPECT_NE(program.out.find(word), std::string::npos) << word << " in\n" << program.out;
+
+  const CommandResult render_help = run_lightcone("render --help");
+  EXPECT_EQ(render_help.status, 0) << render_help.err;
+  for (const char* option : {"-o", "--output", "--exr", "--width", "--height", "--samples",
+                             "--threads", "--set", "--stats", "--quiet"})
+    EXPECT_NE(render_help.out.find(option), std::string::npos) << option << " in\n"
+                                                               << render_help.out;
+
+  const CommandResult locate_help = run_lightcone("locate --help");
+  EXPECT_EQ(locate_help.status, 0) << locate_help.err;
+  for (const char* option : {"--object", "--point", "--world-point", "--direction", "--set"})
+    EXPECT_NE(locate_help.out.find(option), std::string::npos) << option << " in\n"
+                                                               << locate_help.out;
+  EXPECT_EQ(locate_help.out.find("--exr"), std::string::npos);
+
+  EXPECT_EQ(run_lightcone("render -h").status, 0);
+}
+
+// ----------------------------------------------------------------------------------------------
+// locate
+
+// Parses locate's stdout: one line, one JSON object with exactly the contract's keys in order.
+nlohmann::ordered_json locate_output(const CommandResult& r) {
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(line_count(r.out), 1u) << r.out;
+  const auto out = nlohmann::ordered_json::parse(r.out, nullptr, false);
+  EXPECT_TRUE(out.is_object()) << r.out;
+  if (!out.is_object()) return nlohmann::ordered_json::object();
+  std::vector<std::string> keys;
+  for (const auto& item : out.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"pixel", "direction", "emission_time",
+                                            "emission_position", "distance", "in_view"}));
+  EXPECT_TRUE(out["pixel"].is_array() && out["pixel"].size() == 2) << r.out;
+  EXPECT_TRUE(out["direction"].is_array() && out["direction"].size() == 3) << r.out;
+  EXPECT_TRUE(out["in_view"].is_boolean()) << r.out;
+  return out;
+}
+
+double at(const nlohmann::ordered_json& j, const char* key, std::size_t i) {
+  return j.at(key).at(i).get<double>();
+}
+
+TEST_F(CliTest, LocateWorldPointKnownValues) {
+  const fs::path scene = write_scene(kScene);
+  // Camera at rest at the origin: a point 10 ahead is in the image centre, 10 away, emitted at
+  // t = -10 where it is.
+  const auto still = locate_output(locate(scene, "--world-point 0,0,-10"));
+  ASSERT_FALSE(still.empty());
+  EXPECT_NEAR(at(still, "pixel", 0), 32, 1e-9);
+  EXPECT_NEAR(at(still, "pixel", 1), 24, 1e-9);
+  EXPECT_NEAR(at(still, "direction", 0), 0, 1e-12);
+  EXPECT_NEAR(at(still, "direction", 1), 0, 1e-12);
+  EXPECT_NEAR(at(still, "direction", 2), -1, 1e-12);
+  EXPECT_NEAR(still["emission_time"].get<double>(), -10, 1e-9);
+  EXPECT_NEAR(at(still, "emission_position", 2), -10, 1e-9);
+  EXPECT_NEAR(still["distance"].get<double>(), 10, 1e-9);
+  EXPECT_TRUE(still["in_view"].get<bool>());
+
+  // The camera flying at 0.6c toward it: same emission event, but in the camera's frame the
+  // light travelled gamma (1 + beta) 10 = 20.
+  const auto flying =
+      locate_output(locate(scene, "--world-point 0,0,-10 --set 'camera.velocity=[0,0,-0.6]'"));
+  ASSERT_FALSE(flying.empty());
+  EXPECT_NEAR(at(flying, "pixel", 0), 32, 1e-9);
+  EXPECT_NEAR(at(flying, "pixel", 1), 24, 1e-9);
+  EXPECT_NEAR(flying["emission_time"].get<double>(), -10, 1e-9);
+  EXPECT_NEAR(at(flying, "emission_position", 0), 0, 1e-9);
+  EXPECT_NEAR(at(flying, "emission_position", 2), -10, 1e-9);
+  EXPECT_NEAR(flying["distance"].get<double>(), 20, 1e-9);
+
+  // Off axis, above and to the right: x grows to the right, y downwards. fov 30 over 48 rows:
+  // focal length 24 / tan(15 deg) pixels.
+  const double focal = 24 / std::tan(15 * std::acos(-1.0) / 180);
+  const auto off = locate_output(locate(scene, "--world-point 1,0.5,-10"));
+  ASSERT_FALSE(off.empty());
+  EXPECT_NEAR(at(off, "pixel", 0), 32 + focal * 0.1, 1e-9);
+  EXPECT_NEAR(at(off, "pixel", 1), 24 - focal * 0.05, 1e-9);
+  EXPECT_NEAR(off["distance"].get<double>(), std::sqrt(1 + 0.25 + 100), 1e-9);
+
+  // Behind the camera.
+  const auto behind = locate_output(locate(scene, "--world-point 0,0,10"));
+  ASSERT_FALSE(behind.empty());
+  EXPECT_FALSE(behind["in_view"].get<bool>());
+  // Far to the side, in front.
+  const auto aside = locate_output(locate(scene, "--world-point 100,0,-10"));
+  ASSERT_FALSE(aside.empty());
+  EXPECT_FALSE(aside["in_view"].get<bool>());
+}
+
+TEST_F(CliTest, LocateDirectionHasNoEmissionEvent) {
+  const fs::path scene = write_scene(kScene);
+  const auto ahead = locate_output(locate(scene, "--direction 0,0,-3"));
+  ASSERT_FALSE(ahead.empty());
+  EXPECT_NEAR(at(ahead, "pixel", 0), 32, 1e-9);
+  EXPECT_NEAR(at(ahead, "pixel", 1), 24, 1e-9);
+  EXPECT_NEAR(at(ahead, "direction", 2), -1, 1e-12);
+  EXPECT_TRUE(ahead["emission_time"].is_null());
+  EXPECT_TRUE(ahead["emission_position"].is_null());
+  EXPECT_TRUE(ahead["distance"].is_null());
+  EXPECT_TRUE(ahead["in_view"].get<bool>());
+
+  // A camera flying along +x at 0.6c sees the direction perpendicular to its motion tilted
+  // forward: the apparent direction is (beta, 0, -1/gamma) = (0.6, 0, -0.8).
+  const auto tilted =
+      locate_output(locate(scene, "--direction 0,0,-1 --set 'camera.velocity=[0.6,0,0]'"));
+  ASSERT_FALSE(tilted.empty());
+  EXPECT_NEAR(at(tilted, "direction", 0), 0.6, 1e-12);
+  EXPECT_NEAR(at(tilted, "direction", 1), 0, 1e-12);
+  EXPECT_NEAR(at(tilted, "direction", 2), -0.8, 1e-12);
+  EXPECT_FALSE(tilted["in_view"].get<bool>());  // 37 degrees off axis, the half-width is ~21
+}
+
+// Visible points of the ball crossing at 0.8c are located on pixels drawn in the ball's colour.
+TEST_F(CliTest, LocateObjectPointLandsOnTheRenderedBall) {
+  const fs::path scene = write_scene(moving_black_ball());
+  const CommandResult r = render(scene);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto image = read_png();
+  EXPECT_EQ(png_byte(pixel(*image, 0, 0).r), 255);  // the sky
+
+  for (const char* point : {"0,0,2", "-2,0,0", "-1.2,0,1.6", "-1.6,1.2,0"}) {
+    SCOPED_TRACE(point);
+    const auto where = locate_output(locate(scene, std::string("--object ball --point ") + point));
+    ASSERT_FALSE(where.empty());
+    EXPECT_TRUE(where["in_view"].get<bool>());
+    const int x = static_cast<int>(std::floor(at(where, "pixel", 0)));
+    const int y = static_cast<int>(std::floor(at(where, "pixel", 1)));
+    ASSERT_TRUE(x >= 0 && x < 64 && y >= 0 && y < 48) << x << "," << y;
+    const Rgb c = pixel(*image, x, y);
+    EXPECT_EQ(png_byte(c.r), 0) << x << "," << y;
+    EXPECT_EQ(png_byte(c.g), 0) << x << "," << y;
+    EXPECT_EQ(png_byte(c.b), 0) << x << "," << y;
+    // The emission event lies on the camera's past light cone: |x| = -t.
+    const double t = where["emission_time"].get<double>();
+    const double d =
+        std::hypot(at(where, "emission_position", 0), at(where, "emission_position", 1),
+                   at(where, "emission_position", 2));
+    EXPECT_NEAR(d, -t, 1e-9);
+    EXPECT_NEAR(where["distance"].get<double>(), -t, 1e-9);  // the camera is at rest in W
+  }
+  // The front point's emission event is on its world-line: it left z = -8 when the ball's
+  // centre was at x = 0.8 (t + 10). Light delay shows it well to the right of the image centre.
+  const auto front = locate_output(locate(scene, "--object ball --point 0,0,2"));
+  ASSERT_FALSE(front.empty());
+  const double t = front["emission_time"].get<double>();
+  EXPECT_NEAR(at(front, "emission_position", 0), 0.8 * (t + 10), 1e-9);
+  EXPECT_NEAR(at(front, "emission_position", 1), 0, 1e-9);
+  EXPECT_NEAR(at(front, "emission_position", 2), -8, 1e-9);
+  EXPECT_GT(at(front, "pixel", 0), 42);
+  // The centre's light left it at t = -10 from straight ahead.
+  const auto centre = locate_output(locate(scene, "--object ball --point 0,0,0"));
+  ASSERT_FALSE(centre.empty());
+  EXPECT_NEAR(centre["emission_time"].get<double>(), -10, 1e-9);
+  EXPECT_NEAR(at(centre, "pixel", 0), 32, 1e-9);
+  EXPECT_NEAR(at(centre, "pixel", 1), 24, 1e-9);
+}
+
+// A big sphere at rest 1e7 away in direction d and the direction d itself land on the same
+// pixel for a camera at 0.9c.
+TEST_F(CliTest, LocateFarBodyAndDirectionAgree) {
+  const double d[3] = {0.3, 0.1, -1};
+  const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  char position[200];
+  std::snprintf(position, sizeof position, "[%.17g, %.17g, %.17g]", 1e7 * d[0] / n, 1e7 * d[1] / n,
+                1e7 * d[2] / n);
+  const std::string far = edited(
+      edited(edited(kScene, "{\"sphere\": {\"radius\": 2}}", "{\"sphere\": {\"radius\": 1000}}"),
+             "\"position\": [0, 0, -10]", std::string("\"position\": ") + position),
+      "\"name\": \"ball\"", "\"name\": \"far\"");
+  // 0.9c along (0.2, 0.1, -1), so that the aberrated direction stays in view.
+  const double v[3] = {0.2, 0.1, -1};
+  const double k = 0.9 / std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  char velocity[200];
+  std::snprintf(velocity, sizeof velocity, "[%.17g, %.17g, %.17g]", k * v[0], k * v[1], k * v[2]);
+  const fs::path scene = write_scene(
+      edited(far, "\n    \"velocity\": [0, 0, 0]", std::string("\n    \"velocity\": ") + velocity));
+  const auto body = locate_output(locate(scene, "--object far --point 0,0,0"));
+  const auto sky = locate_output(locate(scene, "--direction 0.3,0.1,-1"));
+  ASSERT_FALSE(body.empty());
+  ASSERT_FALSE(sky.empty());
+  EXPECT_TRUE(sky["in_view"].get<bool>());
+  EXPECT_EQ(body["in_view"], sky["in_view"]);
+  EXPECT_NEAR(at(body, "pixel", 0), at(sky, "pixel", 0), 1e-3);
+  EXPECT_NEAR(at(body, "pixel", 1), at(sky, "pixel", 1), 1e-3);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(at(body, "direction", i), at(sky, "direction", i), 1e-9);
+  // Aberration moved it: at rest, the same direction is elsewhere in the image.
+  const auto still =
+      locate_output(locate(scene, "--direction 0.3,0.1,-1 --set 'camera.velocity=[0,0,0]'"));
+  ASSERT_FALSE(still.empty());
+  EXPECT_GT(std::abs(at(still, "pixel", 0) - at(sky, "pixel", 0)), 1.0);
+}
+
+}  // namespace
+}  // namespace lightcone
