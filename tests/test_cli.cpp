@@ -716,9 +716,11 @@ nlohmann::ordered_json locate_output(const CommandResult& r) {
   if (!out.is_object()) return nlohmann::ordered_json::object();
   std::vector<std::string> keys;
   for (const auto& item : out.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"pixel", "direction", "emission_time",
-                                            "emission_position", "distance", "in_view"}));
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{"pixel", "direction", "emission_time", "emission_position",
+                                      "distance", "in_view", "doppler"}));
   EXPECT_TRUE(out["pixel"].is_array() && out["pixel"].size() == 2) << r.out;
+  EXPECT_TRUE(out["doppler"].is_number() && out["doppler"].get<double>() > 0) << r.out;
   EXPECT_TRUE(out["direction"].is_array() && out["direction"].size() == 3) << r.out;
   EXPECT_TRUE(out["in_view"].is_boolean()) << r.out;
   return out;

@@ -19,13 +19,8 @@ std::shared_ptr<Image> coordinate_image(int w, int h) {
 }
 
 TEST(Checker, IndexIsFloorSumModTwoInShapeCoordinates) {
-  Object o;
-  o.material.pattern = Checker{0.5, {{1, 0, 0}, {0, 0, 1}}};
-  auto colour_at = [&](Vec3 p) {
-    Hit hit;
-    hit.shape_point = p;
-    return surface_radiance(o, hit).r;
-  };
+  const Checker checker{0.5, {{1, 0, 0}, {0, 0, 1}}};
+  auto colour_at = [&](Vec3 p) { return checker.colors[checker_index(checker, p)].r; };
   EXPECT_EQ(colour_at({0.1, 0.1, 0.1}), 1.0f);     // 0+0+0 even
   EXPECT_EQ(colour_at({0.6, 0.1, 0.1}), 0.0f);     // 1+0+0 odd
   EXPECT_EQ(colour_at({-0.1, 0.1, 0.1}), 0.0f);    // -1 is odd, the index is non-negative
@@ -45,10 +40,9 @@ TEST(Texture, BilinearHitsTexelCentresExactlyAndWrapsInU) {
 
 TEST(SkyImage, EquirectangularMappingFollowsTheContract) {
   // u = 0.5 + atan2(d.x, -d.z)/(2 pi), v = acos(d.y)/pi, from the top-left.
-  Sky sky;
-  sky.pattern = SkyImage{coordinate_image(360, 180)};
+  const SkyImage sky{coordinate_image(360, 180)};
   auto texel = [&](Vec3 d) {
-    const Rgb c = sky_radiance(sky, normalize(d));
+    const Rgb c = sky_image_colour(sky, normalize(d));
     return std::array<double, 2>{c.r, c.g};
   };
   // Straight ahead (-z): u = 0.5, v = 0.5 -> between texels 179/180 and 89/90.
@@ -62,24 +56,19 @@ TEST(SkyImage, EquirectangularMappingFollowsTheContract) {
 }
 
 TEST(SkyGrid, LinesAtMultiplesOfTheSpacing) {
-  Sky sky;
   SkyGrid grid;
   grid.spacing_degrees = 15;
   grid.line_width_degrees = 1;
-  grid.line_color = {1, 1, 1};
-  grid.background = {0, 0, 0};
-  sky.pattern = grid;
   auto at = [&](double longitude_deg, double latitude_deg) {
     const double lo = longitude_deg * M_PI / 180, la = latitude_deg * M_PI / 180;
     // longitude measured from -z toward +x
-    return sky_radiance(sky,
-                        {std::sin(lo) * std::cos(la), std::sin(la), -std::cos(lo) * std::cos(la)})
-        .r;
+    return on_grid_line(grid,
+                        {std::sin(lo) * std::cos(la), std::sin(la), -std::cos(lo) * std::cos(la)});
   };
-  EXPECT_EQ(at(7.5, 7.5), 0.0f);   // between lines
-  EXPECT_EQ(at(15.2, 7.5), 1.0f);  // on a meridian
-  EXPECT_EQ(at(7.5, 30.3), 1.0f);  // on a parallel
-  EXPECT_EQ(at(-44.8, 7.5), 1.0f);
+  EXPECT_FALSE(at(7.5, 7.5));  // between lines
+  EXPECT_TRUE(at(15.2, 7.5));  // on a meridian
+  EXPECT_TRUE(at(7.5, 30.3));  // on a parallel
+  EXPECT_TRUE(at(-44.8, 7.5));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/render/locate.hpp"
 #include "lightcone/render/renderer.hpp"
+#include "lightcone/render/tone_map.hpp"
 #include "progress_bar.hpp"
 
 namespace fs = std::filesystem;
@@ -91,7 +92,7 @@ int run_render(const RenderArgs& a) {
     options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
     image = render_image(scene, options, &stats);
   }
-  write_images(image, fs::path(a.png),
+  write_images(tone_map(image, scene.render.tonemap), image, fs::path(a.png),
                a.exr ? std::optional<fs::path>(*a.exr) : std::optional<fs::path>());
   if (a.stats) {
     const nlohmann::ordered_json line = {
@@ -140,7 +141,8 @@ int run_locate(const LocateArgs& a) {
                                 {"emission_time", nullptr},
                                 {"emission_position", nullptr},
                                 {"distance", nullptr},
-                                {"in_view", r.in_view}};
+                                {"in_view", r.in_view},
+                                {"doppler", r.doppler}};
   if (r.emission_time) out["emission_time"] = *r.emission_time;
   if (r.emission_position) out["emission_position"] = to_json(*r.emission_position);
   if (r.distance) out["distance"] = *r.distance;

@@ -220,10 +220,17 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
 
 void write_images(const Image& linear, const std::optional<std::filesystem::path>& png,
                   const std::optional<std::filesystem::path>& exr) {
-  if (linear.width <= 0 || linear.height <= 0 || linear.width > INT_MAX / 3 ||
-      linear.rgb.size() != 3 * static_cast<std::size_t>(linear.width) * linear.height)
-    throw std::runtime_error(fmt::format("cannot write a {}x{} image holding {} values",
-                                         linear.width, linear.height, linear.rgb.size()));
+  write_images(linear, linear, png, exr);
+}
+
+void write_images(const Image& display, const Image& linear,
+                  const std::optional<std::filesystem::path>& png,
+                  const std::optional<std::filesystem::path>& exr) {
+  for (const Image* image : {&display, &linear})
+    if (image->width <= 0 || image->height <= 0 || image->width > INT_MAX / 3 ||
+        image->rgb.size() != 3 * static_cast<std::size_t>(image->width) * image->height)
+      throw std::runtime_error(fmt::format("cannot write a {}x{} image holding {} values",
+                                           image->width, image->height, image->rgb.size()));
   struct Pending {
     fs::path target, temp;
     bool renamed = false;
@@ -232,7 +239,7 @@ void write_images(const Image& linear, const std::optional<std::filesystem::path
   if (png) pending.push_back({*png, temporary_name(*png)});
   if (exr) pending.push_back({*exr, temporary_name(*exr)});
   try {
-    if (png) write_png(linear, pending[0].temp, *png);
+    if (png) write_png(display, pending[0].temp, *png);
     if (exr) write_exr(linear, pending.back().temp, *exr);
     for (Pending& p : pending) {
       std::error_code ec;

@@ -25,4 +25,10 @@ double srgb_decode(double encoded);
 void write_images(const Image& linear, const std::optional<std::filesystem::path>& png,
                   const std::optional<std::filesystem::path>& exr);
 
+// The same, with the PNG encoded from a separate display image (tone-mapped, values in [0, 1])
+// while the EXR keeps the linear radiance.
+void write_images(const Image& display, const Image& linear,
+                  const std::optional<std::filesystem::path>& png,
+                  const std::optional<std::filesystem::path>& exr);
+
 }  // namespace lightcone

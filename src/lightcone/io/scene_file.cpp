@@ -157,6 +157,12 @@ class SceneReader {
     return d;
   }
 
+  double non_negative(const Node& n) const {
+    const double d = number(n);
+    if (!(d >= 0)) fail(n, fmt::format("must be >= 0, got {}", d));
+    return d;
+  }
+
   double positive(const Node& n) const {
     const double d = number(n);
     if (!(d > 0)) fail(n, fmt::format("must be greater than 0, got {}", d));
@@ -337,7 +343,8 @@ class SceneReader {
   }
 
   Material material(const Node& n, std::size_t index) {
-    const std::string kind = one_of(n, {"color", "checker", "texture"}, {"unlit"});
+    const std::string kind =
+        one_of(n, {"color", "checker", "texture", "blackbody", "spectrum"}, {"unlit"});
     Material m;
     if (Node unlit = member(n, "unlit"); unlit.value && !boolean(unlit))
       fail(unlit, "lit materials are not supported yet; leave \"unlit\" out or set it to true");
@@ -354,11 +361,48 @@ class SceneReader {
       checker.colors[0] = color(element(colors, 0));
       checker.colors[1] = color(element(colors, 1));
       m.pattern = checker;
+    } else if (kind == "blackbody") {
+      object(body, {"temperature", "luminance"});
+      Blackbody b;
+      b.temperature_k = positive(member(body, "temperature"));
+      if (Node y = member(body, "luminance"); y.value) b.luminance = non_negative(y);
+      m.pattern = b;
+    } else if (kind == "spectrum") {
+      m.pattern = emission_spectrum(body);
     } else {
       assets_.push_back({Asset::kTexture, index, file_path(body), body.path});
       m.pattern = Texture{};
     }
     return m;
+  }
+
+  EmissionSpectrum emission_spectrum(const Node& n) const {
+    object(n, {"wavelengths", "values"});
+    const Node wavelengths = member(n, "wavelengths"), values = member(n, "values");
+    auto list = [&](const Node& list_node) {
+      const json& v = need(list_node);
+      if (!v.is_array() || v.size() < 2)
+        fail(list_node, fmt::format("must be an array of at least 2 numbers, got {}", describe(v)));
+      std::vector<double> out;
+      for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number(element(list_node, i)));
+      return out;
+    };
+    EmissionSpectrum s{list(wavelengths), list(values)};
+    if (s.values.size() != s.wavelengths_nm.size())
+      fail(values, fmt::format("must have as many entries as wavelengths ({}), got {}",
+                               s.wavelengths_nm.size(), s.values.size()));
+    for (std::size_t i = 0; i < s.wavelengths_nm.size(); ++i) {
+      if (!(s.wavelengths_nm[i] > 0))
+        fail(element(wavelengths, i),
+             fmt::format("wavelengths must be greater than 0 nm, got {}", s.wavelengths_nm[i]));
+      if (i > 0 && !(s.wavelengths_nm[i] > s.wavelengths_nm[i - 1]))
+        fail(element(wavelengths, i),
+             fmt::format("wavelengths must be strictly increasing ({} after {})",
+                         s.wavelengths_nm[i], s.wavelengths_nm[i - 1]));
+      if (s.values[i] < 0)
+        fail(element(values, i), fmt::format("must be >= 0, got {}", s.values[i]));
+    }
+    return s;
   }
 
   Sky sky(const Node& n) {
@@ -390,12 +434,49 @@ class SceneReader {
   }
 
   RenderSettings render(const Node& n) const {
-    object(n, {"relativity", "light_delay", "exposure"});
+    object(n,
+           {"relativity", "light_delay", "exposure", "doppler", "searchlight", "hue", "tonemap"});
     RenderSettings r;
     if (Node v = member(n, "relativity"); v.value) r.relativity = boolean(v);
     if (Node v = member(n, "light_delay"); v.value) r.light_delay = boolean(v);
-    if (Node v = member(n, "exposure"); v.value) r.exposure = number(v);
+    if (Node v = member(n, "exposure"); v.value) {
+      if (v.value->is_string()) {
+        if (string(v) != "auto") fail(v, "must be a number (EV) or \"auto\"");
+        r.auto_exposure = true;
+      } else {
+        r.exposure = number(v);
+      }
+    }
+    if (Node v = member(n, "doppler"); v.value)
+      r.doppler = choice<DopplerModel>(v, {{"spectral", DopplerModel::kSpectral},
+                                           {"rgb3", DopplerModel::kRgb3},
+                                           {"hue", DopplerModel::kHue},
+                                           {"off", DopplerModel::kOff}});
+    if (Node v = member(n, "searchlight"); v.value)
+      r.searchlight = choice<SearchlightModel>(v, {{"physical", SearchlightModel::kPhysical},
+                                                   {"chang1996", SearchlightModel::kChang1996},
+                                                   {"off", SearchlightModel::kOff}});
+    if (Node hue = member(n, "hue"); hue.value) {
+      object(hue, {"loop"});
+      if (Node loop = member(hue, "loop"); loop.value) r.hue_loop = boolean(loop);
+    }
+    if (Node v = member(n, "tonemap"); v.value)
+      r.tonemap = choice<ToneMap>(v, {{"clamp", ToneMap::kClamp},
+                                      {"reinhard", ToneMap::kReinhard},
+                                      {"filmic", ToneMap::kFilmic}});
     return r;
+  }
+
+  // One of a fixed set of names.
+  template <class T>
+  T choice(const Node& n, const std::vector<std::pair<std::string, T>>& names) const {
+    const std::string given = string(n);
+    std::vector<std::string> known;
+    for (const auto& [name, value] : names) {
+      if (name == given) return value;
+      known.push_back(name);
+    }
+    fail(n, fmt::format("unknown model \"{}\" (expected one of: {})", given, join(known)));
   }
 
   // --- Files ------------------------------------------------------------------------------

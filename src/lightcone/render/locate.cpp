@@ -55,8 +55,10 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
   const AffineMap4 trace_to_rest{
       world_to_rest.linear * r.trace_to_world.linear,
       world_to_rest.linear * r.trace_to_world.offset + world_to_rest.offset};
-  const RayEvent event = meet_world_line(r.ray_time, trace_world_line(trace_to_rest, rest_point));
+  const TraceWorldLine line = trace_world_line(trace_to_rest, rest_point);
+  const RayEvent event = meet_world_line(r.ray_time, line);
   result.direction = normalize(event.position);
+  result.doppler = r.doppler(result.direction, line.velocity);
   result.distance = event.s;
   const Vec4 world = r.trace_to_world(Vec4{r.ray_time * event.s, event.position});
   result.emission_time = world.t;

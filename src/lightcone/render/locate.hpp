@@ -24,6 +24,7 @@ struct LocateResult {
   std::optional<Vec3> emission_position;
   std::optional<double> distance;  // light travel distance in the camera frame
   bool in_view = false;
+  double doppler = 1;  // D = nu_camera / nu_emitter for light from the located point
 };
 
 // Throws std::invalid_argument when the named object does not exist.

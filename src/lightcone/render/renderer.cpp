@@ -9,7 +9,8 @@
 #include <cmath>
 #include <memory>
 
-#include "lightcone/render/shading.hpp"
+#include "lightcone/render/received_colour.hpp"
+#include "lightcone/render/tone_map.hpp"
 
 namespace lightcone {
 namespace {
@@ -31,27 +32,31 @@ double unit_float(std::uint64_t bits) {
   return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
 
-// Offset in [0,1)^2 of sample k of n within pixel (i, j); n = 1 is the pixel centre.
-std::array<double, 2> sample_offset(int i, int j, int k, int n) {
-  if (n == 1) return {0.5, 0.5};
-  const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+// Sample k of n within pixel (i, j): its offset in [0,1)^2 (n = 1: the pixel centre) and a
+// jitter in [0, 1) for its wavelengths.
+std::array<double, 3> sample_offset(int i, int j, int k, int n) {
   const std::uint64_t h =
       mix((static_cast<std::uint64_t>(j) << 40) ^ (static_cast<std::uint64_t>(i) << 20) ^
           static_cast<std::uint64_t>(k));
+  const double jitter = unit_float(mix(h ^ 0x9e3779b97f4a7c15ULL));
+  if (n == 1) return {0.5, 0.5, jitter};
+  const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   const int sx = k % strata, sy = (k / strata) % strata;
-  return {(sx + unit_float(h)) / strata, (sy + unit_float(mix(h))) / strata};
+  return {(sx + unit_float(h)) / strata, (sy + unit_float(mix(h))) / strata, jitter};
 }
 
 }  // namespace
 
-Rgb radiance_along(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u) {
-  const float scale = static_cast<float>(std::exp2(scene.scene->render.exposure));
-  Rgb c;
-  if (const auto hit = tracer.trace(u))
-    c = surface_radiance(*scene.bodies[hit->body].object, *hit);
-  else
-    c = sky_radiance(scene.scene->sky, scene.sky_direction(u));
-  return {c.r * scale, c.g * scale, c.b * scale};
+LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
+                         const Tracer& tracer, const Vec3& u,
+                         const SampledWavelengths& wavelengths) {
+  const RenderSettings& settings = scene.scene->render;
+  if (const auto hit = tracer.trace(u)) {
+    const double d = scene.doppler(u, scene.bodies[hit->body].velocity);
+    return received_colour(emission.surface(hit->body, *hit), d, settings, wavelengths);
+  }
+  const double d = scene.doppler(u, scene.sky_velocity);
+  return received_colour(emission.sky(scene.sky_direction(u)), d, settings, wavelengths);
 }
 
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
@@ -62,6 +67,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                                                   options.threads);
   const ResolvedScene resolved = resolve_scene(scene);
   const Tracer tracer(resolved);
+  const EmissionTable emission(scene, scene.render.doppler == DopplerModel::kSpectral);
 
   const Camera& cam = scene.camera;
   Image image;
@@ -83,8 +89,11 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
           double r = 0, g = 0, b = 0;
           for (int k = 0; k < n; ++k) {
             const auto o = sample_offset(i, j, k, n);
-            const Rgb c = radiance_along(resolved, tracer,
-                                         look_direction(resolved.camera, i + o[0], j + o[1]));
+            const SampledWavelengths wavelengths =
+                sample_wavelengths(stratified_wavelength_u(k, n, o[2]));
+            const LinearRgb c =
+                radiance_along(resolved, emission, tracer,
+                               look_direction(resolved.camera, i + o[0], j + o[1]), wavelengths);
             r += c.r;
             g += c.g;
             b += c.b;
@@ -99,7 +108,12 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     }
   });
 
+  const double ev = scene.render.auto_exposure ? auto_exposure(image) : scene.render.exposure;
+  const auto scale = static_cast<float>(std::exp2(ev));
+  for (float& v : image.rgb) v *= scale;
+
   if (stats) {
+    stats->exposure = ev;
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->rays = static_cast<std::uint64_t>(cam.width) * cam.height * n;

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <functional>
 
+#include "lightcone/color/wavelengths.hpp"
+#include "lightcone/render/emission.hpp"
 #include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 #include "lightcone/scene/scene.hpp"
@@ -20,12 +22,17 @@ struct RenderOptions {
 struct RenderStats {
   double seconds = 0;
   std::uint64_t rays = 0;  // camera rays traced
+  double exposure = 0;     // EV applied
 };
 
-// Radiance arriving along look direction u (unit, in the camera's frame F), times 2^exposure.
-Rgb radiance_along(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u);
+// Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F), for the
+// received wavelengths of one camera sample (used by the spectral model).
+LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
+                         const Tracer& tracer, const Vec3& u,
+                         const SampledWavelengths& wavelengths);
 
-// Renders the scene: linear radiance times 2^exposure, one RGB triple per pixel.
+// Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB
+// triple per pixel. `stats->exposure` reports the EV used.
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);
 
 }  // namespace lightcone

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/retarded_time.hpp"
 
 namespace lightcone {
@@ -156,6 +157,7 @@ ResolvedScene resolve_scene(const Scene& scene) {
     const double radius = scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
     const Vec3 rest_centre = object.rotation * component_mul(object.scale, centre);
     body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
+    body.velocity = trace_world_line(trace_to_body, rest_centre).velocity;
     r.bodies.push_back(body);
   }
 
@@ -165,7 +167,13 @@ ResolvedScene resolve_scene(const Scene& scene) {
   const Mat3 to_pattern = scene.sky.rotation.transposed();
   r.sky_time_column = to_pattern * time_column(trace_to_sky.linear);
   r.sky_spatial = to_pattern * trace_to_sky.linear.spatial();
+  r.sky_velocity = trace_world_line(trace_to_sky, {}).velocity;
   return r;
+}
+
+double ResolvedScene::doppler(const Vec3& u, const Vec3& velocity) const {
+  if (!scene->render.relativity) return 1.0;
+  return doppler_factor(-u, velocity, {});
 }
 
 }  // namespace lightcone

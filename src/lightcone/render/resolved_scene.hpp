@@ -32,6 +32,7 @@ struct ResolvedBody {
   Mat3 spatial;
   // Conservative bounds in F of every point where a camera ray can meet the body.
   Bounds3 trace_bounds;
+  Vec3 velocity;  // in F, for the Doppler factor
 
   Vec3 shape_direction(const Vec3& u) const { return ray_offset + spatial * u; }
 };
@@ -55,6 +56,11 @@ struct ResolvedScene {
   // normalize(sky_time_column * ray_time + sky_spatial * u).
   Vec3 sky_time_column;
   Mat3 sky_spatial;
+  Vec3 sky_velocity;  // in F
+
+  // Doppler factor nu_camera / nu_emitter for light arriving along look direction u from an
+  // emitter moving with `velocity` in F (1 for the classical picture).
+  double doppler(const Vec3& u, const Vec3& velocity) const;
 
   Vec3 sky_direction(const Vec3& u) const {
     return normalize(sky_time_column * ray_time + sky_spatial * u);

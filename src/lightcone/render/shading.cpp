@@ -41,46 +41,32 @@ Rgb sample_bilinear(const Image& image, double u, double v, bool wrap_v) {
   return lerp(top, bottom, y - fy);
 }
 
-Rgb surface_radiance(const Object& object, const Hit& hit) {
-  struct Visitor {
-    const Hit& hit;
-    Rgb operator()(const SolidColor& c) const { return c.color; }
-    Rgb operator()(const Checker& c) const {
-      const Vec3& p = hit.shape_point;
-      const long long sum = static_cast<long long>(std::floor(p.x / c.size)) +
-                            static_cast<long long>(std::floor(p.y / c.size)) +
-                            static_cast<long long>(std::floor(p.z / c.size));
-      return c.colors[((sum % 2) + 2) % 2];
-    }
-    Rgb operator()(const Texture& t) const {
-      return sample_bilinear(*t.image, hit.uv[0], hit.uv[1], true);
-    }
-  };
-  return std::visit(Visitor{hit}, object.material.pattern);
+int checker_index(const Checker& c, const Vec3& p) {
+  const long long sum = static_cast<long long>(std::floor(p.x / c.size)) +
+                        static_cast<long long>(std::floor(p.y / c.size)) +
+                        static_cast<long long>(std::floor(p.z / c.size));
+  return static_cast<int>(((sum % 2) + 2) % 2);
 }
 
-Rgb sky_radiance(const Sky& sky, const Vec3& d) {
-  struct Visitor {
-    const Vec3& d;
-    Rgb operator()(const SolidColor& c) const { return c.color; }
-    Rgb operator()(const SkyImage& s) const {
-      const double u = 0.5 + std::atan2(d.x, -d.z) / (2 * std::numbers::pi);
-      const double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / std::numbers::pi;
-      return sample_bilinear(*s.image, u, v, false);
-    }
-    Rgb operator()(const SkyGrid& g) const {
-      const double latitude = degrees(std::asin(std::clamp(d.y, -1.0, 1.0)));
-      const double longitude = degrees(std::atan2(d.x, -d.z));
-      const double half_width = g.line_width_degrees * 0.5;
-      // Meridians are measured as arc length along the parallel, so lines keep their width.
-      const double along_parallel = distance_to_grid(longitude, g.spacing_degrees) *
-                                    std::cos(latitude * std::numbers::pi / 180);
-      const bool on_line = distance_to_grid(latitude, g.spacing_degrees) <= half_width ||
-                           along_parallel <= half_width;
-      return on_line ? g.line_color : g.background;
-    }
-  };
-  return std::visit(Visitor{d}, sky.pattern);
+Rgb texture_colour(const Texture& t, const Hit& hit) {
+  return sample_bilinear(*t.image, hit.uv[0], hit.uv[1], true);
+}
+
+Rgb sky_image_colour(const SkyImage& s, const Vec3& d) {
+  const double u = 0.5 + std::atan2(d.x, -d.z) / (2 * std::numbers::pi);
+  const double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / std::numbers::pi;
+  return sample_bilinear(*s.image, u, v, false);
+}
+
+bool on_grid_line(const SkyGrid& g, const Vec3& d) {
+  const double latitude = degrees(std::asin(std::clamp(d.y, -1.0, 1.0)));
+  const double longitude = degrees(std::atan2(d.x, -d.z));
+  const double half_width = g.line_width_degrees * 0.5;
+  // Meridians are measured as arc length along the parallel, so lines keep their width.
+  const double along_parallel =
+      distance_to_grid(longitude, g.spacing_degrees) * std::cos(latitude * std::numbers::pi / 180);
+  return distance_to_grid(latitude, g.spacing_degrees) <= half_width ||
+         along_parallel <= half_width;
 }
 
 }  // namespace lightcone

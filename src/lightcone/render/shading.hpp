@@ -1,4 +1,5 @@
-// What a ray sees where it ends: the unlit radiance of a surface point or of the sky.
+// Rest-frame pattern lookups: which colour a surface point or sky direction has in its own
+// rest frame (checker cells, texture and sky-image texels, grid lines).
 #pragma once
 
 #include "lightcone/render/tracer.hpp"
@@ -10,10 +11,16 @@ namespace lightcone {
 // textures and clamps for equirectangular skies (poles).
 Rgb sample_bilinear(const Image& image, double u, double v, bool wrap_v);
 
-// Rest-frame radiance of the surface of `object` at a hit.
-Rgb surface_radiance(const Object& object, const Hit& hit);
+// Colour index (floor(x/s) + floor(y/s) + floor(z/s)) mod 2, non-negative.
+int checker_index(const Checker& checker, const Vec3& shape_point);
 
-// Rest-frame radiance of the sky in look direction d, given in the sky pattern's coordinates.
-Rgb sky_radiance(const Sky& sky, const Vec3& d);
+Rgb texture_colour(const Texture& texture, const Hit& hit);
+
+// The equirectangular sky image in pattern direction d: u = 0.5 + atan2(d.x, -d.z)/(2 pi),
+// v = acos(d.y)/pi.
+Rgb sky_image_colour(const SkyImage& sky, const Vec3& d);
+
+// Whether pattern direction d lies on a line of the celestial grid.
+bool on_grid_line(const SkyGrid& grid, const Vec3& d);
 
 }  // namespace lightcone

@@ -33,7 +33,7 @@ struct Mesh {
   // Per vertex, empty when the file has none; (0, 0) is the top-left of the image (glTF's
   // convention; OBJ and PLY v is flipped on loading).
   std::vector<std::array<float, 2>> uvs;
-  std::string source;                     // file it came from, for messages
+  std::string source;  // file it came from, for messages
 };
 
 // A linear-RGB image, row-major from the top-left, 3 floats per pixel.
@@ -75,8 +75,21 @@ struct Checker {
 struct Texture {
   std::shared_ptr<const Image> image;
 };
+// Thermal emission: Planck's law at `temperature_k`, scaled so that its CIE Y at rest equals
+// `luminance` (in the units where an RGB emitter (1, 1, 1) has Y = 1).
+struct Blackbody {
+  double temperature_k = 5762;
+  double luminance = 1;
+};
+// Tabulated spectral radiance (per nm, normalised like RGB: a constant 1 has Y = 1),
+// piecewise linear, the end values held beyond the table.
+struct EmissionSpectrum {
+  std::vector<double> wavelengths_nm;  // strictly increasing, > 0
+  std::vector<double> values;          // >= 0
+};
 struct Material {
-  std::variant<SolidColor, Checker, Texture> pattern = SolidColor{{1, 1, 1}};
+  std::variant<SolidColor, Checker, Texture, Blackbody, EmissionSpectrum> pattern =
+      SolidColor{{1, 1, 1}};
   // The colour is the radiance the surface emits in its rest frame.
   bool unlit = true;
 };
@@ -118,10 +131,30 @@ struct Sky {
   Mat3 rotation;  // orientation of the pattern in the sky's rest frame
 };
 
+// How the Doppler shift changes colour (see docs/design/colour.md).
+enum class DopplerModel {
+  kSpectral,  // every colour is a spectrum, read at lambda_E = D lambda_R
+  kRgb3,      // seed 000: three spectral lines at 626, 534, 465 nm
+  kHue,       // seed 003: hue rotated by 512 log2(D) degrees
+  kOff,
+};
+// How radiance scales with D.
+enum class SearchlightModel {
+  kPhysical,   // D^5 on spectral radiance, D^4 integrated
+  kChang1996,  // a single factor D on radiance (the published counter-example)
+  kOff,
+};
+enum class ToneMap { kClamp, kReinhard, kFilmic };
+
 struct RenderSettings {
   bool relativity = true;   // false: the classical picture
   bool light_delay = true;  // false: bodies as they are at the camera's time, in its rest frame
-  double exposure = 0;      // EV
+  double exposure = 0;      // EV, unless auto_exposure
+  bool auto_exposure = false;
+  DopplerModel doppler = DopplerModel::kSpectral;
+  SearchlightModel searchlight = SearchlightModel::kPhysical;
+  bool hue_loop = false;  // for DopplerModel::kHue: wrap the hue instead of fading
+  ToneMap tonemap = ToneMap::kClamp;
 };
 
 struct Scene {

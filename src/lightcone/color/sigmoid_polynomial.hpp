@@ -1,0 +1,87 @@
+// The sigmoid-quadratic spectrum model of Jakob & Hanika, "A Low-Dimensional Function Space for
+// Efficient Spectral Upsampling" (EGSR 2019), the reference illuminant RGB colours are fitted
+// under, and the layout of the RGB-to-coefficients table. This part depends on no table, so the
+// table generator (tools/rgb2spec_gen.cpp) can link it; the table-backed API is in
+// rgb_spectrum.hpp.
+#pragma once
+
+#include <cmath>
+
+#include "lightcone/color/cie.hpp"
+
+namespace lightcone {
+
+// ---------------------------------------------------------------------------------------------
+// What an RGB colour means outside the visible range (see docs/design/spectral.md): the model
+// is evaluated with lambda clamped to [kCieMinWavelength, kCieMaxWavelength] = [360, 830] nm.
+// A reflectance fitted to an RGB colour therefore extends flat beyond the visible range: it
+// holds its 360 nm value into the ultraviolet and its 830 nm value into the infrared (a red
+// stays red-reflecting into the infrared and dark into the ultraviolet; but the values at 360
+// and 830 nm, where the eye is nearly blind, are whatever the fit gives: a bright or pale red
+// turns up again at 360 nm). RGB emitters are this reflectance times the reference illuminant,
+// a blackbody defined at every wavelength, so they fall off outside the visible range as the
+// blackbody does.
+// ---------------------------------------------------------------------------------------------
+
+// The polynomial's variable is a normalised wavelength, not nanometres (for conditioning):
+//   u = (clamp(lambda, 360, 830) - 595) / 235, which maps [360, 830] nm onto [-1, 1].
+inline constexpr double kSigmoidCentreWavelength = 595.0;  // nm
+inline constexpr double kSigmoidHalfWidth = 235.0;         // nm
+inline double sigmoid_normalised_wavelength(double lambda_nm) {
+  const double clamped = std::fmin(std::fmax(lambda_nm, kCieMinWavelength), kCieMaxWavelength);
+  return (clamped - kSigmoidCentreWavelength) / kSigmoidHalfWidth;
+}
+
+// S(x) = 1/2 + x / (2 sqrt(1 + x^2)), a smooth map of the real line onto (0, 1); S(-inf) = 0
+// and S(+inf) = 1. Written as (r + x) / (2 r), r = sqrt(1 + x^2), and for x < 0 as
+// 1 / (2 r (r - x)) so that small values keep their relative precision.
+inline double sigmoid(double x) {
+  if (std::fabs(x) > 1e150) return x > 0 ? 1.0 : 0.0;  // includes +-inf; x * x would overflow
+  const double r = std::sqrt(1 + x * x);
+  return x >= 0 ? (r + x) / (2 * r) : 1 / (2 * r * (r - x));
+}
+
+// s(lambda) = S(c0 u^2 + c1 u + c2), u = sigmoid_normalised_wavelength(lambda) (clamped: see
+// the policy above). Values lie in [0, 1].
+struct SigmoidPolynomial {
+  double c0 = 0, c1 = 0, c2 = 0;
+  double operator()(double lambda_nm) const {
+    const double u = sigmoid_normalised_wavelength(lambda_nm);
+    return sigmoid((c0 * u + c1) * u + c2);
+  }
+};
+
+// The illuminant RGB colours are fitted under: a blackbody at 6504 K (planck_radiance) scaled
+// so that its CIE Y is 1 (BlackbodySpectrum::with_luminance(6504, 1), Y by xyz_from_spectrum(),
+// the 1 nm table's quadrature). Defined and
+// positive at every wavelength, unlike tabulated D65; its chromaticity is near, but not at,
+// D65's, so a flat reflectance 1 has a linear sRGB colour slightly different from (1, 1, 1).
+inline constexpr double kReferenceIlluminantTemperature = 6504.0;  // K
+double reference_illuminant(double lambda_nm);
+
+// The reference illuminant's white: the linear sRGB colour of a flat reflectance 1 under it
+// (about (1.043, 0.984, 1.036), not (1, 1, 1)). RGB reflectances are white-balanced to it: the
+// reflectance meant by rgb has the colour (r w.r, g w.g, b w.b) under the reference illuminant,
+// so that (1, 1, 1) is the flat reflectance 1 and every grey is flat (rgb_spectrum.hpp).
+LinearRgb reference_white();
+
+// The RGB-to-coefficients table, Jakob-Hanika layout: 3 tables, one per largest component
+// l = 0 (r), 1 (g), 2 (b), each res x res x res cells indexed by
+//   k (the largest component z = rgb[l], on the nonlinear scale axis below),
+//   j (y = rgb[(l + 2) % 3] / z on the uniform grid j / (res - 1)),
+//   i (x = rgb[(l + 1) % 3] / z on the uniform grid i / (res - 1)),
+// each cell holding c0, c1, c2 (float), i.e. floats at
+//   (((l * res + k) * res + j) * res + i) * 3 + c.
+inline constexpr int kRgbToSpectrumRes = 64;
+inline constexpr int kRgbToSpectrumTableFloats =
+    3 * kRgbToSpectrumRes * kRgbToSpectrumRes * kRgbToSpectrumRes * 3;
+
+// The scale axis node k of a table with `res` nodes: smoothstep(smoothstep(k / (res - 1))),
+// denser near 0 (dark colours) and 1 (bright, near the limit of what a reflectance can reach),
+// as Jakob and Hanika space it. smoothstep(t) = t^2 (3 - 2 t).
+inline double rgb_to_spectrum_scale_node(int k, int res) {
+  const auto smoothstep = [](double t) { return t * t * (3 - 2 * t); };
+  return smoothstep(smoothstep(static_cast<double>(k) / (res - 1)));
+}
+
+}  // namespace lightcone

@@ -1,0 +1,48 @@
+// What a surface point or sky direction emits in its own rest frame: its colour at rest and its
+// spectral radiance at every wavelength (for the spectral Doppler model).
+#pragma once
+
+#include <variant>
+#include <vector>
+
+#include "lightcone/color/cie.hpp"
+#include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/color/spectrum.hpp"
+#include "lightcone/render/tracer.hpp"
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+struct PointEmission {
+  LinearRgb rest_rgb;  // the colour at D = 1
+  std::variant<RgbIlluminantSpectrum, BlackbodySpectrum, const TabulatedSpectrum*> spectrum;
+
+  double spectral_radiance(double lambda_nm) const;
+};
+
+// The emission of every object's material and of the sky, prepared once per render: the
+// spectra of fixed colours are fitted once, not per ray. Textures and sky images are fitted per
+// lookup, and only when `spectral` asks for spectra.
+class EmissionTable {
+ public:
+  EmissionTable(const Scene& scene, bool spectral);
+
+  PointEmission surface(std::size_t object_index, const Hit& hit) const;
+  PointEmission sky(const Vec3& pattern_direction) const;
+
+ private:
+  PointEmission from_rgb(const Rgb& rgb) const;
+  // Fixed emissions of one material (solid: [0]; checker: both; blackbody, spectrum: [0]).
+  struct Fixed {
+    PointEmission colours[2];
+  };
+  Fixed prepare(const Material& material);
+
+  const Scene& scene_;
+  bool spectral_;
+  std::vector<TabulatedSpectrum> tabulated_;  // reserved up front: PointEmission points here
+  std::vector<Fixed> objects_;
+  Fixed sky_;
+};
+
+}  // namespace lightcone

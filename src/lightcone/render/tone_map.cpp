@@ -1,0 +1,55 @@
+#include "lightcone/render/tone_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace lightcone {
+namespace {
+
+double luminance(const float* rgb) {
+  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+float clamp01(double v) {
+  return static_cast<float>(std::clamp(std::isnan(v) ? 0.0 : v, 0.0, 1.0));
+}
+
+}  // namespace
+
+double auto_exposure(const Image& linear) {
+  const std::size_t pixels = linear.rgb.size() / 3;
+  if (pixels == 0) return 0;
+  std::vector<double> y(pixels);
+  for (std::size_t i = 0; i < pixels; ++i) y[i] = luminance(&linear.rgb[3 * i]);
+  const auto nth = y.begin() + static_cast<std::ptrdiff_t>(0.95 * (pixels - 1));
+  std::nth_element(y.begin(), nth, y.end());
+  if (!(*nth > 0) || !std::isfinite(*nth)) return 0;
+  return std::log2(0.8 / *nth);
+}
+
+Image tone_map(const Image& linear, ToneMap curve) {
+  Image out = linear;
+  for (std::size_t p = 0; p < out.rgb.size(); p += 3) {
+    float* c = &out.rgb[p];
+    switch (curve) {
+      case ToneMap::kClamp:
+        for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k]);
+        break;
+      case ToneMap::kReinhard: {
+        const double scale = 1.0 / (1.0 + std::max(0.0, luminance(c)));
+        for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k] * scale);
+        break;
+      }
+      case ToneMap::kFilmic:
+        for (int k = 0; k < 3; ++k) {
+          const double x = std::max(0.0f, c[k]);
+          c[k] = clamp01(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14));
+        }
+        break;
+    }
+  }
+  return out;
+}
+
+}  // namespace lightcone

@@ -1,0 +1,258 @@
+// Tests of RGB-to-spectrum upsampling (Jakob-Hanika sigmoid-quadratic model, table fitted at
+// build time by tools/rgb2spec_gen): RGB -> spectrum -> RGB round trips with the 1 nm CIE
+// table, the policy outside 360-830 nm, the bounds of reflectances, black and white, and that
+// the table built into the library is exactly what the fit produces now (determinism).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <vector>
+
+#include "lightcone/color/cie.hpp"
+#include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/color/spectrum.hpp"
+#include "rgb2spec_fit.hpp"
+
+namespace lightcone {
+namespace {
+
+double max_abs_difference(const LinearRgb& a, const LinearRgb& b) {
+  return std::max({std::fabs(a.r - b.r), std::fabs(a.g - b.g), std::fabs(a.b - b.b)});
+}
+
+template <class Spectrum>
+LinearRgb rgb_of(const Spectrum& s) {
+  return linear_srgb_from_xyz(xyz_from_spectrum(s));
+}
+
+// The grid of n^3 colours in [0, 1]^3.
+std::vector<LinearRgb> gamut_grid(int n) {
+  std::vector<LinearRgb> out;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < n; ++c) out.push_back({a / (n - 1.0), b / (n - 1.0), c / (n - 1.0)});
+  return out;
+}
+
+TEST(SigmoidPolynomial, SigmoidShape) {
+  EXPECT_DOUBLE_EQ(sigmoid(0), 0.5);
+  EXPECT_DOUBLE_EQ(sigmoid(1), 0.5 + 0.5 / std::sqrt(2.0));
+  EXPECT_NEAR(sigmoid(-1), 0.5 - 0.5 / std::sqrt(2.0), 1e-15);
+  EXPECT_EQ(sigmoid(std::numeric_limits<double>::infinity()), 1.0);
+  EXPECT_EQ(sigmoid(-std::numeric_limits<double>::infinity()), 0.0);
+  EXPECT_EQ(sigmoid(1e200), 1.0);
+  EXPECT_EQ(sigmoid(-1e200), 0.0);
+  // Small values keep their relative precision: S(x) ~ 1 / (4 x^2) for x -> -inf.
+  EXPECT_NEAR(sigmoid(-1e6) * 4e12, 1.0, 1e-9);
+  // The normalised wavelength maps [360, 830] onto [-1, 1].
+  EXPECT_DOUBLE_EQ(sigmoid_normalised_wavelength(360), -1.0);
+  EXPECT_DOUBLE_EQ(sigmoid_normalised_wavelength(830), 1.0);
+  EXPECT_DOUBLE_EQ(sigmoid_normalised_wavelength(595), 0.0);
+  const SigmoidPolynomial p{0.3, -2.0, 0.7};
+  const double u = sigmoid_normalised_wavelength(500);
+  EXPECT_DOUBLE_EQ(p(500), sigmoid((0.3 * u - 2.0) * u + 0.7));
+}
+
+TEST(ReferenceIlluminant, IsA6504KBlackbodyWithUnitLuminance) {
+  const Xyz xyz = xyz_from_spectrum([](double l) { return reference_illuminant(l); });
+  EXPECT_NEAR(xyz.y, 1.0, 1e-12);
+  // Chromaticity of the Planckian locus at 6504 K: near D65 (0.3127, 0.3290), not at it.
+  const double x = xyz.x / (xyz.x + xyz.y + xyz.z), y = xyz.y / (xyz.x + xyz.y + xyz.z);
+  EXPECT_NEAR(x, 0.3135, 0.002);
+  EXPECT_NEAR(y, 0.3236, 0.002);
+  for (double l : {100.0, 300.0, 555.0, 1000.0, 5000.0}) {
+    EXPECT_GT(reference_illuminant(l), 0) << l;
+    EXPECT_NEAR(reference_illuminant(l) / reference_illuminant(555),
+                planck_radiance(l, 6504) / planck_radiance(555, 6504), 1e-12)
+        << l;
+  }
+}
+
+// The headline requirement: an RGB emitter of any colour in the sRGB cube, integrated with the
+// 1 nm CIE table at rest (D = 1), gives its RGB back within 0.01 per channel.
+TEST(RgbIlluminantSpectrum, RoundTripOverTheSrgbCube) {
+  double worst = 0;
+  LinearRgb worst_rgb;
+  for (const LinearRgb& rgb : gamut_grid(11)) {
+    const double e = max_abs_difference(rgb_of(RgbIlluminantSpectrum::from_rgb(rgb)), rgb);
+    if (e > worst) worst = e, worst_rgb = rgb;
+  }
+  std::cout << "illuminant round trip, 11^3 grid: max error " << worst << " at (" << worst_rgb.r
+            << ", " << worst_rgb.g << ", " << worst_rgb.b << ")\n";
+  EXPECT_LT(worst, 0.01);
+}
+
+TEST(RgbIlluminantSpectrum, RoundTripOfBrighterEmitters) {
+  for (const LinearRgb& rgb : {LinearRgb{3, 0.5, 0.2}, LinearRgb{10, 10, 10},
+                               LinearRgb{0.2, 5, 0.1}, LinearRgb{0.5, 1.5, 4}}) {
+    const LinearRgb back = rgb_of(RgbIlluminantSpectrum::from_rgb(rgb));
+    EXPECT_LT(max_abs_difference(back, rgb), 0.01)
+        << rgb.r << " " << rgb.g << " " << rgb.b << " -> " << back.r << " " << back.g << " "
+        << back.b;
+  }
+}
+
+TEST(RgbIlluminantSpectrum, ScalesLinearlyAndIsBlackForBlack) {
+  const RgbIlluminantSpectrum black = RgbIlluminantSpectrum::from_rgb({0, 0, 0});
+  const RgbIlluminantSpectrum negative = RgbIlluminantSpectrum::from_rgb({-1, 0, -2});
+  for (double l = 100; l <= 3000; l += 7) {
+    EXPECT_EQ(black(l), 0.0);
+    EXPECT_EQ(negative(l), 0.0);
+  }
+  // Twice the colour is twice the spectrum (the scale carries the brightness).
+  const RgbIlluminantSpectrum a = RgbIlluminantSpectrum::from_rgb({0.3, 0.6, 0.1});
+  const RgbIlluminantSpectrum b = RgbIlluminantSpectrum::from_rgb({0.6, 1.2, 0.2});
+  for (double l = 300; l <= 900; l += 10) EXPECT_NEAR(b(l), 2 * a(l), 1e-12 * b(l)) << l;
+}
+
+// Outside 360-830 nm the emitter is its (flat) reflectance times the blackbody: it falls off as
+// the 6504 K blackbody does.
+TEST(RgbIlluminantSpectrum, FollowsTheBlackbodyOutsideTheVisibleRange) {
+  for (const LinearRgb& rgb : {LinearRgb{3, 0.5, 0.2}, LinearRgb{0.1, 0.2, 1}}) {
+    const RgbIlluminantSpectrum s = RgbIlluminantSpectrum::from_rgb(rgb);
+    for (double l : {50.0, 200.0, 300.0, 359.0}) {
+      EXPECT_NEAR(s(l) / s(360), planck_radiance(l, 6504) / planck_radiance(360, 6504), 1e-12) << l;
+    }
+    for (double l : {831.0, 1000.0, 3000.0, 1e5}) {
+      EXPECT_NEAR(s(l) / s(830), planck_radiance(l, 6504) / planck_radiance(830, 6504), 1e-12) << l;
+    }
+    EXPECT_LT(s(100), s(360));
+    EXPECT_LT(s(5000), s(830));
+    EXPECT_GT(s(1000), 0);
+  }
+}
+
+// Reflectances are flat beyond the visible range: the value at 360 nm holds into the
+// ultraviolet and the value at 830 nm into the infrared.
+TEST(RgbAlbedoSpectrum, IsFlatOutsideTheVisibleRange) {
+  for (const LinearRgb& rgb : gamut_grid(5)) {
+    const RgbAlbedoSpectrum s = RgbAlbedoSpectrum::from_rgb(rgb);
+    EXPECT_EQ(s(300), s(360));
+    EXPECT_EQ(s(1), s(360));
+    EXPECT_EQ(s(1000), s(830));
+    EXPECT_EQ(s(1e6), s(830));
+  }
+  // A red stays red-reflecting into the infrared and dark into the ultraviolet, a blue the
+  // other way round, a green dark on both sides. (What a fit does at the ends of the visible
+  // range, where the eye is nearly blind, is the model's choice: a bright or pale red turns up
+  // again towards 360 nm, see docs/design/spectral.md.)
+  const RgbAlbedoSpectrum red = RgbAlbedoSpectrum::from_rgb({0.5, 0, 0});
+  EXPECT_GT(red(1000), 0.95);
+  EXPECT_LT(red(300), 0.05);
+  const RgbAlbedoSpectrum blue = RgbAlbedoSpectrum::from_rgb({0, 0, 1});
+  EXPECT_LT(blue(1000), 0.05);
+  EXPECT_GT(blue(300), 0.9);
+  const RgbAlbedoSpectrum green = RgbAlbedoSpectrum::from_rgb({0, 0.5, 0});
+  EXPECT_LT(green(1000), 0.05);
+  EXPECT_LT(green(300), 0.05);
+}
+
+TEST(RgbAlbedoSpectrum, StaysWithinTheUnitInterval) {
+  for (const LinearRgb& rgb : gamut_grid(9)) {
+    const RgbAlbedoSpectrum s = RgbAlbedoSpectrum::from_rgb(rgb);
+    for (double l = 200; l <= 1200; l += 3.5) {
+      const double v = s(l);
+      ASSERT_GE(v, 0.0) << rgb.r << " " << rgb.g << " " << rgb.b << " at " << l;
+      ASSERT_LE(v, 1.0) << rgb.r << " " << rgb.g << " " << rgb.b << " at " << l;
+    }
+  }
+  // Out-of-range inputs are clamped to [0, 1] first.
+  const RgbAlbedoSpectrum clamped = RgbAlbedoSpectrum::from_rgb({2, -1, 0.5});
+  const RgbAlbedoSpectrum same = RgbAlbedoSpectrum::from_rgb({1, 0, 0.5});
+  for (double l = 360; l <= 830; l += 10) EXPECT_EQ(clamped(l), same(l));
+}
+
+TEST(RgbAlbedoSpectrum, BlackIsZeroAndWhiteIsNearlyOne) {
+  const RgbAlbedoSpectrum black = RgbAlbedoSpectrum::from_rgb({0, 0, 0});
+  const RgbAlbedoSpectrum unset;
+  for (double l = 100; l <= 2000; l += 5) {
+    EXPECT_EQ(black(l), 0.0);
+    EXPECT_EQ(unset(l), 0.0);
+  }
+  // White is the flat reflectance 1 (RGB reflectances are white-balanced to the reference
+  // illuminant), and greys are flat.
+  const RgbAlbedoSpectrum white = RgbAlbedoSpectrum::from_rgb({1, 1, 1});
+  double worst = 0;
+  for (double l = 400; l <= 700; l += 1) worst = std::max(worst, std::fabs(white(l) - 1));
+  std::cout << "white albedo: max |s - 1| over 400-700 nm " << worst << "\n";
+  EXPECT_LT(worst, 0.02);
+  // (Flat to 1e-6; the level is the interpolated table's, within 2%.)
+  for (double v : {0.02, 0.2, 0.5, 0.9}) {
+    const RgbAlbedoSpectrum grey = RgbAlbedoSpectrum::from_rgb({v, v, v});
+    for (double l = 360; l <= 830; l += 10) {
+      EXPECT_NEAR(grey(l), grey(595), 1e-6 * v) << v << " " << l;
+      EXPECT_NEAR(grey(l), v, 0.02 * v) << v << " " << l;
+    }
+  }
+}
+
+TEST(ReferenceIlluminant, WhiteIsTheColourOfAFlatReflectance) {
+  const LinearRgb w = reference_white();
+  const LinearRgb flat = rgb_of([](double l) { return reference_illuminant(l); });
+  EXPECT_EQ(w.r, flat.r);
+  EXPECT_EQ(w.g, flat.g);
+  EXPECT_EQ(w.b, flat.b);
+  // Near, not at, (1, 1, 1): the 6504 K blackbody is a little more magenta than D65.
+  EXPECT_NEAR(w.r, 1.04, 0.02);
+  EXPECT_NEAR(w.g, 0.98, 0.02);
+  EXPECT_NEAR(w.b, 1.04, 0.02);
+}
+
+// As reflectances under the reference illuminant, white-balanced to it, colours come back.
+TEST(RgbAlbedoSpectrum, RoundTripUnderTheReferenceIlluminant) {
+  const LinearRgb w = reference_white();
+  double worst = 0;
+  for (const LinearRgb& rgb : gamut_grid(11)) {
+    const RgbAlbedoSpectrum s = RgbAlbedoSpectrum::from_rgb(rgb);
+    const LinearRgb seen = rgb_of([&](double l) { return s(l) * reference_illuminant(l); });
+    worst = std::max(worst, max_abs_difference({seen.r / w.r, seen.g / w.g, seen.b / w.b}, rgb));
+  }
+  std::cout << "albedo round trip (white-balanced), 11^3 grid: max error " << worst << "\n";
+  EXPECT_LT(worst, 0.01);
+}
+
+// The table built into the library is bit for bit what the fit gives now: the generator is
+// deterministic (its columns are independent of each other and of the threads).
+TEST(RgbToSpectrumTable, IsWhatTheFitProduces) {
+  const int res = kRgbToSpectrumRes;
+  const float* built = detail::rgb_to_spectrum_table();
+  std::vector<float> refit(kRgbToSpectrumTableFloats, std::numeric_limits<float>::quiet_NaN());
+  const rgb2spec::Fitter fitter;
+  const int columns[][3] = {{0, 0, 0},
+                            {0, res - 1, res - 1},
+                            {1, 7, 40},
+                            {2, res - 1, 0},
+                            {2, 0, res - 1},
+                            {1, res / 2, res / 3},
+                            {0, res / 5, 3 * res / 4}};
+  for (const auto& column : columns) {
+    const int l = column[0], j = column[1], i = column[2];
+    fitter.fit_column(res, l, j, i, refit.data());
+    for (int k = 0; k < res; ++k) {
+      const std::size_t at = ((static_cast<std::size_t>(l * res + k) * res + j) * res + i) * 3;
+      EXPECT_EQ(std::memcmp(&refit[at], &built[at], 3 * sizeof(float)), 0)
+          << "l " << l << " k " << k << " j " << j << " i " << i;
+    }
+  }
+  for (int n = 0; n < kRgbToSpectrumTableFloats; n += 997) {
+    ASSERT_TRUE(std::isfinite(built[n])) << n;
+  }
+}
+
+TEST(RgbToSpectrumTable, FitsItsNodes) {
+  // Nodes in the reachable middle of the scale axis are fitted essentially exactly.
+  const rgb2spec::Fitter fitter;
+  for (const LinearRgb& rgb :
+       {LinearRgb{0.5, 0.2, 0.1}, LinearRgb{0.1, 0.4, 0.05}, LinearRgb{0.02, 0.03, 0.3}}) {
+    const rgb2spec::FitResult r = fitter.fit(rgb, {0, 0, 0});
+    EXPECT_LT(r.lab_error, 1e-5);
+    const Xyz xyz = fitter.xyz(r.c);
+    EXPECT_LT(max_abs_difference(linear_srgb_from_xyz(xyz), rgb), 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace lightcone
