@@ -3,6 +3,7 @@
 //   Swarm/relativistic vs Swarm/classical             (target <= 2x)
 //   Swarm throughput vs StaticStreet throughput       (target >= 1/3)
 //   Memory/instances:1000 vs Memory/instances:1       (acceleration + mesh bytes)
+//   StreetColour/spectral vs StreetColour/off         (spectral Doppler cost, target <= 1.5x)
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -24,6 +25,9 @@ Scene street(bool relativity, bool moving) {
       load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/street.json",
                       {"camera.width=1920", "camera.height=1080", "camera.samples=1"}, report);
   s.render.relativity = relativity;
+  // The geometry benchmarks compare tracing costs; colour has its own benchmark.
+  s.render.doppler = DopplerModel::kOff;
+  s.render.searchlight = SearchlightModel::kOff;
   if (!moving) s.camera.world_line.velocity = {};
   return s;
 }
@@ -100,6 +104,22 @@ void BM_Street(benchmark::State& state) {
 }
 BENCHMARK(BM_Street)
     ->ArgName("relativistic")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+
+// The street at 0.8c with the spectral Doppler model (and the physical searchlight) against
+// no colour change at all.
+void BM_StreetColour(benchmark::State& state) {
+  Scene s = street(true, true);
+  s.render.doppler = state.range(0) != 0 ? DopplerModel::kSpectral : DopplerModel::kOff;
+  s.render.searchlight = state.range(0) != 0 ? SearchlightModel::kPhysical : SearchlightModel::kOff;
+  render_and_count(state, s);
+}
+BENCHMARK(BM_StreetColour)
+    ->ArgName("spectral")
     ->Arg(1)
     ->Arg(0)
     ->Unit(benchmark::kMillisecond)

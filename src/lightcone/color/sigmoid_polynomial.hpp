@@ -28,7 +28,10 @@ namespace lightcone {
 inline constexpr double kSigmoidCentreWavelength = 595.0;  // nm
 inline constexpr double kSigmoidHalfWidth = 235.0;         // nm
 inline double sigmoid_normalised_wavelength(double lambda_nm) {
-  const double clamped = std::fmin(std::fmax(lambda_nm, kCieMinWavelength), kCieMaxWavelength);
+  // Comparisons rather than fmin/fmax, which are library calls on this hot path.
+  const double clamped = lambda_nm < kCieMinWavelength   ? kCieMinWavelength
+                         : lambda_nm > kCieMaxWavelength ? kCieMaxWavelength
+                                                         : lambda_nm;
   return (clamped - kSigmoidCentreWavelength) / kSigmoidHalfWidth;
 }
 

@@ -40,8 +40,11 @@ double planck_radiance(double lambda_nm, double temperature_k) {
     // result underflows cleanly to 0 (or is a correct tiny number).
     b = std::exp(std::log(kC1) - 5.0 * std::log(lambda_nm) - x);
   } else {
+    // For x >= 1, exp(-x) / (1 - exp(-x)) has no cancellation and costs one exp, about half
+    // of expm1 (this runs several times per camera sample in the spectral renderer).
     const double lambda2 = lambda_nm * lambda_nm;
-    b = kC1 / (lambda2 * lambda2 * lambda_nm) / std::expm1(x);
+    const double e = std::exp(-x);
+    b = kC1 / (lambda2 * lambda2 * lambda_nm) * (e / (1.0 - e));
   }
   // Only absurd temperatures (T above about 1e280 K, or 1e60 K at lambda below 1e-50 nm) have a
   // radiance beyond the largest double: saturate there instead of returning inf.

@@ -32,6 +32,24 @@ double PointEmission::spectral_radiance(double lambda_nm) const {
   return std::visit(Visitor{lambda_nm}, spectrum);
 }
 
+double PointEmission::visible_spectral_radiance(double lambda_nm) const {
+  if (!visible_table) return spectral_radiance(lambda_nm);
+  const double position = lambda_nm - kCieMinWavelength;
+  const auto i = static_cast<std::size_t>(position);
+  if (!(position >= 0) || i + 1 >= static_cast<std::size_t>(kCieTableSize))
+    return spectral_radiance(lambda_nm);
+  const double f = position - static_cast<double>(i);
+  return visible_table[i] + f * (visible_table[i + 1] - visible_table[i]);
+}
+
+void EmissionTable::tabulate(PointEmission& emission) {
+  if (!spectral_) return;
+  std::vector<double>& table = tables_.emplace_back(kCieTableSize);
+  for (int i = 0; i < kCieTableSize; ++i)
+    table[i] = emission.spectral_radiance(kCieMinWavelength + i);
+  emission.visible_table = table.data();
+}
+
 EmissionTable::EmissionTable(const Scene& scene, bool spectral)
     : scene_(scene), spectral_(spectral) {
   std::size_t tables = 0;
@@ -46,6 +64,9 @@ EmissionTable::EmissionTable(const Scene& scene, bool spectral)
     sky_.colours[0] = from_rgb(g->background);
     sky_.colours[1] = from_rgb(g->line_color);
   }
+  for (Fixed& f : objects_)
+    for (PointEmission& e : f.colours) tabulate(e);
+  for (PointEmission& e : sky_.colours) tabulate(e);
 }
 
 PointEmission EmissionTable::from_rgb(const Rgb& c) const {

@@ -16,8 +16,13 @@ namespace lightcone {
 struct PointEmission {
   LinearRgb rest_rgb;  // the colour at D = 1
   std::variant<RgbIlluminantSpectrum, BlackbodySpectrum, const TabulatedSpectrum*> spectrum;
+  // For emitters fixed per material: the spectrum at every nm of [360, 830], so that the
+  // renderer's unshifted wavelengths cost a lookup (null: evaluate).
+  const double* visible_table = nullptr;
 
   double spectral_radiance(double lambda_nm) const;
+  // The same for lambda in [360, 830] nm, through the table where there is one.
+  double visible_spectral_radiance(double lambda_nm) const;
 };
 
 // The emission of every object's material and of the sky, prepared once per render: the
@@ -26,6 +31,8 @@ struct PointEmission {
 class EmissionTable {
  public:
   EmissionTable(const Scene& scene, bool spectral);
+  EmissionTable(const EmissionTable&) = delete;  // emissions point into its tables
+  EmissionTable& operator=(const EmissionTable&) = delete;
 
   PointEmission surface(std::size_t object_index, const Hit& hit) const;
   PointEmission sky(const Vec3& pattern_direction) const;
@@ -38,9 +45,13 @@ class EmissionTable {
   };
   Fixed prepare(const Material& material);
 
+  // Fills the visible table of a fixed emission (storage in tables_).
+  void tabulate(PointEmission& emission);
+
   const Scene& scene_;
   bool spectral_;
   std::vector<TabulatedSpectrum> tabulated_;  // reserved up front: PointEmission points here
+  std::vector<std::vector<double>> tables_;   // visible tables; inner buffers never move
   std::vector<Fixed> objects_;
   Fixed sky_;
 };
