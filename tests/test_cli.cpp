@@ -213,6 +213,39 @@ TEST_F(CliTest, BadSceneValuesNameFileLineAndPathAndWriteNothing) {
   }
 }
 
+// The colour keys: emitter materials (line 15) and model names (line 19).
+TEST_F(CliTest, BadColourValuesNameFileLineAndPathAndWriteNothing) {
+  const std::string material = "{\"color\": [0, 1, 0]}";
+  const std::string render_line = "\"exposure\": 0";
+  const std::vector<BadValue> cases = {
+      {"blackbody at 0 K", material, "{\"blackbody\": {\"temperature\": 0}}", 15,
+       "objects[0].material.blackbody.temperature", "must be greater than 0, got 0"},
+      {"blackbody below 0 K", material, "{\"blackbody\": {\"temperature\": -5762}}", 15,
+       "objects[0].material.blackbody.temperature", "must be greater than 0, got -5762"},
+      {"negative luminance", material,
+       "{\"blackbody\": {\"temperature\": 5762, \"luminance\": -1}}", 15,
+       "objects[0].material.blackbody.luminance", "must be >= 0, got -1"},
+      {"unsorted wavelengths", material,
+       "{\"spectrum\": {\"wavelengths\": [400, 700, 600], \"values\": [1, 1, 1]}}", 15,
+       "objects[0].material.spectrum.wavelengths[2]", "strictly increasing (600 after 700)"},
+      {"unknown Doppler model", render_line, "\"doppler\": \"rgb\"", 19, "render.doppler",
+       "unknown model \"rgb\""},
+      {"unknown searchlight model", render_line, "\"searchlight\": \"chang\"", 19,
+       "render.searchlight", "unknown model \"chang\""},
+      {"unknown tone curve", render_line, "\"tonemap\": \"aces\"", 19, "render.tonemap",
+       "unknown model \"aces\""},
+      {"exposure neither a number nor auto", render_line, "\"exposure\": \"bright\"", 19,
+       "render.exposure", "must be a number (EV) or \"auto\""},
+  };
+  for (const BadValue& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path scene = write_scene(edited(kScene, c.from, c.to));
+    const std::string where = scene.string() + ":" + std::to_string(c.line) + ": " + c.path + ": ";
+    expect_rejected(render(scene), where, {c.what});
+    expect_rejected(locate(scene, "--world-point 0,0,-10"), where, {c.what});
+  }
+}
+
 TEST_F(CliTest, ExampleFromTheBriefCameraVelocityOnLineFour) {
   const fs::path scene = write_scene(
       edited(kScene, "\n    \"velocity\": [0, 0, 0]", "\n    \"velocity\": [0, 0, 1.5]"));
@@ -647,6 +680,135 @@ TEST_F(CliTest, PngAndExrValueContract) {
   EXPECT_EQ(static_cast<int>(std::lround(255 * srgb_encode(0.25))), 137);
 }
 
+// kGreyWall in `colour`, with the given render section.
+std::string uniform_wall(const std::string& colour, const std::string& render) {
+  return edited(edited(kGreyWall, "[0.5, 0.5, 0.5]", colour), "\n  }]\n}",
+                "\n  }],\n  \"render\": " + render + "\n}");
+}
+
+// Every PNG value is `png` and every EXR value is `exr` (to `tolerance`).
+void expect_uniform(const Image& png_image, const Image& exr_image, int png, float exr,
+                    float tolerance = 0) {
+  ASSERT_EQ(png_image.rgb.size(), 16u * 12u * 3u);
+  ASSERT_EQ(exr_image.rgb.size(), 16u * 12u * 3u);
+  for (std::size_t i = 0; i < png_image.rgb.size(); ++i) {
+    ASSERT_EQ(png_byte(png_image.rgb[i]), png) << "value " << i;
+    if (tolerance == 0)
+      ASSERT_FLOAT_EQ(exr_image.rgb[i], exr) << "value " << i;
+    else
+      ASSERT_NEAR(exr_image.rgb[i], exr, tolerance) << "value " << i;
+  }
+}
+
+// The tone curve shapes the PNG only; the EXR holds the linear radiance.
+TEST_F(CliTest, ToneCurvesApplyToThePngOnly) {
+  const std::string white = "[1, 1, 1]";
+  {
+    SCOPED_TRACE("clamp (the default)");
+    const fs::path scene = write_scene(uniform_wall(white, R"({"doppler": "off"})"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_uniform(*read_png(), *read_exr(), 255, 1.0f);
+  }
+  {
+    // L / (1 + Y): Y of white is 1, so 1 becomes 0.5.
+    SCOPED_TRACE("reinhard");
+    const int expected = static_cast<int>(std::lround(255 * srgb_encode(1.0 / (1 + 1))));
+    ASSERT_EQ(expected, 188);
+    const fs::path scene =
+        write_scene(uniform_wall(white, R"({"doppler": "off", "tonemap": "reinhard"})"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_uniform(*read_png(), *read_exr(), expected, 1.0f);
+  }
+  {
+    SCOPED_TRACE("filmic");
+    auto filmic = [](double x) { return x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14); };
+    const int expected = static_cast<int>(std::lround(255 * srgb_encode(filmic(1))));
+    ASSERT_NE(expected, 255);
+    ASSERT_NE(expected, 188);
+    const fs::path scene =
+        write_scene(uniform_wall(white, R"({"doppler": "off", "tonemap": "filmic"})"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_uniform(*read_png(), *read_exr(), expected, 1.0f);
+  }
+}
+
+// "exposure": "auto" brings the 95th percentile of pixel luminance to 0.8.
+TEST_F(CliTest, AutomaticExposure) {
+  const int png_08 = static_cast<int>(std::lround(255 * srgb_encode(0.8)));
+  {
+    // Grey 0.2 has luminance 0.2: exposure log2(0.8 / 0.2) = 2.
+    SCOPED_TRACE("uniform grey 0.2");
+    const fs::path scene =
+        write_scene(uniform_wall("[0.2, 0.2, 0.2]", R"({"doppler": "off", "exposure": "auto"})"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_uniform(*read_png(), *read_exr(), png_08, 0.8f, 1e-6f);
+  }
+  {
+    // A few very bright pixels (fewer than 5%) are above the 95th percentile: they clip, and the
+    // wall is still brought to 0.8.
+    SCOPED_TRACE("grey 0.2 with a small bright ball");
+    const std::string wall =
+        uniform_wall("[0.2, 0.2, 0.2]", R"({"doppler": "off", "exposure": "auto"})");
+    const fs::path scene = write_scene(edited(wall, "\"objects\": [{",
+                                              "\"objects\": [{\"name\": \"spark\", "
+                                              "\"shape\": {\"sphere\": {\"radius\": 0.3}}, "
+                                              "\"position\": [0, 0, -3], "
+                                              "\"material\": {\"color\": [50, 50, 50]}}, {"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto exr_image = read_exr();
+    int wall_pixels = 0, bright_pixels = 0;
+    for (std::size_t i = 0; i < exr_image->rgb.size(); i += 3) {
+      if (exr_image->rgb[i] > 1) {
+        ++bright_pixels;
+      } else {
+        ++wall_pixels;
+        EXPECT_NEAR(exr_image->rgb[i], 0.8f, 1e-6f) << "pixel " << i / 3;
+      }
+    }
+    EXPECT_EQ(bright_pixels, 4);  // the four around the centre; fewer than 5% of 192
+    EXPECT_EQ(wall_pixels + bright_pixels, 16 * 12);
+  }
+  {
+    // Left half 0.1, right half 0.4: the 95th percentile is on the right (a median would be on
+    // the left), so the right half goes to 0.8 and the left to 0.2.
+    SCOPED_TRACE("two halves");
+    const std::string wall =
+        uniform_wall("[0.4, 0.4, 0.4]", R"({"doppler": "off", "exposure": "auto"})");
+    const fs::path scene = write_scene(edited(
+        edited(wall, "\"position\": [0, 0, -5]", "\"position\": [500, 0, -5]"), "\"objects\": [{",
+        "\"objects\": [{\"name\": \"left\", "
+        "\"shape\": {\"box\": {\"size\": [1000, 1000, 1]}}, "
+        "\"position\": [-500, 0, -5], \"material\": {\"color\": [0.1, 0.1, 0.1]}}, {"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto exr_image = read_exr();
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 16; ++x)
+        EXPECT_NEAR(pixel(*exr_image, x, y).g, x < 8 ? 0.2f : 0.8f, 1e-6f) << x << "," << y;
+  }
+  {
+    // The luminance is Y of linear sRGB: green 0.5 has Y = 0.7152 * 0.5.
+    SCOPED_TRACE("green");
+    const fs::path scene =
+        write_scene(uniform_wall("[0, 0.5, 0]", R"({"doppler": "off", "exposure": "auto"})"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto exr_image = read_exr();
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 16; ++x) {
+        const Rgb c = pixel(*exr_image, x, y);
+        EXPECT_NEAR(c.g, 0.8 / 0.7152, 1e-6) << x << "," << y;
+        EXPECT_EQ(c.r, 0.0f);
+        EXPECT_EQ(c.b, 0.0f);
+      }
+  }
+}
+
 TEST_F(CliTest, ThreadCountDoesNotChangeTheImage) {
   const fs::path scene = write_scene(kScene);
   ASSERT_EQ(render(scene, "--samples 4").status, 0);
@@ -798,6 +960,55 @@ TEST_F(CliTest, LocateDirectionHasNoEmissionEvent) {
   EXPECT_NEAR(at(tilted, "direction", 1), 0, 1e-12);
   EXPECT_NEAR(at(tilted, "direction", 2), -0.8, 1e-12);
   EXPECT_FALSE(tilted["in_view"].get<bool>());  // 37 degrees off axis, the half-width is ~21
+}
+
+// locate's "doppler" is D = nu_camera / nu_emitter (PHYSICS.md, "Doppler factor").
+TEST_F(CliTest, LocateDopplerFactor) {
+  const fs::path scene = write_scene(kScene);
+  auto doppler = [&](const std::string& query) {
+    const auto out = locate_output(locate(scene, query));
+    return out.empty() ? -1.0 : out["doppler"].get<double>();
+  };
+  // Camera and point at rest: no shift at all.
+  EXPECT_EQ(doppler("--world-point 0,0,-10"), 1.0);
+  EXPECT_EQ(doppler("--world-point 3,-2,-10"), 1.0);
+  EXPECT_EQ(doppler("--object ball --point 0,0,2"), 1.0);
+  // The camera flying at 0.6c straight toward the point: sqrt((1 + 0.6) / (1 - 0.6)) = 2.
+  const std::string toward = " --set 'camera.velocity=[0,0,-0.6]'";
+  EXPECT_NEAR(doppler("--world-point 0,0,-10" + toward), std::sqrt(1.6 / 0.4), 1e-9);
+  EXPECT_NEAR(doppler("--world-point 0,0,-10" + toward), 2, 1e-9);
+  // Flying away: 1/2. Across the light's path in W (n . beta = 0): gamma = 1.25, the
+  // transverse Doppler effect.
+  EXPECT_NEAR(doppler("--world-point 0,0,-10 --set 'camera.velocity=[0,0,0.6]'"), 0.5, 1e-9);
+  EXPECT_NEAR(doppler("--world-point 0,0,-10 --set 'camera.velocity=[0.6,0,0]'"), 1.25, 1e-9);
+  // The emitter approaching a camera at rest at 0.6c: 1 / (gamma (1 - 0.6)) = 2 as well.
+  EXPECT_NEAR(doppler("--object ball --point 0,0,0 --set 'objects[0].velocity=[0,0,0.6]'"), 2,
+              1e-9);
+  // Without relativity there is no Doppler shift.
+  EXPECT_EQ(doppler("--world-point 0,0,-10" + toward + " --set render.relativity=false"), 1.0);
+  EXPECT_EQ(doppler("--object ball --point 0,0,0 --set 'objects[0].velocity=[0,0,0.6]'"
+                    " --set render.relativity=false"),
+            1.0);
+}
+
+// For --direction, "doppler" is the factor of the sky's light from that direction.
+TEST_F(CliTest, LocateDopplerOfTheSkysLight) {
+  const fs::path scene = write_scene(kScene);
+  auto doppler = [&](const std::string& query) {
+    const auto out = locate_output(locate(scene, query));
+    return out.empty() ? -1.0 : out["doppler"].get<double>();
+  };
+  EXPECT_EQ(doppler("--direction 0,0,-1"), 1.0);
+  // The camera flying at 0.6c toward the sky it looks at: 2; away from it: 1/2.
+  EXPECT_NEAR(doppler("--direction 0,0,-1 --set 'camera.velocity=[0,0,-0.6]'"), 2, 1e-9);
+  EXPECT_NEAR(doppler("--direction 0,0,-1 --set 'camera.velocity=[0,0,0.6]'"), 0.5, 1e-9);
+  // Light crossing the camera's motion at a right angle in W: gamma = 1.25.
+  EXPECT_NEAR(doppler("--direction 0,0,-1 --set 'camera.velocity=[0.6,0,0]'"), 1.25, 1e-9);
+  // The sky itself approaching a camera at rest at 0.6c: 1 / (gamma (1 - 0.6)) = 2.
+  EXPECT_NEAR(doppler("--direction 0,0,-1 --set 'sky.velocity=[0,0,0.6]'"), 2, 1e-9);
+  EXPECT_EQ(doppler("--direction 0,0,-1 --set 'camera.velocity=[0,0,-0.6]'"
+                    " --set render.relativity=false"),
+            1.0);
 }
 
 // Visible points of the ball crossing at 0.8c are located on pixels drawn in the ball's colour.

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -195,6 +196,11 @@ TEST_F(SceneFileTest, DefaultsAreTheDocumentedOnes) {
   EXPECT_TRUE(s.render.relativity);
   EXPECT_TRUE(s.render.light_delay);
   EXPECT_EQ(s.render.exposure, 0);
+  EXPECT_FALSE(s.render.auto_exposure);
+  EXPECT_EQ(s.render.doppler, DopplerModel::kSpectral);
+  EXPECT_EQ(s.render.searchlight, SearchlightModel::kPhysical);
+  EXPECT_FALSE(s.render.hue_loop);
+  EXPECT_EQ(s.render.tonemap, ToneMap::kClamp);
 }
 
 TEST_F(SceneFileTest, SkyGridDefaultsAndSkyColour) {
@@ -207,6 +213,90 @@ TEST_F(SceneFileTest, SkyGridDefaultsAndSkyColour) {
 
   const Scene plain = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"color": [0, 0.5, 1]}})");
   expect_rgb(std::get<SolidColor>(plain.sky.pattern).color, 0, 0.5f, 1);
+}
+
+TEST_F(SceneFileTest, BlackbodyAndSpectrumMaterials) {
+  const Scene s = load(with_object(R"(
+    {"name": "sun", "shape": {"sphere": {"radius": 1}},
+     "material": {"blackbody": {"temperature": 5762, "luminance": 2.5}}},
+    {"name": "star", "shape": {"sphere": {"radius": 1}},
+     "material": {"blackbody": {"temperature": 3000.5}, "unlit": true}},
+    {"name": "dark", "shape": {"sphere": {"radius": 1}},
+     "material": {"blackbody": {"temperature": 1e-3, "luminance": 0}}},
+    {"name": "lamp", "shape": {"sphere": {"radius": 1}},
+     "material": {"spectrum": {"wavelengths": [300, 450.5, 1200], "values": [0, 2, 0.25]}}},
+    {"name": "flat", "shape": {"sphere": {"radius": 1}},
+     "material": {"spectrum": {"wavelengths": [1e-3, 1e6], "values": [1, 1]}}})"));
+  ASSERT_EQ(s.objects.size(), 5u);
+
+  const Blackbody& sun = std::get<Blackbody>(s.objects[0].material.pattern);
+  EXPECT_EQ(sun.temperature_k, 5762);
+  EXPECT_EQ(sun.luminance, 2.5);
+  const Blackbody& star = std::get<Blackbody>(s.objects[1].material.pattern);
+  EXPECT_EQ(star.temperature_k, 3000.5);
+  EXPECT_EQ(star.luminance, 1);  // the default
+  EXPECT_TRUE(s.objects[1].material.unlit);
+  const Blackbody& dark = std::get<Blackbody>(s.objects[2].material.pattern);
+  EXPECT_EQ(dark.temperature_k, 1e-3);  // any temperature above 0
+  EXPECT_EQ(dark.luminance, 0);         // luminance 0 is allowed
+
+  const EmissionSpectrum& lamp = std::get<EmissionSpectrum>(s.objects[3].material.pattern);
+  EXPECT_EQ(lamp.wavelengths_nm, (std::vector<double>{300, 450.5, 1200}));
+  EXPECT_EQ(lamp.values, (std::vector<double>{0, 2, 0.25}));
+  EXPECT_TRUE(s.objects[3].material.unlit);
+  const EmissionSpectrum& flat = std::get<EmissionSpectrum>(s.objects[4].material.pattern);
+  EXPECT_EQ(flat.wavelengths_nm, (std::vector<double>{1e-3, 1e6}));
+  EXPECT_EQ(flat.values, (std::vector<double>{1, 1}));
+}
+
+TEST_F(SceneFileTest, ColourRenderSettings) {
+  auto render = [&](const std::string& settings) {
+    return load(R"({"camera": {"position": [0, 0, 0]}, "render": )" + settings + "}").render;
+  };
+  const std::pair<const char*, DopplerModel> dopplers[] = {{"spectral", DopplerModel::kSpectral},
+                                                           {"rgb3", DopplerModel::kRgb3},
+                                                           {"hue", DopplerModel::kHue},
+                                                           {"off", DopplerModel::kOff}};
+  for (const auto& [name, model] : dopplers) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(render(fmt::format(R"({{"doppler": "{}"}})", name)).doppler, model);
+  }
+  const std::pair<const char*, SearchlightModel> searchlights[] = {
+      {"physical", SearchlightModel::kPhysical},
+      {"chang1996", SearchlightModel::kChang1996},
+      {"off", SearchlightModel::kOff}};
+  for (const auto& [name, model] : searchlights) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(render(fmt::format(R"({{"searchlight": "{}"}})", name)).searchlight, model);
+  }
+  const std::pair<const char*, ToneMap> curves[] = {
+      {"clamp", ToneMap::kClamp}, {"reinhard", ToneMap::kReinhard}, {"filmic", ToneMap::kFilmic}};
+  for (const auto& [name, curve] : curves) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(render(fmt::format(R"({{"tonemap": "{}"}})", name)).tonemap, curve);
+  }
+
+  EXPECT_TRUE(render(R"({"hue": {"loop": true}})").hue_loop);
+  EXPECT_FALSE(render(R"({"hue": {"loop": false}})").hue_loop);
+  EXPECT_FALSE(render(R"({"hue": {}})").hue_loop);
+
+  const RenderSettings automatic = render(R"({"exposure": "auto"})");
+  EXPECT_TRUE(automatic.auto_exposure);
+  EXPECT_EQ(automatic.exposure, 0);
+  const RenderSettings fixed = render(R"({"exposure": 1.5})");
+  EXPECT_FALSE(fixed.auto_exposure);
+  EXPECT_EQ(fixed.exposure, 1.5);
+
+  // All at once, and the other keys keep their defaults.
+  const RenderSettings all = render(R"({"doppler": "hue", "searchlight": "chang1996",
+      "hue": {"loop": true}, "exposure": "auto", "tonemap": "filmic"})");
+  EXPECT_EQ(all.doppler, DopplerModel::kHue);
+  EXPECT_EQ(all.searchlight, SearchlightModel::kChang1996);
+  EXPECT_TRUE(all.hue_loop);
+  EXPECT_TRUE(all.auto_exposure);
+  EXPECT_EQ(all.tonemap, ToneMap::kFilmic);
+  EXPECT_TRUE(all.relativity);
+  EXPECT_TRUE(all.light_delay);
 }
 
 TEST_F(SceneFileTest, CommentsAreAllowedAndDoNotShiftLines) {
@@ -295,6 +385,24 @@ TEST_F(SceneFileTest, MalformedOverrides) {
   expect_set_error(kOverrideScene, {"render.relativity.x=1"}, "render.relativity.x",
                    "render.relativity is a boolean, not an object or array");
   expect_set_error(kOverrideScene, {"camera..width=1"}, "camera..width", "empty component");
+}
+
+TEST_F(SceneFileTest, ColourRenderSettingsFromOverrides) {
+  // "auto" and the model names are not JSON, so --set takes them as strings.
+  const Scene s =
+      load(kOverrideScene, {"render.exposure=auto", "render.doppler=rgb3", "render.searchlight=off",
+                            "render.hue.loop=true", "render.tonemap=reinhard"});
+  EXPECT_TRUE(s.render.auto_exposure);
+  EXPECT_EQ(s.render.doppler, DopplerModel::kRgb3);
+  EXPECT_EQ(s.render.searchlight, SearchlightModel::kOff);
+  EXPECT_TRUE(s.render.hue_loop);
+  EXPECT_EQ(s.render.tonemap, ToneMap::kReinhard);
+  expect_set_error(kOverrideScene, {"render.doppler=rgb"}, "render.doppler",
+                   "unknown model \"rgb\"");
+  expect_set_error(kOverrideScene, {"render.exposure=bright"}, "render.exposure",
+                   "must be a number (EV) or \"auto\"");
+  expect_set_error(kOverrideScene, {"objects.0.material.blackbody.temperature=0"},
+                   "objects[0].material.blackbody.temperature", "greater than 0");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -478,6 +586,135 @@ TEST_F(SceneFileTest, MaterialsAndSky) {
   expect_error(camera + "  \"sky\": {\"image\": \"\"}\n}", 3, "sky.image", "must not be empty");
 }
 
+// A sphere with the given material, whose first line is line 4 of the scene.
+std::string with_material(const std::string& material) {
+  return with_object(
+      "{\"name\": \"a\", \"shape\": {\"sphere\": {\"radius\": 1}},\n"
+      "    \"material\": " +
+      material + "}");
+}
+
+TEST_F(SceneFileTest, BadBlackbodies) {
+  const std::string temperature = "objects[0].material.blackbody.temperature";
+  expect_error(with_material(R"({"blackbody": {"temperature": 0}})"), 4, temperature,
+               "must be greater than 0, got 0");
+  expect_error(with_material(R"({"blackbody": {"temperature": -300}})"), 4, temperature,
+               "must be greater than 0, got -300");
+  expect_error(with_material(R"({"blackbody":
+      {"luminance": 1,
+       "temperature": -1e-9}})"),
+               6, temperature, "must be greater than 0");
+  expect_error(with_material(R"({"blackbody": {"temperature": "hot"}})"), 4, temperature,
+               "must be a number, got string \"hot\"");
+  // A missing key is reported where the object that lacks it starts.
+  expect_error(with_material(R"({"blackbody":
+      {"luminance": 1}})"),
+               5, temperature, "required key is missing");
+  expect_error(with_material(R"({"blackbody": {"temperature": 5000,
+      "luminance": -1}})"),
+               5, "objects[0].material.blackbody.luminance", "must be >= 0, got -1");
+  expect_error(with_material(R"({"blackbody": {"temperature": 5000, "luminance": null}})"), 4,
+               "objects[0].material.blackbody.luminance", "must be a number, got null");
+  expect_error(with_material(R"({"blackbody": {"temperature": 5000,
+      "color": [1, 1, 1]}})"),
+               5, "objects[0].material.blackbody.color",
+               "unknown key \"color\" (expected one of: temperature, luminance)");
+  expect_error(with_material(R"({"blackbody": 5000})"), 4, "objects[0].material.blackbody",
+               "must be an object");
+  expect_error(with_material(R"({"color": [1, 1, 1], "blackbody": {"temperature": 5000}})"), 4,
+               "objects[0].material",
+               "exactly one of: color, checker, texture, blackbody, spectrum (found color, "
+               "blackbody)");
+}
+
+TEST_F(SceneFileTest, BadSpectra) {
+  const std::string spectrum = "objects[0].material.spectrum";
+  // Each element on its own line, so that the line tells which one is blamed.
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400,
+      600,
+      500], "values": [1, 1, 1]}})"),
+               6, spectrum + ".wavelengths[2]", "strictly increasing (500 after 600)");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400,
+      500,
+      500, 700], "values": [1, 1, 1, 1]}})"),
+               6, spectrum + ".wavelengths[2]", "strictly increasing (500 after 500)");
+  expect_error(with_material(R"({"spectrum": {"values": [1, 1],
+      "wavelengths": [0,
+      500]}})"),
+               5, spectrum + ".wavelengths[0]", "greater than 0 nm, got 0");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [-400,
+      500], "values": [1, 1]}})"),
+               4, spectrum + ".wavelengths[0]", "greater than 0 nm, got -400");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500, 600],
+      "values": [1, 1]}})"),
+               5, spectrum + ".values", "as many entries as wavelengths (3), got 2");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500],
+      "values": [1, 1, 1]}})"),
+               5, spectrum + ".values", "as many entries as wavelengths (2), got 3");
+  expect_error(with_material(R"({"spectrum": {"values": [1],
+      "wavelengths": [500]}})"),
+               5, spectrum + ".wavelengths", "at least 2 numbers, got an array of 1 elements");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500],
+      "values": [1]}})"),
+               5, spectrum + ".values", "at least 2 numbers, got an array of 1 elements");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [],
+      "values": []}})"),
+               4, spectrum + ".wavelengths", "at least 2 numbers, got an array of 0 elements");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": 500, "values": 1}})"), 4,
+               spectrum + ".wavelengths", "at least 2 numbers, got number 500");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500], "values": [1,
+      -0.5]}})"),
+               5, spectrum + ".values[1]", "must be >= 0, got -0.5");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500], "values": [1,
+      "x"]}})"),
+               5, spectrum + ".values[1]", "must be a number, got string \"x\"");
+  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500],
+      "value": [1, 1]}})"),
+               5, spectrum + ".value",
+               "unknown key \"value\" (expected one of: wavelengths, values)");
+  expect_error(with_material(R"({"spectrum":
+      {"wavelengths": [400, 500]}})"),
+               5, spectrum + ".values", "required key is missing");
+}
+
+// A render section whose first line is line 3 of the scene.
+std::string with_render(const std::string& render) {
+  return "{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"render\": " + render + "\n}";
+}
+
+TEST_F(SceneFileTest, BadColourRenderSettings) {
+  expect_error(with_render(R"({"doppler": "rgb"})"), 3, "render.doppler",
+               "unknown model \"rgb\" (expected one of: spectral, rgb3, hue, off)");
+  expect_error(with_render(R"({"relativity": true,
+    "doppler": "Spectral"})"),
+               4, "render.doppler", "unknown model \"Spectral\"");  // names are case-sensitive
+  expect_error(with_render(R"({"doppler": 3})"), 3, "render.doppler",
+               "must be a string, got number 3");
+  expect_error(with_render(R"({
+    "searchlight": "chang"})"),
+               4, "render.searchlight",
+               "unknown model \"chang\" (expected one of: physical, chang1996, off)");
+  expect_error(with_render(R"({"searchlight": true})"), 3, "render.searchlight",
+               "must be a string");
+  expect_error(with_render(R"({"tonemap":
+    "aces"})"),
+               4, "render.tonemap",
+               "unknown model \"aces\" (expected one of: clamp, reinhard, filmic)");
+  expect_error(with_render(R"({"exposure": "bright"})"), 3, "render.exposure",
+               "must be a number (EV) or \"auto\"");
+  expect_error(with_render(R"({"exposure": "AUTO"})"), 3, "render.exposure",
+               "must be a number (EV) or \"auto\"");
+  expect_error(with_render(R"({"exposure": true})"), 3, "render.exposure", "must be a number");
+  expect_error(with_render(R"({"hue": {"loop": true,
+    "lop": true}})"),
+               4, "render.hue.lop", "unknown key \"lop\" (expected one of: loop)");
+  expect_error(with_render(R"({"hue": {"loop": 1}})"), 3, "render.hue.loop", "true or false");
+  expect_error(with_render(R"({"hue": true})"), 3, "render.hue", "must be an object");
+  expect_error(with_render(R"({"tonemapping": "filmic"})"), 3, "render.tonemapping",
+               "unknown key \"tonemapping\" (expected one of: relativity, light_delay, "
+               "exposure, doppler, searchlight, hue, tonemap)");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Meshes and images
 
@@ -587,6 +824,51 @@ TEST(SceneSchema, IsClosedEverywhere) {
   const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
   EXPECT_EQ(schema.at("$schema"), "https://json-schema.org/draft/2020-12/schema");
   expect_closed(schema, "");
+}
+
+std::vector<std::string> keys_of(const nlohmann::json& object) {
+  std::vector<std::string> keys;
+  for (const auto& item : object.items()) keys.push_back(item.key());
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// The schema names the same colour keys and model names as the loader accepts.
+TEST(SceneSchema, ListsTheColourKeysAndModels) {
+  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  const auto& defs = schema.at("$defs");
+  const auto& render = defs.at("render").at("properties");
+  EXPECT_EQ(keys_of(render), (std::vector<std::string>{"doppler", "exposure", "hue", "light_delay",
+                                                       "relativity", "searchlight", "tonemap"}));
+  EXPECT_EQ(render.at("doppler").at("enum"),
+            nlohmann::json::parse(R"(["spectral", "rgb3", "hue", "off"])"));
+  EXPECT_EQ(render.at("doppler").at("default"), "spectral");
+  EXPECT_EQ(render.at("searchlight").at("enum"),
+            nlohmann::json::parse(R"(["physical", "chang1996", "off"])"));
+  EXPECT_EQ(render.at("searchlight").at("default"), "physical");
+  EXPECT_EQ(render.at("tonemap").at("enum"),
+            nlohmann::json::parse(R"(["clamp", "reinhard", "filmic"])"));
+  EXPECT_EQ(render.at("tonemap").at("default"), "clamp");
+  EXPECT_EQ(keys_of(render.at("hue").at("properties")), (std::vector<std::string>{"loop"}));
+  EXPECT_NE(render.at("exposure").dump().find(R"({"const":"auto"})"), std::string::npos);
+
+  const auto& material = defs.at("material").at("properties");
+  EXPECT_EQ(keys_of(material), (std::vector<std::string>{"blackbody", "checker", "color",
+                                                         "spectrum", "texture", "unlit"}));
+  EXPECT_EQ(keys_of(material.at("blackbody").at("properties")),
+            (std::vector<std::string>{"luminance", "temperature"}));
+  EXPECT_EQ(material.at("blackbody").at("required"), nlohmann::json::parse(R"(["temperature"])"));
+  EXPECT_EQ(keys_of(material.at("spectrum").at("properties")),
+            (std::vector<std::string>{"values", "wavelengths"}));
+  EXPECT_EQ(defs.at("material").at("oneOf").size(), 5u);
+
+  // And the format reference documents every one of them.
+  const std::string doc = read_source_file("docs/scene-format.md");
+  for (const char* word :
+       {"`doppler`", "`searchlight`", "`hue`", "`tonemap`", "`\"auto\"`", "`blackbody`",
+        "`spectrum`", "`temperature`", "`luminance`", "`wavelengths`", "`values`", "`chang1996`",
+        "`rgb3`", "`reinhard`", "`filmic`", "design/colour.md"})
+    EXPECT_NE(doc.find(word), std::string::npos) << word;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -32,7 +32,7 @@ double PointEmission::spectral_radiance(double lambda_nm) const {
   return std::visit(Visitor{lambda_nm}, spectrum);
 }
 
-double PointEmission::visible_spectral_radiance(double lambda_nm) const {
+double PointEmission::fast_spectral_radiance(double lambda_nm) const {
   if (!visible_table) return spectral_radiance(lambda_nm);
   const double position = lambda_nm - kCieMinWavelength;
   const auto i = static_cast<std::size_t>(position);

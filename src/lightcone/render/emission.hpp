@@ -21,8 +21,10 @@ struct PointEmission {
   const double* visible_table = nullptr;
 
   double spectral_radiance(double lambda_nm) const;
-  // The same for lambda in [360, 830] nm, through the table where there is one.
-  double visible_spectral_radiance(double lambda_nm) const;
+  // The same, through the visible table where there is one and lambda is in [360, 830] nm.
+  // The renderer evaluates both the shifted and the unshifted wavelengths with it, so that at
+  // D = 1 the two agree bit for bit and a scene at rest shows exactly its rest colours.
+  double fast_spectral_radiance(double lambda_nm) const;
 };
 
 // The emission of every object's material and of the sky, prepared once per render: the

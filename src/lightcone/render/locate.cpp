@@ -35,6 +35,7 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
   if (query.kind == LocateQuery::Kind::SkyDirection) {
     result.direction =
         direction_from_sky(r, scene.sky.rotation.transposed() * normalize(query.value));
+    result.doppler = r.doppler(result.direction, r.sky_velocity);
     set_pixel(r.camera, result);
     return result;
   }

@@ -52,7 +52,7 @@ LinearRgb received_colour(const PointEmission& e, double d, const RenderSettings
   std::array<double, kHeroWavelengths> change;
   for (int i = 0; i < kHeroWavelengths; ++i) {
     const double lambda = wavelengths.lambda[i];
-    change[i] = factor * e.spectral_radiance(d * lambda) - e.visible_spectral_radiance(lambda);
+    change[i] = factor * e.fast_spectral_radiance(d * lambda) - e.fast_spectral_radiance(lambda);
   }
   const LinearRgb delta = linear_srgb_from_xyz(xyz_from_samples(wavelengths, change));
   return {e.rest_rgb.r + delta.r, e.rest_rgb.g + delta.g, e.rest_rgb.b + delta.b};
