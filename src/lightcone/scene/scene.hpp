@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -87,11 +88,19 @@ struct EmissionSpectrum {
   std::vector<double> wavelengths_nm;  // strictly increasing, > 0
   std::vector<double> values;          // >= 0
 };
+// A glossy layer over the diffuse base: GGX microfacets with Schlick's Fresnel.
+struct Glossy {
+  double roughness = 0.3;  // GGX alpha = roughness^2, in (0, 1]
+  double specular = 0.04;  // reflectance at normal incidence, in [0, 1]
+};
 struct Material {
   std::variant<SolidColor, Checker, Texture, Blackbody, EmissionSpectrum> pattern =
       SolidColor{{1, 1, 1}};
-  // The colour is the radiance the surface emits in its rest frame.
+  // Unlit: the pattern is the radiance the surface emits in its rest frame. Lit: the pattern
+  // (an RGB one) is the Lambertian albedo in [0, 1], lit by the scene's lights in the surface's
+  // rest frame, with an optional glossy layer.
   bool unlit = true;
+  std::optional<Glossy> glossy;
 };
 
 struct Object {
@@ -102,6 +111,36 @@ struct Object {
   Mat3 rotation;
   Vec3 scale{1, 1, 1};
   Material material;
+};
+
+// Light sources, each with an inertial world-line and its emission given in its rest frame.
+// Intensities are in the units of RGB radiance: a light of colour (1, 1, 1) and intensity I
+// gives a surface facing it at rest, at distance r, the irradiance I / r^2 (Y = I / r^2).
+struct PointLight {};
+struct SpotLight {
+  Vec3 direction{0, 0, -1};    // axis, in the light's rest frame
+  double cone_degrees = 60;    // full opening angle, in (0, 180)
+  double falloff_degrees = 5;  // width of the soft edge inside the cone, in [0, cone / 2]
+};
+// A source at infinity (a distant sun): parallel light along `direction` (from the source into
+// the scene) with `irradiance` on a surface facing it, both in its rest frame.
+struct DirectionalLight {
+  Vec3 direction{0, -1, 0};
+  double irradiance = 1;
+};
+// A sphere of uniform radiance; `intensity` is its on-axis intensity, pi R^2 L.
+struct SphereLight {
+  double radius = 0.1;
+};
+struct LightSpectrum {
+  std::variant<Rgb, Blackbody> emission = Rgb{1, 1, 1};  // a blackbody's luminance is ignored
+};
+struct Light {
+  std::string name;
+  std::variant<PointLight, SpotLight, DirectionalLight, SphereLight> kind;
+  WorldLine world_line;  // ignored for directional lights except for their velocity
+  LightSpectrum spectrum;
+  double intensity = 1;  // point, spot, sphere; rest frame
 };
 
 struct Camera {
@@ -145,6 +184,12 @@ enum class SearchlightModel {
   kOff,
 };
 enum class ToneMap { kClamp, kReinhard, kFilmic };
+// Which event of a light lights a surface (docs/design/light-transport.md).
+enum class LightSourceDelay {
+  kSurface,  // on the past light cone of the surface's reception event (exact, two legs)
+  kCamera,   // on the camera's past light cone (seed 004's approximation)
+  kNone,     // where the light is at the camera's time (teaching only)
+};
 
 struct RenderSettings {
   bool relativity = true;   // false: the classical picture
@@ -155,11 +200,14 @@ struct RenderSettings {
   SearchlightModel searchlight = SearchlightModel::kPhysical;
   bool hue_loop = false;  // for DopplerModel::kHue: wrap the hue instead of fading
   ToneMap tonemap = ToneMap::kClamp;
+  LightSourceDelay light_source_delay = LightSourceDelay::kSurface;
+  bool shadows = true;
 };
 
 struct Scene {
   Camera camera;
   std::vector<Object> objects;
+  std::vector<Light> lights;
   Sky sky;
   RenderSettings render;
 };
