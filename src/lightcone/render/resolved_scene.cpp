@@ -139,6 +139,11 @@ ResolvedScene resolve_scene(const Scene& scene) {
   r.trace_to_world = invert(r.world_to_trace);
 
   r.bodies.reserve(scene.objects.size());
+  struct Centre {
+    TraceWorldLine line;
+    double radius;
+  };
+  std::vector<Centre> centres;
   for (const Object& object : scene.objects) {
     const AffineMap4 trace_to_body =
         compose(body_frame_map(settings, object.world_line), r.trace_to_world);
@@ -148,7 +153,8 @@ ResolvedScene resolve_scene(const Scene& scene) {
     ResolvedBody body;
     body.object = &object;
     body.shape_origin = to_shape * trace_to_body.offset.x;
-    body.ray_offset = to_shape * time_column(trace_to_body.linear) * r.ray_time;
+    body.time_column = to_shape * time_column(trace_to_body.linear);
+    body.ray_offset = body.time_column * r.ray_time;
     body.spatial = to_shape * trace_to_body.linear.spatial();
 
     const Bounds3 local = shape_bounds(object.shape);
@@ -157,8 +163,10 @@ ResolvedScene resolve_scene(const Scene& scene) {
     const double radius = scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
     const Vec3 rest_centre = object.rotation * component_mul(object.scale, centre);
     body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
-    body.velocity = trace_world_line(trace_to_body, rest_centre).velocity;
+    const TraceWorldLine centre_line = trace_world_line(trace_to_body, rest_centre);
+    body.velocity = centre_line.velocity;
     r.bodies.push_back(body);
+    centres.push_back({centre_line, radius});
   }
 
   WorldLine sky_line;
@@ -168,6 +176,58 @@ ResolvedScene resolve_scene(const Scene& scene) {
   r.sky_time_column = to_pattern * time_column(trace_to_sky.linear);
   r.sky_spatial = to_pattern * trace_to_sky.linear.spatial();
   r.sky_velocity = trace_world_line(trace_to_sky, {}).velocity;
+
+  // Shadow rays run between surface events (on camera rays, so inside the union of the trace
+  // bounds, at F-times down to -s_far) and light events, which are at most the light's delay
+  // tau earlier; |P(t) - x| <= dist(P(0), box) + |w| s_far bounds the distance, and
+  // tau <= distance / (1 - |w|). Directional lights are followed for twice the scene's reach.
+  Bounds3 visible = empty_bounds();
+  double s_far = 0;
+  for (const ResolvedBody& body : r.bodies) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p{(corner & 1) ? body.trace_bounds.upper.x : body.trace_bounds.lower.x,
+                   (corner & 2) ? body.trace_bounds.upper.y : body.trace_bounds.lower.y,
+                   (corner & 4) ? body.trace_bounds.upper.z : body.trace_bounds.lower.z};
+      s_far = std::max(s_far, length(p));
+      expand(visible, p, 0);
+    }
+  }
+  auto farthest = [&](const Vec3& from) {
+    double d = 0;
+    for (int corner = 0; corner < 8 && !r.bodies.empty(); ++corner)
+      d = std::max(d, length(Vec3{(corner & 1) ? visible.upper.x : visible.lower.x,
+                                  (corner & 2) ? visible.upper.y : visible.lower.y,
+                                  (corner & 4) ? visible.upper.z : visible.lower.z} -
+                             from));
+    return d;
+  };
+  double light_reach = 0;
+  for (const Light& light : scene.lights) {
+    const AffineMap4 trace_to_light =
+        compose(body_frame_map(settings, light.world_line), r.trace_to_world);
+    const TraceWorldLine line = trace_world_line(trace_to_light, {});
+    const double speed = length(line.velocity);
+    if (std::holds_alternative<DirectionalLight>(light.kind)) {
+      light_reach = std::max(light_reach, 2 * (s_far + farthest({})));
+      continue;
+    }
+    const double extent = std::holds_alternative<SphereLight>(light.kind)
+                              ? std::get<SphereLight>(light.kind).radius
+                              : 0;
+    const double to_surfaces =
+        (farthest(line.position_at_zero) + extent + speed * s_far) / (1 - speed);
+    const double to_camera =
+        retarded_delay(line.position_at_zero, line.velocity) + extent / (1 - speed);
+    light_reach = std::max({light_reach, to_surfaces, to_camera});
+  }
+  r.shadow_time_min = -(s_far + light_reach) * (1 + 1e-9) - 1e-9;
+  for (std::size_t i = 0; i < r.bodies.size(); ++i) {
+    Bounds3& b = r.bodies[i].shadow_bounds;
+    b = empty_bounds();
+    const Centre& c = centres[i];
+    expand(b, c.line.position_at_zero, c.radius);
+    expand(b, c.line.position_at_zero + c.line.velocity * r.shadow_time_min, c.radius);
+  }
   return r;
 }
 

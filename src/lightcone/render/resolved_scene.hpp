@@ -26,15 +26,25 @@ struct Bounds3 {
 
 struct ResolvedBody {
   const Object* object = nullptr;
-  // Shape coordinates of the event s (ray_time, u): shape_origin + s (ray_offset + spatial u).
+  // Shape coordinates of the F event (t, x): shape_origin + time_column t + spatial x. A camera
+  // ray s (ray_time, u) maps to shape_origin + s (ray_offset + spatial u).
   Vec3 shape_origin;
-  Vec3 ray_offset;  // time column of the map times ray_time
+  Vec3 time_column;
+  Vec3 ray_offset;  // time_column * ray_time
   Mat3 spatial;
-  // Conservative bounds in F of every point where a camera ray can meet the body.
+  // Conservative bounds in F of every point where a camera ray can meet the body, and of every
+  // point it occupies at F-times in [ResolvedScene::shadow_time_min, 0] (for shadow rays).
   Bounds3 trace_bounds;
+  Bounds3 shadow_bounds;
   Vec3 velocity;  // in F, for the Doppler factor
 
   Vec3 shape_direction(const Vec3& u) const { return ray_offset + spatial * u; }
+  Vec3 shape_point(const Vec4& event) const {
+    return shape_origin + time_column * event.t + spatial * event.x;
+  }
+  Vec3 shape_vector(const Vec4& direction) const {
+    return time_column * direction.t + spatial * direction.x;
+  }
 };
 
 // A body or point at rest in its own frame, seen from F: where it is at F-time 0 and how it
@@ -57,6 +67,9 @@ struct ResolvedScene {
   Vec3 sky_time_column;
   Mat3 sky_spatial;
   Vec3 sky_velocity;  // in F
+  // Shadow rays (segments between surface events and light events) stay within F-times
+  // [shadow_time_min, 0]; see resolve_scene.
+  double shadow_time_min = 0;
 
   // Doppler factor nu_camera / nu_emitter for light arriving along look direction u from an
   // emitter moving with `velocity` in F (1 for the classical picture).

@@ -17,11 +17,13 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// Embree lets the application extend the intersect context; we carry the exact (double) look
-// direction so that the body callbacks do not work from Embree's float copy of it.
+// Embree lets the application extend the intersect context; we carry the exact (double) ray,
+// an origin event and a 4-direction in F, so that the body callbacks do not work from Embree's
+// float copy of its spatial part.
 struct TraceContext {
   RTCIntersectContext embree;
-  const Vec3* look;
+  Vec4 origin;
+  Vec4 direction;
 };
 
 struct ShapeRay {
@@ -110,12 +112,14 @@ std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
 struct Tracer::Impl {
   const ResolvedScene& scene;
   RTCDevice device = nullptr;
-  RTCScene top = nullptr;
+  RTCScene top = nullptr;      // camera rays: bodies within their trace bounds
+  RTCScene shadows = nullptr;  // shadow rays: bodies within their shadow bounds
   std::unordered_map<const Mesh*, RTCScene> mesh_scenes;
   std::vector<RTCScene> body_mesh_scene;  // per body, null for analytic shapes
   struct BodyRef {
     const Impl* impl;
     unsigned index;
+    bool shadow;  // which bounds
   };
   std::vector<BodyRef> body_refs;  // Embree's user data for each body's geometry
   std::atomic<long long> embree_bytes{0};
@@ -131,21 +135,27 @@ struct Tracer::Impl {
         },
         this);
     top = rtcNewScene(device);
+    shadows = rtcNewScene(device);
     body_mesh_scene.resize(scene.bodies.size(), nullptr);
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-      body_refs.push_back({this, static_cast<unsigned>(i)});
+    body_refs.reserve(2 * scene.bodies.size());
+    for (bool shadow : {false, true})
+      for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+        body_refs.push_back({this, static_cast<unsigned>(i), shadow});
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape))
         body_mesh_scene[i] = mesh_scene(*m->mesh);
-      attach_body(static_cast<unsigned>(i));
+      attach_body(top, body_refs[i]);
+      attach_body(shadows, body_refs[scene.bodies.size() + i]);
     }
     rtcCommitScene(top);
+    rtcCommitScene(shadows);
     check("building the scene");
   }
 
   ~Impl() {
     for (auto& [mesh, s] : mesh_scenes) rtcReleaseScene(s);
     if (top) rtcReleaseScene(top);
+    if (shadows) rtcReleaseScene(shadows);
     if (device) rtcReleaseDevice(device);
   }
 
@@ -179,21 +189,22 @@ struct Tracer::Impl {
     return s;
   }
 
-  void attach_body(unsigned index) {
+  void attach_body(RTCScene target, BodyRef& ref) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, 1);
-    rtcSetGeometryUserData(g, &body_refs[index]);
+    rtcSetGeometryUserData(g, &ref);
     rtcSetGeometryBoundsFunction(g, &Impl::bounds_callback, nullptr);
     rtcSetGeometryIntersectFunction(g, &Impl::intersect_callback);
     rtcSetGeometryOccludedFunction(g, &Impl::occluded_callback);
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(top, g, index);
+    rtcAttachGeometryByID(target, g, ref.index);
     rtcReleaseGeometry(g);
   }
 
   static void bounds_callback(const RTCBoundsFunctionArguments* args) {
     const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
-    const Bounds3& b = ref->impl->scene.bodies[ref->index].trace_bounds;
+    const ResolvedBody& body = ref->impl->scene.bodies[ref->index];
+    const Bounds3& b = ref->shadow ? body.shadow_bounds : body.trace_bounds;
     // Round outwards so that float bounds still contain the double ones.
     args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
     args->bounds_o->lower_y = std::nextafter(static_cast<float>(b.lower.y), -INFINITY);
@@ -203,10 +214,10 @@ struct Tracer::Impl {
     args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.upper.z), INFINITY);
   }
 
-  ShapeHit intersect(unsigned index, const Vec3& look, double tnear, double tfar,
-                     RTCIntersectContext* context) const {
+  ShapeHit intersect(unsigned index, const Vec4& origin, const Vec4& direction, double tnear,
+                     double tfar, RTCIntersectContext* context) const {
     const ResolvedBody& body = scene.bodies[index];
-    const ShapeRay ray{body.shape_origin, body.shape_direction(look)};
+    const ShapeRay ray{body.shape_point(origin), body.shape_vector(direction)};
     ShapeHit hit;
     double s = 0;
     struct Visitor {
@@ -248,8 +259,8 @@ struct Tracer::Impl {
     const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const ShapeHit hit = ref->impl->intersect(ref->index, *context->look, rh->ray.tnear,
-                                              rh->ray.tfar, args->context);
+    const ShapeHit hit = ref->impl->intersect(ref->index, context->origin, context->direction,
+                                              rh->ray.tnear, rh->ray.tfar, args->context);
     if (!(hit.s < rh->ray.tfar)) return;
     rh->ray.tfar = static_cast<float>(hit.s);
     rh->hit.geomID = args->geomID;
@@ -264,8 +275,8 @@ struct Tracer::Impl {
     const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
     auto* ray = reinterpret_cast<RTCRay*>(args->ray);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const ShapeHit hit =
-        ref->impl->intersect(ref->index, *context->look, ray->tnear, ray->tfar, args->context);
+    const ShapeHit hit = ref->impl->intersect(ref->index, context->origin, context->direction,
+                                              ray->tnear, ray->tfar, args->context);
     if (hit.s < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
   }
 };
@@ -284,7 +295,8 @@ std::size_t Tracer::acceleration_bytes() const {
 std::optional<Hit> Tracer::trace(const Vec3& u) const {
   TraceContext context;
   rtcInitIntersectContext(&context.embree);
-  context.look = &u;
+  context.origin = {};
+  context.direction = {impl_->scene.ray_time, u};
   RTCRayHit rh{};
   rh.ray.dir_x = static_cast<float>(u.x);
   rh.ray.dir_y = static_cast<float>(u.y);
@@ -312,24 +324,54 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
     if (!mesh.uvs.empty())
       for (int k = 0; k < 2; ++k)
         hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
-    return hit;
+    hit.shape_normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                             mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+  } else {
+    const ShapeHit exact =
+        impl_->intersect(index, context.origin, context.direction, 0, kInfinity, &context.embree);
+    hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
+    hit.shape_point = ray.origin + ray.direction * hit.s;
+    // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
+    // boundary at the face) do not flip with rounding.
+    if (std::holds_alternative<Sphere>(body.object->shape)) {
+      hit.uv = sphere_uv(hit.shape_point);
+      hit.shape_normal = hit.shape_point;
+    } else if (const auto* box = std::get_if<Box>(&body.object->shape)) {
+      const int axis = box_face_axis(*box, hit.shape_point);
+      hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
+      hit.uv = box_uv(*box, hit.shape_point, axis);
+      hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
+    } else if (const auto* plane = std::get_if<Plane>(&body.object->shape)) {
+      hit.shape_point.y = 0;
+      hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
+      hit.shape_normal = {0, 1, 0};
+    }
   }
-  const ShapeHit exact = impl_->intersect(index, u, 0, kInfinity, &context.embree);
-  hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
-  hit.shape_point = ray.origin + ray.direction * hit.s;
-  // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
-  // boundary at the face) do not flip with rounding.
-  if (std::holds_alternative<Sphere>(body.object->shape)) {
-    hit.uv = sphere_uv(hit.shape_point);
-  } else if (const auto* box = std::get_if<Box>(&body.object->shape)) {
-    const int axis = box_face_axis(*box, hit.shape_point);
-    hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
-    hit.uv = box_uv(*box, hit.shape_point, axis);
-  } else if (const auto* plane = std::get_if<Plane>(&body.object->shape)) {
-    hit.shape_point.y = 0;
-    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
-  }
+  // Facing the ray: surfaces are two-sided.
+  hit.shape_normal = normalize(hit.shape_normal);
+  if (dot(hit.shape_normal, ray.direction) > 0) hit.shape_normal = -hit.shape_normal;
   return hit;
+}
+
+bool Tracer::occluded(const Vec4& origin, const Vec4& direction, double t_near,
+                      double t_far) const {
+  if (impl_->scene.bodies.empty()) return false;
+  TraceContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.origin = origin;
+  context.direction = direction;
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(origin.x.x);
+  ray.org_y = static_cast<float>(origin.x.y);
+  ray.org_z = static_cast<float>(origin.x.z);
+  ray.dir_x = static_cast<float>(direction.x.x);
+  ray.dir_y = static_cast<float>(direction.x.y);
+  ray.dir_z = static_cast<float>(direction.x.z);
+  ray.tnear = static_cast<float>(t_near);
+  ray.tfar = static_cast<float>(t_far);
+  ray.mask = ~0u;
+  rtcOccluded1(impl_->shadows, &context.embree, &ray);
+  return ray.tfar < 0;
 }
 
 }  // namespace lightcone

@@ -20,6 +20,7 @@ struct Hit {
   double s = 0;                    // ray parameter: light travel time (or distance) in F
   Vec3 shape_point;                // the point met, in the shape's own coordinates
   std::array<double, 2> uv{0, 0};  // texture coordinates (v from the top of the image)
+  Vec3 shape_normal;               // unit, in shape coordinates, facing the incoming ray
 };
 
 class Tracer {
@@ -31,6 +32,11 @@ class Tracer {
 
   // The nearest body along the ray with look direction u (unit, in F), if any.
   std::optional<Hit> trace(const Vec3& u) const;
+
+  // Whether a body blocks the spacetime segment origin + sigma direction, sigma in
+  // (t_near, t_far), with events and direction in F (a shadow ray: its events must lie within
+  // F-times [ResolvedScene::shadow_time_min, 0]). Bodies are met where they are at each event.
+  bool occluded(const Vec4& origin, const Vec4& direction, double t_near, double t_far) const;
 
   // Bytes Embree holds for the acceleration structures (for memory benchmarks).
   std::size_t acceleration_bytes() const;
