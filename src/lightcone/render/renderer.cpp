@@ -32,28 +32,45 @@ double unit_float(std::uint64_t bits) {
   return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
 
-// Sample k of n within pixel (i, j): its offset in [0,1)^2 (n = 1: the pixel centre) and a
-// jitter in [0, 1) for its wavelengths.
-std::array<double, 3> sample_offset(int i, int j, int k, int n) {
+// The random numbers of sample k of n within pixel (i, j).
+struct SampleNumbers {
+  double x, y;                    // offset in the pixel (n = 1: its centre)
+  double wavelength;              // jitter of its wavelengths
+  std::array<double, 2> light{};  // point on sphere lights
+};
+
+SampleNumbers sample_numbers(int i, int j, int k, int n) {
   const std::uint64_t h =
       mix((static_cast<std::uint64_t>(j) << 40) ^ (static_cast<std::uint64_t>(i) << 20) ^
           static_cast<std::uint64_t>(k));
-  const double jitter = unit_float(mix(h ^ 0x9e3779b97f4a7c15ULL));
-  if (n == 1) return {0.5, 0.5, jitter};
-  const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-  const int sx = k % strata, sy = (k / strata) % strata;
-  return {(sx + unit_float(h)) / strata, (sy + unit_float(mix(h))) / strata, jitter};
+  SampleNumbers s{
+      0.5,
+      0.5,
+      unit_float(mix(h ^ 0x9e3779b97f4a7c15ULL)),
+      {unit_float(mix(h ^ 0x632be59bd9b4e019ULL)), unit_float(mix(h ^ 0x85ebca6b2f0c9d1fULL))}};
+  if (n > 1) {
+    const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+    const int sx = k % strata, sy = (k / strata) % strata;
+    s.x = (sx + unit_float(h)) / strata;
+    s.y = (sy + unit_float(mix(h))) / strata;
+  }
+  return s;
 }
 
 }  // namespace
 
 LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
-                         const Tracer& tracer, const Vec3& u,
-                         const SampledWavelengths& wavelengths) {
+                         const Tracer& tracer, const Vec3& u, const SampledWavelengths& wavelengths,
+                         const Lighting* lighting, const std::array<double, 2>& light_sample) {
   const RenderSettings& settings = scene.scene->render;
   if (const auto hit = tracer.trace(u)) {
     const double d = scene.doppler(u, scene.bodies[hit->body].velocity);
-    return received_colour(emission.surface(hit->body, *hit), d, settings, wavelengths);
+    const PointEmission surface = emission.surface(hit->body, *hit);
+    if (!scene.bodies[hit->body].object->material.unlit) {
+      if (!lighting) return {0, 0, 0};
+      return lighting->received(*hit, u, d, surface.rest_rgb, wavelengths, light_sample);
+    }
+    return received_colour(surface, d, settings, wavelengths);
   }
   const double d = scene.doppler(u, scene.sky_velocity);
   return received_colour(emission.sky(scene.sky_direction(u)), d, settings, wavelengths);
@@ -68,6 +85,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const ResolvedScene resolved = resolve_scene(scene);
   const Tracer tracer(resolved);
   const EmissionTable emission(scene, scene.render.doppler == DopplerModel::kSpectral);
+  const Lighting lighting(resolved, tracer);
 
   const Camera& cam = scene.camera;
   Image image;
@@ -88,12 +106,12 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         for (int i = x0; i < std::min(x0 + kTileSize, cam.width); ++i) {
           double r = 0, g = 0, b = 0;
           for (int k = 0; k < n; ++k) {
-            const auto o = sample_offset(i, j, k, n);
+            const SampleNumbers o = sample_numbers(i, j, k, n);
             const SampledWavelengths wavelengths =
-                sample_wavelengths(stratified_wavelength_u(k, n, o[2]));
-            const LinearRgb c =
-                radiance_along(resolved, emission, tracer,
-                               look_direction(resolved.camera, i + o[0], j + o[1]), wavelengths);
+                sample_wavelengths(stratified_wavelength_u(k, n, o.wavelength));
+            const LinearRgb c = radiance_along(resolved, emission, tracer,
+                                               look_direction(resolved.camera, i + o.x, j + o.y),
+                                               wavelengths, &lighting, o.light);
             r += c.r;
             g += c.g;
             b += c.b;

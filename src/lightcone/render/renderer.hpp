@@ -7,6 +7,7 @@
 
 #include "lightcone/color/wavelengths.hpp"
 #include "lightcone/render/emission.hpp"
+#include "lightcone/render/lighting.hpp"
 #include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 #include "lightcone/scene/scene.hpp"
