@@ -27,10 +27,12 @@ struct RenderStats {
 };
 
 // Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F), for the
-// received wavelengths of one camera sample (used by the spectral model).
+// received wavelengths of one camera sample (used by the spectral model). Lit surfaces need
+// `lighting` (without it they are black); `light_sample` picks points on sphere lights.
 LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
-                         const Tracer& tracer, const Vec3& u,
-                         const SampledWavelengths& wavelengths);
+                         const Tracer& tracer, const Vec3& u, const SampledWavelengths& wavelengths,
+                         const Lighting* lighting = nullptr,
+                         const std::array<double, 2>& light_sample = {0.5, 0.5});
 
 // Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB
 // triple per pixel. `stats->exposure` reports the EV used.
