@@ -200,8 +200,9 @@ TEST_F(CliTest, BadSceneValuesNameFileLineAndPathAndWriteNothing) {
        "required key is missing"},
       {"duplicate key", "\"fov\": 30,", "\"fov\": 30,\n    \"fov\": 40,", 6, "camera.fov",
        "duplicate key"},
-      {"lit material", "{\"color\": [0, 1, 0]}", "{\"color\": [0, 1, 0], \"unlit\": false}", 15,
-       "objects[0].material.unlit", "not supported"},
+      {"lit blackbody", "{\"color\": [0, 1, 0]}",
+       "{\"blackbody\": {\"temperature\": 5000}, \"unlit\": false}", 15,
+       "objects[0].material.unlit", "cannot be lit"},
   };
   for (const BadValue& c : cases) {
     SCOPED_TRACE(c.name);
@@ -244,6 +245,90 @@ TEST_F(CliTest, BadColourValuesNameFileLineAndPathAndWriteNothing) {
     expect_rejected(render(scene), where, {c.what});
     expect_rejected(locate(scene, "--world-point 0,0,-10"), where, {c.what});
   }
+}
+
+// Negative power or radius, spot angles outside (0, 180), a light faster than light, an unknown
+// light type or mode, and lit materials that are not albedos. The scene gets a lights array
+// whose one light is on line 19 (the sky moves to line 21, the render settings to 22).
+TEST_F(CliTest, BadLightValuesNameFileLineAndPathAndWriteNothing) {
+  const std::string lamp =
+      R"({"name": "lamp", "type": "point", "position": [0, 5, 0], "intensity": 10})";
+  const std::string lit =
+      edited(kScene, "  ],\n  \"sky\"", "  ],\n  \"lights\": [\n    " + lamp + "\n  ],\n  \"sky\"");
+  const std::string material = "{\"color\": [0, 1, 0]}";
+  const std::string render_line = "\"exposure\": 0";
+  auto light = [&](const std::string& json) { return std::make_pair(lamp, json); };
+  struct Case {
+    std::string name;
+    std::pair<std::string, std::string> edit;
+    int line;
+    std::string path, what;
+  };
+  const std::vector<Case> cases = {
+      {"negative intensity",
+       light(R"({"name": "lamp", "type": "point", "position": [0, 5, 0], "intensity": -10})"), 19,
+       "lights[0].intensity", "must be >= 0, got -10"},
+      {"negative irradiance", light(R"({"name": "lamp", "type": "directional", "irradiance": -1})"),
+       19, "lights[0].irradiance", "must be >= 0, got -1"},
+      {"negative radius", light(R"({"name": "lamp", "type": "sphere", "radius": -0.5})"), 19,
+       "lights[0].radius", "must be greater than 0, got -0.5"},
+      {"zero radius", light(R"({"name": "lamp", "type": "sphere", "radius": 0})"), 19,
+       "lights[0].radius", "must be greater than 0, got 0"},
+      {"spot cone 0", light(R"({"name": "lamp", "type": "spot", "cone": 0})"), 19, "lights[0].cone",
+       "between 0 and 180 degrees"},
+      {"spot cone 180", light(R"({"name": "lamp", "type": "spot", "cone": 180})"), 19,
+       "lights[0].cone", "between 0 and 180 degrees"},
+      {"spot cone 200", light(R"({"name": "lamp", "type": "spot", "cone": 200})"), 19,
+       "lights[0].cone", "got 200"},
+      {"falloff wider than half the cone",
+       light(R"({"name": "lamp", "type": "spot", "cone": 40, "falloff": 25})"), 19,
+       "lights[0].falloff", "half the cone (20 degrees), got 25"},
+      {"light at the speed of light",
+       light(R"({"name": "lamp", "type": "point", "velocity": [0, 0, 1]})"), 19,
+       "lights[0].velocity", "speed 1 must be below the speed of light"},
+      {"light faster than light",
+       light(R"({"name": "lamp", "type": "point", "velocity": [0.8, 0.8, 0]})"), 19,
+       "lights[0].velocity", "must be below the speed of light"},
+      {"unknown light type", light(R"({"name": "lamp", "type": "laser"})"), 19, "lights[0].type",
+       "unknown light type \"laser\" (expected one of: point, spot, directional, sphere)"},
+      {"radius on a point light", light(R"({"name": "lamp", "type": "point", "radius": 1})"), 19,
+       "lights[0].radius", "unknown key \"radius\" for a point light"},
+      {"duplicate light name", light(lamp + ",\n    " + lamp), 20, "lights[1].name",
+       "duplicate light name \"lamp\" (also used by lights[0])"},
+      {"unknown light source delay mode",
+       {render_line, "\"light_source_delay\": \"retarded\""},
+       22,
+       "render.light_source_delay",
+       "unknown mode \"retarded\" (expected one of: surface, camera, none)"},
+      {"albedo above 1",
+       {material, "{\"color\": [0, 1.5, 0], \"unlit\": false}"},
+       15,
+       "objects[0].material.color[1]",
+       "must be at most 1 for a lit material"},
+      {"glossy on an unlit material",
+       {material, "{\"color\": [0, 1, 0], \"glossy\": {}}"},
+       15,
+       "objects[0].material.glossy",
+       "needs a lit material"},
+      {"roughness 0",
+       {material, "{\"color\": [0, 1, 0], \"unlit\": false, \"glossy\": {\"roughness\": 0}}"},
+       15,
+       "objects[0].material.glossy.roughness",
+       "must be greater than 0 and at most 1, got 0"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path scene = write_scene(edited(lit, c.edit.first, c.edit.second));
+    const std::string where = scene.string() + ":" + std::to_string(c.line) + ": " + c.path + ": ";
+    expect_rejected(render(scene), where, {c.what});
+    expect_rejected(locate(scene, "--world-point 0,0,-10"), where, {c.what});
+  }
+  // Through --set, the message names the setting.
+  const fs::path scene = write_scene(lit);
+  expect_rejected(render(scene, "--set lights.0.intensity=-1"),
+                  "--set lights[0].intensity: ", {"must be >= 0, got -1"});
+  expect_rejected(render(scene, "--set render.light_source_delay=later"),
+                  "--set render.light_source_delay: ", {"unknown mode \"later\""});
 }
 
 TEST_F(CliTest, ExampleFromTheBriefCameraVelocityOnLineFour) {

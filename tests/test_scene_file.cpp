@@ -299,6 +299,170 @@ TEST_F(SceneFileTest, ColourRenderSettings) {
   EXPECT_TRUE(all.light_delay);
 }
 
+TEST_F(SceneFileTest, LightsOfEachTypeMapOntoTheModel) {
+  const Scene s = load(R"({
+    "camera": {"position": [0, 0, 5]},
+    "lights": [
+      {"name": "bulb", "type": "point", "position": [1, 2, 3], "time": -2,
+       "velocity": [0.5, 0, 0], "color": [1, 0.5, 2], "intensity": 10},
+      {"name": "torch", "type": "spot", "position": [0, 5, 0], "direction": [0, -2, 0],
+       "cone": 40, "falloff": 20, "intensity": 3, "blackbody": {"temperature": 3000}},
+      {"name": "sun", "type": "directional", "position": [9, 9, 9], "direction": [1, -1, 0],
+       "irradiance": 2.5, "velocity": [0, 0, 0.3], "color": [1, 0.9, 0.8]},
+      {"name": "globe", "type": "sphere", "position": [0, 0, -4], "radius": 0.5,
+       "intensity": 0}
+    ]
+  })");
+  ASSERT_EQ(s.lights.size(), 4u);
+
+  const Light& bulb = s.lights[0];
+  EXPECT_EQ(bulb.name, "bulb");
+  EXPECT_TRUE(std::holds_alternative<PointLight>(bulb.kind));
+  expect_vec(bulb.world_line.position, 1, 2, 3);
+  EXPECT_EQ(bulb.world_line.time, -2);
+  expect_vec(bulb.world_line.velocity, 0.5, 0, 0);
+  expect_rgb(std::get<Rgb>(bulb.spectrum.emission), 1, 0.5f, 2);  // above 1 is allowed
+  EXPECT_EQ(bulb.intensity, 10);
+
+  const Light& torch = s.lights[1];
+  const SpotLight& spot = std::get<SpotLight>(torch.kind);
+  expect_vec(spot.direction, 0, -1, 0);  // normalized
+  EXPECT_EQ(spot.cone_degrees, 40);
+  EXPECT_EQ(spot.falloff_degrees, 20);  // up to half the cone
+  EXPECT_EQ(std::get<Blackbody>(torch.spectrum.emission).temperature_k, 3000);
+  EXPECT_EQ(torch.intensity, 3);
+  expect_vec(torch.world_line.position, 0, 5, 0);
+
+  const Light& sun = s.lights[2];
+  const DirectionalLight& directional = std::get<DirectionalLight>(sun.kind);
+  expect_vec(directional.direction, std::sqrt(0.5), -std::sqrt(0.5), 0);
+  EXPECT_EQ(directional.irradiance, 2.5);
+  expect_vec(sun.world_line.velocity, 0, 0, 0.3);
+  expect_vec(sun.world_line.position, 9, 9, 9);  // allowed, and ignored by the renderer
+  expect_rgb(std::get<Rgb>(sun.spectrum.emission), 1, 0.9f, 0.8f);
+
+  const Light& globe = s.lights[3];
+  EXPECT_EQ(std::get<SphereLight>(globe.kind).radius, 0.5);
+  EXPECT_EQ(globe.intensity, 0);  // a light may be off
+  expect_vec(globe.world_line.position, 0, 0, -4);
+}
+
+TEST_F(SceneFileTest, LightDefaultsAreTheDocumentedOnes) {
+  const Scene s = load(R"({
+    "camera": {"position": [0, 0, 5]},
+    "lights": [
+      {"name": "p", "type": "point"},
+      {"name": "s", "type": "spot"},
+      {"name": "d", "type": "directional"},
+      {"name": "b", "type": "sphere", "radius": 2},
+      {"name": "narrow", "type": "spot", "cone": 6},
+      {"name": "hard", "type": "spot", "cone": 6, "falloff": 0}
+    ]
+  })");
+  ASSERT_EQ(s.lights.size(), 6u);
+  for (const Light& l : s.lights) {
+    SCOPED_TRACE(l.name);
+    expect_vec(l.world_line.position, 0, 0, 0);
+    EXPECT_EQ(l.world_line.time, 0);
+    expect_vec(l.world_line.velocity, 0, 0, 0);
+    expect_rgb(std::get<Rgb>(l.spectrum.emission), 1, 1, 1);
+    EXPECT_EQ(l.intensity, 1);
+  }
+  EXPECT_TRUE(std::holds_alternative<PointLight>(s.lights[0].kind));
+  const SpotLight& spot = std::get<SpotLight>(s.lights[1].kind);
+  expect_vec(spot.direction, 0, 0, -1);
+  EXPECT_EQ(spot.cone_degrees, 60);
+  EXPECT_EQ(spot.falloff_degrees, 5);
+  const DirectionalLight& directional = std::get<DirectionalLight>(s.lights[2].kind);
+  expect_vec(directional.direction, 0, -1, 0);
+  EXPECT_EQ(directional.irradiance, 1);
+  EXPECT_EQ(std::get<SphereLight>(s.lights[3].kind).radius, 2);
+  // The default soft edge (5 degrees) shrinks to half of a cone narrower than 10 degrees.
+  EXPECT_EQ(std::get<SpotLight>(s.lights[4].kind).falloff_degrees, 3);
+  EXPECT_EQ(std::get<SpotLight>(s.lights[5].kind).falloff_degrees, 0);
+
+  // No "lights": no lights; an empty list is allowed too.
+  EXPECT_TRUE(load(R"({"camera": {"position": [0, 0, 5]}})").lights.empty());
+  EXPECT_TRUE(load(R"({"camera": {"position": [0, 0, 5]}, "lights": []})").lights.empty());
+}
+
+TEST_F(SceneFileTest, LitMaterials) {
+  Image albedo;
+  albedo.width = 2;
+  albedo.height = 1;
+  albedo.rgb = {1, 0, 0, 0, 0, 0.5f};
+  write_images(albedo, dir_ / "albedo.png", std::nullopt);
+  const Scene s = load(with_object(R"(
+    {"name": "matte", "shape": {"sphere": {"radius": 1}},
+     "material": {"color": [0.5, 0.25, 1], "unlit": false}},
+    {"name": "tiles", "shape": {"plane": {"size": [4, 4]}},
+     "material": {"checker": {"size": 1, "colors": [[1, 1, 1], [0, 0, 0]]}, "unlit": false,
+                  "glossy": {}}},
+    {"name": "chrome", "shape": {"sphere": {"radius": 1}},
+     "material": {"color": [0, 0, 0], "unlit": false,
+                  "glossy": {"roughness": 1, "specular": 0}}},
+    {"name": "shiny", "shape": {"sphere": {"radius": 1}},
+     "material": {"unlit": false, "glossy": {"roughness": 0.05, "specular": 1},
+                  "texture": "albedo.png"}},
+    {"name": "lamp", "shape": {"sphere": {"radius": 1}},
+     "material": {"color": [2, 2, 2], "unlit": true}})"));
+  ASSERT_EQ(s.objects.size(), 5u);
+
+  const Material& matte = s.objects[0].material;
+  EXPECT_FALSE(matte.unlit);
+  EXPECT_FALSE(matte.glossy.has_value());
+  expect_rgb(std::get<SolidColor>(matte.pattern).color, 0.5f, 0.25f, 1);
+
+  const Material& tiles = s.objects[1].material;
+  EXPECT_FALSE(tiles.unlit);
+  ASSERT_TRUE(tiles.glossy.has_value());
+  EXPECT_EQ(tiles.glossy->roughness, 0.3);  // the defaults
+  EXPECT_EQ(tiles.glossy->specular, 0.04);
+  expect_rgb(std::get<Checker>(tiles.pattern).colors[0], 1, 1, 1);
+
+  const Material& chrome = s.objects[2].material;
+  ASSERT_TRUE(chrome.glossy.has_value());
+  EXPECT_EQ(chrome.glossy->roughness, 1);
+  EXPECT_EQ(chrome.glossy->specular, 0);
+
+  const Material& shiny = s.objects[3].material;
+  EXPECT_FALSE(shiny.unlit);
+  ASSERT_TRUE(shiny.glossy.has_value());
+  EXPECT_EQ(shiny.glossy->roughness, 0.05);
+  EXPECT_EQ(shiny.glossy->specular, 1);
+  ASSERT_NE(std::get<Texture>(shiny.pattern).image, nullptr);
+
+  // Unlit colours are radiance and may exceed 1.
+  EXPECT_TRUE(s.objects[4].material.unlit);
+  expect_rgb(std::get<SolidColor>(s.objects[4].material.pattern).color, 2, 2, 2);
+}
+
+TEST_F(SceneFileTest, LightRenderSettings) {
+  auto render = [&](const std::string& settings) {
+    return load(R"({"camera": {"position": [0, 0, 0]}, "render": )" + settings + "}").render;
+  };
+  const RenderSettings defaults = render("{}");
+  EXPECT_EQ(defaults.light_source_delay, LightSourceDelay::kSurface);
+  EXPECT_TRUE(defaults.shadows);
+  const std::pair<const char*, LightSourceDelay> modes[] = {{"surface", LightSourceDelay::kSurface},
+                                                            {"camera", LightSourceDelay::kCamera},
+                                                            {"none", LightSourceDelay::kNone}};
+  for (const auto& [name, mode] : modes) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(render(fmt::format(R"({{"light_source_delay": "{}"}})", name)).light_source_delay,
+              mode);
+  }
+  EXPECT_FALSE(render(R"({"shadows": false})").shadows);
+  EXPECT_TRUE(render(R"({"shadows": true})").shadows);
+
+  const RenderSettings all = render(R"({"light_source_delay": "none", "shadows": false,
+                                        "tonemap": "filmic"})");
+  EXPECT_EQ(all.light_source_delay, LightSourceDelay::kNone);
+  EXPECT_FALSE(all.shadows);
+  EXPECT_EQ(all.tonemap, ToneMap::kFilmic);
+  EXPECT_TRUE(all.light_delay);
+}
+
 TEST_F(SceneFileTest, CommentsAreAllowedAndDoNotShiftLines) {
   const std::string text = R"(// a scene { with "braces" and quotes
 {
@@ -405,6 +569,23 @@ TEST_F(SceneFileTest, ColourRenderSettingsFromOverrides) {
                    "objects[0].material.blackbody.temperature", "greater than 0");
 }
 
+TEST_F(SceneFileTest, LightsFromOverrides) {
+  const Scene s = load(kOverrideScene,
+                       {R"(lights=[{"name":"sun","type":"directional"}])", "lights.0.irradiance=3",
+                        "render.light_source_delay=camera", "render.shadows=false",
+                        R"(objects.0.material={"color":[0.5,0.5,0.5],"unlit":false})"});
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(std::get<DirectionalLight>(s.lights[0].kind).irradiance, 3);
+  EXPECT_EQ(s.render.light_source_delay, LightSourceDelay::kCamera);
+  EXPECT_FALSE(s.render.shadows);
+  EXPECT_FALSE(s.objects.at(0).material.unlit);
+  expect_set_error(kOverrideScene,
+                   {R"(lights=[{"name":"lamp","type":"point"}])", "lights.0.intensity=-1"},
+                   "lights[0].intensity", "must be >= 0, got -1");
+  expect_set_error(kOverrideScene, {"render.light_source_delay=retarded"},
+                   "render.light_source_delay", "unknown mode \"retarded\"");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input: each error names the file, the line and the path
 
@@ -434,8 +615,9 @@ TEST_F(SceneFileTest, SyntaxErrors) {
 }
 
 TEST_F(SceneFileTest, UnknownKeys) {
-  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"lights\": []\n}", 3, "lights",
-               "unknown key \"lights\"");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"light\": []\n}", 3, "light",
+               "unknown key \"light\" (expected one of: $schema, camera, objects, lights, sky, "
+               "render)");
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n    \"fovy\": 60}\n}", 3, "camera.fovy",
                "expected one of: position, time");
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
@@ -569,8 +751,8 @@ TEST_F(SceneFileTest, ObjectNamesAndShapes) {
 TEST_F(SceneFileTest, MaterialsAndSky) {
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
     "material": {"color": [1, 1, 1],
-      "unlit": false}})"),
-               5, "objects[0].material.unlit", "lit materials are not supported yet");
+      "unlit": "no"}})"),
+               5, "objects[0].material.unlit", "must be true or false, got string \"no\"");
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
     "material": {"unlit": true}})"),
                4, "objects[0].material", "exactly one of: color, checker, texture");
@@ -712,7 +894,191 @@ TEST_F(SceneFileTest, BadColourRenderSettings) {
   expect_error(with_render(R"({"hue": true})"), 3, "render.hue", "must be an object");
   expect_error(with_render(R"({"tonemapping": "filmic"})"), 3, "render.tonemapping",
                "unknown key \"tonemapping\" (expected one of: relativity, light_delay, "
-               "exposure, doppler, searchlight, hue, tonemap)");
+               "exposure, doppler, searchlight, hue, tonemap, light_source_delay, shadows)");
+}
+
+// A lights array whose first element starts on line 3 of the scene.
+std::string with_light(const std::string& lights) {
+  return "{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"lights\": [" + lights + "]\n}";
+}
+
+TEST_F(SceneFileTest, BadLightPowerAndSize) {
+  expect_error(with_light(R"({"name": "a", "type": "point", "intensity": -1})"), 3,
+               "lights[0].intensity", "must be >= 0, got -1");
+  expect_error(with_light(R"({"name": "a", "type": "spot", "intensity": -0.5})"), 3,
+               "lights[0].intensity", "must be >= 0, got -0.5");
+  expect_error(with_light(R"({"name": "a", "type": "sphere", "radius": 1, "intensity": -2})"), 3,
+               "lights[0].intensity", "must be >= 0, got -2");
+  expect_error(with_light(R"({"name": "a", "type": "directional", "irradiance": -3})"), 3,
+               "lights[0].irradiance", "must be >= 0, got -3");
+  expect_error(with_light(R"({"name": "a", "type": "point", "intensity": "bright"})"), 3,
+               "lights[0].intensity", "must be a number, got string \"bright\"");
+  // The second light, on its own line, is the one blamed.
+  expect_error(with_light(R"({"name": "a", "type": "point"},
+    {"name": "b", "type": "sphere", "radius": -1})"),
+               4, "lights[1].radius", "must be greater than 0, got -1");
+  expect_error(with_light(R"({"name": "a", "type": "sphere", "radius": 0})"), 3, "lights[0].radius",
+               "must be greater than 0, got 0");
+  expect_error(with_light(R"({"name": "a",
+    "type": "sphere"})"),
+               3, "lights[0].radius", "required key is missing");
+}
+
+TEST_F(SceneFileTest, BadSpotAngles) {
+  for (const char* cone : {"0", "180", "200", "-10"}) {
+    SCOPED_TRACE(cone);
+    expect_error(with_light(fmt::format(R"({{"name": "a", "type": "spot", "cone": {}}})", cone)), 3,
+                 "lights[0].cone",
+                 fmt::format("must be between 0 and 180 degrees (both excluded), got {}", cone));
+  }
+  expect_error(with_light(R"({"name": "a", "type": "spot", "cone": 40,
+    "falloff": 25})"),
+               4, "lights[0].falloff", "must be from 0 to half the cone (20 degrees), got 25");
+  expect_error(with_light(R"({"name": "a", "type": "spot", "falloff": 31})"), 3,
+               "lights[0].falloff", "half the cone (30 degrees), got 31");
+  expect_error(with_light(R"({"name": "a", "type": "spot", "falloff": -1})"), 3,
+               "lights[0].falloff", "got -1");
+  expect_error(with_light(R"({"name": "a", "type": "spot", "direction": [0, 0, 0]})"), 3,
+               "lights[0].direction", "must not be the zero vector");
+  expect_error(with_light(R"({"name": "a", "type": "directional", "direction": [0, 0, 0]})"), 3,
+               "lights[0].direction", "must not be the zero vector");
+}
+
+TEST_F(SceneFileTest, BadLightMotion) {
+  expect_error(with_light(R"({"name": "a", "type": "point",
+    "velocity": [0, 0, 1]})"),
+               4, "lights[0].velocity", "speed 1 must be below the speed of light (1)");
+  expect_error(with_light(R"({"name": "a", "type": "directional", "velocity": [0.8, 0.8, 0]})"), 3,
+               "lights[0].velocity", "must be below the speed of light");
+  expect_error(with_light(R"({"name": "a", "type": "sphere", "radius": 1, "velocity": [2, 0, 0]})"),
+               3, "lights[0].velocity", "speed 2 must be below the speed of light (1)");
+  expect_error(with_light(R"({"name": "a", "type": "point", "position": [0, 0]})"), 3,
+               "lights[0].position", "array of 3 numbers");
+  expect_error(with_light(R"({"name": "a", "type": "point", "time": null})"), 3, "lights[0].time",
+               "must be a number, got null");
+}
+
+TEST_F(SceneFileTest, BadLightTypesNamesAndKeys) {
+  expect_error(with_light(R"({"name": "a", "type": "laser"})"), 3, "lights[0].type",
+               "unknown light type \"laser\" (expected one of: point, spot, directional, sphere)");
+  expect_error(with_light(R"({"name": "a", "type": "Point"})"), 3, "lights[0].type",
+               "unknown light type \"Point\"");
+  expect_error(with_light(R"({"name": "a", "type": 1})"), 3, "lights[0].type",
+               "must be a string, got number 1");
+  expect_error(with_light(R"({"name": "a"})"), 3, "lights[0].type", "required key is missing");
+  expect_error(with_light(R"({"type": "point"})"), 3, "lights[0].name", "required key is missing");
+  expect_error(with_light(R"({"name": "", "type": "point"})"), 3, "lights[0].name",
+               "must not be empty");
+  expect_error(with_light(R"({"name": "a", "type": "point"},
+    {"name": "a", "type": "spot"})"),
+               4, "lights[1].name", "duplicate light name \"a\" (also used by lights[0])");
+  // A light may share its name with an object.
+  EXPECT_EQ(error(R"({"camera": {"position": [0, 0, 5]},
+    "objects": [{"name": "a", "shape": {"sphere": {"radius": 1}}}],
+    "lights": [{"name": "a", "type": "point"}]})"),
+            "");
+
+  expect_error(with_light(R"({"name": "a", "type": "point",
+    "radius": 1})"),
+               4, "lights[0].radius",
+               "unknown key \"radius\" for a point light (expected one of: name, type, position, "
+               "time, velocity, color, blackbody, intensity)");
+  expect_error(with_light(R"({"name": "a", "type": "directional", "intensity": 1})"), 3,
+               "lights[0].intensity", "unknown key \"intensity\" for a directional light");
+  expect_error(with_light(R"({"name": "a", "type": "spot", "irradiance": 1})"), 3,
+               "lights[0].irradiance", "unknown key \"irradiance\" for a spot light");
+  expect_error(with_light(R"({"name": "a", "type": "sphere", "radius": 1, "cone": 30})"), 3,
+               "lights[0].cone", "unknown key \"cone\" for a sphere light");
+  expect_error(with_light(R"({"name": "a", "type": "point", "direction": [0, 0, -1]})"), 3,
+               "lights[0].direction", "unknown key \"direction\" for a point light");
+  expect_error(with_light(R"({"name": "a", "type": "point", "colour": [1, 1, 1]})"), 3,
+               "lights[0].colour", "unknown key \"colour\"");
+
+  expect_error(with_light(R"({"name": "a", "type": "point", "color": [1, 1, 1],
+    "blackbody": {"temperature": 3000}})"),
+               3, "lights[0]", "at most one of: color, blackbody (found color, blackbody)");
+  expect_error(with_light(R"({"name": "a", "type": "point", "color": [1, -1, 1]})"), 3,
+               "lights[0].color[1]", "must be >= 0, got -1");
+  expect_error(with_light(R"({"name": "a", "type": "point", "blackbody": {"temperature": 0}})"), 3,
+               "lights[0].blackbody.temperature", "must be greater than 0, got 0");
+  expect_error(with_light(R"({"name": "a", "type": "point", "blackbody": {}})"), 3,
+               "lights[0].blackbody.temperature", "required key is missing");
+  expect_error(
+      with_light(
+          R"({"name": "a", "type": "point", "blackbody": {"temperature": 3000, "luminance": 2}})"),
+      3, "lights[0].blackbody.luminance",
+      "unknown key \"luminance\" (expected one of: temperature)");
+
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"lights\": {}\n}", 3, "lights",
+               "must be an array of lights, got an object");
+  expect_error(with_light("1"), 3, "lights[0]", "must be an object, got number 1");
+}
+
+TEST_F(SceneFileTest, BadLitMaterials) {
+  expect_error(with_material(R"({"blackbody": {"temperature": 5000},
+      "unlit": false})"),
+               5, "objects[0].material.unlit",
+               "a blackbody material is an emitter and cannot be lit");
+  expect_error(with_material(R"({"unlit": false,
+      "spectrum": {"wavelengths": [400, 700], "values": [1, 1]}})"),
+               4, "objects[0].material.unlit", "a spectrum material is an emitter");
+  expect_error(with_material(R"({"color": [1,
+      1.5, 0.5], "unlit": false})"),
+               5, "objects[0].material.color[1]",
+               "must be at most 1 for a lit material (an albedo), got 1.5");
+  expect_error(with_material(R"({"unlit": false, "checker": {"size": 1,
+      "colors": [[1, 1, 1], [2, 0, 0]]}})"),
+               5, "objects[0].material.checker.colors[1][0]", "must be at most 1");
+  expect_error(with_material(R"({"color": [0.5, -0.5, 0.5], "unlit": false})"), 4,
+               "objects[0].material.color[1]", "must be >= 0, got -0.5");
+  expect_error(with_material(R"({"color": [1, 1, 1],
+      "glossy": {}})"),
+               5, "objects[0].material.glossy",
+               "a glossy layer needs a lit material (\"unlit\": false)");
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": true, "glossy": {}})"), 4,
+               "objects[0].material.glossy", "needs a lit material");
+  const std::string glossy = "objects[0].material.glossy";
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": false,
+      "glossy": {"roughness": 0}})"),
+               5, glossy + ".roughness", "must be greater than 0 and at most 1, got 0");
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": false,
+      "glossy": {"roughness": 1.5}})"),
+               5, glossy + ".roughness", "got 1.5");
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": false,
+      "glossy": {"specular": -0.1}})"),
+               5, glossy + ".specular", "must be at least 0 and at most 1, got -0.1");
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": false,
+      "glossy": {"specular": 2}})"),
+               5, glossy + ".specular", "got 2");
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": false,
+      "glossy": {"shine": 2}})"),
+               5, glossy + ".shine",
+               "unknown key \"shine\" (expected one of: roughness, specular)");
+  expect_error(with_material(R"({"color": [1, 1, 1], "unlit": false, "glossy": true})"), 4, glossy,
+               "must be an object");
+
+  // An EXR albedo with values above 1 is found when the texture loads; unlit, it is radiance.
+  Image bright;
+  bright.width = 1;
+  bright.height = 1;
+  bright.rgb = {0.5f, 2, 0.5f};
+  write_images(bright, std::nullopt, dir_ / "bright.exr");
+  expect_error(with_material(R"({"unlit": false,
+      "texture": "bright.exr"})"),
+               5, "objects[0].material.texture", "must have values from 0 to 1, found 0.5 to 2");
+  EXPECT_EQ(error(with_material(R"({"texture": "bright.exr"})")), "");
+}
+
+TEST_F(SceneFileTest, BadLightRenderSettings) {
+  expect_error(with_render(R"({"light_source_delay": "retarded"})"), 3, "render.light_source_delay",
+               "unknown mode \"retarded\" (expected one of: surface, camera, none)");
+  expect_error(with_render(R"({"shadows": true,
+    "light_source_delay": "Surface"})"),
+               4, "render.light_source_delay", "unknown mode \"Surface\"");
+  expect_error(with_render(R"({"light_source_delay": false})"), 3, "render.light_source_delay",
+               "must be a string, got boolean false");
+  expect_error(with_render(R"({"shadows": "yes"})"), 3, "render.shadows",
+               "must be true or false, got string \"yes\"");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -797,6 +1163,19 @@ std::string read_source_file(const std::string& relative) {
   return text.str();
 }
 
+// The lit example in the section on lights is a whole scene, and loads.
+TEST_F(SceneFileTest, DocumentedLightsExampleLoads) {
+  const std::string doc = read_source_file("docs/scene-format.md");
+  const std::size_t section = doc.find("## `lights[]`");
+  ASSERT_NE(section, std::string::npos);
+  const std::size_t start = doc.find("```jsonc\n", section);
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = doc.find("```", start + 9);
+  const Scene s = load(doc.substr(start + 9, end - start - 9));
+  EXPECT_EQ(s.lights.size(), 4u);
+  EXPECT_FALSE(s.objects.at(0).material.unlit);
+}
+
 TEST_F(SceneFileTest, DocumentedExampleLoads) {
   const std::string doc = read_source_file("docs/scene-format.md");
   const std::size_t start = doc.find("```jsonc\n");
@@ -839,7 +1218,8 @@ TEST(SceneSchema, ListsTheColourKeysAndModels) {
   const auto& defs = schema.at("$defs");
   const auto& render = defs.at("render").at("properties");
   EXPECT_EQ(keys_of(render), (std::vector<std::string>{"doppler", "exposure", "hue", "light_delay",
-                                                       "relativity", "searchlight", "tonemap"}));
+                                                       "light_source_delay", "relativity",
+                                                       "searchlight", "shadows", "tonemap"}));
   EXPECT_EQ(render.at("doppler").at("enum"),
             nlohmann::json::parse(R"(["spectral", "rgb3", "hue", "off"])"));
   EXPECT_EQ(render.at("doppler").at("default"), "spectral");
@@ -852,7 +1232,7 @@ TEST(SceneSchema, ListsTheColourKeysAndModels) {
   EXPECT_EQ(keys_of(render.at("hue").at("properties")), (std::vector<std::string>{"loop"}));
   EXPECT_NE(render.at("exposure").dump().find(R"({"const":"auto"})"), std::string::npos);
 
-  const auto& material = defs.at("material").at("properties");
+  const auto& material = defs.at("unlitMaterial").at("properties");
   EXPECT_EQ(keys_of(material), (std::vector<std::string>{"blackbody", "checker", "color",
                                                          "spectrum", "texture", "unlit"}));
   EXPECT_EQ(keys_of(material.at("blackbody").at("properties")),
@@ -860,7 +1240,7 @@ TEST(SceneSchema, ListsTheColourKeysAndModels) {
   EXPECT_EQ(material.at("blackbody").at("required"), nlohmann::json::parse(R"(["temperature"])"));
   EXPECT_EQ(keys_of(material.at("spectrum").at("properties")),
             (std::vector<std::string>{"values", "wavelengths"}));
-  EXPECT_EQ(defs.at("material").at("oneOf").size(), 5u);
+  EXPECT_EQ(defs.at("unlitMaterial").at("oneOf").size(), 5u);
 
   // And the format reference documents every one of them.
   const std::string doc = read_source_file("docs/scene-format.md");
@@ -868,6 +1248,58 @@ TEST(SceneSchema, ListsTheColourKeysAndModels) {
        {"`doppler`", "`searchlight`", "`hue`", "`tonemap`", "`\"auto\"`", "`blackbody`",
         "`spectrum`", "`temperature`", "`luminance`", "`wavelengths`", "`values`", "`chang1996`",
         "`rgb3`", "`reinhard`", "`filmic`", "design/colour.md"})
+    EXPECT_NE(doc.find(word), std::string::npos) << word;
+}
+
+// The schema names the same light types, light keys, lit-material keys and modes as the loader.
+TEST(SceneSchema, ListsTheLightKeysAndModes) {
+  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  const auto& defs = schema.at("$defs");
+  EXPECT_EQ(schema.at("properties").at("lights").at("items").at("$ref"), "#/$defs/light");
+  const std::vector<std::string> common = {"blackbody", "color", "name",    "position",
+                                           "time",      "type",  "velocity"};
+  auto with = [&](std::vector<std::string> extra) {
+    extra.insert(extra.end(), common.begin(), common.end());
+    std::sort(extra.begin(), extra.end());
+    return extra;
+  };
+  const std::pair<const char*, std::vector<std::string>> types[] = {
+      {"point", with({"intensity"})},
+      {"spot", with({"intensity", "direction", "cone", "falloff"})},
+      {"directional", with({"irradiance", "direction"})},
+      {"sphere", with({"intensity", "radius"})}};
+  const auto& one_of = defs.at("light").at("oneOf");
+  ASSERT_EQ(one_of.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& [type, keys] = types[i];
+    SCOPED_TRACE(type);
+    const std::string ref = one_of[i].at("$ref");
+    const auto& light = defs.at(ref.substr(ref.rfind('/') + 1));
+    EXPECT_EQ(keys_of(light.at("properties")), keys);
+    EXPECT_EQ(light.at("properties").at("type").at("const"), type);
+  }
+  EXPECT_EQ(defs.at("sphereLight").at("required"),
+            nlohmann::json::parse(R"(["name", "type", "radius"])"));
+
+  const auto& lit = defs.at("litMaterial").at("properties");
+  EXPECT_EQ(keys_of(lit),
+            (std::vector<std::string>{"checker", "color", "glossy", "texture", "unlit"}));
+  EXPECT_EQ(keys_of(lit.at("glossy").at("properties")),
+            (std::vector<std::string>{"roughness", "specular"}));
+  EXPECT_EQ(defs.at("material").at("oneOf").size(), 2u);
+
+  const auto& render = defs.at("render").at("properties");
+  EXPECT_EQ(render.at("light_source_delay").at("enum"),
+            nlohmann::json::parse(R"(["surface", "camera", "none"])"));
+  EXPECT_EQ(render.at("light_source_delay").at("default"), "surface");
+  EXPECT_EQ(render.at("shadows").at("default"), true);
+
+  const std::string doc = read_source_file("docs/scene-format.md");
+  for (const char* word :
+       {"`lights[]`", "`point`", "`spot`", "`directional`", "`sphere`", "`intensity`",
+        "`irradiance`", "`cone`", "`falloff`", "`radius`", "`glossy`", "`roughness`", "`specular`",
+        "`light_source_delay`", "`shadows`", "`surface`", "`camera`", "`none`",
+        "design/light-transport.md"})
     EXPECT_NE(doc.find(word), std::string::npos) << word;
 }
 

@@ -70,11 +70,12 @@ class SceneReader {
 
   Scene read(const json& document) {
     const Node root{&document, ""};
-    object(root, {"$schema", "camera", "objects", "sky", "render"});
+    object(root, {"$schema", "camera", "objects", "lights", "sky", "render"});
     if (Node schema = member(root, "$schema"); schema.value) string(schema);
     Scene scene;
     scene.camera = camera(member(root, "camera"));
     if (Node objects = member(root, "objects"); objects.value) read_objects(objects, scene);
+    if (Node lights = member(root, "lights"); lights.value) read_lights(lights, scene);
     if (Node sky_node = member(root, "sky"); sky_node.value) scene.sky = sky(sky_node);
     if (Node render_node = member(root, "render"); render_node.value)
       scene.render = render(render_node);
@@ -122,15 +123,18 @@ class SceneReader {
     return *n.value;
   }
 
-  // Checks that `n` is an object whose keys are all in `allowed`.
-  void object(const Node& n, const std::vector<std::string>& allowed) const {
+  // Checks that `n` is an object whose keys are all in `allowed`; `context` (" for a point
+  // light") qualifies the message about an unknown key.
+  void object(const Node& n, const std::vector<std::string>& allowed,
+              const std::string& context = "") const {
     const json& v = need(n);
     if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
     for (const auto& item : v.items()) {
       if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
       const std::string path = json_member_path(n.path, item.key());
       fail_at(path, lines_.key_line(path),
-              fmt::format("unknown key \"{}\" (expected one of: {})", item.key(), join(allowed)));
+              fmt::format("unknown key \"{}\"{} (expected one of: {})", item.key(), context,
+                          join(allowed)));
     }
   }
 
@@ -235,6 +239,27 @@ class SceneReader {
         fail(component, fmt::format("is too large for a colour, got {}", d));
     }
     return {c[0], c[1], c[2]};
+  }
+
+  // The colour of a lit surface: the fraction of the light it reflects, each component in
+  // [0, 1].
+  Rgb albedo(const Node& n) const {
+    const Rgb c = color(n);
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Node component = element(n, i);
+      if (const double d = number(component); d > 1)
+        fail(component, fmt::format("must be at most 1 for a lit material (an albedo), got {}", d));
+    }
+    return c;
+  }
+
+  // A number in [lo, hi], or in (lo, hi] when `open_below`.
+  double in_range(const Node& n, double lo, double hi, bool open_below = false) const {
+    const double d = number(n);
+    if (open_below ? !(d > lo && d <= hi) : !(d >= lo && d <= hi))
+      fail(n, fmt::format("must be {} {} and at most {}, got {}",
+                          open_below ? "greater than" : "at least", lo, hi, d));
+    return d;
   }
 
   Mat3 rotation(const Node& n) const {
@@ -344,13 +369,23 @@ class SceneReader {
 
   Material material(const Node& n, std::size_t index) {
     const std::string kind =
-        one_of(n, {"color", "checker", "texture", "blackbody", "spectrum"}, {"unlit"});
+        one_of(n, {"color", "checker", "texture", "blackbody", "spectrum"}, {"unlit", "glossy"});
     Material m;
-    if (Node unlit = member(n, "unlit"); unlit.value && !boolean(unlit))
-      fail(unlit, "lit materials are not supported yet; leave \"unlit\" out or set it to true");
+    const Node unlit = member(n, "unlit");
+    if (unlit.value) m.unlit = boolean(unlit);
+    if (!m.unlit && (kind == "blackbody" || kind == "spectrum"))
+      fail(unlit, fmt::format("a {} material is an emitter and cannot be lit (a lit material's "
+                              "albedo is a color, checker or texture)",
+                              kind));
+    if (Node glossy = member(n, "glossy"); glossy.value) {
+      if (m.unlit) fail(glossy, "a glossy layer needs a lit material (\"unlit\": false)");
+      m.glossy = glossy_layer(glossy);
+    }
+    // A lit surface reflects a fraction of the light: its colours are albedos, in [0, 1].
+    auto surface_color = [&](const Node& c) { return m.unlit ? color(c) : albedo(c); };
     const Node body = member(n, kind.c_str());
     if (kind == "color") {
-      m.pattern = SolidColor{color(body)};
+      m.pattern = SolidColor{surface_color(body)};
     } else if (kind == "checker") {
       object(body, {"size", "colors"});
       Checker checker;
@@ -358,8 +393,8 @@ class SceneReader {
       const Node colors = member(body, "colors");
       if (!need(colors).is_array() || colors.value->size() != 2)
         fail(colors, fmt::format("must be an array of 2 colours, got {}", describe(*colors.value)));
-      checker.colors[0] = color(element(colors, 0));
-      checker.colors[1] = color(element(colors, 1));
+      checker.colors[0] = surface_color(element(colors, 0));
+      checker.colors[1] = surface_color(element(colors, 1));
       m.pattern = checker;
     } else if (kind == "blackbody") {
       object(body, {"temperature", "luminance"});
@@ -374,6 +409,103 @@ class SceneReader {
       m.pattern = Texture{};
     }
     return m;
+  }
+
+  Glossy glossy_layer(const Node& n) const {
+    object(n, {"roughness", "specular"});
+    Glossy g;
+    if (Node r = member(n, "roughness"); r.value) g.roughness = in_range(r, 0, 1, true);
+    if (Node f = member(n, "specular"); f.value) g.specular = in_range(f, 0, 1);
+    return g;
+  }
+
+  // --- Lights -----------------------------------------------------------------------------
+
+  void read_lights(const Node& n, Scene& scene) const {
+    if (!n.value->is_array())
+      fail(n, fmt::format("must be an array of lights, got {}", describe(*n.value)));
+    std::map<std::string, std::string> names;  // name -> path of the light that has it
+    for (std::size_t i = 0; i < n.value->size(); ++i) {
+      const Node l = element(n, i);
+      scene.lights.push_back(read_light(l));
+      const auto [it, added] = names.emplace(scene.lights.back().name, l.path);
+      if (!added)
+        fail(member(l, "name"),
+             fmt::format("duplicate light name \"{}\" (also used by {})", it->first, it->second));
+    }
+  }
+
+  Light read_light(const Node& n) const {
+    const json& v = need(n);
+    if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
+    const Node type = member(n, "type");
+    const std::string kind = string(type);
+    std::vector<std::string> allowed = {"name",     "type",  "position", "time",
+                                        "velocity", "color", "blackbody"};
+    if (kind == "point") {
+      allowed.insert(allowed.end(), {"intensity"});
+    } else if (kind == "spot") {
+      allowed.insert(allowed.end(), {"intensity", "direction", "cone", "falloff"});
+    } else if (kind == "directional") {
+      allowed.insert(allowed.end(), {"irradiance", "direction"});
+    } else if (kind == "sphere") {
+      allowed.insert(allowed.end(), {"intensity", "radius"});
+    } else {
+      fail(type, fmt::format("unknown light type \"{}\" (expected one of: point, spot, "
+                             "directional, sphere)",
+                             kind));
+    }
+    object(n, allowed, fmt::format(" for a {} light", kind));
+
+    Light l;
+    const Node name = member(n, "name");
+    l.name = string(name);
+    if (l.name.empty()) fail(name, "must not be empty");
+    if (Node p = member(n, "position"); p.value) l.world_line.position = vec3(p);
+    if (Node t = member(n, "time"); t.value) l.world_line.time = number(t);
+    if (Node vel = member(n, "velocity"); vel.value) l.world_line.velocity = velocity(vel);
+
+    const Node color_node = member(n, "color"), blackbody = member(n, "blackbody");
+    if (color_node.value && blackbody.value)
+      fail(n, "must have at most one of: color, blackbody (found color, blackbody)");
+    if (color_node.value) l.spectrum.emission = color(color_node);
+    if (blackbody.value) {
+      object(blackbody, {"temperature"});
+      Blackbody b;
+      b.temperature_k = positive(member(blackbody, "temperature"));
+      l.spectrum.emission = b;
+    }
+    if (Node i = member(n, "intensity"); i.value) l.intensity = non_negative(i);
+
+    if (kind == "point") {
+      l.kind = PointLight{};
+    } else if (kind == "spot") {
+      SpotLight s;
+      if (Node d = member(n, "direction"); d.value) s.direction = direction(d);
+      if (Node cone = member(n, "cone"); cone.value) {
+        s.cone_degrees = number(cone);
+        if (!(s.cone_degrees > 0 && s.cone_degrees < 180))
+          fail(cone, fmt::format("must be between 0 and 180 degrees (both excluded), got {}",
+                                 s.cone_degrees));
+      }
+      // The default soft edge, 5 degrees, shrinks to fit a cone narrower than 10 degrees.
+      s.falloff_degrees = std::min(s.falloff_degrees, s.cone_degrees / 2);
+      if (Node f = member(n, "falloff"); f.value) {
+        s.falloff_degrees = number(f);
+        if (!(s.falloff_degrees >= 0 && s.falloff_degrees <= s.cone_degrees / 2))
+          fail(f, fmt::format("must be from 0 to half the cone ({} degrees), got {}",
+                              s.cone_degrees / 2, s.falloff_degrees));
+      }
+      l.kind = s;
+    } else if (kind == "directional") {
+      DirectionalLight d;
+      if (Node dir = member(n, "direction"); dir.value) d.direction = direction(dir);
+      if (Node e = member(n, "irradiance"); e.value) d.irradiance = non_negative(e);
+      l.kind = d;
+    } else {
+      l.kind = SphereLight{positive(member(n, "radius"))};
+    }
+    return l;
   }
 
   EmissionSpectrum emission_spectrum(const Node& n) const {
@@ -434,8 +566,8 @@ class SceneReader {
   }
 
   RenderSettings render(const Node& n) const {
-    object(n,
-           {"relativity", "light_delay", "exposure", "doppler", "searchlight", "hue", "tonemap"});
+    object(n, {"relativity", "light_delay", "exposure", "doppler", "searchlight", "hue", "tonemap",
+               "light_source_delay", "shadows"});
     RenderSettings r;
     if (Node v = member(n, "relativity"); v.value) r.relativity = boolean(v);
     if (Node v = member(n, "light_delay"); v.value) r.light_delay = boolean(v);
@@ -464,19 +596,27 @@ class SceneReader {
       r.tonemap = choice<ToneMap>(v, {{"clamp", ToneMap::kClamp},
                                       {"reinhard", ToneMap::kReinhard},
                                       {"filmic", ToneMap::kFilmic}});
+    if (Node v = member(n, "light_source_delay"); v.value)
+      r.light_source_delay = choice<LightSourceDelay>(v,
+                                                      {{"surface", LightSourceDelay::kSurface},
+                                                       {"camera", LightSourceDelay::kCamera},
+                                                       {"none", LightSourceDelay::kNone}},
+                                                      "mode");
+    if (Node v = member(n, "shadows"); v.value) r.shadows = boolean(v);
     return r;
   }
 
-  // One of a fixed set of names.
+  // One of a fixed set of names; `noun` names what they are in the message.
   template <class T>
-  T choice(const Node& n, const std::vector<std::pair<std::string, T>>& names) const {
+  T choice(const Node& n, const std::vector<std::pair<std::string, T>>& names,
+           const char* noun = "model") const {
     const std::string given = string(n);
     std::vector<std::string> known;
     for (const auto& [name, value] : names) {
       if (name == given) return value;
       known.push_back(name);
     }
-    fail(n, fmt::format("unknown model \"{}\" (expected one of: {})", given, join(known)));
+    fail(n, fmt::format("unknown {} \"{}\" (expected one of: {})", noun, given, join(known)));
   }
 
   // --- Files ------------------------------------------------------------------------------
@@ -522,11 +662,25 @@ class SceneReader {
       }
       auto& image = images[key];
       if (!image) image = load(a, [&] { return load_image_file(a.file); });
-      if (a.kind == Asset::kTexture)
-        std::get<Texture>(scene.objects[a.object].material.pattern).image = image;
-      else
+      if (a.kind == Asset::kTexture) {
+        Material& material = scene.objects[a.object].material;
+        if (!material.unlit) check_albedo(a, *image);
+        std::get<Texture>(material.pattern).image = image;
+      } else {
         std::get<SkyImage>(scene.sky.pattern).image = image;
+      }
     }
+  }
+
+  // A lit material's texture is an albedo: every value in [0, 1] (PNG and JPEG always are; an
+  // EXR need not be).
+  void check_albedo(const Asset& a, const Image& image) const {
+    const auto [lo, hi] = std::minmax_element(image.rgb.begin(), image.rgb.end());
+    if (lo != image.rgb.end() && (*lo < 0 || *hi > 1))
+      fail_at(a.path, lines_.value_line(a.path),
+              fmt::format("{}: the texture of a lit material is an albedo and must have values "
+                          "from 0 to 1, found {} to {}",
+                          a.file.string(), *lo, *hi));
   }
 
   const fs::path& file_;
