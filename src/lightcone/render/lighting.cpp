@@ -102,7 +102,7 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     out.doppler = k_surface.t / k_light.t;
     out.doppler_power = 2;  // a plane wave's irradiance scales as D^2
     const double cos_i = dot(normal, out.direction_to_light);
-    if (cos_i <= 0) return false;
+    if (!(cos_i > 0)) return false;
     out.weight = sun->irradiance * cos_i;
     if (settings.shadows) {
       // Backward along the light's direction, as far as shadow rays are bounded.
@@ -146,7 +146,8 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
   out.doppler = leg.doppler;
   out.doppler_power = 4;
   const double cos_i = dot(normal, out.direction_to_light);
-  if (cos_i <= 0) return false;
+  // A light at the surface point itself (zero distance) has no direction: it lights nothing.
+  if (!(cos_i > 0) || !(leg.distance > 0)) return false;
 
   if (const auto* spot = std::get_if<SpotLight>(&light.kind)) {
     const double angle =

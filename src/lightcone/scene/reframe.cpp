@@ -28,6 +28,13 @@ Scene describe_in_frame(const Scene& scene, const Vec3& beta) {
     o.rotation = wigner_rotation(o.world_line.velocity, beta).transposed() * o.rotation;
     o.world_line = reframe_line(o.world_line, beta);
   }
+  for (Light& light : out.lights) {
+    const Mat3 turn = wigner_rotation(light.world_line.velocity, beta).transposed();
+    if (auto* spot = std::get_if<SpotLight>(&light.kind)) spot->direction = turn * spot->direction;
+    if (auto* sun = std::get_if<DirectionalLight>(&light.kind))
+      sun->direction = turn * sun->direction;
+    light.world_line = reframe_line(light.world_line, beta);
+  }
   Camera& cam = out.camera;
   const Mat3 camera_turn = wigner_rotation(cam.world_line.velocity, beta).transposed();
   cam.forward = camera_turn * cam.forward;

@@ -9,7 +9,8 @@ namespace lightcone {
 
 // Every world-line's reference event and velocity are transformed; every rest-frame
 // orientation (object rotations, camera forward/up, sky rotation) is corrected by the Wigner
-// rotation between the pure boost from W and the pure boost from W' of the body's velocity.
+// rotation between the pure boost from W and the pure boost from W' of the body's velocity
+// (lights' spot axes and directions included).
 Scene describe_in_frame(const Scene& scene, const Vec3& beta);
 
 // The Wigner rotation W with (rest coordinates via the pure boost from W) =
