@@ -4,6 +4,7 @@
 //   Swarm throughput vs StaticStreet throughput       (target >= 1/3)
 //   Memory/instances:1000 vs Memory/instances:1       (acceleration + mesh bytes)
 //   StreetColour/spectral vs StreetColour/off         (spectral Doppler cost, target <= 1.5x)
+//   StreetLit/surface vs StreetLit/camera             (exact light delay cost, target <= 1.5x)
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -124,6 +125,25 @@ BENCHMARK(BM_StreetColour)
     ->Arg(0)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3)
+    ->UseRealTime();
+
+// The street at night at 0.8c, eight point lamps with shadows: the exact (surface) light delay
+// against seed 004's camera-centric approximation.
+void BM_StreetLit(benchmark::State& state) {
+  SceneLoadReport report;
+  Scene s =
+      load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/street-lit.json",
+                      {"camera.width=1920", "camera.height=1080", "camera.samples=1"}, report);
+  s.render.light_source_delay =
+      state.range(0) != 0 ? LightSourceDelay::kSurface : LightSourceDelay::kCamera;
+  render_and_count(state, s);
+}
+BENCHMARK(BM_StreetLit)
+    ->ArgName("surface")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2)
     ->UseRealTime();
 
 void BM_StaticStreet(benchmark::State& state) {
