@@ -87,7 +87,7 @@ Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
 }
 
 bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
-                        const Vec4& surface_trace, const Vec3& surface_velocity, const Vec3& normal,
+                        const Vec3& surface_velocity, const Vec3& normal,
                         const std::array<double, 2>& light_sample, Incoming& out) const {
   const Light& light = *rl.light;
   const RenderSettings& settings = scene_.scene->render;
@@ -106,11 +106,9 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     out.weight = sun->irradiance * cos_i;
     if (settings.shadows) {
       // Backward along the light's direction, as far as shadow rays are bounded.
-      const Vec4 k_trace = scene_.world_to_trace.linear * k_world;
-      const Vec4 back = (-1.0 / k_trace.t) * k_trace;
-      const double reach = surface_trace.t - scene_.shadow_time_min;
-      if (reach > 0 && tracer_.occluded(surface_trace, -1.0 * back, kShadowEpsilon, reach))
-        return false;
+      const Vec4 back = (-1.0 / k_world.t) * k_world;
+      const double reach = surface_world.t - scene_.shadow_time_min;
+      if (reach > 0 && tracer_.occluded(surface_world, back, kShadowEpsilon, reach)) return false;
     }
     return true;
   }
@@ -163,12 +161,9 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
   if (intensity <= 0) return false;
   out.weight = intensity * cos_i / (leg.distance * leg.distance);
 
-  if (settings.shadows) {
-    const Vec4 emission_trace = scene_.world_to_trace(emission);
-    if (tracer_.occluded(surface_trace, emission_trace - surface_trace, kShadowEpsilon,
-                         1 - kShadowEpsilon))
-      return false;
-  }
+  if (settings.shadows &&
+      tracer_.occluded(surface_world, emission - surface_world, kShadowEpsilon, 1 - kShadowEpsilon))
+    return false;
   return true;
 }
 
@@ -202,8 +197,7 @@ LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
 
   for (const ResolvedLight& light : lights_) {
     Incoming in;
-    if (!incoming(light, surface_world, surface_trace, surface_velocity, normal, light_sample, in))
-      continue;
+    if (!incoming(light, surface_world, surface_velocity, normal, light_sample, in)) continue;
     const double gloss = material.glossy ? glossy_reflectance(*material.glossy, normal,
                                                               in.direction_to_light, to_camera)
                                          : 0.0;

@@ -40,9 +40,8 @@ class Lighting {
     int doppler_power = 4;    // integrated irradiance scales as D^power (D^(power+1) spectral)
   };
 
-  bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec4& surface_trace,
-                const Vec3& surface_velocity, const Vec3& normal,
-                const std::array<double, 2>& light_sample, Incoming& out) const;
+  bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec3& surface_velocity,
+                const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out) const;
 
   const ResolvedScene& scene_;
   const Tracer& tracer_;

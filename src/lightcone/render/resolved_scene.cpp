@@ -139,11 +139,7 @@ ResolvedScene resolve_scene(const Scene& scene) {
   r.trace_to_world = invert(r.world_to_trace);
 
   r.bodies.reserve(scene.objects.size());
-  struct Centre {
-    TraceWorldLine line;
-    double radius;
-  };
-  std::vector<Centre> centres;
+  std::vector<double> radii;
   for (const Object& object : scene.objects) {
     const AffineMap4 trace_to_body =
         compose(body_frame_map(settings, object.world_line), r.trace_to_world);
@@ -166,7 +162,7 @@ ResolvedScene resolve_scene(const Scene& scene) {
     const TraceWorldLine centre_line = trace_world_line(trace_to_body, rest_centre);
     body.velocity = centre_line.velocity;
     r.bodies.push_back(body);
-    centres.push_back({centre_line, radius});
+    radii.push_back(radius);
   }
 
   WorldLine sky_line;
@@ -220,13 +216,43 @@ ResolvedScene resolve_scene(const Scene& scene) {
         retarded_delay(line.position_at_zero, line.velocity) + extent / (1 - speed);
     light_reach = std::max({light_reach, to_surfaces, to_camera});
   }
-  r.shadow_time_min = -(s_far + light_reach) * (1 + 1e-9) - 1e-9;
+  // The same window in W: events with F-times in [t_min, 0] within a ball of radius reach_f
+  // around the F origin (surfaces, lights and the segments between them) have W-times
+  // t_obs + a t_F + b.x_F.
+  const double t_min = -(s_far + light_reach) * (1 + 1e-9) - 1e-9;
+  double reach_f = s_far - t_min;
+  for (const Light& light : scene.lights) {
+    if (std::holds_alternative<DirectionalLight>(light.kind)) continue;
+    const TraceWorldLine line =
+        trace_world_line(compose(body_frame_map(settings, light.world_line), r.trace_to_world), {});
+    const double extent = std::holds_alternative<SphereLight>(light.kind)
+                              ? std::get<SphereLight>(light.kind).radius
+                              : 0;
+    reach_f =
+        std::max(reach_f, length(line.position_at_zero) + length(line.velocity) * -t_min + extent);
+  }
+  const Mat4& to_world = r.trace_to_world.linear;
+  const double a = to_world.m[0][0];
+  const double b = length(Vec3{to_world.m[0][1], to_world.m[0][2], to_world.m[0][3]});
+  r.shadow_time_min = r.observation_event.t + a * t_min - b * reach_f;
+  r.shadow_time_max = r.observation_event.t + b * reach_f;
   for (std::size_t i = 0; i < r.bodies.size(); ++i) {
-    Bounds3& b = r.bodies[i].shadow_bounds;
-    b = empty_bounds();
-    const Centre& c = centres[i];
-    expand(b, c.line.position_at_zero, c.radius);
-    expand(b, c.line.position_at_zero + c.line.velocity * r.shadow_time_min, c.radius);
+    ResolvedBody& body = r.bodies[i];
+    const Object& object = *body.object;
+    const AffineMap4 world_to_body = body_frame_map(settings, object.world_line);
+    const Mat3 to_shape =
+        Mat3::diagonal(component_div({1, 1, 1}, object.scale)) * object.rotation.transposed();
+    body.shadow_origin = to_shape * world_to_body.offset.x;
+    body.shadow_time_column = to_shape * time_column(world_to_body.linear);
+    body.shadow_spatial = to_shape * world_to_body.linear.spatial();
+    const Bounds3 local = shape_bounds(object.shape);
+    const Vec3 rest_centre =
+        object.rotation * component_mul(object.scale, (local.lower + local.upper) * 0.5);
+    const TraceWorldLine centre = trace_world_line(world_to_body, rest_centre);
+    Bounds3& bounds = body.shadow_bounds;
+    bounds = empty_bounds();
+    for (double t : {r.shadow_time_min, r.shadow_time_max})
+      expand(bounds, centre.position_at_zero + centre.velocity * t, radii[i]);
   }
   return r;
 }

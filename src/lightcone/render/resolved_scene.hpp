@@ -32,9 +32,16 @@ struct ResolvedBody {
   Vec3 time_column;
   Vec3 ray_offset;  // time_column * ray_time
   Mat3 spatial;
-  // Conservative bounds in F of every point where a camera ray can meet the body, and of every
-  // point it occupies at F-times in [ResolvedScene::shadow_time_min, 0] (for shadow rays).
+  // Conservative bounds in F of every point where a camera ray can meet the body.
   Bounds3 trace_bounds;
+  // Shadow rays are traced in the world frame W, where scenes usually keep most bodies at rest
+  // (so their bounds need no sweep): shape coordinates of the W event (t, x) are
+  // shadow_origin + shadow_time_column t + shadow_spatial x, and shadow_bounds holds every
+  // point the body occupies at W-times in [ResolvedScene::shadow_time_min,
+  // ResolvedScene::shadow_time_max].
+  Vec3 shadow_origin;
+  Vec3 shadow_time_column;
+  Mat3 shadow_spatial;
   Bounds3 shadow_bounds;
   Vec3 velocity;  // in F, for the Doppler factor
 
@@ -44,6 +51,12 @@ struct ResolvedBody {
   }
   Vec3 shape_vector(const Vec4& direction) const {
     return time_column * direction.t + spatial * direction.x;
+  }
+  Vec3 shadow_shape_point(const Vec4& world_event) const {
+    return shadow_origin + shadow_time_column * world_event.t + shadow_spatial * world_event.x;
+  }
+  Vec3 shadow_shape_vector(const Vec4& world_direction) const {
+    return shadow_time_column * world_direction.t + shadow_spatial * world_direction.x;
   }
 };
 
@@ -67,9 +80,9 @@ struct ResolvedScene {
   Vec3 sky_time_column;
   Mat3 sky_spatial;
   Vec3 sky_velocity;  // in F
-  // Shadow rays (segments between surface events and light events) stay within F-times
-  // [shadow_time_min, 0]; see resolve_scene.
-  double shadow_time_min = 0;
+  // Shadow rays (segments between surface events and light events, in W) stay within W-times
+  // [shadow_time_min, shadow_time_max]; see resolve_scene.
+  double shadow_time_min = 0, shadow_time_max = 0;
 
   // Doppler factor nu_camera / nu_emitter for light arriving along look direction u from an
   // emitter moving with `velocity` in F (1 for the classical picture).

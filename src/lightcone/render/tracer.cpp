@@ -214,10 +214,13 @@ struct Tracer::Impl {
     args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.upper.z), INFINITY);
   }
 
-  ShapeHit intersect(unsigned index, const Vec4& origin, const Vec4& direction, double tnear,
-                     double tfar, RTCIntersectContext* context) const {
+  // `origin` and `direction` are in F for camera rays, in W for shadow rays.
+  ShapeHit intersect(unsigned index, bool shadow, const Vec4& origin, const Vec4& direction,
+                     double tnear, double tfar, RTCIntersectContext* context) const {
     const ResolvedBody& body = scene.bodies[index];
-    const ShapeRay ray{body.shape_point(origin), body.shape_vector(direction)};
+    const ShapeRay ray =
+        shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
+               : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
     ShapeHit hit;
     double s = 0;
     struct Visitor {
@@ -259,8 +262,9 @@ struct Tracer::Impl {
     const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const ShapeHit hit = ref->impl->intersect(ref->index, context->origin, context->direction,
-                                              rh->ray.tnear, rh->ray.tfar, args->context);
+    const ShapeHit hit =
+        ref->impl->intersect(ref->index, ref->shadow, context->origin, context->direction,
+                             rh->ray.tnear, rh->ray.tfar, args->context);
     if (!(hit.s < rh->ray.tfar)) return;
     rh->ray.tfar = static_cast<float>(hit.s);
     rh->hit.geomID = args->geomID;
@@ -275,8 +279,9 @@ struct Tracer::Impl {
     const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
     auto* ray = reinterpret_cast<RTCRay*>(args->ray);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const ShapeHit hit = ref->impl->intersect(ref->index, context->origin, context->direction,
-                                              ray->tnear, ray->tfar, args->context);
+    const ShapeHit hit =
+        ref->impl->intersect(ref->index, ref->shadow, context->origin, context->direction,
+                             ray->tnear, ray->tfar, args->context);
     if (hit.s < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
   }
 };
@@ -327,8 +332,8 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
     hit.shape_normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
                              mesh.positions[tri[2]] - mesh.positions[tri[0]]);
   } else {
-    const ShapeHit exact =
-        impl_->intersect(index, context.origin, context.direction, 0, kInfinity, &context.embree);
+    const ShapeHit exact = impl_->intersect(index, false, context.origin, context.direction, 0,
+                                            kInfinity, &context.embree);
     hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
     hit.shape_point = ray.origin + ray.direction * hit.s;
     // Points on flat faces are put exactly on the face, so that procedural patterns (a checker

@@ -34,8 +34,9 @@ class Tracer {
   std::optional<Hit> trace(const Vec3& u) const;
 
   // Whether a body blocks the spacetime segment origin + sigma direction, sigma in
-  // (t_near, t_far), with events and direction in F (a shadow ray: its events must lie within
-  // F-times [ResolvedScene::shadow_time_min, 0]). Bodies are met where they are at each event.
+  // (t_near, t_far), with events and direction in the world frame W (a shadow ray: its events
+  // must lie within W-times [ResolvedScene::shadow_time_min, shadow_time_max]). Bodies are met
+  // where they are at each event.
   bool occluded(const Vec4& origin, const Vec4& direction, double t_near, double t_far) const;
 
   // Bytes Embree holds for the acceleration structures (for memory benchmarks).
