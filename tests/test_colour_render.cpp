@@ -22,6 +22,7 @@
 #include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 #include "lightcone/scene/reframe.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -32,16 +33,7 @@ double head_on_doppler(double beta) {
   return std::sqrt((1 + beta) / (1 - beta));
 }
 
-Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
-                   Material material) {
-  Object o;
-  o.name = name;
-  o.shape = std::move(shape);
-  o.world_line.position = position;
-  o.world_line.velocity = velocity;
-  o.material = std::move(material);
-  return o;
-}
+using test::make_object;
 
 Material checker(double size, Rgb a, Rgb b) {
   return {Checker{size, {a, b}}, true};

@@ -18,22 +18,14 @@
 #include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 #include "lightcone/scene/reframe.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
-                   Material material) {
-  Object o;
-  o.name = name;
-  o.shape = std::move(shape);
-  o.world_line.position = position;
-  o.world_line.velocity = velocity;
-  o.material = std::move(material);
-  return o;
-}
+using test::make_object;
 
 // A lit (Lambertian) material: the pattern is the albedo.
 Material lit(Rgb albedo) {

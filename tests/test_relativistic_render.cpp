@@ -12,6 +12,7 @@
 #include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 #include "lightcone/scene/reframe.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -25,16 +26,7 @@ std::shared_ptr<Mesh> tetrahedron() {
   return m;
 }
 
-Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
-                   Material material) {
-  Object o;
-  o.name = name;
-  o.shape = std::move(shape);
-  o.world_line.position = position;
-  o.world_line.velocity = velocity;
-  o.material = std::move(material);
-  return o;
-}
+using test::make_object;
 
 Material checker(double size, Rgb a, Rgb b) {
   return {Checker{size, {a, b}}, true};

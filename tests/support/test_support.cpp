@@ -19,6 +19,17 @@ namespace lightcone::test {
 
 namespace fs = std::filesystem;
 
+Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
+                   Material material) {
+  Object o;
+  o.name = name;
+  o.shape = std::move(shape);
+  o.world_line.position = position;
+  o.world_line.velocity = velocity;
+  o.material = std::move(material);
+  return o;
+}
+
 fs::path fresh_temp_dir(const std::string& name) {
   static std::atomic<int> counter{0};
   const fs::path dir = fs::temp_directory_path() / ("lightcone-test-" + std::to_string(getpid()) +

@@ -8,6 +8,10 @@
 
 namespace lightcone::test {
 
+// An object with a shape, a world-line through `position` at t = 0, and a material.
+Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
+                   Material material);
+
 // A fresh, empty folder under the system's temporary folder.
 std::filesystem::path fresh_temp_dir(const std::string& name);
 

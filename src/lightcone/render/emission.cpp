@@ -8,16 +8,7 @@ namespace {
 // The rest colour of a spectrum: its XYZ by the 1 nm quadrature, in linear sRGB.
 template <class Spectrum>
 LinearRgb rest_colour(const Spectrum& spectrum) {
-  Xyz sum;
-  for (int lambda = static_cast<int>(kCieMinWavelength); lambda <= kCieMaxWavelength; ++lambda) {
-    const Xyz c = cie_cmf(lambda);
-    const double l = spectrum(lambda);
-    sum.x += l * c.x;
-    sum.y += l * c.y;
-    sum.z += l * c.z;
-  }
-  const double n = 1.0 / cie_y_integral();
-  return linear_srgb_from_xyz({sum.x * n, sum.y * n, sum.z * n});
+  return linear_srgb_from_xyz(xyz_from_spectrum(spectrum));
 }
 
 }  // namespace
