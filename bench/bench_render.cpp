@@ -73,6 +73,8 @@ Scene swarm(int count, bool relativity, int width = 1920, int height = 1080) {
   s.camera.height = height;
   s.camera.fov_degrees = 70;
   s.render.relativity = relativity;
+  s.render.doppler = DopplerModel::kOff;  // geometry only, like the street comparison
+  s.render.searchlight = SearchlightModel::kOff;
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < count; ++i) {
