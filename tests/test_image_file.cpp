@@ -12,6 +12,7 @@
 
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -21,17 +22,13 @@ namespace fs = std::filesystem;
 class ImageFileTest : public testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("lightcone-image-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::fresh_temp_dir(testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& name, const std::string& content) {
     const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << content;
+    test::write_text(path, content);
     return path;
   }
 

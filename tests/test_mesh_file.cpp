@@ -14,6 +14,7 @@
 
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/mesh_file.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -23,17 +24,13 @@ namespace fs = std::filesystem;
 class MeshFileTest : public testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("lightcone-mesh-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = test::fresh_temp_dir(testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const std::string& name, const std::string& content) {
     const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << content;
+    test::write_text(path, content);
     return path;
   }
 
