@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "lightcone/io/image_file.hpp"
@@ -81,7 +82,21 @@ int run_render(const RenderArgs& a) {
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
   require_writable_target("-o", a.png);
   if (a.exr) require_writable_target("--exr", *a.exr);
-  const Scene scene = load(a.scene, overrides);
+  const Scene scene = [&] {
+    try {
+      return load(a.scene, overrides);
+    } catch (const InputError& e) {
+      // --width, --height and --samples travel as overrides; name the option the user typed.
+      const std::string message = e.what();
+      for (const auto& [option, path, given] :
+           {std::tuple{"--width", "--set camera.width:", a.width.has_value()},
+            std::tuple{"--height", "--set camera.height:", a.height.has_value()},
+            std::tuple{"--samples", "--set camera.samples:", a.samples.has_value()}})
+        if (given && message.rfind(path, 0) == 0)
+          throw InputError(std::string(option) + ":" + message.substr(std::string(path).size()));
+      throw;
+    }
+  }();
 
   RenderStats stats;
   Image image;
