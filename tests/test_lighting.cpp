@@ -213,6 +213,27 @@ TEST(StaticLighting, DirectionalLightIsItsIrradianceTimesTheCosine) {
   }
 }
 
+// A plane wave's irradiance scales as D^2 (its energy density does): sunlight falling straight
+// down on a floor rising toward the sun at beta, seen from straight above by a camera at rest,
+// is brighter than the floor at rest by D^2 (irradiance in the floor's frame) times D^4 (the
+// reflected radiance beamed to the camera, which the floor also approaches): D^6, with
+// D = sqrt((1 + beta) / (1 - beta)) on both legs. Head-on, nothing is aberrated.
+TEST(MovingSurface, PlaneWaveOnAFloorRisingTowardTheSunBrightensByD6) {
+  DirectionalLight sun;
+  sun.direction = {0, -1, 0};
+  sun.irradiance = 1.5;
+  Scene rest = top_down({0, 50, 0}, 2, 5);
+  rest.lights.push_back(make_light(sun, {}, 1));
+  rest.render.doppler = DopplerModel::kOff;
+  for (const double beta : {0.3, -0.4}) {
+    Scene moving = rest;
+    moving.objects[0].world_line.velocity = {0, beta, 0};
+    const double d = std::sqrt((1 + beta) / (1 - beta));
+    const double expected = pixel(render_image(rest, {}), 2, 2).r * std::pow(d, 6);
+    EXPECT_NEAR(pixel(render_image(moving, {}), 2, 2).r, expected, 1e-6 * expected) << beta;
+  }
+}
+
 TEST(StaticLighting, SphereLightConvergesToTheIrradianceOfAUniformSphere) {
   // A sphere of uniform radiance L = I / (pi R^2) entirely above a patch's horizon subtends
   // a cap whose projected solid angle is pi (R/d)^2 cos(alpha): E = pi L (R/d)^2 cos(alpha) =
