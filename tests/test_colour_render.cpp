@@ -339,19 +339,7 @@ TEST(ColourLimit, TheHueModelFadesMagentaEvenAtRest) {
 // ---------------------------------------------------------------------------------------------
 // 4. The principle of relativity with Doppler colour and the searchlight on.
 
-// Fraction of pixels whose colours differ by more than 1e-4 relative in some channel.
-double fraction_differing(const Image& a, const Image& b) {
-  std::size_t bad = 0;
-  for (std::size_t p = 0; p < a.rgb.size(); p += 3) {
-    bool differ = false;
-    for (int c = 0; c < 3; ++c) {
-      const double x = a.rgb[p + c], y = b.rgb[p + c];
-      differ |= std::abs(x - y) > 1e-4 * std::max({1.0, std::abs(x), std::abs(y)});
-    }
-    bad += differ;
-  }
-  return static_cast<double>(bad) / static_cast<double>(a.rgb.size() / 3);
-}
+using test::fraction_differing;
 
 TEST(PrincipleOfRelativity, HoldsWithDopplerColourAndSearchlight) {
   const struct {

@@ -19,19 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ImageFileTest : public testing::Test {
+class ImageFileTest : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = test::fresh_temp_dir(testing::UnitTest::GetInstance()->current_test_info()->name());
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write(const std::string& name, const std::string& content) {
-    const fs::path path = dir_ / name;
-    test::write_text(path, content);
-    return path;
-  }
-
   std::vector<std::string> files() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir_))
@@ -39,8 +28,6 @@ class ImageFileTest : public testing::Test {
     std::sort(names.begin(), names.end());
     return names;
   }
-
-  fs::path dir_;
 };
 
 Image make_image(int width, int height, std::vector<float> rgb) {

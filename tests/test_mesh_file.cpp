@@ -21,21 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class MeshFileTest : public testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = test::fresh_temp_dir(testing::UnitTest::GetInstance()->current_test_info()->name());
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path write(const std::string& name, const std::string& content) {
-    const fs::path path = dir_ / name;
-    test::write_text(path, content);
-    return path;
-  }
-
-  fs::path dir_;
-};
+using MeshFileTest = test::TempDirTest;
 
 // The InputError message of `f`, or "" when it throws nothing.
 std::string error_of(const std::function<void()>& f) {

@@ -87,16 +87,7 @@ TEST(ClassicalLimit, SmallBetaConvergesToClassical) {
   EXPECT_LE(differing, a.rgb.size() / 1000);
 }
 
-// Fraction of pixels whose colours differ by more than 1e-4 in some channel.
-double fraction_differing(const Image& a, const Image& b) {
-  std::size_t bad = 0;
-  for (std::size_t p = 0; p < a.rgb.size(); p += 3) {
-    bool differ = false;
-    for (int c = 0; c < 3; ++c) differ |= std::abs(a.rgb[p + c] - b.rgb[p + c]) > 1e-4;
-    bad += differ;
-  }
-  return static_cast<double>(bad) / (a.rgb.size() / 3);
-}
+using test::fraction_differing;
 
 TEST(PrincipleOfRelativity, SameSceneFromAnotherFrameRendersTheSameImage) {
   Scene scene = busy_scene({0.2, -0.1, -0.5}, 0.7);

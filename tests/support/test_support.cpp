@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -28,6 +30,33 @@ Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 vel
   o.world_line.velocity = velocity;
   o.material = std::move(material);
   return o;
+}
+
+double fraction_differing(const Image& a, const Image& b) {
+  std::size_t bad = 0;
+  for (std::size_t p = 0; p < a.rgb.size(); p += 3) {
+    bool differ = false;
+    for (int c = 0; c < 3; ++c) {
+      const double x = a.rgb[p + c], y = b.rgb[p + c];
+      differ |= std::abs(x - y) > 1e-4 * std::max({1.0, std::abs(x), std::abs(y)});
+    }
+    bad += differ;
+  }
+  return static_cast<double>(bad) / static_cast<double>(a.rgb.size() / 3);
+}
+
+void TempDirTest::SetUp() {
+  dir_ = fresh_temp_dir(testing::UnitTest::GetInstance()->current_test_info()->name());
+}
+
+void TempDirTest::TearDown() {
+  fs::remove_all(dir_);
+}
+
+fs::path TempDirTest::write(const std::string& name, const std::string& content) const {
+  const fs::path path = dir_ / name;
+  write_text(path, content);
+  return path;
 }
 
 fs::path fresh_temp_dir(const std::string& name) {

@@ -1,6 +1,8 @@
 // Helpers shared by the tests: temporary folders, scenes from JSON text, running the CLI.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
@@ -11,6 +13,21 @@ namespace lightcone::test {
 // An object with a shape, a world-line through `position` at t = 0, and a material.
 Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
                    Material material);
+
+// Fraction of pixels whose colour differs by more than 1e-4 (relative above 1) in some channel:
+// the comparison of the renders of one physical scene described in two frames.
+double fraction_differing(const Image& a, const Image& b);
+
+// A fixture with a fresh folder per test, removed afterwards.
+class TempDirTest : public testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+  // Writes `content` to `name` in the folder and returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& content) const;
+
+  std::filesystem::path dir_;
+};
 
 // A fresh, empty folder under the system's temporary folder.
 std::filesystem::path fresh_temp_dir(const std::string& name);

@@ -30,6 +30,12 @@ void expand(Bounds3& b, const Vec3& p, double r) {
   }
 }
 
+// Corner i (bit 0: x, bit 1: y, bit 2: z upper) of a box.
+Vec3 corner(const Bounds3& b, int i) {
+  return {(i & 1) ? b.upper.x : b.lower.x, (i & 2) ? b.upper.y : b.lower.y,
+          (i & 4) ? b.upper.z : b.lower.z};
+}
+
 Bounds3 empty_bounds() {
   const double inf = std::numeric_limits<double>::infinity();
   return {{inf, inf, inf}, {-inf, -inf, -inf}};
@@ -139,10 +145,11 @@ ResolvedScene resolve_scene(const Scene& scene) {
   r.trace_to_world = invert(r.world_to_trace);
 
   r.bodies.reserve(scene.objects.size());
-  std::vector<double> radii;
+  // Each body's centre world-line in W and bounding radius, for its shadow bounds below.
+  std::vector<std::pair<TraceWorldLine, double>> world_centres;
   for (const Object& object : scene.objects) {
-    const AffineMap4 trace_to_body =
-        compose(body_frame_map(settings, object.world_line), r.trace_to_world);
+    const AffineMap4 world_to_body = body_frame_map(settings, object.world_line);
+    const AffineMap4 trace_to_body = compose(world_to_body, r.trace_to_world);
     // shape coordinates p = S^-1 R^-1 x_rest
     const Mat3 to_shape =
         Mat3::diagonal(component_div({1, 1, 1}, object.scale)) * object.rotation.transposed();
@@ -152,6 +159,9 @@ ResolvedScene resolve_scene(const Scene& scene) {
     body.time_column = to_shape * time_column(trace_to_body.linear);
     body.ray_offset = body.time_column * r.ray_time;
     body.spatial = to_shape * trace_to_body.linear.spatial();
+    body.shadow_origin = to_shape * world_to_body.offset.x;
+    body.shadow_time_column = to_shape * time_column(world_to_body.linear);
+    body.shadow_spatial = to_shape * world_to_body.linear.spatial();
 
     const Bounds3 local = shape_bounds(object.shape);
     const Vec3 centre = (local.lower + local.upper) * 0.5;
@@ -159,10 +169,9 @@ ResolvedScene resolve_scene(const Scene& scene) {
     const double radius = scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
     const Vec3 rest_centre = object.rotation * component_mul(object.scale, centre);
     body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
-    const TraceWorldLine centre_line = trace_world_line(trace_to_body, rest_centre);
-    body.velocity = centre_line.velocity;
+    body.velocity = trace_world_line(trace_to_body, rest_centre).velocity;
     r.bodies.push_back(body);
-    radii.push_back(radius);
+    world_centres.emplace_back(trace_world_line(world_to_body, rest_centre), radius);
   }
 
   WorldLine sky_line;
@@ -179,80 +188,60 @@ ResolvedScene resolve_scene(const Scene& scene) {
   // tau <= distance / (1 - |w|). Directional lights are followed for twice the scene's reach.
   Bounds3 visible = empty_bounds();
   double s_far = 0;
-  for (const ResolvedBody& body : r.bodies) {
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 p{(corner & 1) ? body.trace_bounds.upper.x : body.trace_bounds.lower.x,
-                   (corner & 2) ? body.trace_bounds.upper.y : body.trace_bounds.lower.y,
-                   (corner & 4) ? body.trace_bounds.upper.z : body.trace_bounds.lower.z};
-      s_far = std::max(s_far, length(p));
-      expand(visible, p, 0);
+  for (const ResolvedBody& body : r.bodies)
+    for (int i = 0; i < 8; ++i) {
+      s_far = std::max(s_far, length(corner(body.trace_bounds, i)));
+      expand(visible, corner(body.trace_bounds, i), 0);
     }
-  }
   auto farthest = [&](const Vec3& from) {
     double d = 0;
-    for (int corner = 0; corner < 8 && !r.bodies.empty(); ++corner)
-      d = std::max(d, length(Vec3{(corner & 1) ? visible.upper.x : visible.lower.x,
-                                  (corner & 2) ? visible.upper.y : visible.lower.y,
-                                  (corner & 4) ? visible.upper.z : visible.lower.z} -
-                             from));
+    for (int i = 0; i < 8 && !r.bodies.empty(); ++i)
+      d = std::max(d, length(corner(visible, i) - from));
     return d;
   };
+  struct LightLine {
+    TraceWorldLine line;  // in F
+    double extent;        // radius of a sphere light
+  };
+  std::vector<LightLine> light_lines;  // lights at finite distance
   double light_reach = 0;
   for (const Light& light : scene.lights) {
-    const AffineMap4 trace_to_light =
-        compose(body_frame_map(settings, light.world_line), r.trace_to_world);
-    const TraceWorldLine line = trace_world_line(trace_to_light, {});
-    const double speed = length(line.velocity);
     if (std::holds_alternative<DirectionalLight>(light.kind)) {
       light_reach = std::max(light_reach, 2 * (s_far + farthest({})));
       continue;
     }
+    const TraceWorldLine line =
+        trace_world_line(compose(body_frame_map(settings, light.world_line), r.trace_to_world), {});
     const double extent = std::holds_alternative<SphereLight>(light.kind)
                               ? std::get<SphereLight>(light.kind).radius
                               : 0;
+    const double speed = length(line.velocity);
     const double to_surfaces =
         (farthest(line.position_at_zero) + extent + speed * s_far) / (1 - speed);
     const double to_camera =
         retarded_delay(line.position_at_zero, line.velocity) + extent / (1 - speed);
     light_reach = std::max({light_reach, to_surfaces, to_camera});
+    light_lines.push_back({line, extent});
   }
   // The same window in W: events with F-times in [t_min, 0] within a ball of radius reach_f
   // around the F origin (surfaces, lights and the segments between them) have W-times
   // t_obs + a t_F + b.x_F.
   const double t_min = -(s_far + light_reach) * (1 + 1e-9) - 1e-9;
   double reach_f = s_far - t_min;
-  for (const Light& light : scene.lights) {
-    if (std::holds_alternative<DirectionalLight>(light.kind)) continue;
-    const TraceWorldLine line =
-        trace_world_line(compose(body_frame_map(settings, light.world_line), r.trace_to_world), {});
-    const double extent = std::holds_alternative<SphereLight>(light.kind)
-                              ? std::get<SphereLight>(light.kind).radius
-                              : 0;
-    reach_f =
-        std::max(reach_f, length(line.position_at_zero) + length(line.velocity) * -t_min + extent);
-  }
+  for (const LightLine& l : light_lines)
+    reach_f = std::max(
+        reach_f, length(l.line.position_at_zero) + length(l.line.velocity) * -t_min + l.extent);
   const Mat4& to_world = r.trace_to_world.linear;
   const double a = to_world.m[0][0];
   const double b = length(Vec3{to_world.m[0][1], to_world.m[0][2], to_world.m[0][3]});
   r.shadow_time_min = r.observation_event.t + a * t_min - b * reach_f;
   r.shadow_time_max = r.observation_event.t + b * reach_f;
   for (std::size_t i = 0; i < r.bodies.size(); ++i) {
-    ResolvedBody& body = r.bodies[i];
-    const Object& object = *body.object;
-    const AffineMap4 world_to_body = body_frame_map(settings, object.world_line);
-    const Mat3 to_shape =
-        Mat3::diagonal(component_div({1, 1, 1}, object.scale)) * object.rotation.transposed();
-    body.shadow_origin = to_shape * world_to_body.offset.x;
-    body.shadow_time_column = to_shape * time_column(world_to_body.linear);
-    body.shadow_spatial = to_shape * world_to_body.linear.spatial();
-    const Bounds3 local = shape_bounds(object.shape);
-    const Vec3 rest_centre =
-        object.rotation * component_mul(object.scale, (local.lower + local.upper) * 0.5);
-    const TraceWorldLine centre = trace_world_line(world_to_body, rest_centre);
-    Bounds3& bounds = body.shadow_bounds;
+    const auto& [centre, radius] = world_centres[i];
+    Bounds3& bounds = r.bodies[i].shadow_bounds;
     bounds = empty_bounds();
     for (double t : {r.shadow_time_min, r.shadow_time_max})
-      expand(bounds, centre.position_at_zero + centre.velocity * t, radii[i]);
+      expand(bounds, centre.position_at_zero + centre.velocity * t, radius);
   }
   return r;
 }
