@@ -2,7 +2,7 @@
 // integrals and values, the sRGB matrices against IEC 61966-2-1, Planck's law against Wien's
 // displacement law, the Stefan-Boltzmann law and a long double evaluation, blackbody
 // chromaticities against published CIE values, the D^5 searchlight identity of PHYSICS.md
-// ("Searchlight", "Colour"), tabulated spectra, and hero-wavelength sampling.
+// ("Searchlight", "Colour"), and tabulated spectra.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +15,6 @@
 
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/spectrum.hpp"
-#include "lightcone/color/wavelengths.hpp"
 
 namespace lightcone {
 namespace {
@@ -399,111 +398,6 @@ TEST(Tabulated, DegenerateTables) {
   EXPECT_EQ(one(100), 0.7);
   EXPECT_EQ(one(500), 0.7);
   EXPECT_EQ(one(900), 0.7);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Hero-wavelength sampling.
-
-TEST(Wavelengths, HeroWavelengthsAreEvenlySpaced) {
-  const SampledWavelengths s = sample_wavelengths(0.0);
-  const double expected[4] = {360, 477.5, 595, 712.5};
-  for (int i = 0; i < 4; ++i) {
-    EXPECT_DOUBLE_EQ(s.lambda[i], expected[i]);
-    EXPECT_DOUBLE_EQ(s.pdf[i], 1.0 / 470);
-  }
-  const SampledWavelengths w = sample_wavelengths(0.9);  // frac(0.9 + i/4)
-  const double wrapped[4] = {360 + 0.9 * 470, 360 + 0.15 * 470, 360 + 0.4 * 470, 360 + 0.65 * 470};
-  for (int i = 0; i < 4; ++i) EXPECT_NEAR(w.lambda[i], wrapped[i], 1e-9);
-  // Periodic in u with period 1/4 (the set rotates by one); u is reduced modulo 1.
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> uniform(0, 0.75);
-  for (int k = 0; k < 100; ++k) {
-    const double u = uniform(rng);
-    const SampledWavelengths a = sample_wavelengths(u), b = sample_wavelengths(u + 0.25),
-                             c = sample_wavelengths(u - 1.0);
-    for (int i = 0; i < 4; ++i) {
-      EXPECT_NEAR(b.lambda[i], a.lambda[(i + 1) % 4], 1e-9);
-      EXPECT_NEAR(c.lambda[i], a.lambda[i], 1e-9);
-      EXPECT_GE(a.lambda[i], 360.0);
-      EXPECT_LT(a.lambda[i], 830.0);
-    }
-  }
-  EXPECT_LT(sample_wavelengths(std::nextafter(1.0, 0.0)).lambda[0], 830.0);
-}
-
-TEST(Wavelengths, StratifiedUCoversTheRangeOncePerStratum) {
-  for (int n : {1, 3, 8, 16}) {
-    std::vector<double> lambdas;
-    for (int k = 0; k < n; ++k) {
-      const double u = stratified_wavelength_u(k, n, 0.5);
-      EXPECT_GE(u, 0.0);
-      EXPECT_LT(u, 0.25);
-      for (double l : sample_wavelengths(u).lambda) lambdas.push_back(l);
-    }
-    std::sort(lambdas.begin(), lambdas.end());
-    const double width = 470.0 / (4 * n);
-    for (int i = 0; i < 4 * n; ++i) EXPECT_NEAR(lambdas[i], 360 + (i + 0.5) * width, 1e-9) << n;
-  }
-  EXPECT_NEAR(stratified_wavelength_u(0, 4, 0.0), 0.0, 0.0);
-  EXPECT_NEAR(stratified_wavelength_u(2, 4, 0.3), (2 + 0.3) / 16, 1e-15);
-  EXPECT_NEAR(stratified_wavelength_u(6, 4, 0.3), (2 + 0.3) / 16, 1e-15);  // wraps modulo n
-  EXPECT_LT(stratified_wavelength_u(3, 4, std::nextafter(1.0, 0.0)), 0.25);
-}
-
-// Mean of xyz_from_samples over n stratified samples of a spectrum.
-template <class Spectrum>
-Xyz mean_estimate(const Spectrum& spectrum, int n, std::mt19937_64& rng,
-                  double (*u_of)(int, int, double)) {
-  std::uniform_real_distribution<double> jitter(0, 1);
-  Xyz sum;
-  for (int k = 0; k < n; ++k) {
-    const SampledWavelengths s = sample_wavelengths(u_of(k, n, jitter(rng)));
-    std::array<double, kHeroWavelengths> radiance;
-    for (int i = 0; i < kHeroWavelengths; ++i) radiance[i] = spectrum(s.lambda[i]);
-    const Xyz e = xyz_from_samples(s, radiance);
-    sum.x += e.x;
-    sum.y += e.y;
-    sum.z += e.z;
-  }
-  return {sum.x / n, sum.y / n, sum.z / n};
-}
-
-TEST(Wavelengths, EstimatorOfAConstantSpectrum) {
-  std::mt19937_64 rng(5);
-  const Xyz e = mean_estimate([](double) { return 1.0; }, 4096, rng, stratified_wavelength_u);
-  const auto s = table_sums();
-  EXPECT_NEAR(e.x, s[0] / s[1], 1e-3);
-  EXPECT_NEAR(e.y, 1.0, 1e-3);
-  EXPECT_NEAR(e.z, s[2] / s[1], 1e-3);
-}
-
-TEST(Wavelengths, EstimatorOfABlackbody) {
-  std::mt19937_64 rng(6);
-  for (double t : {1500.0, 5000.0, 20000.0}) {
-    const BlackbodySpectrum s = BlackbodySpectrum::with_luminance(t, 1.0);
-    const Xyz exact = xyz_from_spectrum(s);
-    const Xyz e = mean_estimate(s, 4096, rng, stratified_wavelength_u);
-    EXPECT_NEAR(e.x / exact.x, 1.0, 1e-3) << t;
-    EXPECT_NEAR(e.y / exact.y, 1.0, 1e-3) << t;
-    EXPECT_NEAR(e.z / exact.z, 1.0, 1e-3) << t;
-  }
-}
-
-// With 4 samples a pixel, stratifying the period [0, 1/4) (stratified_wavelength_u) beats
-// stratifying [0, 1), whose 4 strata all give the same wavelengths modulo the period.
-TEST(Wavelengths, StratifyingThePeriodReducesNoise) {
-  const BlackbodySpectrum s = BlackbodySpectrum::with_luminance(3000, 1.0);
-  const Xyz exact = xyz_from_spectrum(s);
-  auto whole_range = [](int k, int n, double jitter) { return (k + jitter) / n; };
-  std::mt19937_64 rng(9);
-  double err_period = 0, err_whole = 0;
-  for (int pixel = 0; pixel < 400; ++pixel) {
-    const Xyz a = mean_estimate(s, 4, rng, stratified_wavelength_u);
-    const Xyz b = mean_estimate(s, 4, rng, +whole_range);
-    err_period += (a.x - exact.x) * (a.x - exact.x) + (a.z - exact.z) * (a.z - exact.z);
-    err_whole += (b.x - exact.x) * (b.x - exact.x) + (b.z - exact.z) * (b.z - exact.z);
-  }
-  EXPECT_LT(err_period, 0.25 * err_whole);
 }
 
 }  // namespace

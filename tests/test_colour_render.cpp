@@ -13,7 +13,6 @@
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/colour_models.hpp"
 #include "lightcone/color/spectrum.hpp"
-#include "lightcone/color/wavelengths.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/render/camera_model.hpp"
 #include "lightcone/render/emission.hpp"
@@ -393,9 +392,8 @@ TEST(Searchlight, WhiteRgbWallApproachedHeadOnScalesByD4DOr1) {
     // The renderer's own per-sample radiance, in double precision: exact to 1e-9.
     const ResolvedScene r = resolve_scene(s);
     const Tracer tracer(r);
-    const EmissionTable emission(s, false);
-    const LinearRgb exact =
-        radiance_along(r, emission, tracer, r.camera.forward, sample_wavelengths(0.1));
+    const EmissionTable emission(r);
+    const LinearRgb exact = radiance_along(r, emission, tracer, r.camera.forward);
     EXPECT_NEAR(exact.r, m.factor, 1e-9 * m.factor);
     EXPECT_NEAR(exact.g, m.factor, 1e-9 * m.factor);
     EXPECT_NEAR(exact.b, m.factor, 1e-9 * m.factor);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/render/camera_model.hpp"
@@ -200,17 +201,28 @@ TEST(StaticLighting, DirectionalLightIsItsIrradianceTimesTheCosine) {
   sun.direction = {0.3, -1, 0.2};
   sun.irradiance = 2.5;
   const double cos_i = 1 / length(sun.direction);
-  for (const DopplerModel d : {DopplerModel::kSpectral, DopplerModel::kOff}) {
+  const double e = sun.irradiance * cos_i / kPi;
+  // The RGB models multiply the albedo's and the light's RGB; the spectral one their spectra,
+  // whose colour differs a little (here by up to 3 %) for a coloured light on a coloured surface.
+  const LinearRgb albedo{0.5, 0.25, 0.125}, light{1.0, 0.9, 0.8};
+  const RgbAlbedoSpectrum rho = RgbAlbedoSpectrum::from_rgb(albedo);
+  const RgbEmitterSpectrum source = RgbEmitterSpectrum::from_rgb(light);
+  const LinearRgb product =
+      linear_srgb_from_xyz(xyz_from_spectrum([&](double l) { return rho(l) * source(l); }));
+  const struct {
+    DopplerModel model;
+    LinearRgb want;
+  } cases[] = {{DopplerModel::kSpectral, {e * product.r, e * product.g, e * product.b}},
+               {DopplerModel::kOff, {0.5 * e, 0.25 * 0.9 * e, 0.125 * 0.8 * e}}};
+  for (const auto& c : cases) {
     Scene s = top_down({0, 5, 0}, 40, 9, {0.5f, 0.25f, 0.125f});
     s.lights.push_back(make_light(sun, {}, 1, {1.0f, 0.9f, 0.8f}));
-    s.render.doppler = d;
+    s.render.doppler = c.model;
     const Image image = render_image(s, {});
-    const double e = sun.irradiance * cos_i / kPi;
     for (int j = 0; j < 9; ++j)
-      for (int i = 0; i < 9; ++i)
-        expect_rgb_near(pixel(image, i, j), {0.5 * e, 0.25 * 0.9 * e, 0.125 * 0.8 * e}, 1e-6,
-                        at(i, j));
+      for (int i = 0; i < 9; ++i) expect_rgb_near(pixel(image, i, j), c.want, 1e-6, at(i, j));
   }
+  EXPECT_GT(std::abs(product.r / (0.5 * 1.0) - 1), 1e-3);  // the two really differ
 }
 
 // A plane wave's irradiance scales as D^2 (its energy density does): sunlight falling straight

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace lightcone::rgb2spec {
@@ -237,6 +239,36 @@ std::vector<float> generate_table(int res, unsigned threads) {
   work();
   for (std::thread& t : pool) t.join();
   return table;
+}
+
+std::vector<double> generate_emitter_nodes() {
+  const int res = kRgbToSpectrumRes;
+  std::vector<double> nodes(kRgbEmitterNodeDoubles);
+  const Fitter fitter;
+  const LinearRgb white = reference_white();
+  const auto balanced = [&](const LinearRgb& c) {
+    return LinearRgb{c.r * white.r, c.g * white.g, c.b * white.b};
+  };
+  for (int l = 0; l < 3; ++l)
+    for (int m : {(l + 1) % 3, (l + 2) % 3}) {
+      const int case_index = rgb_emitter_case(l, m);
+      Coefficients c{0, 0, 0};
+      const LinearRgb primary = rgb_emitter_node_colour(l, m, 0);
+      for (int step = 1; step <= 20; ++step) {
+        const double t = step / 20.0;
+        c = fitter.fit(balanced({primary.r * t, primary.g * t, primary.b * t}), c).c;
+      }
+      for (int i = 0; i < res; ++i) {
+        const FitResult r = fitter.fit(balanced(rgb_emitter_node_colour(l, m, i)), c);
+        if (!(r.lab_error < 1e-5))
+          throw std::runtime_error("emitter node " + std::to_string(case_index) + "/" +
+                                   std::to_string(i) + " not fitted (Delta E " +
+                                   std::to_string(r.lab_error) + ")");
+        c = r.c;
+        for (int n = 0; n < 3; ++n) nodes[(case_index * res + i) * 3 + n] = c[n];
+      }
+    }
+  return nodes;
 }
 
 }  // namespace lightcone::rgb2spec

@@ -77,4 +77,10 @@ class Fitter {
 // The whole table, 3 * res^3 * 3 floats, computed on `threads` threads (0: all cores).
 std::vector<float> generate_table(int res, unsigned threads);
 
+// The emitter nodes (layout in sigmoid_polynomial.hpp), kRgbEmitterNodeDoubles doubles. Each
+// case starts at its saturated primary (reached by raising the brightness from a dim one, each
+// fit warm-started from the last) and walks the middle channel up. Throws std::runtime_error
+// if a node is not fitted to within Delta E 1e-5.
+std::vector<double> generate_emitter_nodes();
+
 }  // namespace lightcone::rgb2spec

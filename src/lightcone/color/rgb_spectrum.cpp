@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 
@@ -73,18 +74,88 @@ SigmoidPolynomial rgb_to_sigmoid(const LinearRgb& rgb) {
   return {out[0], out[1], out[2]};
 }
 
-RgbIlluminantSpectrum RgbIlluminantSpectrum::from_rgb(const LinearRgb& rgb) {
-  // The white-balanced reflectance colour whose radiance under the illuminant is rgb.
+namespace {
+
+constexpr double kWhiteBandCentres[3] = {450, 540, 610};  // nm
+constexpr double kWhiteBandWidth = 30;                    // nm
+
+double white_band(int k, double lambda_nm) {
+  const double t = (lambda_nm - kWhiteBandCentres[k]) / kWhiteBandWidth;
+  return std::exp(-0.5 * t * t);
+}
+
+// The band weights g that make the RGB white's colour (1, 1, 1): the colour is linear in g,
+// w + A g with column k of A the colour of reference_illuminant * band k.
+std::array<double, 3> white_band_weights() {
+  double a[3][3];
+  for (int k = 0; k < 3; ++k) {
+    const LinearRgb c = linear_srgb_from_xyz(
+        xyz_from_spectrum([k](double l) { return reference_illuminant(l) * white_band(k, l); }));
+    a[0][k] = c.r, a[1][k] = c.g, a[2][k] = c.b;
+  }
   const LinearRgb w = reference_white();
+  const double rhs[3] = {1 - w.r, 1 - w.g, 1 - w.b};
+  // Cramer's rule: A is well conditioned (three separated bands).
+  const auto det = [](const double m[3][3]) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  const double d = det(a);
+  std::array<double, 3> g{};
+  for (int k = 0; k < 3; ++k) {
+    double m[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = c == k ? rhs[r] : a[r][c];
+    g[k] = det(m) / d;
+  }
+  return g;
+}
+
+}  // namespace
+
+double rgb_white_spectrum(double lambda_nm) {
+  static const std::array<double, 3> g = white_band_weights();
+  double factor = 1;
+  for (int k = 0; k < 3; ++k) factor += g[k] * white_band(k, lambda_nm);
+  return reference_illuminant(lambda_nm) * factor;
+}
+
+SigmoidPolynomial rgb_emitter_node(int node_case, int i) {
+  const double* c = detail::rgb_emitter_nodes() + (node_case * kRes + i) * 3;
+  return {c[0], c[1], c[2]};
+}
+
+RgbEmitterSpectrum RgbEmitterSpectrum::from_rgb(const LinearRgb& rgb) {
   const auto non_negative = [](double v) { return v > 0 ? v : 0.0; };  // NaN -> 0
-  const LinearRgb c{non_negative(rgb.r) / w.r, non_negative(rgb.g) / w.g,
-                    non_negative(rgb.b) / w.b};
-  const double m = std::max({c.r, c.g, c.b});
-  RgbIlluminantSpectrum s;
-  if (!(m > 0)) return s;  // black
-  s.scale = 2 * m;
-  s.sigmoid = rgb_to_sigmoid({c.r / s.scale, c.g / s.scale, c.b / s.scale});
+  const double r = non_negative(rgb.r), g = non_negative(rgb.g), b = non_negative(rgb.b);
+  RgbEmitterSpectrum s;
+  s.grey = std::min({r, g, b});
+  // The chromatic remainder, white-balanced to the nodes' reference illuminant.
+  const LinearRgb w = reference_white();
+  const double c[3] = {(r - s.grey) / w.r, (g - s.grey) / w.g, (b - s.grey) / w.b};
+  int l = 0;
+  if (c[1] > c[l]) l = 1;
+  if (c[2] > c[l]) l = 2;
+  if (!(c[l] > 0)) return s;  // a grey (or black)
+  const int m1 = (l + 1) % 3, m2 = (l + 2) % 3;
+  const int m = c[m2] > c[m1] ? m2 : m1;
+  s.scale = 2 * c[l];
+  s.node_case = rgb_emitter_case(l, m);
+  const double position = std::min(c[m] / c[l], 1.0) * (kRes - 1);
+  s.node = std::min(static_cast<int>(position), kRes - 2);
+  s.blend = position - s.node;
   return s;
+}
+
+double RgbEmitterSpectrum::operator()(double lambda_nm) const {
+  double value = grey > 0 ? grey * rgb_white_spectrum(lambda_nm) : 0.0;
+  if (scale > 0) {
+    const double a = rgb_emitter_node(node_case, node)(lambda_nm);
+    const double b = rgb_emitter_node(node_case, node + 1)(lambda_nm);
+    value += scale * ((1 - blend) * a + blend * b) * reference_illuminant(lambda_nm);
+  }
+  return value;
 }
 
 }  // namespace lightcone

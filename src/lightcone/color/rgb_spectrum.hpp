@@ -1,12 +1,13 @@
 // RGB to spectrum: linear sRGB colours upsampled to spectra defined at every wavelength, by the
-// sigmoid-quadratic model of Jakob & Hanika (EGSR 2019) with a coefficient table fitted by the
+// sigmoid-quadratic model of Jakob & Hanika ("A Low-Dimensional Function Space for Efficient
+// Spectral Upsampling", 2019) with a coefficient table fitted by the
 // project's own optimiser at build time (tools/rgb2spec_gen.cpp, tools/rgb2spec_fit.cpp).
 // Design notes: docs/design/spectral.md, "RGB to spectrum (Jakob-Hanika)".
 //
 // Outside the visible range (see sigmoid_polynomial.hpp and docs/design/spectral.md, "What an
 // RGB colour means outside the visible range"): reflectances are flat beyond 360 and 830 nm
 // (the model is evaluated at the clamped wavelength); RGB emitters follow the 6504 K blackbody
-// reference illuminant there.
+// reference illuminant there (RgbEmitterSpectrum).
 #pragma once
 
 #include <limits>
@@ -34,27 +35,44 @@ struct RgbAlbedoSpectrum {
   double operator()(double lambda_nm) const { return sigmoid(lambda_nm); }
 };
 
-// An emitter of any non-negative linear sRGB radiance (negative components count as 0):
-//   L(lambda) = scale * s(lambda) * reference_illuminant(lambda),
-// where s is the reflectance rgb_to_sigmoid(rgb / (scale w)) (per channel, w =
-// reference_white()) and scale = 2 max(r / w.r, g / w.g, b / w.b), so that s is fitted to a
-// colour whose largest component is 1/2 (well inside what a reflectance reaches) and at rest
-// (D = 1) the integrated colour is exactly rgb (not white-balanced: an emitter's RGB is its
-// radiance). Black gives 0 at every wavelength. Outside 360-830 nm s is flat and L falls off as
-// the blackbody does. Components must be finite.
-struct RgbIlluminantSpectrum {
+// The RGB white: the spectrum whose linear sRGB colour is exactly (1, 1, 1) (by the 1 nm
+// quadrature). It is the reference illuminant (the 6504 K blackbody of Y = 1) times
+// 1 + sum_k g_k exp(-((lambda - mu_k) / 30 nm)^2 / 2) with mu = 450, 540, 610 nm and the three
+// g_k (a few per cent) solved for that colour, so outside about 360-700 nm it is the blackbody.
+double rgb_white_spectrum(double lambda_nm);
+
+// An emitter of any non-negative linear sRGB radiance (negative components and NaN count as 0;
+// components must be finite). Policy (docs/design/spectral.md, "What an RGB colour means"):
+//   L(lambda) = grey * rgb_white_spectrum(lambda)
+//             + scale * [(1 - blend) N_node(lambda) + blend N_node+1(lambda)],
+// where grey = min(r, g, b) and the chromatic remainder q = rgb - grey (one channel zero) is
+// carried by two neighbouring emitter nodes of one case (sigmoid_polynomial.hpp): N_i is the
+// node's Jakob-Hanika reflectance times the reference illuminant. With c = q / reference_white()
+// (per channel), l its largest and m its middle channel, scale = 2 c_l and the node position
+// (i + blend) / (res - 1) = c_m / c_l. The colour at rest is exactly rgb: greys are exactly
+// grey * the RGB white (the blackbody outside the visible range, at every Doppler factor), and
+// saturated colours (one channel zero) keep the Jakob-Hanika shape.
+struct RgbEmitterSpectrum {
+  double grey = 0;
   double scale = 0;
-  SigmoidPolynomial sigmoid;
-  static RgbIlluminantSpectrum from_rgb(const LinearRgb& rgb);
-  double operator()(double lambda_nm) const {
-    return scale > 0 ? scale * sigmoid(lambda_nm) * reference_illuminant(lambda_nm) : 0.0;
-  }
+  int node_case = 0;  // rgb_emitter_case(l, m)
+  int node = 0;       // in [0, kRgbToSpectrumRes - 2]
+  double blend = 0;   // in [0, 1]
+  static RgbEmitterSpectrum from_rgb(const LinearRgb& rgb);
+  double operator()(double lambda_nm) const;
 };
+
+// Node i of an emitter case: its reflectance (flat outside 360-830 nm, like every
+// Jakob-Hanika reflectance); N_i(lambda) = rgb_emitter_node(case, i)(lambda) *
+// reference_illuminant(lambda).
+SigmoidPolynomial rgb_emitter_node(int node_case, int i);
 
 namespace detail {
 // The coefficient table built into the library (kRgbToSpectrumTableFloats floats, layout in
 // sigmoid_polynomial.hpp). For tests.
 const float* rgb_to_spectrum_table();
+// The emitter nodes built into the library (kRgbEmitterNodeDoubles doubles).
+const double* rgb_emitter_nodes();
 }  // namespace detail
 
 }  // namespace lightcone

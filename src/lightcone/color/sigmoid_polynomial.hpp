@@ -87,4 +87,23 @@ inline double rgb_to_spectrum_scale_node(int k, int res) {
   return smoothstep(smoothstep(static_cast<double>(k) / (res - 1)));
 }
 
+// The emitter nodes (rgb_spectrum.hpp, RgbEmitterSpectrum): for each ordered pair of a largest
+// channel l and a middle channel m (the third channel is zero), kRgbToSpectrumRes reflectances
+// fitted exactly (to the 1 nm quadrature, under the reference illuminant) to the white-balanced
+// colours 0.5 e_l + 0.5 (i / (res - 1)) e_m, i = 0 .. res - 1. Along one case the colours are
+// linear in i, so blending two neighbouring nodes' spectra gives exactly the colour in between.
+// Layout: doubles at ((case * res) + i) * 3 + c, case = rgb_emitter_case(l, m).
+inline constexpr int kRgbEmitterCases = 6;
+inline constexpr int kRgbEmitterNodeDoubles = kRgbEmitterCases * kRgbToSpectrumRes * 3;
+inline constexpr int rgb_emitter_case(int largest, int middle) {
+  return 2 * largest + (middle == (largest + 1) % 3 ? 0 : 1);
+}
+// The white-balanced reflectance colour of node i of a case.
+inline LinearRgb rgb_emitter_node_colour(int largest, int middle, int i) {
+  double c[3] = {0, 0, 0};
+  c[largest] = 0.5;
+  c[middle] = 0.5 * static_cast<double>(i) / (kRgbToSpectrumRes - 1);
+  return {c[0], c[1], c[2]};
+}
+
 }  // namespace lightcone

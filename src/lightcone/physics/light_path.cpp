@@ -36,4 +36,14 @@ double point_source_spectral_factor(const ReceivedLeg& leg, double cos_incidence
   return d2 * d2 * leg.doppler * cos_incidence / (leg.distance * leg.distance);
 }
 
+double plane_wave_irradiance(double doppler, double irradiance, double cos_incidence) {
+  if (!(cos_incidence > 0)) return 0;
+  return doppler * doppler * irradiance * cos_incidence;
+}
+
+double plane_wave_spectral_factor(double doppler, double cos_incidence) {
+  if (!(cos_incidence > 0)) return 0;
+  return doppler * doppler * doppler * cos_incidence;
+}
+
 }  // namespace lightcone

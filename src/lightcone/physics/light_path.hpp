@@ -30,4 +30,12 @@ double point_source_irradiance(const ReceivedLeg& leg, double intensity, double 
 // this returns the factor D^5 cos / r^2 that multiplies I_lambda read at D lambda.
 double point_source_spectral_factor(const ReceivedLeg& leg, double cos_incidence);
 
+// Irradiance from a plane wave (a directional light) of rest-frame irradiance E on a surface
+// facing it: D^2 E cos(alpha), the energy density of a plane wave scaling as D^2 (PHYSICS.md).
+double plane_wave_irradiance(double doppler, double irradiance, double cos_incidence);
+
+// The same per unit wavelength: the factor D^3 cos(alpha) that multiplies E_lambda read at
+// D lambda.
+double plane_wave_spectral_factor(double doppler, double cos_incidence);
+
 }  // namespace lightcone

@@ -1,5 +1,6 @@
 #include "lightcone/physics/lorentz.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lightcone {
@@ -24,6 +25,15 @@ Mat3 Mat4::spatial() const {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) r.m[i][j] = m[i + 1][j + 1];
   return r;
+}
+
+double rapidity(const Vec3& beta) {
+  return std::atanh(std::min(length(beta), 1.0));
+}
+
+double relative_rapidity(const Vec3& a, const Vec3& b) {
+  const double g = lorentz_gamma(a) * lorentz_gamma(b) * (1 - dot(a, b));
+  return g > 1 ? std::acosh(g) : 0.0;
 }
 
 Mat4 boost(const Vec3& beta) {

@@ -11,6 +11,14 @@ namespace lightcone {
 // gamma = 1 / sqrt(1 - beta.beta); requires |beta| < 1.
 double lorentz_gamma(const Vec3& beta);
 
+// Rapidity atanh(|beta|): the largest |ln D| of any Doppler factor between a body moving with
+// beta and a receiver at rest (D ranges over [e^-r, e^r] with the direction).
+double rapidity(const Vec3& beta);
+
+// The rapidity of the relative motion of two bodies with velocities a and b in one frame:
+// acosh(gamma_a gamma_b (1 - a.b)), the same in every frame.
+double relative_rapidity(const Vec3& a, const Vec3& b);
+
 // A 4x4 matrix acting on (t, x, y, z); index 0 is time. Row-major.
 struct Mat4 {
   std::array<std::array<double, 4>, 4> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};

@@ -1,87 +1,173 @@
 #include "lightcone/render/emission.hpp"
 
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "lightcone/color/spectrum.hpp"
 #include "lightcone/render/shading.hpp"
 
 namespace lightcone {
 namespace {
 
-// The rest colour of a spectrum: its XYZ by the 1 nm quadrature, in linear sRGB.
-template <class Spectrum>
-LinearRgb rest_colour(const Spectrum& spectrum) {
-  return linear_srgb_from_xyz(xyz_from_spectrum(spectrum));
+LinearRgb linear(const Rgb& c) {
+  return {c.r, c.g, c.b};
+}
+
+// The reflectance of an emitter node times the reference illuminant.
+struct NodeSpectrum {
+  SigmoidPolynomial reflectance;
+  double operator()(double lambda_nm) const {
+    return reflectance(lambda_nm) * reference_illuminant(lambda_nm);
+  }
+};
+
+bool has_per_lookup_colours(const Scene& scene) {
+  if (std::holds_alternative<SkyImage>(scene.sky.pattern)) return true;
+  for (const Object& o : scene.objects)
+    if (o.material.unlit && std::holds_alternative<Texture>(o.material.pattern)) return true;
+  return false;
+}
+
+PointEmission lit_colour(const Rgb& albedo, int fixed_colour) {
+  PointEmission e;
+  e.rest_rgb = linear(albedo);
+  e.fixed_colour = fixed_colour;
+  return e;
 }
 
 }  // namespace
 
-double PointEmission::spectral_radiance(double lambda_nm) const {
-  struct Visitor {
-    double lambda;
-    double operator()(const RgbIlluminantSpectrum& s) const { return s(lambda); }
-    double operator()(const BlackbodySpectrum& s) const { return s(lambda); }
-    double operator()(const TabulatedSpectrum* s) const { return (*s)(lambda); }
-  };
-  return std::visit(Visitor{lambda_nm}, spectrum);
-}
-
-double PointEmission::fast_spectral_radiance(double lambda_nm) const {
-  if (!visible_table) return spectral_radiance(lambda_nm);
-  const double position = lambda_nm - kCieMinWavelength;
-  const auto i = static_cast<std::size_t>(position);
-  if (!(position >= 0) || i + 1 >= static_cast<std::size_t>(kCieTableSize))
-    return spectral_radiance(lambda_nm);
-  const double f = position - static_cast<double>(i);
-  return visible_table[i] + f * (visible_table[i + 1] - visible_table[i]);
-}
-
-void EmissionTable::tabulate(PointEmission& emission) {
-  if (!spectral_) return;
-  std::vector<double>& table = tables_.emplace_back(kCieTableSize);
-  for (int i = 0; i < kCieTableSize; ++i)
-    table[i] = emission.spectral_radiance(kCieMinWavelength + i);
-  emission.visible_table = table.data();
-}
-
-EmissionTable::EmissionTable(const Scene& scene, bool spectral)
-    : scene_(scene), spectral_(spectral) {
-  std::size_t tables = 0;
-  for (const Object& o : scene.objects)
-    tables += std::holds_alternative<EmissionSpectrum>(o.material.pattern) ? 1 : 0;
-  tabulated_.reserve(tables);
-  objects_.reserve(scene.objects.size());
-  for (const Object& o : scene.objects) objects_.push_back(prepare(o.material));
-  if (const auto* c = std::get_if<SolidColor>(&scene.sky.pattern)) {
-    sky_.colours[0] = from_rgb(c->color);
-  } else if (const auto* g = std::get_if<SkyGrid>(&scene.sky.pattern)) {
-    sky_.colours[0] = from_rgb(g->background);
-    sky_.colours[1] = from_rgb(g->line_color);
+Xyz PointEmission::seen_with_doppler(double d) const {
+  if (table_count == 0) return {};
+  const GridStencil stencil = grid_stencil(tables[0]->grid(), d);
+  Xyz sum;
+  for (int k = 0; k < table_count; ++k) {
+    const Xyz c = (*tables[k])(stencil);
+    sum.x += weights[k] * c.x;
+    sum.y += weights[k] * c.y;
+    sum.z += weights[k] * c.z;
   }
-  for (Fixed& f : objects_)
-    for (PointEmission& e : f.colours) tabulate(e);
-  for (PointEmission& e : sky_.colours) tabulate(e);
+  return sum;
 }
 
-PointEmission EmissionTable::from_rgb(const Rgb& c) const {
+double max_emitter_log_doppler(const ResolvedScene& scene) {
+  if (!scene.scene->render.relativity) return 0;
+  double r = rapidity(scene.sky_velocity);
+  for (const ResolvedBody& b : scene.bodies) r = std::max(r, rapidity(b.velocity));
+  return r;
+}
+
+EmissionTable::EmissionTable(const ResolvedScene& resolved)
+    : scene_(*resolved.scene),
+      spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
+      grid_(DopplerGrid::covering(max_emitter_log_doppler(resolved))) {
+  if (spectral_) {
+    white_ = DopplerXyzTable::of([](double l) { return rgb_white_spectrum(l); }, grid_);
+    nodes_.resize(static_cast<std::size_t>(kRgbEmitterCases) * kRgbToSpectrumRes);
+    node_built_.assign(nodes_.size(), false);
+    if (has_per_lookup_colours(scene_)) {
+      tbb::parallel_for(std::size_t{0}, nodes_.size(), [&](std::size_t i) {
+        const int node_case = static_cast<int>(i) / kRgbToSpectrumRes;
+        const int node = static_cast<int>(i) % kRgbToSpectrumRes;
+        nodes_[i] = DopplerXyzTable::of(NodeSpectrum{rgb_emitter_node(node_case, node)}, grid_);
+      });
+      node_built_.assign(nodes_.size(), true);
+    }
+  }
+  objects_.reserve(scene_.objects.size());
+  for (const Object& o : scene_.objects) objects_.push_back(prepare(o.material));
+  if (const auto* c = std::get_if<SolidColor>(&scene_.sky.pattern)) {
+    sky_.colours[0] = fixed_rgb(c->color);
+  } else if (const auto* g = std::get_if<SkyGrid>(&scene_.sky.pattern)) {
+    sky_.colours[0] = fixed_rgb(g->background);
+    sky_.colours[1] = fixed_rgb(g->line_color);
+  }
+}
+
+const DopplerXyzTable& EmissionTable::node_table(int node_case, int node) {
+  const std::size_t i = static_cast<std::size_t>(node_case) * kRgbToSpectrumRes + node;
+  if (!node_built_[i]) {
+    nodes_[i] = DopplerXyzTable::of(NodeSpectrum{rgb_emitter_node(node_case, node)}, grid_);
+    node_built_[i] = true;
+  }
+  return nodes_[i];
+}
+
+template <class Spectrum>
+PointEmission EmissionTable::fixed_spectrum(const Spectrum& spectrum) {
   PointEmission e;
-  e.rest_rgb = {c.r, c.g, c.b};
-  if (spectral_) e.spectrum = RgbIlluminantSpectrum::from_rgb(e.rest_rgb);
+  e.rest_rgb = linear_srgb_from_xyz(xyz_from_spectrum(spectrum));
+  if (spectral_) {
+    e.tables[0] = &fixed_tables_.emplace_back(DopplerXyzTable::of(spectrum, grid_));
+    e.weights[0] = 1;
+    e.table_count = 1;
+  }
+  return e;
+}
+
+PointEmission EmissionTable::fixed_rgb(const Rgb& rgb) {
+  PointEmission e;
+  e.rest_rgb = linear(rgb);
+  if (!spectral_) return e;
+  // The table of this colour's spectrum, combined node by node from the white's and the two
+  // emitter nodes' tables (the spectrum is their weighted sum).
+  const RgbEmitterSpectrum s = RgbEmitterSpectrum::from_rgb(e.rest_rgb);
+  std::vector<Xyz> nodes(grid_.size());
+  const DopplerXyzTable* a = nullptr;
+  const DopplerXyzTable* b = nullptr;
+  if (s.scale > 0) {
+    a = &node_table(s.node_case, s.node);
+    b = &node_table(s.node_case, s.node + 1);
+  }
+  for (int i = 0; i < grid_.size(); ++i) {
+    const Xyz w = white_.node(i);
+    Xyz c{s.grey * w.x, s.grey * w.y, s.grey * w.z};
+    if (a) {
+      const double wa = s.scale * (1 - s.blend), wb = s.scale * s.blend;
+      c.x += wa * a->node(i).x + wb * b->node(i).x;
+      c.y += wa * a->node(i).y + wb * b->node(i).y;
+      c.z += wa * a->node(i).z + wb * b->node(i).z;
+    }
+    nodes[i] = c;
+  }
+  e.tables[0] = &fixed_tables_.emplace_back(grid_, std::move(nodes));
+  e.weights[0] = 1;
+  e.table_count = 1;
+  return e;
+}
+
+PointEmission EmissionTable::per_lookup_rgb(const Rgb& rgb) const {
+  PointEmission e;
+  e.rest_rgb = linear(rgb);
+  if (!spectral_) return e;
+  const RgbEmitterSpectrum s = RgbEmitterSpectrum::from_rgb(e.rest_rgb);
+  e.tables[0] = &white_;
+  e.weights[0] = s.grey;
+  e.table_count = 1;
+  if (s.scale > 0) {
+    const std::size_t base = static_cast<std::size_t>(s.node_case) * kRgbToSpectrumRes + s.node;
+    e.tables[1] = &nodes_[base];
+    e.tables[2] = &nodes_[base + 1];
+    e.weights[1] = s.scale * (1 - s.blend);
+    e.weights[2] = s.scale * s.blend;
+    e.table_count = 3;
+  }
   return e;
 }
 
 EmissionTable::Fixed EmissionTable::prepare(const Material& m) {
   Fixed f;
   if (const auto* c = std::get_if<SolidColor>(&m.pattern)) {
-    f.colours[0] = from_rgb(c->color);
+    f.colours[0] = m.unlit ? fixed_rgb(c->color) : lit_colour(c->color, 0);
   } else if (const auto* ch = std::get_if<Checker>(&m.pattern)) {
-    f.colours[0] = from_rgb(ch->colors[0]);
-    f.colours[1] = from_rgb(ch->colors[1]);
+    for (int k = 0; k < 2; ++k)
+      f.colours[k] = m.unlit ? fixed_rgb(ch->colors[k]) : lit_colour(ch->colors[k], k);
   } else if (const auto* b = std::get_if<Blackbody>(&m.pattern)) {
-    const auto spectrum = BlackbodySpectrum::with_luminance(b->temperature_k, b->luminance);
-    f.colours[0].rest_rgb = rest_colour(spectrum);
-    f.colours[0].spectrum = spectrum;
+    f.colours[0] =
+        fixed_spectrum(BlackbodySpectrum::with_luminance(b->temperature_k, b->luminance));
   } else if (const auto* s = std::get_if<EmissionSpectrum>(&m.pattern)) {
-    tabulated_.push_back({s->wavelengths_nm, s->values});
-    f.colours[0].rest_rgb = rest_colour(tabulated_.back());
-    f.colours[0].spectrum = &tabulated_.back();
+    f.colours[0] = fixed_spectrum(TabulatedSpectrum{s->wavelengths_nm, s->values});
   }
   return f;
 }
@@ -91,7 +177,10 @@ PointEmission EmissionTable::surface(std::size_t object_index, const Hit& hit) c
   const Fixed& f = objects_[object_index];
   if (const auto* ch = std::get_if<Checker>(&m.pattern))
     return f.colours[checker_index(*ch, hit.shape_point)];
-  if (const auto* t = std::get_if<Texture>(&m.pattern)) return from_rgb(texture_colour(*t, hit));
+  if (const auto* t = std::get_if<Texture>(&m.pattern)) {
+    const Rgb c = texture_colour(*t, hit);
+    return m.unlit ? per_lookup_rgb(c) : PointEmission{linear(c)};
+  }
   return f.colours[0];
 }
 
@@ -99,7 +188,7 @@ PointEmission EmissionTable::sky(const Vec3& d) const {
   if (const auto* g = std::get_if<SkyGrid>(&scene_.sky.pattern))
     return sky_.colours[on_grid_line(*g, d) ? 1 : 0];
   if (const auto* i = std::get_if<SkyImage>(&scene_.sky.pattern))
-    return from_rgb(sky_image_colour(*i, d));
+    return per_lookup_rgb(sky_image_colour(*i, d));
   return sky_.colours[0];
 }
 

@@ -1,13 +1,16 @@
-// What a surface point or sky direction emits in its own rest frame: its colour at rest and its
-// spectral radiance at every wavelength (for the spectral Doppler model).
+// What a surface point or sky direction emits in its own rest frame: its colour at rest and,
+// for the spectral model, how that colour changes with the Doppler factor (tabulated per render,
+// docs/design/spectral.md).
 #pragma once
 
-#include <variant>
+#include <array>
+#include <deque>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
+#include "lightcone/color/doppler_table.hpp"
 #include "lightcone/color/rgb_spectrum.hpp"
-#include "lightcone/color/spectrum.hpp"
+#include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -15,24 +18,29 @@ namespace lightcone {
 
 struct PointEmission {
   LinearRgb rest_rgb;  // the colour at D = 1
-  std::variant<RgbIlluminantSpectrum, BlackbodySpectrum, const TabulatedSpectrum*> spectrum;
-  // For emitters fixed per material: the spectrum at every nm of [360, 830], so that the
-  // renderer's unshifted wavelengths cost a lookup (null: evaluate).
-  const double* visible_table = nullptr;
+  // Spectral model: the colour seen with factor D, before the searchlight factor, is
+  // sum over k < table_count of weights[k] * tables[k](D).
+  std::array<const DopplerXyzTable*, 3> tables{};
+  std::array<double, 3> weights{};
+  int table_count = 0;
+  // For lit materials (rest_rgb is the albedo): which fixed colour of the material it is (0,
+  // or 1 for a checker's second), or -1 for a colour looked up per hit (textures).
+  int fixed_colour = -1;
 
-  double spectral_radiance(double lambda_nm) const;
-  // The same, through the visible table where there is one and lambda is in [360, 830] nm.
-  // The renderer evaluates both the shifted and the unshifted wavelengths with it, so that at
-  // D = 1 the two agree bit for bit and a scene at rest shows exactly its rest colours.
-  double fast_spectral_radiance(double lambda_nm) const;
+  Xyz seen_with_doppler(double d) const;
 };
 
-// The emission of every object's material and of the sky, prepared once per render: the
-// spectra of fixed colours are fitted once, not per ray. Textures and sky images are fitted per
-// lookup, and only when `spectral` asks for spectra.
+// The largest |ln D| with which the camera can see any emitter or the sky: atanh of the
+// fastest speed in the camera's frame (0 for the classical picture).
+double max_emitter_log_doppler(const ResolvedScene& scene);
+
+// The emission of every object's material and of the sky, prepared once per render. For the
+// spectral model every fixed colour gets its own table against ln D; textures and sky images
+// are combined per lookup from the tables of the RGB white and the emitter nodes
+// (RgbEmitterSpectrum), which are then all built.
 class EmissionTable {
  public:
-  EmissionTable(const Scene& scene, bool spectral);
+  explicit EmissionTable(const ResolvedScene& scene);
   EmissionTable(const EmissionTable&) = delete;  // emissions point into its tables
   EmissionTable& operator=(const EmissionTable&) = delete;
 
@@ -40,20 +48,24 @@ class EmissionTable {
   PointEmission sky(const Vec3& pattern_direction) const;
 
  private:
-  PointEmission from_rgb(const Rgb& rgb) const;
-  // Fixed emissions of one material (solid: [0]; checker: both; blackbody, spectrum: [0]).
   struct Fixed {
     PointEmission colours[2];
   };
   Fixed prepare(const Material& material);
-
-  // Fills the visible table of a fixed emission (storage in tables_).
-  void tabulate(PointEmission& emission);
+  PointEmission fixed_rgb(const Rgb& rgb);
+  template <class Spectrum>
+  PointEmission fixed_spectrum(const Spectrum& spectrum);
+  // Per lookup (textures, sky images): the white and node tables, weighted.
+  PointEmission per_lookup_rgb(const Rgb& rgb) const;
+  const DopplerXyzTable& node_table(int node_case, int node);
 
   const Scene& scene_;
   bool spectral_;
-  std::vector<TabulatedSpectrum> tabulated_;  // reserved up front: PointEmission points here
-  std::vector<std::vector<double>> tables_;   // visible tables; inner buffers never move
+  DopplerGrid grid_;
+  DopplerXyzTable white_;
+  std::vector<DopplerXyzTable> nodes_;  // kRgbEmitterCases * kRgbToSpectrumRes, built on demand
+  std::vector<bool> node_built_;
+  std::deque<DopplerXyzTable> fixed_tables_;  // stable addresses
   std::vector<Fixed> objects_;
   Fixed sky_;
 };

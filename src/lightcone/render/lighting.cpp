@@ -56,22 +56,43 @@ double glossy_reflectance(const Glossy& g, const Vec3& n, const Vec3& to_light,
   return distribution * g1(cos_i) * g1(cos_o) * fresnel / (4 * cos_i * cos_o);
 }
 
+// The irradiance factors of `in` under the searchlight model: the light-path kernels' laws
+// (physical), or the geometric irradiance times D (Chang et al. 1996) or times 1 (off).
+template <class Incoming>
+void set_irradiance(Incoming& in, SearchlightModel model, double geometric, double physical,
+                    double physical_spectral) {
+  switch (model) {
+    case SearchlightModel::kPhysical:
+      in.irradiance = physical;
+      in.spectral_factor = physical_spectral;
+      return;
+    case SearchlightModel::kChang1996:
+      in.irradiance = in.spectral_factor = geometric * in.doppler;
+      return;
+    case SearchlightModel::kOff:
+      break;
+  }
+  in.irradiance = in.spectral_factor = geometric;
+}
+
 }  // namespace
 
 double Lighting::ResolvedLight::spectral(double lambda_nm) const {
-  if (const auto* s = std::get_if<RgbIlluminantSpectrum>(&spectrum)) return (*s)(lambda_nm);
+  if (const auto* s = std::get_if<RgbEmitterSpectrum>(&spectrum)) return (*s)(lambda_nm);
   return std::get<BlackbodySpectrum>(spectrum)(lambda_nm);
 }
 
 Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
     : scene_(scene), tracer_(tracer) {
+  const Scene& s = *scene.scene;
+  const RenderSettings& settings = s.render;
   const Vec4& observation = scene.observation_event;
-  for (const Light& light : scene.scene->lights) {
+  for (const Light& light : s.lights) {
     ResolvedLight r;
     r.light = &light;
     if (const auto* rgb = std::get_if<Rgb>(&light.spectrum.emission)) {
       r.rgb = {rgb->r, rgb->g, rgb->b};
-      r.spectrum = RgbIlluminantSpectrum::from_rgb(r.rgb);
+      r.spectrum = RgbEmitterSpectrum::from_rgb(r.rgb);
     } else {
       const auto b = BlackbodySpectrum::with_luminance(
           std::get<Blackbody>(light.spectrum.emission).temperature_k, 1.0);
@@ -82,7 +103,62 @@ Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
     const Vec3 at_observation = line.position_at(observation.t);
     const double tau = retarded_delay(at_observation - observation.x, line.velocity);
     r.camera_event = {observation.t - tau, at_observation - line.velocity * tau};
-    lights_.push_back(r);
+    lights_.push_back(std::move(r));
+  }
+  if (settings.doppler != DopplerModel::kSpectral) return;
+
+  // The factors a lit surface can be seen with (by the camera) and can see a light with.
+  double camera_reach = 0, light_reach = 0;
+  if (settings.relativity)
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (scene.bodies[i].object->material.unlit) continue;
+      camera_reach = std::max(camera_reach, rapidity(scene.bodies[i].velocity));
+      for (const Light& light : s.lights)
+        light_reach =
+            std::max(light_reach, relative_rapidity(light.world_line.velocity,
+                                                    scene.bodies[i].object->world_line.velocity));
+    }
+  camera_grid_ = DopplerGrid::covering(camera_reach);
+  light_grid_ = DopplerGrid::covering(light_reach);
+  const DopplerGrid total = DopplerGrid::covering(camera_reach + light_reach);
+  for (ResolvedLight& r : lights_)
+    r.seen = DopplerXyzTable::of([&r](double l) { return r.spectral(l); }, total);
+
+  // One table per distinct (albedo, light): objects of one colour share them.
+  struct Key {
+    float r, g, b;
+    std::size_t light;
+  };
+  std::vector<std::pair<Key, const ReflectionXyzTable*>> made;
+  const auto table_for = [&](const Rgb& albedo, std::size_t l) {
+    for (const auto& [key, table] : made)
+      if (key.r == albedo.r && key.g == albedo.g && key.b == albedo.b && key.light == l)
+        return table;
+    const RgbAlbedoSpectrum rho = RgbAlbedoSpectrum::from_rgb({albedo.r, albedo.g, albedo.b});
+    const ResolvedLight& light = lights_[l];
+    const ReflectionXyzTable* t = &reflections_.emplace_back(ReflectionXyzTable::of(
+        rho, [&light](double lambda) { return light.spectral(lambda); }, camera_grid_,
+        light_grid_));
+    made.push_back({{albedo.r, albedo.g, albedo.b, l}, t});
+    return t;
+  };
+  object_reflections_.resize(s.objects.size());
+  for (std::size_t o = 0; o < s.objects.size(); ++o) {
+    const Material& m = s.objects[o].material;
+    if (m.unlit) continue;
+    Rgb colours[2];
+    int count = 0;
+    if (const auto* c = std::get_if<SolidColor>(&m.pattern)) {
+      colours[0] = c->color;
+      count = 1;
+    } else if (const auto* ch = std::get_if<Checker>(&m.pattern)) {
+      colours[0] = ch->colors[0];
+      colours[1] = ch->colors[1];
+      count = 2;
+    }
+    for (int k = 0; k < count; ++k)
+      for (std::size_t l = 0; l < lights_.size(); ++l)
+        object_reflections_[o][k].push_back(table_for(colours[k], l));
   }
 }
 
@@ -100,10 +176,11 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     const Vec4 k_surface = boost(surface_velocity) * k_world;
     out.direction_to_light = -(k_surface.x / k_surface.t);
     out.doppler = k_surface.t / k_light.t;
-    out.doppler_power = 2;  // a plane wave's irradiance scales as D^2
     const double cos_i = dot(normal, out.direction_to_light);
     if (!(cos_i > 0)) return false;
-    out.weight = sun->irradiance * cos_i;
+    set_irradiance(out, settings.searchlight, sun->irradiance * cos_i,
+                   plane_wave_irradiance(out.doppler, sun->irradiance, cos_i),
+                   sun->irradiance * plane_wave_spectral_factor(out.doppler, cos_i));
     if (settings.shadows) {
       // Backward along the light's direction, as far as shadow rays are bounded.
       const Vec4 back = (-1.0 / k_world.t) * k_world;
@@ -142,7 +219,6 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
   const ReceivedLeg leg = receive_leg(emission, light_velocity, surface_world, surface_velocity);
   out.direction_to_light = -leg.direction;
   out.doppler = leg.doppler;
-  out.doppler_power = 4;
   const double cos_i = dot(normal, out.direction_to_light);
   // A light at the surface point itself (zero distance) has no direction: it lights nothing.
   if (!(cos_i > 0) || !(leg.distance > 0)) return false;
@@ -159,7 +235,9 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     intensity *= 4 * std::max(0.0, dot(normalize(rest_offset), leg.emitted_direction));
   }
   if (intensity <= 0) return false;
-  out.weight = intensity * cos_i / (leg.distance * leg.distance);
+  set_irradiance(out, settings.searchlight, intensity * cos_i / (leg.distance * leg.distance),
+                 point_source_irradiance(leg, intensity, cos_i),
+                 intensity * point_source_spectral_factor(leg, cos_i));
 
   if (settings.shadows &&
       tracer_.occluded(surface_world, emission - surface_world, kShadowEpsilon, 1 - kShadowEpsilon))
@@ -168,11 +246,12 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
 }
 
 LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
-                             const LinearRgb& albedo, const SampledWavelengths& wavelengths,
+                             const PointEmission& surface,
                              const std::array<double, 2>& light_sample) const {
   const RenderSettings& settings = scene_.scene->render;
   const Object& object = *scene_.bodies[hit.body].object;
   const Material& material = object.material;
+  const LinearRgb& albedo = surface.rest_rgb;
 
   // The surface event and velocity, and its rest-frame normal and direction to the camera.
   const Vec4 surface_trace{scene_.ray_time * hit.s, u * hit.s};
@@ -186,59 +265,67 @@ LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
   const Vec3 to_camera = view.emitted_direction;
 
   const bool spectral = settings.doppler == DopplerModel::kSpectral;
-  const RgbAlbedoSpectrum albedo_spectrum =
-      spectral ? RgbAlbedoSpectrum::from_rgb(albedo) : RgbAlbedoSpectrum{};
   const double diffuse = material.glossy ? 1 - material.glossy->specular : 1.0;
+  // Spectral: the colour reaching the camera before its searchlight factor. Otherwise: the
+  // surface-frame outgoing radiance, shifted to the camera afterwards.
+  Xyz seen;
+  LinearRgb outgoing{0, 0, 0};
+  const GridStencil camera_stencil =
+      spectral ? grid_stencil(camera_grid_, d_camera) : GridStencil{};
+  const auto* reflections =
+      spectral && surface.fixed_colour >= 0
+          ? &object_reflections_[hit.body][static_cast<std::size_t>(surface.fixed_colour)]
+          : nullptr;
+  const RgbAlbedoSpectrum per_hit_albedo =
+      spectral && !reflections ? RgbAlbedoSpectrum::from_rgb(albedo) : RgbAlbedoSpectrum{};
+  RenderSettings unshifted = settings;  // colour shift of the light alone (its irradiance apart)
+  unshifted.searchlight = SearchlightModel::kOff;
 
-  LinearRgb rest{0, 0, 0};     // the classical RGB shading of this geometry (all D = 1)
-  LinearRgb shifted{0, 0, 0};  // the surface-frame outgoing radiance (non-spectral models)
-  std::array<double, kHeroWavelengths> change{};
-  const double camera_factor = spectral_searchlight(d_camera, settings.searchlight);
-
-  for (const ResolvedLight& light : lights_) {
+  for (std::size_t l = 0; l < lights_.size(); ++l) {
+    const ResolvedLight& light = lights_[l];
     Incoming in;
     if (!incoming(light, surface_world, surface_velocity, normal, light_sample, in)) continue;
     const double gloss = material.glossy ? glossy_reflectance(*material.glossy, normal,
                                                               in.direction_to_light, to_camera)
                                          : 0.0;
-    // Reflected radiance per unit irradiance: albedo / pi (diffuse) plus the glossy lobe.
-    auto brdf = [&](double albedo_value) { return diffuse * albedo_value / kPi + gloss; };
-    rest.r += brdf(albedo.r) * light.rgb.r * in.weight;
-    rest.g += brdf(albedo.g) * light.rgb.g * in.weight;
-    rest.b += brdf(albedo.b) * light.rgb.b * in.weight;
-
     if (spectral) {
-      const double light_factor = settings.searchlight == SearchlightModel::kPhysical
-                                      ? std::pow(in.doppler, in.doppler_power + 1)
-                                      : spectral_searchlight(in.doppler, settings.searchlight);
-      for (int i = 0; i < kHeroWavelengths; ++i) {
-        const double lambda_camera = wavelengths.lambda[i];
-        const double lambda_surface = d_camera * lambda_camera;
-        const double lambda_light = in.doppler * lambda_surface;
-        const double now = brdf(albedo_spectrum(lambda_surface)) * light_factor *
-                           light.spectral(lambda_light) * in.weight;
-        const double at_rest =
-            brdf(albedo_spectrum(lambda_camera)) * light.spectral(lambda_camera) * in.weight;
-        change[i] += camera_factor * now - at_rest;
+      // Reflected per unit spectral irradiance: albedo / pi (diffuse) plus the flat glossy lobe.
+      const bool at_rest = d_camera == 1 && in.doppler == 1;
+      Xyz reflected;
+      if (reflections)
+        reflected = at_rest ? (*reflections)[l]->at_rest()
+                            : (*(*reflections)[l])(camera_stencil, in.doppler);
+      else
+        reflected = xyz_of_reflection_seen_with_doppler(
+            per_hit_albedo, [&light](double lambda) { return light.spectral(lambda); }, d_camera,
+            in.doppler);
+      const double kd = diffuse / kPi * in.spectral_factor;
+      seen.x += kd * reflected.x;
+      seen.y += kd * reflected.y;
+      seen.z += kd * reflected.z;
+      if (gloss > 0) {
+        const Xyz direct = at_rest ? light.seen.at_rest() : light.seen(d_camera * in.doppler);
+        const double ks = gloss * in.spectral_factor;
+        seen.x += ks * direct.x;
+        seen.y += ks * direct.y;
+        seen.z += ks * direct.z;
       }
     } else {
       // The light's colour as the surface sees it, under the chosen model, then reflected.
-      const LinearRgb seen =
-          received_colour(PointEmission{light.rgb, {}, nullptr}, in.doppler, settings, wavelengths);
-      const double scale = settings.searchlight == SearchlightModel::kPhysical
-                               ? std::pow(in.doppler, in.doppler_power - 4)  // plane waves: D^2
-                               : 1.0;
-      shifted.r += brdf(albedo.r) * seen.r * scale * in.weight;
-      shifted.g += brdf(albedo.g) * seen.g * scale * in.weight;
-      shifted.b += brdf(albedo.b) * seen.b * scale * in.weight;
+      const LinearRgb colour = received_colour(PointEmission{light.rgb}, in.doppler, unshifted);
+      auto brdf = [&](double albedo_value) { return diffuse * albedo_value / kPi + gloss; };
+      outgoing.r += brdf(albedo.r) * colour.r * in.irradiance;
+      outgoing.g += brdf(albedo.g) * colour.g * in.irradiance;
+      outgoing.b += brdf(albedo.b) * colour.b * in.irradiance;
     }
   }
 
   if (spectral) {
-    const LinearRgb delta = linear_srgb_from_xyz(xyz_from_samples(wavelengths, change));
-    return {rest.r + delta.r, rest.g + delta.g, rest.b + delta.b};
+    const LinearRgb c = linear_srgb_from_xyz(seen);
+    const double k = spectral_searchlight(d_camera, settings.searchlight);
+    return {c.r * k, c.g * k, c.b * k};
   }
-  return received_colour(PointEmission{shifted, {}, nullptr}, d_camera, settings, wavelengths);
+  return received_colour(PointEmission{outgoing}, d_camera, settings);
 }
 
 }  // namespace lightcone

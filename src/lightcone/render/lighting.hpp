@@ -3,11 +3,13 @@
 #pragma once
 
 #include <array>
+#include <deque>
 #include <vector>
 
+#include "lightcone/color/doppler_table.hpp"
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/spectrum.hpp"
-#include "lightcone/color/wavelengths.hpp"
+#include "lightcone/render/emission.hpp"
 #include "lightcone/render/resolved_scene.hpp"
 #include "lightcone/render/tracer.hpp"
 
@@ -15,29 +17,35 @@ namespace lightcone {
 
 class Lighting {
  public:
+  // Prepares, for the spectral model, the colour of every fixed albedo of every lit object
+  // under every light against the camera's and the light's Doppler factors.
   Lighting(const ResolvedScene& scene, const Tracer& tracer);
 
   // Linear sRGB received at the camera from the lit surface point of `hit`, seen along look
-  // direction u with Doppler factor d_camera, for the surface's rest-frame albedo (RGB in
-  // [0, 1]). `light_sample` picks points on sphere lights.
-  LinearRgb received(const Hit& hit, const Vec3& u, double d_camera, const LinearRgb& albedo,
-                     const SampledWavelengths& wavelengths,
+  // direction u with Doppler factor d_camera; `surface` carries the rest-frame albedo (RGB in
+  // [0, 1]) and which fixed colour of the material it is. `light_sample` picks points on
+  // sphere lights.
+  LinearRgb received(const Hit& hit, const Vec3& u, double d_camera, const PointEmission& surface,
                      const std::array<double, 2>& light_sample) const;
 
  private:
   struct ResolvedLight {
     const Light* light = nullptr;
     LinearRgb rgb;  // colour at rest, Y = 1 per unit intensity
-    std::variant<RgbIlluminantSpectrum, BlackbodySpectrum> spectrum;
-    Vec4 camera_event;  // its event on the camera's past light cone (W), for "camera" delay
+    std::variant<RgbEmitterSpectrum, BlackbodySpectrum> spectrum;
+    Vec4 camera_event;     // its event on the camera's past light cone (W), for "camera" delay
+    DopplerXyzTable seen;  // spectral: its colour against the camera-to-light factor
     double spectral(double lambda_nm) const;
   };
   // What one light delivers to the surface, in the surface's rest frame.
   struct Incoming {
     Vec3 direction_to_light;  // unit, surface rest frame
     double doppler = 1;       // nu_surface / nu_light
-    double weight = 0;        // irradiance per unit of the light's colour at D = 1, before D^n
-    int doppler_power = 4;    // integrated irradiance scales as D^power (D^(power+1) spectral)
+    // Irradiance per unit of the light's colour, integrated over wavelength (the colour
+    // models other than spectral), and the factor on its spectral radiance read at D lambda
+    // (spectral), both under the scene's searchlight model.
+    double irradiance = 0;
+    double spectral_factor = 0;
   };
 
   bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec3& surface_velocity,
@@ -46,6 +54,10 @@ class Lighting {
   const ResolvedScene& scene_;
   const Tracer& tracer_;
   std::vector<ResolvedLight> lights_;
+  DopplerGrid camera_grid_, light_grid_;
+  std::deque<ReflectionXyzTable> reflections_;
+  // [object][fixed colour][light] (spectral model, lit objects only).
+  std::vector<std::array<std::vector<const ReflectionXyzTable*>, 2>> object_reflections_;
 };
 
 }  // namespace lightcone

@@ -35,8 +35,7 @@ double integrated_searchlight(double d, SearchlightModel model) {
   return 1.0;
 }
 
-LinearRgb received_colour(const PointEmission& e, double d, const RenderSettings& settings,
-                          const SampledWavelengths& wavelengths) {
+LinearRgb received_colour(const PointEmission& e, double d, const RenderSettings& settings) {
   switch (settings.doppler) {
     case DopplerModel::kOff:
       return scaled(e.rest_rgb, integrated_searchlight(d, settings.searchlight));
@@ -48,14 +47,9 @@ LinearRgb received_colour(const PointEmission& e, double d, const RenderSettings
     case DopplerModel::kSpectral:
       break;
   }
-  const double factor = spectral_searchlight(d, settings.searchlight);
-  std::array<double, kHeroWavelengths> change;
-  for (int i = 0; i < kHeroWavelengths; ++i) {
-    const double lambda = wavelengths.lambda[i];
-    change[i] = factor * e.fast_spectral_radiance(d * lambda) - e.fast_spectral_radiance(lambda);
-  }
-  const LinearRgb delta = linear_srgb_from_xyz(xyz_from_samples(wavelengths, change));
-  return {e.rest_rgb.r + delta.r, e.rest_rgb.g + delta.g, e.rest_rgb.b + delta.b};
+  if (d == 1 || e.table_count == 0) return e.rest_rgb;
+  return scaled(linear_srgb_from_xyz(e.seen_with_doppler(d)),
+                spectral_searchlight(d, settings.searchlight));
 }
 
 }  // namespace lightcone

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "lightcone/render/received_colour.hpp"
+#include "lightcone/render/sampler.hpp"
 #include "lightcone/render/tone_map.hpp"
 
 namespace lightcone {
@@ -17,63 +18,23 @@ namespace {
 
 constexpr int kTileSize = 16;
 
-// Deterministic per-pixel sample positions: a hash-seeded stratified pattern, so that
-// renders are reproducible whatever the thread count.
-std::uint64_t mix(std::uint64_t x) {
-  x ^= x >> 33;
-  x *= 0xff51afd7ed558ccdULL;
-  x ^= x >> 33;
-  x *= 0xc4ceb9fe1a85ec53ULL;
-  x ^= x >> 33;
-  return x;
-}
-
-double unit_float(std::uint64_t bits) {
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;
-}
-
-// The random numbers of sample k of n within pixel (i, j).
-struct SampleNumbers {
-  double x, y;                    // offset in the pixel (n = 1: its centre)
-  double wavelength;              // jitter of its wavelengths
-  std::array<double, 2> light{};  // point on sphere lights
-};
-
-SampleNumbers sample_numbers(int i, int j, int k, int n) {
-  const std::uint64_t h =
-      mix((static_cast<std::uint64_t>(j) << 40) ^ (static_cast<std::uint64_t>(i) << 20) ^
-          static_cast<std::uint64_t>(k));
-  SampleNumbers s{
-      0.5,
-      0.5,
-      unit_float(mix(h ^ 0x9e3779b97f4a7c15ULL)),
-      {unit_float(mix(h ^ 0x632be59bd9b4e019ULL)), unit_float(mix(h ^ 0x85ebca6b2f0c9d1fULL))}};
-  if (n > 1) {
-    const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-    const int sx = k % strata, sy = (k / strata) % strata;
-    s.x = (sx + unit_float(h)) / strata;
-    s.y = (sy + unit_float(mix(h))) / strata;
-  }
-  return s;
-}
-
 }  // namespace
 
 LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
-                         const Tracer& tracer, const Vec3& u, const SampledWavelengths& wavelengths,
-                         const Lighting* lighting, const std::array<double, 2>& light_sample) {
+                         const Tracer& tracer, const Vec3& u, const Lighting* lighting,
+                         const std::array<double, 2>& light_sample) {
   const RenderSettings& settings = scene.scene->render;
   if (const auto hit = tracer.trace(u)) {
     const double d = scene.doppler(u, scene.bodies[hit->body].velocity);
     const PointEmission surface = emission.surface(hit->body, *hit);
     if (!scene.bodies[hit->body].object->material.unlit) {
       if (!lighting) return {0, 0, 0};
-      return lighting->received(*hit, u, d, surface.rest_rgb, wavelengths, light_sample);
+      return lighting->received(*hit, u, d, surface, light_sample);
     }
-    return received_colour(surface, d, settings, wavelengths);
+    return received_colour(surface, d, settings);
   }
   const double d = scene.doppler(u, scene.sky_velocity);
-  return received_colour(emission.sky(scene.sky_direction(u)), d, settings, wavelengths);
+  return received_colour(emission.sky(scene.sky_direction(u)), d, settings);
 }
 
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
@@ -84,7 +45,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                                                   options.threads);
   const ResolvedScene resolved = resolve_scene(scene);
   const Tracer tracer(resolved);
-  const EmissionTable emission(scene, scene.render.doppler == DopplerModel::kSpectral);
+  const EmissionTable emission(resolved);
   const Lighting lighting(resolved, tracer);
 
   const Camera& cam = scene.camera;
@@ -106,12 +67,10 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         for (int i = x0; i < std::min(x0 + kTileSize, cam.width); ++i) {
           double r = 0, g = 0, b = 0;
           for (int k = 0; k < n; ++k) {
-            const SampleNumbers o = sample_numbers(i, j, k, n);
-            const SampledWavelengths wavelengths =
-                sample_wavelengths(stratified_wavelength_u(k, n, o.wavelength));
+            const PixelSample o = pixel_sample(i, j, k, n, options.seed);
             const LinearRgb c = radiance_along(resolved, emission, tracer,
                                                look_direction(resolved.camera, i + o.x, j + o.y),
-                                               wavelengths, &lighting, o.light);
+                                               &lighting, o.light);
             r += c.r;
             g += c.g;
             b += c.b;

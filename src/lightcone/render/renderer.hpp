@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <functional>
 
-#include "lightcone/color/wavelengths.hpp"
 #include "lightcone/render/emission.hpp"
 #include "lightcone/render/lighting.hpp"
 #include "lightcone/render/resolved_scene.hpp"
@@ -15,7 +14,8 @@
 namespace lightcone {
 
 struct RenderOptions {
-  int threads = 0;  // 0: all cores
+  int threads = 0;         // 0: all cores
+  std::uint64_t seed = 0;  // of the sample pattern (render_image is deterministic for each)
   // Called from worker threads (must be thread-safe) after each finished tile.
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
@@ -26,12 +26,11 @@ struct RenderStats {
   double exposure = 0;     // EV applied
 };
 
-// Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F), for the
-// received wavelengths of one camera sample (used by the spectral model). Lit surfaces need
-// `lighting` (without it they are black); `light_sample` picks points on sphere lights.
+// Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F). Lit
+// surfaces need `lighting` (without it they are black); `light_sample` picks points on sphere
+// lights.
 LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
-                         const Tracer& tracer, const Vec3& u, const SampledWavelengths& wavelengths,
-                         const Lighting* lighting = nullptr,
+                         const Tracer& tracer, const Vec3& u, const Lighting* lighting = nullptr,
                          const std::array<double, 2>& light_sample = {0.5, 0.5});
 
 // Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB

@@ -1,0 +1,31 @@
+// The sample pattern of a pixel: correlated multi-jittered sampling (Kensler, "Correlated
+// Multi-Jittered Sampling", 2013) for every two-dimensional quantity a sample needs, each
+// scrambled per pixel and per dimension with its own seed, so that no two dimensions (the
+// position in the pixel and the point on an area light) are correlated and every edge
+// converges. Deterministic: the same pixel, sample and seed give the same numbers on any
+// thread.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace lightcone {
+
+// A bijective shuffle of [0, count): the element at `index` under the permutation `seed`.
+std::uint32_t shuffled_index(std::uint32_t index, std::uint32_t count, std::uint32_t seed);
+
+// Point `index` of `count` of a correlated multi-jittered pattern in [0, 1)^2, scrambled by
+// `seed`: each of the count columns and rows of the unit square holds one point, and so does
+// each cell of a near-square grid (of exactly count cells where count is a product of two
+// near-equal numbers; otherwise a seeded choice of count of its cells).
+std::array<double, 2> multi_jittered(std::uint32_t index, std::uint32_t count, std::uint32_t seed);
+
+struct PixelSample {
+  double x = 0.5, y = 0.5;        // offset in the pixel (one sample a pixel: its centre)
+  std::array<double, 2> light{};  // point on sphere lights
+};
+
+// Sample k of n of pixel (i, j), for the render seed `seed`.
+PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed);
+
+}  // namespace lightcone
