@@ -40,11 +40,11 @@ GridStencil grid_stencil(const DopplerGrid& grid, double d) {
   s.first = std::clamp(static_cast<int>(floor_t) - 1, 0, grid.size() - 4);
   const double f = t - (s.first + 1);
   s.fraction = f;
-  const double f2 = f * f, f3 = f2 * f;
-  s.weights[0] = 0.5 * (-f3 + 2 * f2 - f);
-  s.weights[1] = 0.5 * (3 * f3 - 5 * f2 + 2);
-  s.weights[2] = 0.5 * (-3 * f3 + 4 * f2 + f);
-  s.weights[3] = 0.5 * (f3 - f2);
+  // Lagrange's cubic through the four nodes at -1, 0, 1, 2 (fourth-order accurate).
+  s.weights[0] = -f * (f - 1) * (f - 2) / 6;
+  s.weights[1] = (f + 1) * (f - 1) * (f - 2) / 2;
+  s.weights[2] = -(f + 1) * f * (f - 2) / 2;
+  s.weights[3] = (f + 1) * f * (f - 1) / 6;
   return s;
 }
 
@@ -72,6 +72,13 @@ Xyz DopplerXyzTable::operator()(const GridStencil& s) const {
     out[n] = log_cubic(values, logs, s);
   }
   return {out[0], out[1], out[2]};
+}
+
+Xyz ReflectionXyzTable::reflected_sum(const double* reflectance, const double* source) {
+  return xyz_from_spectrum([&](double lambda) {
+    const auto i = static_cast<int>(lambda - kCieMinWavelength);
+    return reflectance[i] * source[i];
+  });
 }
 
 ReflectionXyzTable::ReflectionXyzTable(const DopplerGrid& camera, const DopplerGrid& light,

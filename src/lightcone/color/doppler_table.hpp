@@ -23,7 +23,7 @@ Xyz xyz_seen_with_doppler(const Spectrum& spectrum, double d) {
 // Nodes k h of ln D, k = -half_count .. half_count, with h = kStep. A grid covering
 // |ln D| <= r has a node at D = 1 and two nodes beyond r on each side (the cubic stencil).
 struct DopplerGrid {
-  static constexpr double kStep = 0.05;
+  static constexpr double kStep = 0.02;
   int half_count = 2;
 
   static DopplerGrid covering(double max_abs_log_d);
@@ -32,7 +32,7 @@ struct DopplerGrid {
   double d(int index) const { return std::exp(log_d(index)); }
 };
 
-// The positions and weights of a cubic (Catmull-Rom) interpolation on a grid at ln D.
+// The positions and weights of a cubic (Lagrange, four nodes) interpolation on a grid at ln D.
 struct GridStencil {
   int first = 0;  // index of the first of four nodes
   double weights[4] = {0, 1, 0, 0};
@@ -87,14 +87,28 @@ Xyz xyz_of_reflection_seen_with_doppler(const Reflectance& rho, const Spectrum& 
 class ReflectionXyzTable {
  public:
   ReflectionXyzTable() = default;
+  // Every node is xyz_of_reflection_seen_with_doppler; since the grids share one step, the
+  // light is read at the factors d_camera d_light = e^(k h) of one combined grid, so each
+  // spectrum is evaluated once per node and wavelength, not once per pair of nodes.
   template <class Reflectance, class Spectrum>
   static ReflectionXyzTable of(const Reflectance& rho, const Spectrum& light,
                                const DopplerGrid& camera, const DopplerGrid& light_grid) {
-    std::vector<Xyz> nodes(static_cast<std::size_t>(camera.size()) * light_grid.size());
-    for (int c = 0; c < camera.size(); ++c)
-      for (int l = 0; l < light_grid.size(); ++l)
-        nodes[static_cast<std::size_t>(c) * light_grid.size() + l] =
-            xyz_of_reflection_seen_with_doppler(rho, light, camera.d(c), light_grid.d(l));
+    const int nc = camera.size(), nl = light_grid.size();
+    DopplerGrid total;
+    total.half_count = camera.half_count + light_grid.half_count;
+    std::vector<double> reflectance(static_cast<std::size_t>(nc) * kCieTableSize);
+    std::vector<double> source(static_cast<std::size_t>(total.size()) * kCieTableSize);
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < kCieTableSize; ++i)
+        reflectance[c * kCieTableSize + i] = rho(camera.d(c) * (kCieMinWavelength + i));
+    for (int t = 0; t < total.size(); ++t)
+      for (int i = 0; i < kCieTableSize; ++i)
+        source[t * kCieTableSize + i] = light(total.d(t) * (kCieMinWavelength + i));
+    std::vector<Xyz> nodes(static_cast<std::size_t>(nc) * nl);
+    for (int c = 0; c < nc; ++c)
+      for (int l = 0; l < nl; ++l)
+        nodes[static_cast<std::size_t>(c) * nl + l] =
+            reflected_sum(&reflectance[c * kCieTableSize], &source[(c + l) * kCieTableSize]);
     return ReflectionXyzTable(camera, light_grid, std::move(nodes));
   }
   ReflectionXyzTable(const DopplerGrid& camera, const DopplerGrid& light, std::vector<Xyz> nodes);
@@ -105,6 +119,8 @@ class ReflectionXyzTable {
   Xyz operator()(const GridStencil& camera, double d_light) const;
 
  private:
+  // The 1 nm sum of reflectance[i] source[i] cmf(360 + i), normalised as xyz_from_spectrum.
+  static Xyz reflected_sum(const double* reflectance, const double* source);
   DopplerGrid camera_, light_;
   std::vector<Xyz> nodes_, logs_;
 };
