@@ -3,8 +3,12 @@
 //   Swarm/relativistic vs Swarm/classical             (target <= 2x)
 //   Swarm throughput vs StaticStreet throughput       (target >= 1/3)
 //   Memory/instances:1000 vs Memory/instances:1       (acceleration + mesh bytes)
-//   StreetColour/spectral vs StreetColour/off         (spectral Doppler cost, target <= 1.5x)
+//   StreetDefault/variant:0 (the scene's defaults: spectral, physical searchlight) vs
+//     variant:1 (doppler off)                         (spectral cost, target <= 1.10x)
+//     variant:2 (relativity false)                    (relativistic cost, target <= 1.25x)
+//   StreetLitColour/spectral vs StreetLitColour/off   (spectral cost with lights, <= 1.25x)
 //   StreetLit/surface vs StreetLit/camera             (exact light delay cost, target <= 1.5x)
+// The StreetDefault and StreetLitColour figures run on one thread, the others on all cores.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -92,10 +96,12 @@ Scene swarm(int count, bool relativity, int width = 1920, int height = 1080) {
   return s;
 }
 
-void render_and_count(benchmark::State& state, const Scene& scene) {
+void render_and_count(benchmark::State& state, const Scene& scene, int threads = 0) {
   RenderStats stats;
+  RenderOptions options;
+  options.threads = threads;
   for (auto _ : state) {
-    Image image = render_image(scene, RenderOptions{}, &stats);
+    Image image = render_image(scene, options, &stats);
     benchmark::DoNotOptimize(image.rgb.data());
   }
   state.counters["rays_per_s"] = benchmark::Counter(
@@ -113,29 +119,48 @@ BENCHMARK(BM_Street)
     ->Iterations(3)
     ->UseRealTime();
 
-// The street at 0.8c with the spectral Doppler model (and the physical searchlight) against
-// no colour change at all.
-void BM_StreetColour(benchmark::State& state) {
-  Scene s = street(true, true);
-  s.render.doppler = state.range(0) != 0 ? DopplerModel::kSpectral : DopplerModel::kOff;
-  s.render.searchlight = state.range(0) != 0 ? SearchlightModel::kPhysical : SearchlightModel::kOff;
-  render_and_count(state, s);
+Scene scene_at_1080p(const char* name) {
+  SceneLoadReport report;
+  return load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/" + name,
+                         {"camera.width=1920", "camera.height=1080", "camera.samples=1"}, report);
 }
-BENCHMARK(BM_StreetColour)
+
+// street.json exactly as the scene file says (spectral colour, physical searchlight), against
+// the same render with the Doppler colour off and against its classical (relativity false)
+// render, on one thread.
+void BM_StreetDefault(benchmark::State& state) {
+  Scene s = scene_at_1080p("street.json");
+  if (state.range(0) == 1) s.render.doppler = DopplerModel::kOff;
+  if (state.range(0) == 2) s.render.relativity = false;
+  render_and_count(state, s, 1);
+}
+BENCHMARK(BM_StreetDefault)
+    ->ArgName("variant")
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
+
+// street-lit.json with spectral colour against the Doppler colour off, on one thread.
+void BM_StreetLitColour(benchmark::State& state) {
+  Scene s = scene_at_1080p("street-lit.json");
+  s.render.doppler = state.range(0) != 0 ? DopplerModel::kSpectral : DopplerModel::kOff;
+  render_and_count(state, s, 1);
+}
+BENCHMARK(BM_StreetLitColour)
     ->ArgName("spectral")
     ->Arg(1)
     ->Arg(0)
     ->Unit(benchmark::kMillisecond)
-    ->Iterations(3)
+    ->Iterations(1)
     ->UseRealTime();
 
 // The street at night at 0.8c, eight point lamps with shadows: the exact (surface) light delay
 // against seed 004's camera-centric approximation.
 void BM_StreetLit(benchmark::State& state) {
-  SceneLoadReport report;
-  Scene s =
-      load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/street-lit.json",
-                      {"camera.width=1920", "camera.height=1080", "camera.samples=1"}, report);
+  Scene s = scene_at_1080p("street-lit.json");
   s.render.light_source_delay =
       state.range(0) != 0 ? LightSourceDelay::kSurface : LightSourceDelay::kCamera;
   render_and_count(state, s);

@@ -4,6 +4,8 @@
 // noise, and its error is relative to what is received, however dim.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -32,21 +34,58 @@ struct DopplerGrid {
   double d(int index) const { return std::exp(log_d(index)); }
 };
 
-// The positions and weights of a cubic (Lagrange, four nodes) interpolation on a grid at ln D.
-struct GridStencil {
-  int first = 0;  // index of the first of four nodes
-  double weights[4] = {0, 1, 0, 0};
-  double fraction = 0;  // between nodes first + 1 and first + 2
+// Where ln d lies on a grid: the interpolation uses the four nodes first .. first + 3, and d
+// lies at `fraction` of the way from node first + 1 to node first + 2.
+struct GridPosition {
+  int first = 0;
+  double fraction = 0;
 };
-// d must lie within the grid's interior (|ln d| <= kStep * (half_count - 2) plus one step).
+// d should lie within the grid (|ln d| <= kStep * (half_count - 2)); a factor that rounding
+// puts past the last interval is extrapolated by that interval's cubic.
+// (Inline, with the table lookup below: they run once per camera ray.)
+inline GridPosition grid_position(const DopplerGrid& grid, double d) {
+  constexpr double kNodesPerUnit = 1 / DopplerGrid::kStep;
+  const double t = std::log(d) * kNodesPerUnit + grid.half_count;
+  GridPosition p;
+  p.first = std::clamp(static_cast<int>(std::floor(t)) - 1, 0, grid.size() - 4);
+  p.fraction = t - (p.first + 1);
+  return p;
+}
+
+// e^x, by its Taylor series (Estrin's scheme) where |x| <= 1/2 (relative error below 3e-10;
+// std::exp costs several times more on the hot path), else by std::exp.
+inline double exp_near_zero(double x) {
+  if (!(std::abs(x) <= 0.5)) return std::exp(x);
+  const double x2 = x * x, x4 = x2 * x2;
+  const double p01 = 1 + x, p23 = 0.5 + x * (1.0 / 6), p45 = 1.0 / 24 + x * (1.0 / 120),
+               p67 = 1.0 / 720 + x * (1.0 / 5040), p89 = 1.0 / 40320 + x * (1.0 / 362880);
+  return (p01 + x2 * p23) + x4 * ((p45 + x2 * p67) + x4 * p89);
+}
+
+// The weights of Lagrange's cubic through the four nodes of a position (fourth-order
+// accurate).
+struct GridStencil {
+  GridPosition position;
+  double weights[4] = {0, 1, 0, 0};
+};
 GridStencil grid_stencil(const DopplerGrid& grid, double d);
 
-// Interpolates four positive values cubically in their logarithms, so that the relative error
-// stays small across many orders of magnitude (a Wien tail is nearly a straight line in ln E
-// against ln D). Where a value is zero it interpolates the two middle values linearly.
-double log_cubic(const double values[4], const double logs[4], const GridStencil& stencil);
+// A spectrum sampled for DopplerXyzTable::under: I(d(k) (360 + i)) for every node k of the grid
+// and i in [0, kCieTableSize).
+template <class Spectrum>
+std::vector<double> illuminant_samples(const Spectrum& spectrum, const DopplerGrid& grid) {
+  std::vector<double> samples(static_cast<std::size_t>(grid.size()) * kCieTableSize);
+  for (int k = 0; k < grid.size(); ++k)
+    for (int i = 0; i < kCieTableSize; ++i)
+      samples[static_cast<std::size_t>(k) * kCieTableSize + i] =
+          spectrum(grid.d(k) * (kCieMinWavelength + i));
+  return samples;
+}
 
-// One spectrum's colour against ln D: xyz_seen_with_doppler at every node.
+// One spectrum's colour against ln D: xyz_seen_with_doppler at every node, interpolated
+// cubically in the logarithms of X, Y and Z so that the relative error stays small across
+// many orders of magnitude (a Wien tail is nearly a straight line in ln E against ln D). Where
+// a node of the stencil is zero it interpolates the two middle nodes linearly.
 class DopplerXyzTable {
  public:
   DopplerXyzTable() = default;
@@ -56,18 +95,62 @@ class DopplerXyzTable {
     for (int i = 0; i < grid.size(); ++i) nodes[i] = xyz_seen_with_doppler(spectrum, grid.d(i));
     return DopplerXyzTable(grid, std::move(nodes));
   }
+  // The same for a spectrum rho(lambda) I(lambda) with I sampled once per grid: `samples`
+  // holds I(d(k) (360 + i)) at index k * kCieTableSize + i (illuminant_samples), so that many
+  // tables under one illuminant evaluate it once.
+  template <class Reflectance>
+  static DopplerXyzTable under(const Reflectance& rho, const std::vector<double>& samples,
+                               const DopplerGrid& grid) {
+    std::vector<Xyz> nodes(grid.size());
+    for (int k = 0; k < grid.size(); ++k) {
+      const double d = grid.d(k);
+      const double* row = &samples[static_cast<std::size_t>(k) * kCieTableSize];
+      nodes[k] = xyz_from_spectrum([&](double lambda) {
+        return rho(d * lambda) * row[static_cast<int>(lambda - kCieMinWavelength)];
+      });
+    }
+    return DopplerXyzTable(grid, std::move(nodes));
+  }
   DopplerXyzTable(const DopplerGrid& grid, std::vector<Xyz> nodes);
 
   const DopplerGrid& grid() const { return grid_; }
   const Xyz& node(int index) const { return nodes_[index]; }
   const Xyz& at_rest() const { return nodes_[grid_.half_count]; }
-  Xyz operator()(const GridStencil& stencil) const;
-  Xyz operator()(double d) const { return (*this)(grid_stencil(grid_, d)); }
+  Xyz operator()(const GridPosition& p) const {
+    const Interval& in = intervals_[p.first + 1];
+    const double f = p.fraction;
+    double out[3];
+    if (in.all_values) {  // the common case, without branches
+      for (int k = 0; k < 3; ++k)
+        out[k] = in.value[k] + f * (in.c1[k] + f * (in.c2[k] + f * in.c3[k]));
+      return {out[0], out[1], out[2]};
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double q = f * (in.c1[k] + f * (in.c2[k] + f * in.c3[k]));
+      out[k] = in.mode[k] == Interval::kValues ? in.value[k] + q
+               : in.mode[k] == Interval::kLogarithms
+                   ? in.value[k] * exp_near_zero(q)
+                   : in.value[k] + std::clamp(f, 0.0, 1.0) * in.c1[k];
+    }
+    return {out[0], out[1], out[2]};
+  }
+  Xyz operator()(double d) const { return (*this)(grid_position(grid_, d)); }
 
  private:
   DopplerGrid grid_;
   std::vector<Xyz> nodes_;
-  std::vector<Xyz> logs_;
+  // Per interval (from node i to i + 1) and channel, value = E at node i and the cubic
+  // q = f (c1 + f (c2 + f c3)) in the fraction f: E = value + q (Lagrange's cubic in the
+  // values) where the four nodes of the stencil lie within a factor kValuesRatio of each other,
+  // E = value exp(q) (the cubic in ln E) where they are positive, and E = value + f c1
+  // (linear, c1 the difference to node i + 1) where one is zero.
+  struct Interval {
+    enum Mode : unsigned char { kValues, kLogarithms, kLinear };
+    double value[3] = {0, 0, 0}, c1[3] = {0, 0, 0}, c2[3] = {0, 0, 0}, c3[3] = {0, 0, 0};
+    Mode mode[3] = {kLinear, kLinear, kLinear};
+    bool all_values = false;
+  };
+  std::vector<Interval> intervals_;
 };
 
 // Light of spectrum I reflected by a reflectance rho and seen by a camera: the camera sees the

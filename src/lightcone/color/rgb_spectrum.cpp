@@ -114,11 +114,15 @@ std::array<double, 3> white_band_weights() {
 
 }  // namespace
 
-double rgb_white_spectrum(double lambda_nm) {
+double rgb_white_factor(double lambda_nm) {
   static const std::array<double, 3> g = white_band_weights();
   double factor = 1;
   for (int k = 0; k < 3; ++k) factor += g[k] * white_band(k, lambda_nm);
-  return reference_illuminant(lambda_nm) * factor;
+  return factor;
+}
+
+double rgb_white_spectrum(double lambda_nm) {
+  return reference_illuminant(lambda_nm) * rgb_white_factor(lambda_nm);
 }
 
 SigmoidPolynomial rgb_emitter_node(int node_case, int i) {

@@ -40,6 +40,8 @@ struct RgbAlbedoSpectrum {
 // 1 + sum_k g_k exp(-((lambda - mu_k) / 30 nm)^2 / 2) with mu = 450, 540, 610 nm and the three
 // g_k (a few per cent) solved for that colour, so outside about 360-700 nm it is the blackbody.
 double rgb_white_spectrum(double lambda_nm);
+// The factor 1 + sum_k g_k exp(...) itself: rgb_white_spectrum = reference_illuminant * it.
+double rgb_white_factor(double lambda_nm);
 
 // An emitter of any non-negative linear sRGB radiance (negative components and NaN count as 0;
 // components must be finite). Policy (docs/design/spectral.md, "What an RGB colour means"):

@@ -14,14 +14,6 @@ LinearRgb linear(const Rgb& c) {
   return {c.r, c.g, c.b};
 }
 
-// The reflectance of an emitter node times the reference illuminant.
-struct NodeSpectrum {
-  SigmoidPolynomial reflectance;
-  double operator()(double lambda_nm) const {
-    return reflectance(lambda_nm) * reference_illuminant(lambda_nm);
-  }
-};
-
 bool has_per_lookup_colours(const Scene& scene) {
   if (std::holds_alternative<SkyImage>(scene.sky.pattern)) return true;
   for (const Object& o : scene.objects)
@@ -38,19 +30,6 @@ PointEmission lit_colour(const Rgb& albedo, int fixed_colour) {
 
 }  // namespace
 
-Xyz PointEmission::seen_with_doppler(double d) const {
-  if (table_count == 0) return {};
-  const GridStencil stencil = grid_stencil(tables[0]->grid(), d);
-  Xyz sum;
-  for (int k = 0; k < table_count; ++k) {
-    const Xyz c = (*tables[k])(stencil);
-    sum.x += weights[k] * c.x;
-    sum.y += weights[k] * c.y;
-    sum.z += weights[k] * c.z;
-  }
-  return sum;
-}
-
 double max_emitter_log_doppler(const ResolvedScene& scene) {
   if (!scene.scene->render.relativity) return 0;
   double r = rapidity(scene.sky_velocity);
@@ -63,14 +42,16 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved)
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
       grid_(DopplerGrid::covering(max_emitter_log_doppler(resolved))) {
   if (spectral_) {
-    white_ = DopplerXyzTable::of([](double l) { return rgb_white_spectrum(l); }, grid_);
+    illuminant_ = illuminant_samples([](double l) { return reference_illuminant(l); }, grid_);
+    white_ =
+        DopplerXyzTable::under([](double l) { return rgb_white_factor(l); }, illuminant_, grid_);
     nodes_.resize(static_cast<std::size_t>(kRgbEmitterCases) * kRgbToSpectrumRes);
     node_built_.assign(nodes_.size(), false);
     if (has_per_lookup_colours(scene_)) {
       tbb::parallel_for(std::size_t{0}, nodes_.size(), [&](std::size_t i) {
         const int node_case = static_cast<int>(i) / kRgbToSpectrumRes;
         const int node = static_cast<int>(i) % kRgbToSpectrumRes;
-        nodes_[i] = DopplerXyzTable::of(NodeSpectrum{rgb_emitter_node(node_case, node)}, grid_);
+        nodes_[i] = DopplerXyzTable::under(rgb_emitter_node(node_case, node), illuminant_, grid_);
       });
       node_built_.assign(nodes_.size(), true);
     }
@@ -88,7 +69,7 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved)
 const DopplerXyzTable& EmissionTable::node_table(int node_case, int node) {
   const std::size_t i = static_cast<std::size_t>(node_case) * kRgbToSpectrumRes + node;
   if (!node_built_[i]) {
-    nodes_[i] = DopplerXyzTable::of(NodeSpectrum{rgb_emitter_node(node_case, node)}, grid_);
+    nodes_[i] = DopplerXyzTable::under(rgb_emitter_node(node_case, node), illuminant_, grid_);
     node_built_[i] = true;
   }
   return nodes_[i];

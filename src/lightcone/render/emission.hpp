@@ -27,7 +27,18 @@ struct PointEmission {
   // or 1 for a checker's second), or -1 for a colour looked up per hit (textures).
   int fixed_colour = -1;
 
-  Xyz seen_with_doppler(double d) const;
+  Xyz seen_with_doppler(double d) const {
+    if (table_count == 0) return {};
+    const GridPosition position = grid_position(tables[0]->grid(), d);
+    Xyz sum;
+    for (int k = 0; k < table_count; ++k) {
+      const Xyz c = (*tables[k])(position);
+      sum.x += weights[k] * c.x;
+      sum.y += weights[k] * c.y;
+      sum.z += weights[k] * c.z;
+    }
+    return sum;
+  }
 };
 
 // The largest |ln D| with which the camera can see any emitter or the sky: atanh of the
@@ -62,6 +73,7 @@ class EmissionTable {
   const Scene& scene_;
   bool spectral_;
   DopplerGrid grid_;
+  std::vector<double> illuminant_;  // the reference illuminant on the grid (illuminant_samples)
   DopplerXyzTable white_;
   std::vector<DopplerXyzTable> nodes_;  // kRgbEmitterCases * kRgbToSpectrumRes, built on demand
   std::vector<bool> node_built_;
