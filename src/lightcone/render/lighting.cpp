@@ -124,22 +124,31 @@ Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
   for (ResolvedLight& r : lights_)
     r.seen = DopplerXyzTable::of([&r](double l) { return r.spectral(l); }, total);
 
-  // One table per distinct (albedo, light): objects of one colour share them.
+  // One table per distinct (albedo, light, kind): objects of one colour share them. A light
+  // at rest relative to the body (D = 1 on its leg, whatever the direction) needs only the
+  // camera's factor: a table in one variable, cheaper to build and to read.
   struct Key {
     float r, g, b;
     std::size_t light;
+    bool co_moving;
   };
-  std::vector<std::pair<Key, const ReflectionXyzTable*>> made;
-  const auto table_for = [&](const Rgb& albedo, std::size_t l) {
+  std::vector<std::pair<Key, Reflection>> made;
+  const auto table_for = [&](const Rgb& albedo, std::size_t l, bool co_moving) {
     for (const auto& [key, table] : made)
-      if (key.r == albedo.r && key.g == albedo.g && key.b == albedo.b && key.light == l)
+      if (key.r == albedo.r && key.g == albedo.g && key.b == albedo.b && key.light == l &&
+          key.co_moving == co_moving)
         return table;
     const RgbAlbedoSpectrum rho = RgbAlbedoSpectrum::from_rgb({albedo.r, albedo.g, albedo.b});
     const ResolvedLight& light = lights_[l];
-    const ReflectionXyzTable* t = &reflections_.emplace_back(ReflectionXyzTable::of(
-        rho, [&light](double lambda) { return light.spectral(lambda); }, camera_grid_,
-        light_grid_));
-    made.push_back({{albedo.r, albedo.g, albedo.b, l}, t});
+    Reflection t;
+    if (co_moving)
+      t.co_moving = &co_moving_reflections_.emplace_back(DopplerXyzTable::of(
+          [&](double lambda) { return rho(lambda) * light.spectral(lambda); }, camera_grid_));
+    else
+      t.moving = &reflections_.emplace_back(ReflectionXyzTable::of(
+          rho, [&light](double lambda) { return light.spectral(lambda); }, camera_grid_,
+          light_grid_));
+    made.push_back({{albedo.r, albedo.g, albedo.b, l, co_moving}, t});
     return t;
   };
   object_reflections_.resize(s.objects.size());
@@ -156,9 +165,13 @@ Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
       colours[1] = ch->colors[1];
       count = 2;
     }
-    for (int k = 0; k < count; ++k)
-      for (std::size_t l = 0; l < lights_.size(); ++l)
-        object_reflections_[o][k].push_back(table_for(colours[k], l));
+    for (std::size_t l = 0; l < lights_.size(); ++l) {
+      const bool co_moving =
+          !settings.relativity || relative_rapidity(lights_[l].light->world_line.velocity,
+                                                    s.objects[o].world_line.velocity) == 0;
+      for (int k = 0; k < count; ++k)
+        object_reflections_[o][k].push_back(table_for(colours[k], l, co_moving));
+    }
   }
 }
 
@@ -292,10 +305,15 @@ LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
       // Reflected per unit spectral irradiance: albedo / pi (diffuse) plus the flat glossy lobe.
       const bool at_rest = d_camera == 1 && in.doppler == 1;
       Xyz reflected;
-      if (reflections)
-        reflected = at_rest ? (*reflections)[l]->at_rest()
-                            : (*(*reflections)[l])(camera_stencil, in.doppler);
-      else
+      if (reflections) {
+        const Reflection& t = (*reflections)[l];
+        // A co-moving light's leg has D = 1 (to rounding), so only the camera's factor counts.
+        if (t.co_moving)
+          reflected =
+              d_camera == 1 ? t.co_moving->at_rest() : (*t.co_moving)(camera_stencil.position);
+        else
+          reflected = at_rest ? t.moving->at_rest() : (*t.moving)(camera_stencil, in.doppler);
+      } else
         reflected = xyz_of_reflection_seen_with_doppler(
             per_hit_albedo, [&light](double lambda) { return light.spectral(lambda); }, d_camera,
             in.doppler);

@@ -55,9 +55,16 @@ class Lighting {
   const Tracer& tracer_;
   std::vector<ResolvedLight> lights_;
   DopplerGrid camera_grid_, light_grid_;
+  // The colour of one fixed albedo lit by one light, against the camera's factor (a light at
+  // rest relative to the body) or against both factors.
+  struct Reflection {
+    const DopplerXyzTable* co_moving = nullptr;
+    const ReflectionXyzTable* moving = nullptr;
+  };
+  std::deque<DopplerXyzTable> co_moving_reflections_;
   std::deque<ReflectionXyzTable> reflections_;
   // [object][fixed colour][light] (spectral model, lit objects only).
-  std::vector<std::array<std::vector<const ReflectionXyzTable*>, 2>> object_reflections_;
+  std::vector<std::array<std::vector<Reflection>, 2>> object_reflections_;
 };
 
 }  // namespace lightcone
