@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Renders every picture in README.md and docs/ with the commands the docs show, into
+# docs/images/. Run after ./scripts/build.sh; it takes a few minutes on 2 cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+lc=./build/lightcone
+out=docs/images
+render() {  # render NAME SCENE [options...]
+  local name=$1 scene=$2
+  shift 2
+  echo "lightcone render scenes/$scene -o $name.png $*" >&2
+  "$lc" render "scenes/$scene" -o "$out/$name.png" --quiet "$@"
+}
+render terrell terrell.json
+render terrell-classical terrell.json --set render.relativity=false
+render terrell-simultaneous terrell.json --set render.light_delay=false
+render cubes cubes.json
+render cubes-classical cubes.json --set render.relativity=false
+render street street.json
+render street-classical street.json --set render.relativity=false
+render sky sky.json
+render sky-classical sky.json --set render.relativity=false
+render sun-flyby-doppler sun-flyby.json --set render.searchlight=off
+render sun-flyby-searchlight sun-flyby.json
+render street-searchlight-physical street-searchlight.json
+render street-searchlight-chang1996 street-searchlight.json --set render.searchlight=chang1996
+render rainbow rainbow.json
+render interceptor-surface interceptor.json
+render interceptor-camera interceptor.json --set render.light_source_delay=camera
+render street-lit street-lit.json
+render street-lit-classical street-lit.json --set render.relativity=false
+render headlight headlight.json
+render headlight-rest headlight.json --set 'camera.velocity=[0,0,0]' --set 'lights[0].velocity=[0,0,0]'
+render street-spectral street.json --set render.searchlight=off
+render street-rgb3 street.json --set render.searchlight=off --set render.doppler=rgb3
+render street-hue street.json --set render.searchlight=off --set render.doppler=hue
+render doppler-swatches doppler-swatches.json
