@@ -101,6 +101,26 @@ TEST(LightPath, EverythingAtRestIsTheInverseSquareLaw) {
   EXPECT_DOUBLE_EQ(point_source_irradiance(late, 2.5, 1.0), 2.5 / 49.0);
 }
 
+// A plane wave is the limit of a point source far away: a source of intensity I = E r_P^2 at
+// distance r_P in its own frame gives irradiance E there. Seen by a receiver for which the
+// source moves (r_S = D r_P), the point-source law D^4 I / r_S^2 is D^2 E, the plane-wave law,
+// and likewise D^5 I_lambda / r_S^2 = D^3 E_lambda per wavelength.
+TEST(LightPath, PlaneWaveIsThePointSourceLawAtInfinity) {
+  for (const double beta : {0.6, -0.3, 0.0})
+    for (const double r : {1e3, 1e6}) {
+      const Vec4 emission{-r, {r, 0, 0}};  // on the past light cone of the origin event
+      const ReceivedLeg leg = receive_leg(emission, {-beta, 0, 0}, {0, {0, 0, 0}}, {});
+      const double d = leg.doppler, r_p = leg.distance / d, e = 2.5, cos_a = 0.7;
+      EXPECT_NEAR(d, std::sqrt((1 + beta) / (1 - beta)), 1e-12);
+      EXPECT_NEAR(plane_wave_irradiance(d, e, cos_a),
+                  point_source_irradiance(leg, e * r_p * r_p, cos_a), 1e-12 * e);
+      EXPECT_NEAR(plane_wave_spectral_factor(d, cos_a),
+                  point_source_spectral_factor(leg, cos_a) * r_p * r_p, 1e-12);
+    }
+  EXPECT_EQ(plane_wave_irradiance(2.0, 1.0, -0.1), 0.0);
+  EXPECT_EQ(plane_wave_spectral_factor(2.0, 0.0), 0.0);
+}
+
 // --- Closed forms: a static light at the origin flashing at t = 0, a moving patch ---
 //
 // With the light at rest in the common frame (P = common frame), the reception event is
