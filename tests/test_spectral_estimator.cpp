@@ -267,6 +267,25 @@ TEST(DopplerXyzTable, InterpolatesItsQuadratureToAFewPartsInTenThousandEvenForSt
   EXPECT_EQ(a.at_rest().y, rest.y);
 }
 
+TEST(DopplerGrid, ItsLogarithmIsStdLogToOnePartInATrillion) {
+  for (double d = 1e-6; d < 1e6; d *= 1.0137)
+    EXPECT_NEAR(grid_log(d), std::log(d), 1e-12 * std::max(1.0, std::abs(std::log(d)))) << d;
+  EXPECT_EQ(grid_log(1.0), 0.0);
+  EXPECT_NEAR(grid_log(std::nextafter(2.0, 0.0)), std::log(2.0), 1e-15);
+}
+
+TEST(DopplerGrid, CoversItsRangeWithTwoSpareNodesAndHoldsDOne) {
+  const DopplerGrid g = DopplerGrid::covering(0.83, 1.1);
+  EXPECT_LE(g.log_d(2), 0.83);
+  EXPECT_GE(g.log_d(g.size() - 3), 1.1);
+  EXPECT_LT(g.size(), 25);  // only the range asked for, not +-1.1
+  const DopplerGrid symmetric = DopplerGrid::covering(0.5);
+  EXPECT_EQ(symmetric.log_d(symmetric.rest_index()), 0.0);
+  const GridPosition p = grid_position(symmetric, 1.0);
+  EXPECT_EQ(p.first + 1, symmetric.rest_index());
+  EXPECT_EQ(p.fraction, 0.0);
+}
+
 TEST(DopplerXyzTable, AZeroTailInterpolatesLinearlyAndNeverGoesNegative) {
   // Emits only beyond 600 nm: seen with D < 600/830 it is black.
   const TabulatedSpectrum red_only{{599, 600, 2000}, {0, 1, 1}};

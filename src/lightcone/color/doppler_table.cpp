@@ -29,10 +29,12 @@ double component(const Xyz& c, int n) {
 
 }  // namespace
 
-DopplerGrid DopplerGrid::covering(double max_abs_log_d) {
+DopplerGrid DopplerGrid::covering(double lo_log_d, double hi_log_d) {
+  if (!std::isfinite(lo_log_d) || !std::isfinite(hi_log_d)) lo_log_d = hi_log_d = 0;
+  if (lo_log_d > hi_log_d) std::swap(lo_log_d, hi_log_d);
   DopplerGrid g;
-  const double r = std::isfinite(max_abs_log_d) ? std::abs(max_abs_log_d) : 0.0;
-  g.half_count = static_cast<int>(std::ceil(r / kStep)) + 2;
+  g.first = static_cast<int>(std::floor(lo_log_d / kStep)) - 2;
+  g.last = static_cast<int>(std::ceil(hi_log_d / kStep)) + 2;
   return g;
 }
 

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
@@ -22,16 +24,21 @@ Xyz xyz_seen_with_doppler(const Spectrum& spectrum, double d) {
   return xyz_from_spectrum([&](double lambda) { return spectrum(d * lambda); });
 }
 
-// Nodes k h of ln D, k = -half_count .. half_count, with h = kStep. A grid covering
-// |ln D| <= r has a node at D = 1 and two nodes beyond r on each side (the cubic stencil).
+// Nodes k h of ln D, k = first .. last, with h = kStep. A grid covering [lo, hi] in ln D has
+// two nodes beyond each end (the cubic stencil).
 struct DopplerGrid {
   static constexpr double kStep = 0.02;
-  int half_count = 2;
+  int first = -2, last = 2;
 
-  static DopplerGrid covering(double max_abs_log_d);
-  int size() const { return 2 * half_count + 1; }
-  double log_d(int index) const { return (index - half_count) * kStep; }
+  static DopplerGrid covering(double lo_log_d, double hi_log_d);
+  static DopplerGrid covering(double max_abs_log_d) {
+    return covering(-max_abs_log_d, max_abs_log_d);
+  }
+  int size() const { return last - first + 1; }
+  double log_d(int index) const { return (first + index) * kStep; }
   double d(int index) const { return std::exp(log_d(index)); }
+  // The index of the node at D = 1 (when the grid holds it: first <= 0 <= last).
+  int rest_index() const { return -first; }
 };
 
 // Where ln d lies on a grid: the interpolation uses the four nodes first .. first + 3, and d
@@ -40,14 +47,42 @@ struct GridPosition {
   int first = 0;
   double fraction = 0;
 };
-// d should lie within the grid (|ln d| <= kStep * (half_count - 2)); a factor that rounding
-// puts past the last interval is extrapolated by that interval's cubic.
-// (Inline, with the table lookup below: they run once per camera ray.)
+// d should lie within what the grid covers; a factor past it is extrapolated by the end
+// interval's cubic.
+// ln d for the grid, to 1e-12 and several times cheaper than std::log (it runs once per camera
+// ray): d = m 2^e, m in [1, 2) split at its top 10 bits into m_k = 1 + k / 1024 and the rest,
+// ln m = ln m_k + ln(1 + x) with x = (m - m_k) / m_k < 1/1024, the last by its series to x^4.
+namespace detail {
+struct GridLogTable {
+  double log_node[1024], inverse_node[1024];
+  GridLogTable() {
+    for (int k = 0; k < 1024; ++k) {
+      log_node[k] = std::log1p(k / 1024.0);
+      inverse_node[k] = 1 / (1 + k / 1024.0);
+    }
+  }
+};
+inline const GridLogTable grid_log_table;
+}  // namespace detail
+
+inline double grid_log(double d) {
+  if (!(d > 1e-300 && d < 1e300)) return std::log(d);
+  const auto bits = std::bit_cast<std::uint64_t>(d);
+  const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+  const auto k = static_cast<int>((bits >> 42) & 0x3ff);
+  const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  const double x = (m - (1 + k * (1.0 / 1024))) * detail::grid_log_table.inverse_node[k];
+  const double series = x * (1 - x * (0.5 - x * (1.0 / 3 - x * 0.25)));
+  return e * 0.6931471805599453 + detail::grid_log_table.log_node[k] + series;
+}
+
 inline GridPosition grid_position(const DopplerGrid& grid, double d) {
   constexpr double kNodesPerUnit = 1 / DopplerGrid::kStep;
-  const double t = std::log(d) * kNodesPerUnit + grid.half_count;
+  const double t = grid_log(d) * kNodesPerUnit - grid.first;
+  // Truncation is floor for t >= 1 (inside the grid); outside, the clamp takes the end interval.
+  const double held = std::clamp(t, 1.0, static_cast<double>(grid.size() - 3));
   GridPosition p;
-  p.first = std::clamp(static_cast<int>(std::floor(t)) - 1, 0, grid.size() - 4);
+  p.first = std::min(static_cast<int>(held) - 1, grid.size() - 4);
   p.fraction = t - (p.first + 1);
   return p;
 }
@@ -115,7 +150,8 @@ class DopplerXyzTable {
 
   const DopplerGrid& grid() const { return grid_; }
   const Xyz& node(int index) const { return nodes_[index]; }
-  const Xyz& at_rest() const { return nodes_[grid_.half_count]; }
+  // The colour at D = 1, for a grid that holds it.
+  const Xyz& at_rest() const { return nodes_[grid_.rest_index()]; }
   Xyz operator()(const GridPosition& p) const {
     const Interval& in = intervals_[p.first + 1];
     const double f = p.fraction;
@@ -178,7 +214,8 @@ class ReflectionXyzTable {
                                const DopplerGrid& camera, const DopplerGrid& light_grid) {
     const int nc = camera.size(), nl = light_grid.size();
     DopplerGrid total;
-    total.half_count = camera.half_count + light_grid.half_count;
+    total.first = camera.first + light_grid.first;
+    total.last = camera.last + light_grid.last;
     std::vector<double> reflectance(static_cast<std::size_t>(nc) * kCieTableSize);
     std::vector<double> source(static_cast<std::size_t>(total.size()) * kCieTableSize);
     for (int c = 0; c < nc; ++c)
@@ -197,7 +234,8 @@ class ReflectionXyzTable {
   ReflectionXyzTable(const DopplerGrid& camera, const DopplerGrid& light, std::vector<Xyz> nodes);
 
   const Xyz& at_rest() const {
-    return nodes_[static_cast<std::size_t>(camera_.half_count) * light_.size() + light_.half_count];
+    return nodes_[static_cast<std::size_t>(camera_.rest_index()) * light_.size() +
+                  light_.rest_index()];
   }
   Xyz operator()(const GridStencil& camera, double d_light) const;
 

@@ -2,9 +2,11 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "lightcone/color/spectrum.hpp"
+#include "lightcone/render/camera_model.hpp"
 #include "lightcone/render/shading.hpp"
 
 namespace lightcone {
@@ -30,17 +32,44 @@ PointEmission lit_colour(const Rgb& albedo, int fixed_colour) {
 
 }  // namespace
 
-double max_emitter_log_doppler(const ResolvedScene& scene) {
-  if (!scene.scene->render.relativity) return 0;
-  double r = rapidity(scene.sky_velocity);
-  for (const ResolvedBody& b : scene.bodies) r = std::max(r, rapidity(b.velocity));
-  return r;
+LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
+  LogDopplerRange range;
+  if (!scene.scene->render.relativity) return range;
+  // The distinct velocities (in the camera's frame) of what is seen.
+  std::vector<Vec3> velocities;
+  const auto add = [&](const Vec3& v) {
+    if (std::find_if(velocities.begin(), velocities.end(), [&](const Vec3& w) {
+          return w.x == v.x && w.y == v.y && w.z == v.z;
+        }) == velocities.end())
+      velocities.push_back(v);
+  };
+  if (!lit) add(scene.sky_velocity);
+  for (const ResolvedBody& b : scene.bodies)
+    if (b.object->material.unlit != lit) add(b.velocity);
+  constexpr int kSamples = 33;
+  const Camera& camera = scene.scene->camera;
+  bool first = true;
+  for (int j = 0; j < kSamples; ++j)
+    for (int i = 0; i < kSamples; ++i) {
+      const Vec3 u = look_direction(scene.camera, camera.width * i / (kSamples - 1.0),
+                                    camera.height * j / (kSamples - 1.0));
+      for (const Vec3& v : velocities) {
+        const double l = std::log(scene.doppler(u, v));
+        range.lo = first ? l : std::min(range.lo, l);
+        range.hi = first ? l : std::max(range.hi, l);
+        first = false;
+      }
+    }
+  return range;
 }
 
 EmissionTable::EmissionTable(const ResolvedScene& resolved)
     : scene_(*resolved.scene),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
-      grid_(DopplerGrid::covering(max_emitter_log_doppler(resolved))) {
+      grid_([&] {
+        const LogDopplerRange r = visible_log_doppler(resolved, false);
+        return DopplerGrid::covering(r.lo, r.hi);
+      }()) {
   if (spectral_) {
     illuminant_ = illuminant_samples([](double l) { return reference_illuminant(l); }, grid_);
     white_ =

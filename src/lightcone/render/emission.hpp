@@ -41,9 +41,15 @@ struct PointEmission {
   }
 };
 
-// The largest |ln D| with which the camera can see any emitter or the sky: atanh of the
-// fastest speed in the camera's frame (0 for the classical picture).
-double max_emitter_log_doppler(const ResolvedScene& scene);
+// The range of ln D with which the camera sees the lit bodies (`lit`), or the emitters and the
+// sky, over every direction of its image (0 for the classical picture). Sampled on a 33 x 33
+// grid of image positions, edges included: ln D is smooth across the view, and what falls
+// between samples (a few thousandths at the widest views) is far inside the two spare nodes
+// a grid keeps beyond each end.
+struct LogDopplerRange {
+  double lo = 0, hi = 0;
+};
+LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit);
 
 // The emission of every object's material and of the sky, prepared once per render. For the
 // spectral model every fixed colour gets its own table against ln D; textures and sky images

@@ -107,20 +107,20 @@ Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
   }
   if (settings.doppler != DopplerModel::kSpectral) return;
 
-  // The factors a lit surface can be seen with (by the camera) and can see a light with.
-  double camera_reach = 0, light_reach = 0;
+  // The factors a lit surface is seen with (by the camera, over its image) and can see a light
+  // with (any direction).
+  double light_reach = 0;
   if (settings.relativity)
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      if (scene.bodies[i].object->material.unlit) continue;
-      camera_reach = std::max(camera_reach, rapidity(scene.bodies[i].velocity));
+    for (const ResolvedBody& body : scene.bodies) {
+      if (body.object->material.unlit) continue;
       for (const Light& light : s.lights)
-        light_reach =
-            std::max(light_reach, relative_rapidity(light.world_line.velocity,
-                                                    scene.bodies[i].object->world_line.velocity));
+        light_reach = std::max(light_reach, relative_rapidity(light.world_line.velocity,
+                                                              body.object->world_line.velocity));
     }
-  camera_grid_ = DopplerGrid::covering(camera_reach);
+  const LogDopplerRange seen = visible_log_doppler(scene, true);
+  camera_grid_ = DopplerGrid::covering(seen.lo, seen.hi);
   light_grid_ = DopplerGrid::covering(light_reach);
-  const DopplerGrid total = DopplerGrid::covering(camera_reach + light_reach);
+  const DopplerGrid total = DopplerGrid::covering(seen.lo - light_reach, seen.hi + light_reach);
   for (ResolvedLight& r : lights_)
     r.seen = DopplerXyzTable::of([&r](double l) { return r.spectral(l); }, total);
 
