@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -510,8 +511,10 @@ TEST_F(CliTest, DegenerateTrianglesAreDroppedWithAWarning) {
       edited(kScene, "{\"sphere\": {\"radius\": 2}}", "{\"mesh\": {\"file\": \"quad.obj\"}}"));
   const CommandResult r = render(scene);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "lightcone: warning: " + (dir_ / "quad.obj").string() +
-                       ": 2 degenerate triangles dropped\n");
+  EXPECT_EQ(
+      r.err.substr(0, r.err.find('\n') + 1),
+      "lightcone: warning: " + (dir_ / "quad.obj").string() + ": 2 degenerate triangles dropped\n");
+  EXPECT_EQ(line_count(r.err), 2u) << r.err;  // and the summary line
   ASSERT_TRUE(fs::exists(png()));
   // The remaining quad fills the frame with the mesh's green.
   const auto image = read_exr();
@@ -587,12 +590,19 @@ TEST_F(CliTest, LocateRejectsBadQueries) {
 // ----------------------------------------------------------------------------------------------
 // Valid renders
 
-TEST_F(CliTest, ValidRenderWritesPngAndExrOfTheRightSizeAndNothingOnStderr) {
+TEST_F(CliTest, ValidRenderWritesPngAndExrOfTheRightSizeAndOneSummaryLine) {
   const fs::path scene = write_scene(kScene);
   const CommandResult r = render(scene);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "");  // stderr is not a terminal: no progress bar
+  // stderr is not a terminal: no progress bar, only the summary: size, samples, time, rate,
+  // the files written.
+  EXPECT_EQ(line_count(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("lightcone: 64x48, 1 samples: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(" Mrays/s; wrote " + png().string() + " and " + exr().string()),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(r.out, "");
+  EXPECT_EQ(render(scene, "--quiet").err, "");
   const auto png_image = read_png();
   const auto exr_image = read_exr();
   EXPECT_EQ(png_image->width, 64);
@@ -623,7 +633,7 @@ TEST_F(CliTest, PngOnlyWithoutExr) {
 
 TEST_F(CliTest, SizeAndSampleOptionsTakeEffect) {
   const fs::path scene = write_scene(kScene);
-  const CommandResult r = render(scene, "--width 20 --height 10 --samples 4 --stats");
+  const CommandResult r = render(scene, "--width 20 --height 10 --samples 4 --stats --quiet");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(read_png()->width, 20);
   EXPECT_EQ(read_png()->height, 10);
@@ -641,7 +651,7 @@ TEST_F(CliTest, SizeAndSampleOptionsTakeEffect) {
 
 TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysAndRate) {
   const fs::path scene = write_scene(kScene);
-  const CommandResult r = render(scene, "--samples 3 --stats");
+  const CommandResult r = render(scene, "--samples 3 --stats --quiet");
   EXPECT_EQ(r.status, 0) << r.err;
   ASSERT_EQ(line_count(r.err), 1u) << r.err;
   ASSERT_TRUE(r.err.ends_with('\n'));
@@ -962,7 +972,11 @@ nlohmann::ordered_json locate_output(const CommandResult& r) {
   EXPECT_EQ(keys,
             (std::vector<std::string>{"pixel", "direction", "emission_time", "emission_position",
                                       "distance", "in_view", "doppler"}));
-  EXPECT_TRUE(out["pixel"].is_array() && out["pixel"].size() == 2) << r.out;
+  // A pixel where the point is in view, null where it is behind the camera or off the image.
+  if (out["in_view"].get<bool>())
+    EXPECT_TRUE(out["pixel"].is_array() && out["pixel"].size() == 2) << r.out;
+  else
+    EXPECT_TRUE(out["pixel"].is_null()) << r.out;
   EXPECT_TRUE(out["doppler"].is_number() && out["doppler"].get<double>() > 0) << r.out;
   EXPECT_TRUE(out["direction"].is_array() && out["direction"].size() == 3) << r.out;
   EXPECT_TRUE(out["in_view"].is_boolean()) << r.out;
@@ -1171,6 +1185,193 @@ TEST_F(CliTest, LocateFarBodyAndDirectionAgree) {
       locate_output(locate(scene, "--direction 0.3,0.1,-1 --set 'camera.velocity=[0,0,0]'"));
   ASSERT_FALSE(still.empty());
   EXPECT_GT(std::abs(at(still, "pixel", 0) - at(sky, "pixel", 0)), 1.0);
+}
+
+// ----------------------------------------------------------------------------------------------
+// Output formats, crops, seeds, check, info, the interrupt
+
+// A moving checkered ball over a sky, with 4 samples: different seeds give different pixels.
+const std::string kMovingScene = edited(
+    edited(kScene, "\"material\": {\"color\": [0, 1, 0]}",
+           "\"material\": {\"checker\": {\"size\": 0.3, \"colors\": [[1, 1, 1], [0, 0, 0]]}}"),
+    "\"height\": 48", "\"height\": 48, \"samples\": 4");
+
+TEST_F(CliTest, OutputFormatFollowsTheExtension) {
+  const fs::path scene = write_scene(kScene);
+  for (const char* name : {"a.png", "b.PNG", "c.jpg", "d.jpeg", "e.exr"}) {
+    const fs::path out = out_ / name;
+    const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " + quoted(out));
+    EXPECT_EQ(r.status, 0) << name << ": " << r.err;
+    std::ifstream in(out, std::ios::binary);
+    std::string magic(4, '\0');
+    in.read(magic.data(), 4);
+    const std::string ext = image_format_of(out) == ImageFormat::kExr    ? "exr"
+                            : image_format_of(out) == ImageFormat::kJpeg ? "jpg"
+                                                                         : "png";
+    if (ext == "png") EXPECT_EQ(magic.substr(1, 3), "PNG") << name;
+    if (ext == "jpg") EXPECT_EQ(static_cast<unsigned char>(magic[0]), 0xFF) << name;
+    if (ext == "exr") EXPECT_EQ(magic, std::string("\x76\x2f\x31\x01", 4)) << name;
+    // Every format decodes to the same picture (the EXR holds the linear radiance: green 1).
+    const auto image = load_image_file(out);
+    ASSERT_EQ(image->width, 64);
+    const Rgb centre = pixel(*image, 32, 24);
+    EXPECT_NEAR(centre.g, 1.0, 0.02) << name;
+    EXPECT_NEAR(centre.r, 0.0, 0.02) << name;
+  }
+}
+
+TEST_F(CliTest, UnknownExtensionsAndClashingOutputsAreErrorsBeforeRendering) {
+  const fs::path scene = write_scene(kScene);
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"-o " + quoted(out_ / "x.tif"),
+       "-o " + (out_ / "x.tif").string() + ": unknown image format"},
+      {"-o " + quoted(out_ / "noext"), "unknown image format"},
+      {"-o " + quoted(png()) + " --exr " + quoted(png()),
+       "--exr " + png().string() + ": the name must end in .exr"},
+      {"-o " + quoted(exr()) + " --exr " + quoted(exr()), ": is the same file as -o"},
+      {"-o ''", "-o: the output file name is empty"},
+      {"-o " + quoted(png()) + " --crop 0,0,0,10", "--crop 0,0,0,10: the window must be non-empty"},
+      {"-o " + quoted(png()) + " --crop 0,0,65,10", "inside the 64x48 image"},
+      {"-o " + quoted(png()) + " --crop 1,2,3", "expected four integers"},
+      {"-o " + quoted(png()) + " --seed 1.5", "--seed"},
+      {"-o " + quoted(png()) + " --seed x", "--seed"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = run_lightcone("render " + quoted(scene) + " " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_EQ(line_count(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    expect_nothing_written();
+  }
+}
+
+TEST_F(CliTest, DashWritesThePngToStandardOutput) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o - --quiet");
+  EXPECT_EQ(r.status, 0) << r.err;
+  ASSERT_GT(r.out.size(), 8u);
+  EXPECT_EQ(r.out.substr(1, 3), "PNG");
+  test::write_text(out_ / "stdout.png", r.out);
+  const auto image = load_image_file(out_ / "stdout.png");
+  EXPECT_EQ(image->width, 64);
+  EXPECT_NEAR(pixel(*image, 32, 24).g, 1.0, 1e-6);
+}
+
+TEST_F(CliTest, VersionNamesTheVersionAndCommit) {
+  const CommandResult r = run_lightcone("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("lightcone 0.", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("(commit "), std::string::npos) << r.out;
+}
+
+TEST_F(CliTest, CropIsTheSameRegionOfTheFullRenderPixelForPixel) {
+  const fs::path scene = write_scene(kMovingScene);
+  ASSERT_EQ(render(scene, "--quiet").status, 0);
+  const auto full = read_exr();
+  const fs::path crop = out_ / "crop.exr";
+  const CommandResult r =
+      run_lightcone("render " + quoted(scene) + " -o " + quoted(crop) + " --crop 13,7,45,30");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto part = load_image_file(crop);
+  ASSERT_EQ(part->width, 32);
+  ASSERT_EQ(part->height, 23);
+  int differing = 0;
+  for (int y = 0; y < 23; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const Rgb a = pixel(*part, x, y), b = pixel(*full, x + 13, y + 7);
+      differing += a.r != b.r || a.g != b.g || a.b != b.b;
+    }
+  EXPECT_EQ(differing, 0);
+}
+
+TEST_F(CliTest, SeedsChangeTheSamplePatternDeterministically) {
+  const fs::path scene = write_scene(kMovingScene);
+  const auto run = [&](const std::string& seed) {
+    EXPECT_EQ(render(scene, "--quiet " + seed).status, 0);
+    return read_exr()->rgb;
+  };
+  const auto a = run(""), b = run("--seed 0"), c = run("--seed 7"), d = run("--seed 7");
+  EXPECT_EQ(a, b);  // 0 is the default
+  EXPECT_EQ(c, d);
+  EXPECT_NE(a, c);
+}
+
+TEST_F(CliTest, PreviewIsAQuarterSizeOneSampleAutoExposure) {
+  const fs::path scene = write_scene(kMovingScene);
+  const CommandResult r = render(scene, "--preview --stats --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_png()->width, 16);
+  EXPECT_EQ(read_png()->height, 12);
+  EXPECT_EQ(nlohmann::json::parse(r.err).at("rays").get<int>(), 16 * 12);
+}
+
+TEST_F(CliTest, CheckValidatesWithoutRendering) {
+  const fs::path good = write_scene(kScene);
+  const CommandResult ok = run_lightcone("check " + quoted(good));
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find(": ok"), std::string::npos) << ok.out;
+  const fs::path bad = write_scene(edited(kScene, "\"fov\": 30", "\"fov\": -30"), "bad.json");
+  const CommandResult no = run_lightcone("check " + quoted(bad));
+  EXPECT_EQ(no.status, 2);
+  EXPECT_NE(no.err.find("bad.json:"), std::string::npos) << no.err;
+  EXPECT_NE(no.err.find("camera.fov"), std::string::npos) << no.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(out_), fs::directory_iterator()), 0);
+}
+
+TEST_F(CliTest, InfoJsonReportsSpeedsGammaDopplerAndTimeWindow) {
+  const fs::path scene = write_scene(edited(kScene, "\"velocity\": [0, 0, 0],\n    \"fov\"",
+                                            "\"velocity\": [0, 0, -0.6],\n    \"fov\""));
+  const CommandResult r = run_lightcone("info " + quoted(scene) + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto info = nlohmann::json::parse(r.out);
+  EXPECT_EQ(info.at("image").at("width").get<int>(), 64);
+  const auto& camera = info.at("bodies").at(0);
+  EXPECT_EQ(camera.at("kind"), "camera");
+  EXPECT_NEAR(camera.at("speed").get<double>(), 0.6, 1e-12);
+  EXPECT_NEAR(camera.at("gamma").get<double>(), 1.25, 1e-12);
+  // Flying at 0.6c toward a ball and sky at rest: D = 1 / (gamma (1 - beta cos theta)), theta
+  // the camera-frame angle from straight ahead: 2 there, 1.769 at the corners (24.1 degrees).
+  EXPECT_NEAR(info.at("doppler").at(1).get<double>(), 2.0, 1e-6);
+  EXPECT_NEAR(info.at("doppler").at(0).get<double>(), 1.769, 0.002);
+  // Straight ahead the ball's near point, 8 away and at rest in W, sent its light at t = -8;
+  // points toward its rim sent it earlier.
+  EXPECT_NEAR(info.at("emission_time").at(1).get<double>(), -8.0, 0.05);
+  EXPECT_LT(info.at("emission_time").at(0).get<double>(), -8.0);
+  EXPECT_GT(info.at("memory_bytes").get<double>(), 64 * 48 * 12);
+  const CommandResult text = run_lightcone("info " + quoted(scene));
+  EXPECT_EQ(text.status, 0);
+  EXPECT_NE(text.out.find("gamma 1.25"), std::string::npos) << text.out;
+}
+
+TEST_F(CliTest, LocateBehindTheCameraHasNoPixel) {
+  const fs::path scene = write_scene(kScene);
+  const auto behind = locate_output(locate(scene, "--world-point 0,0,10"));
+  EXPECT_TRUE(behind["pixel"].is_null());
+  EXPECT_FALSE(behind["in_view"].get<bool>());
+  const auto aside = locate_output(locate(scene, "--world-point 100,0,-10"));
+  EXPECT_TRUE(aside["pixel"].is_null());
+}
+
+TEST_F(CliTest, InterruptWritesThePartialImageAndExits130) {
+  // A render that takes seconds: interrupted after a moment it writes the tiles finished.
+  const fs::path scene = write_scene(edited(kMovingScene, "\"samples\": 4", "\"samples\": 4096"));
+  const std::string command = std::string("'") + LIGHTCONE_BINARY + "' render " + quoted(scene) +
+                              " -o " + quoted(png()) + " --threads 1 2>" +
+                              quoted(out_ / "err.txt") + " & pid=$!; sleep 1; kill -INT $pid; " +
+                              "wait $pid; echo $? > " + quoted(out_ / "status.txt");
+  test::write_text(dir_ / "interrupt.sh", command + "\n");
+  ASSERT_EQ(std::system(("bash " + quoted(dir_ / "interrupt.sh")).c_str()), 0);
+  std::ifstream status_file(out_ / "status.txt");
+  int status = -1;
+  status_file >> status;
+  EXPECT_EQ(status, 130);
+  std::ifstream err_file(out_ / "err.txt");
+  const std::string err((std::istreambuf_iterator<char>(err_file)), {});
+  EXPECT_NE(err.find("interrupted: wrote the "), std::string::npos) << err;
+  const auto image = load_image_file(png());  // a PNG that decodes
+  EXPECT_EQ(image->width, 64);
 }
 
 }  // namespace

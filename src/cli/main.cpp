@@ -2,6 +2,8 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -16,8 +18,10 @@
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/render/locate.hpp"
 #include "lightcone/render/renderer.hpp"
+#include "lightcone/render/scene_info.hpp"
 #include "lightcone/render/tone_map.hpp"
 #include "progress_bar.hpp"
+#include "version.hpp"
 
 namespace fs = std::filesystem;
 using namespace lightcone;
@@ -25,6 +29,12 @@ using namespace lightcone;
 namespace {
 
 constexpr int kBadInput = 2;
+constexpr int kInterrupted = 130;  // 128 + SIGINT, as shells report it
+
+std::atomic<bool> interrupted{false};
+extern "C" void on_interrupt(int) {
+  interrupted = true;
+}
 
 Scene load(const std::string& file, const std::vector<std::string>& overrides) {
   SceneLoadReport report;
@@ -67,22 +77,77 @@ nlohmann::ordered_json to_json(const Vec3& v) {
 }
 
 struct RenderArgs {
-  std::string scene, png;
-  std::optional<std::string> exr;
+  std::string scene, output;
+  std::optional<std::string> exr, crop;
   std::optional<int> width, height, samples;
   int threads = 0;
+  std::uint64_t seed = 0;
   std::vector<std::string> overrides;
-  bool stats = false, quiet = false;
+  bool stats = false, quiet = false, preview = false;
 };
+
+// x0,y0,x1,y1 in pixels, a non-empty window inside the image.
+PixelWindow parse_crop(const std::string& text, int width, int height) {
+  std::stringstream in(text);
+  std::string part;
+  std::vector<long> v;
+  while (std::getline(in, part, ',')) {
+    std::size_t used = 0;
+    long x = 0;
+    try {
+      x = std::stol(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || part.empty())
+      throw InputError("--crop " + text + ": expected four integers x0,y0,x1,y1");
+    v.push_back(x);
+  }
+  if (v.size() != 4) throw InputError("--crop " + text + ": expected four integers x0,y0,x1,y1");
+  if (v[0] < 0 || v[1] < 0 || v[2] > width || v[3] > height || v[0] >= v[2] || v[1] >= v[3])
+    throw InputError("--crop " + text + ": the window must be non-empty and inside the " +
+                     std::to_string(width) + "x" + std::to_string(height) + " image");
+  return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]),
+          static_cast<int>(v[3])};
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
+  const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
+  return pa == pb;
+}
 
 int run_render(const RenderArgs& a) {
   std::vector<std::string> overrides = a.overrides;
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
-  require_writable_target("-o", a.png);
-  if (a.exr) require_writable_target("--exr", *a.exr);
-  const Scene scene = [&] {
+  if (a.preview) {
+    overrides.push_back("camera.samples=1");
+    overrides.push_back("render.exposure=\"auto\"");
+  }
+
+  // Every output is checked before anything is rendered.
+  const bool to_stdout = a.output == "-";
+  std::optional<ImageFormat> format = ImageFormat::kPng;
+  if (!to_stdout) {
+    if (a.output.empty()) throw InputError("-o: the output file name is empty");
+    format = image_format_of(a.output);
+    if (!format)
+      throw InputError("-o " + a.output +
+                       ": unknown image format (the name must end in .png, .jpg or .exr)");
+    require_writable_target("-o", a.output);
+  }
+  if (a.exr) {
+    if (image_format_of(*a.exr) != ImageFormat::kExr)
+      throw InputError("--exr " + *a.exr + ": the name must end in .exr");
+    require_writable_target("--exr", *a.exr);
+    if (!to_stdout && same_file(a.output, *a.exr))
+      throw InputError("--exr " + *a.exr + ": is the same file as -o");
+  }
+
+  Scene scene = [&] {
     try {
       return load(a.scene, overrides);
     } catch (const InputError& e) {
@@ -97,25 +162,106 @@ int run_render(const RenderArgs& a) {
       throw;
     }
   }();
+  if (a.preview) {  // a quarter of the size, the same view
+    scene.camera.width = std::max(1, scene.camera.width / 4);
+    scene.camera.height = std::max(1, scene.camera.height / 4);
+  }
 
+  RenderOptions options;
+  options.threads = a.threads;
+  options.seed = a.seed;
+  if (a.crop) options.crop = parse_crop(*a.crop, scene.camera.width, scene.camera.height);
+  options.cancel = &interrupted;
   RenderStats stats;
   Image image;
+  std::atomic<std::size_t> tiles_done{0}, tiles_total{0};
   {
     ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
-    RenderOptions options;
-    options.threads = a.threads;
-    options.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+    options.progress = [&](std::size_t done, std::size_t total) {
+      tiles_done = std::max<std::size_t>(tiles_done, done);
+      tiles_total = total;
+      bar.update(done, total);
+    };
+    std::signal(SIGINT, on_interrupt);
     image = render_image(scene, options, &stats);
+    std::signal(SIGINT, SIG_DFL);
   }
-  write_images(tone_map(image, scene.render.tonemap), image, fs::path(a.png),
-               a.exr ? std::optional<fs::path>(*a.exr) : std::optional<fs::path>());
+
+  const Image display = tone_map(image, scene.render.tonemap);
+  if (to_stdout) {
+    const std::vector<unsigned char> png = encode_png(display);
+    if (std::fwrite(png.data(), 1, png.size(), stdout) != png.size() || std::fflush(stdout) != 0)
+      throw std::runtime_error("cannot write the PNG to standard output");
+  }
+  std::vector<ImageOutput> outputs;
+  if (!to_stdout) outputs.push_back({a.output, *format});
+  if (a.exr) outputs.push_back({*a.exr, ImageFormat::kExr});
+  write_images(display, image, outputs);
+
+  const std::string written = to_stdout ? std::string("standard output") : a.output;
+  if (stats.cancelled) {
+    std::fprintf(stderr,
+                 "lightcone: interrupted: wrote the %zu of %zu tiles finished to %s (the rest "
+                 "is black)\n",
+                 static_cast<std::size_t>(tiles_done), static_cast<std::size_t>(tiles_total),
+                 written.c_str());
+    return kInterrupted;
+  }
+  const double mrays = stats.rays / std::max(stats.seconds, 1e-9) / 1e6;
+  if (!a.quiet)
+    std::fprintf(stderr, "lightcone: %dx%d, %d samples: %.2f s, %.2f Mrays/s; wrote %s%s\n",
+                 image.width, image.height, scene.camera.samples, stats.seconds, mrays,
+                 written.c_str(), a.exr ? (" and " + *a.exr).c_str() : "");
   if (a.stats) {
     const nlohmann::ordered_json line = {
-        {"seconds", stats.seconds},
-        {"rays", stats.rays},
-        {"mrays_per_s", stats.rays / std::max(stats.seconds, 1e-9) / 1e6}};
+        {"seconds", stats.seconds}, {"rays", stats.rays}, {"mrays_per_s", mrays}};
     std::fprintf(stderr, "%s\n", line.dump().c_str());
   }
+  return 0;
+}
+
+int run_check(const std::string& file, const std::vector<std::string>& overrides) {
+  const Scene scene = load(file, overrides);
+  std::printf("%s: ok (%zu objects, %zu lights, %dx%d)\n", file.c_str(), scene.objects.size(),
+              scene.lights.size(), scene.camera.width, scene.camera.height);
+  return 0;
+}
+
+int run_info(const std::string& file, const std::vector<std::string>& overrides, bool json) {
+  const Scene scene = load(file, overrides);
+  const SceneInfo info = scene_info(scene);
+  if (json) {
+    nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+    for (const BodyInfo& b : info.bodies)
+      bodies.push_back({{"name", b.name},
+                        {"kind", b.kind},
+                        {"velocity", to_json(b.velocity)},
+                        {"speed", b.speed},
+                        {"gamma", b.gamma}});
+    nlohmann::ordered_json out = {
+        {"image", {{"width", info.width}, {"height", info.height}, {"samples", info.samples}}},
+        {"bodies", bodies},
+        {"doppler", {info.doppler_min, info.doppler_max}},
+        {"observation_time", info.observation_time},
+        {"emission_time", nullptr},
+        {"triangles", info.triangles},
+        {"memory_bytes", info.memory_bytes}};
+    if (info.emission_time_min)
+      out["emission_time"] = {*info.emission_time_min, *info.emission_time_max};
+    std::printf("%s\n", out.dump().c_str());
+    return 0;
+  }
+  std::printf("%s: %dx%d pixels, %d samples each\n", file.c_str(), info.width, info.height,
+              info.samples);
+  for (const BodyInfo& b : info.bodies)
+    std::printf("  %-8s %-24s speed %.6g c, gamma %.6g\n", b.kind.c_str(), b.name.c_str(), b.speed,
+                b.gamma);
+  std::printf("Doppler factor over the image: %.4g to %.4g\n", info.doppler_min, info.doppler_max);
+  if (info.emission_time_min)
+    std::printf("light seen left the scene between t = %.6g and %.6g (observed at t = %.6g)\n",
+                *info.emission_time_min, *info.emission_time_max, info.observation_time);
+  std::printf("%llu triangles; about %.1f MB to render\n",
+              static_cast<unsigned long long>(info.triangles), info.memory_bytes / 1e6);
   return 0;
 }
 
@@ -158,6 +304,7 @@ int run_locate(const LocateArgs& a) {
                                 {"distance", nullptr},
                                 {"in_view", r.in_view},
                                 {"doppler", r.doppler}};
+  if (!r.in_view) out["pixel"] = nullptr;  // behind the camera or outside the image
   if (r.emission_time) out["emission_time"] = *r.emission_time;
   if (r.emission_position) out["emission_position"] = to_json(*r.emission_position);
   if (r.distance) out["distance"] = *r.distance;
@@ -170,20 +317,33 @@ int run_locate(const LocateArgs& a) {
 int main(int argc, char** argv) {
   CLI::App app{"lightcone: what a camera really sees at a large fraction of the speed of light"};
   app.require_subcommand(1);
+  app.set_version_flag(
+      "--version", std::string("lightcone " LIGHTCONE_VERSION " (commit " LIGHTCONE_COMMIT ")"));
 
   RenderArgs render;
-  CLI::App* render_cmd = app.add_subcommand("render", "Render a scene to PNG (and OpenEXR)");
+  CLI::App* render_cmd =
+      app.add_subcommand("render", "Render a scene to PNG, JPEG or OpenEXR (by extension)");
   render_cmd->add_option("scene", render.scene, "Scene file (JSON)")->required();
-  render_cmd->add_option("-o,--output", render.png, "Output PNG (8-bit sRGB)")->required();
+  render_cmd
+      ->add_option("-o,--output", render.output,
+                   "Output image: .png (8-bit sRGB), .jpg, .exr (linear float), or - for a PNG "
+                   "on standard output")
+      ->required();
   render_cmd->add_option("--exr", render.exr, "Also write linear radiance to this OpenEXR file");
   render_cmd->add_option("--width", render.width, "Override camera.width");
   render_cmd->add_option("--height", render.height, "Override camera.height");
   render_cmd->add_option("--samples", render.samples, "Override camera.samples");
   render_cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(0, 4096));
+  render_cmd->add_option("--seed", render.seed,
+                         "Seed of the sample pattern (another deterministic pattern)");
+  render_cmd->add_option("--crop", render.crop,
+                         "Render only the pixels x0,y0,x1,y1 (x1, y1 exclusive)");
+  render_cmd->add_flag("--preview", render.preview,
+                       "Quick look: a quarter of the size, 1 sample, automatic exposure");
   render_cmd->add_option("--set", render.overrides, "Override a scene value: key.path=value");
   render_cmd->add_flag("--stats", render.stats, "Print one JSON line of timing to stderr");
-  render_cmd->add_flag("--quiet", render.quiet, "No progress bar");
+  render_cmd->add_flag("--quiet", render.quiet, "No progress bar and no summary line");
 
   LocateArgs loc;
   CLI::App* locate_cmd =
@@ -196,11 +356,31 @@ int main(int argc, char** argv) {
                          "x,y,z of a direction at infinity, in the sky's rest frame");
   locate_cmd->add_option("--set", loc.overrides, "Override a scene value: key.path=value");
 
-  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "render" &&
-      std::string(argv[1]) != "locate") {
-    std::fprintf(stderr, "lightcone: unknown command '%s' (use render or locate; see --help)\n",
-                 argv[1]);
-    return kBadInput;
+  std::string check_scene;
+  std::vector<std::string> check_overrides;
+  CLI::App* check_cmd =
+      app.add_subcommand("check", "Validate a scene file (status 0 or 2); render nothing");
+  check_cmd->add_option("scene", check_scene, "Scene file (JSON)")->required();
+  check_cmd->add_option("--set", check_overrides, "Override a scene value: key.path=value");
+
+  std::string info_scene;
+  std::vector<std::string> info_overrides;
+  bool info_json = false;
+  CLI::App* info_cmd = app.add_subcommand(
+      "info", "Summarise a scene: speeds, Doppler range, time window, memory estimate");
+  info_cmd->add_option("scene", info_scene, "Scene file (JSON)")->required();
+  info_cmd->add_option("--set", info_overrides, "Override a scene value: key.path=value");
+  info_cmd->add_flag("--json", info_json, "One JSON object, for scripts");
+
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string command = argv[1];
+    if (command != "render" && command != "locate" && command != "check" && command != "info") {
+      std::fprintf(stderr,
+                   "lightcone: unknown command '%s' (use render, locate, check or info; see "
+                   "--help)\n",
+                   argv[1]);
+      return kBadInput;
+    }
   }
   try {
     app.parse(argc, argv);
@@ -211,6 +391,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (*render_cmd) return run_render(render);
+    if (*check_cmd) return run_check(check_scene, check_overrides);
+    if (*info_cmd) return run_info(info_scene, info_overrides, info_json);
     return run_locate(loc);
   } catch (const InputError& e) {
     std::fprintf(stderr, "lightcone: %s\n", e.what());

@@ -1,27 +1,62 @@
 #include "progress_bar.hpp"
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
 namespace lightcone {
+namespace {
 
-ProgressBar::ProgressBar(bool enabled) : enabled_(enabled) {}
+int terminal_columns() {
+  winsize w{};
+  if (ioctl(STDERR_FILENO, TIOCGWINSZ, &w) == 0 && w.ws_col > 0) return w.ws_col;
+  return 80;
+}
+
+std::string clock_text(double seconds) {
+  const auto s = static_cast<long>(std::max(0.0, seconds) + 0.5);
+  char text[32];
+  if (s >= 3600)
+    std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else
+    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
+  return text;
+}
+
+}  // namespace
+
+ProgressBar::ProgressBar(bool enabled)
+    : enabled_(enabled), start_(std::chrono::steady_clock::now()), last_(start_) {}
 
 ProgressBar::~ProgressBar() {
-  if (enabled_ && shown_percent_ >= 0) std::fputc('\n', stderr);
+  if (enabled_ && drawn_) std::fputc('\n', stderr);
 }
 
 void ProgressBar::update(std::size_t done, std::size_t total) {
   if (!enabled_ || total == 0) return;
-  const int percent = static_cast<int>(100 * done / total);
   std::lock_guard lock(mutex_);
-  if (percent <= shown_percent_) return;
-  shown_percent_ = percent;
-  constexpr int kWidth = 40;
-  const int filled = percent * kWidth / 100;
-  std::string bar(filled, '#');
-  bar.append(kWidth - filled, '.');
-  std::fprintf(stderr, "\rrendering [%s] %3d%%", bar.c_str(), percent);
+  const auto now = std::chrono::steady_clock::now();
+  if (done < total && drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  drawn_ = true;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double fraction = static_cast<double>(done) / total;
+  const std::string times =
+      " " + clock_text(elapsed) +
+      (done < total && done > 0 ? " elapsed, " + clock_text(elapsed / fraction - elapsed) + " left"
+                                : " elapsed");
+  char percent[16];
+  std::snprintf(percent, sizeof percent, " %3d%%", static_cast<int>(100 * fraction));
+  const std::string label = "rendering [";
+  const int width = std::max(
+      0, terminal_columns() - 1 - static_cast<int>(label.size() + 1 + 5 + times.size() + 8));
+  const int filled = static_cast<int>(fraction * width);
+  std::string bar =
+      label + std::string(filled, '#') + std::string(width - filled, '.') + "]" + percent + times;
+  std::fprintf(stderr, "\r%s\033[K", bar.c_str());
   std::fflush(stderr);
 }
 

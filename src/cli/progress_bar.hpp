@@ -1,6 +1,8 @@
-// A progress bar on stderr for long renders; silent when stderr is not a terminal.
+// A progress bar on stderr for long renders: it fits the terminal and shows the elapsed time and
+// an estimate of the time left; silent when stderr is not a terminal.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <mutex>
 
@@ -10,13 +12,14 @@ class ProgressBar {
  public:
   explicit ProgressBar(bool enabled);
   ~ProgressBar();
-  // Thread-safe; redraws only when the shown percentage changes.
+  // Thread-safe; redraws at most ten times a second and at the end.
   void update(std::size_t done, std::size_t total);
 
  private:
   bool enabled_;
   std::mutex mutex_;
-  int shown_percent_ = -1;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_, last_;
 };
 
 }  // namespace lightcone

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -161,27 +162,46 @@ void append_bytes(void* context, void* data, int size) {
   out->insert(out->end(), bytes, bytes + size);
 }
 
-void write_png(const Image& image, const fs::path& temp, const fs::path& target) {
+std::vector<unsigned char> display_bytes(const Image& image) {
   std::vector<unsigned char> pixels(image.rgb.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const float v = image.rgb[i];
     const double clamped = std::isnan(v) ? 0.0 : std::clamp<double>(v, 0.0, 1.0);
     pixels[i] = static_cast<unsigned char>(std::lround(255 * srgb_encode(clamped)));
   }
-  // Encoding to memory lets every write error be checked, which stbi_write_png does not do.
-  std::vector<unsigned char> encoded;
-  if (!stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, pixels.data(),
-                              3 * image.width))
-    fail_write(target, "cannot encode PNG image");
+  return pixels;
+}
+
+void write_bytes(const std::vector<unsigned char>& encoded, const char* kind, const fs::path& temp,
+                 const fs::path& target) {
   std::FILE* f = std::fopen(temp.c_str(), "wb");
   if (f == nullptr)
-    fail_write(target, fmt::format("cannot write PNG image: {}", std::strerror(errno)));
+    fail_write(target, fmt::format("cannot write {} image: {}", kind, std::strerror(errno)));
   const bool written =
       std::fwrite(encoded.data(), 1, encoded.size(), f) == encoded.size() && std::fflush(f) == 0;
   const int saved_errno = errno;
   if (std::fclose(f) != 0 || !written)
-    fail_write(target, fmt::format("cannot write PNG image: {}",
+    fail_write(target, fmt::format("cannot write {} image: {}", kind,
                                    std::strerror(written ? errno : saved_errno)));
+}
+
+// Encoding to memory lets every write error be checked, which stbi_write_png does not do.
+std::vector<unsigned char> png_bytes(const Image& image) {
+  const std::vector<unsigned char> pixels = display_bytes(image);
+  std::vector<unsigned char> encoded;
+  if (!stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, pixels.data(),
+                              3 * image.width))
+    throw std::runtime_error("cannot encode PNG image");
+  return encoded;
+}
+
+void write_jpeg(const Image& image, const fs::path& temp, const fs::path& target) {
+  const std::vector<unsigned char> pixels = display_bytes(image);
+  std::vector<unsigned char> encoded;
+  if (!stbi_write_jpg_to_func(append_bytes, &encoded, image.width, image.height, 3, pixels.data(),
+                              95))
+    fail_write(target, "cannot encode JPEG image");
+  write_bytes(encoded, "JPEG", temp, target);
 }
 
 void write_exr(const Image& image, const fs::path& temp, const fs::path& target) {
@@ -218,6 +238,20 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
   return is_exr(bytes) ? load_exr(file) : load_stb(file, bytes);
 }
 
+std::optional<ImageFormat> image_format_of(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".png") return ImageFormat::kPng;
+  if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::kJpeg;
+  if (ext == ".exr") return ImageFormat::kExr;
+  return std::nullopt;
+}
+
+std::vector<unsigned char> encode_png(const Image& display) {
+  return png_bytes(display);
+}
+
 void write_images(const Image& linear, const std::optional<std::filesystem::path>& png,
                   const std::optional<std::filesystem::path>& exr) {
   write_images(linear, linear, png, exr);
@@ -226,6 +260,14 @@ void write_images(const Image& linear, const std::optional<std::filesystem::path
 void write_images(const Image& display, const Image& linear,
                   const std::optional<std::filesystem::path>& png,
                   const std::optional<std::filesystem::path>& exr) {
+  std::vector<ImageOutput> outputs;
+  if (png) outputs.push_back({*png, ImageFormat::kPng});
+  if (exr) outputs.push_back({*exr, ImageFormat::kExr});
+  write_images(display, linear, outputs);
+}
+
+void write_images(const Image& display, const Image& linear,
+                  const std::vector<ImageOutput>& outputs) {
   for (const Image* image : {&display, &linear})
     if (image->width <= 0 || image->height <= 0 || image->width > INT_MAX / 3 ||
         image->rgb.size() != 3 * static_cast<std::size_t>(image->width) * image->height)
@@ -236,11 +278,29 @@ void write_images(const Image& display, const Image& linear,
     bool renamed = false;
   };
   std::vector<Pending> pending;
-  if (png) pending.push_back({*png, temporary_name(*png)});
-  if (exr) pending.push_back({*exr, temporary_name(*exr)});
+  for (const ImageOutput& o : outputs) pending.push_back({o.path, temporary_name(o.path)});
   try {
-    if (png) write_png(display, pending[0].temp, *png);
-    if (exr) write_exr(linear, pending.back().temp, *exr);
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      const fs::path& target = outputs[i].path;
+      switch (outputs[i].format) {
+        case ImageFormat::kPng: {
+          std::vector<unsigned char> encoded;
+          try {
+            encoded = png_bytes(display);
+          } catch (const std::runtime_error&) {
+            fail_write(target, "cannot encode PNG image");
+          }
+          write_bytes(encoded, "PNG", pending[i].temp, target);
+          break;
+        }
+        case ImageFormat::kJpeg:
+          write_jpeg(display, pending[i].temp, target);
+          break;
+        case ImageFormat::kExr:
+          write_exr(linear, pending[i].temp, target);
+          break;
+      }
+    }
     for (Pending& p : pending) {
       std::error_code ec;
       fs::rename(p.temp, p.target, ec);

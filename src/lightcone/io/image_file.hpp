@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "lightcone/scene/scene.hpp"
 
@@ -17,6 +18,27 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file);
 double srgb_encode(double linear);
 // Its inverse.
 double srgb_decode(double encoded);
+
+enum class ImageFormat { kPng, kJpeg, kExr };
+
+// The format an output file's name asks for, by its extension (.png; .jpg or .jpeg; .exr; in
+// any case); nullopt for any other.
+std::optional<ImageFormat> image_format_of(const std::filesystem::path& file);
+
+struct ImageOutput {
+  std::filesystem::path path;
+  ImageFormat format = ImageFormat::kPng;
+};
+
+// Writes every output, PNG and JPEG (quality 95) 8-bit sRGB from `display` (values in [0, 1]),
+// EXR linear 32-bit float from `linear`, each first under a temporary name beside its target,
+// all renamed only when every write succeeded: a failure leaves no half-written output.
+// Throws std::runtime_error on failure.
+void write_images(const Image& display, const Image& linear,
+                  const std::vector<ImageOutput>& outputs);
+
+// The PNG file's bytes for a display image (for writing to standard output).
+std::vector<unsigned char> encode_png(const Image& display);
 
 // Writes the linear image (radiance already multiplied by 2^exposure) to the requested files:
 // PNG = round(255 srgb_encode(clamp(L, 0, 1))), EXR = L as 32-bit float RGB. Every file is

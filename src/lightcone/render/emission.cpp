@@ -58,6 +58,7 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
         range.lo = first ? l : std::min(range.lo, l);
         range.hi = first ? l : std::max(range.hi, l);
         first = false;
+        range.empty = false;
       }
     }
   return range;

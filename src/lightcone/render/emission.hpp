@@ -48,6 +48,7 @@ struct PointEmission {
 // a grid keeps beyond each end.
 struct LogDopplerRange {
   double lo = 0, hi = 0;
+  bool empty = true;  // nothing of the kind is seen (lo = hi = 0)
 };
 LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit);
 

@@ -49,22 +49,31 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const Lighting lighting(resolved, tracer);
 
   const Camera& cam = scene.camera;
+  const PixelWindow window = options.crop.value_or(PixelWindow{0, 0, cam.width, cam.height});
+  const int width = window.x1 - window.x0, height = window.y1 - window.y0;
   Image image;
-  image.width = cam.width;
-  image.height = cam.height;
-  image.rgb.assign(static_cast<std::size_t>(cam.width) * cam.height * 3, 0.0f);
-  const int tiles_x = (cam.width + kTileSize - 1) / kTileSize;
-  const int tiles_y = (cam.height + kTileSize - 1) / kTileSize;
+  image.width = width;
+  image.height = height;
+  image.rgb.assign(static_cast<std::size_t>(width) * height * 3, 0.0f);
+  const int tiles_x = (width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (height + kTileSize - 1) / kTileSize;
   const std::size_t total = static_cast<std::size_t>(tiles_x) * tiles_y;
   std::atomic<std::size_t> done{0};
+  std::atomic<bool> skipped{false};
   const int n = cam.samples;
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1), [&](const auto& range) {
     for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
-      const int x0 = static_cast<int>(tile % tiles_x) * kTileSize;
-      const int y0 = static_cast<int>(tile / tiles_x) * kTileSize;
-      for (int j = y0; j < std::min(y0 + kTileSize, cam.height); ++j)
-        for (int i = x0; i < std::min(x0 + kTileSize, cam.width); ++i) {
+      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+        skipped = true;
+        continue;
+      }
+      // Pixel (i, j) of the camera's image; its samples depend on (i, j) alone, so a crop
+      // renders exactly the pixels of the whole image.
+      const int x0 = window.x0 + static_cast<int>(tile % tiles_x) * kTileSize;
+      const int y0 = window.y0 + static_cast<int>(tile / tiles_x) * kTileSize;
+      for (int j = y0; j < std::min(y0 + kTileSize, window.y1); ++j)
+        for (int i = x0; i < std::min(x0 + kTileSize, window.x1); ++i) {
           double r = 0, g = 0, b = 0;
           for (int k = 0; k < n; ++k) {
             const PixelSample o = pixel_sample(i, j, k, n, options.seed);
@@ -75,7 +84,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
             g += c.g;
             b += c.b;
           }
-          float* px = &image.rgb[3 * (static_cast<std::size_t>(j) * cam.width + i)];
+          float* px =
+              &image.rgb[3 * (static_cast<std::size_t>(j - window.y0) * width + (i - window.x0))];
           px[0] = static_cast<float>(r / n);
           px[1] = static_cast<float>(g / n);
           px[2] = static_cast<float>(b / n);
@@ -93,7 +103,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     stats->exposure = ev;
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats->rays = static_cast<std::uint64_t>(cam.width) * cam.height * n;
+    stats->rays = static_cast<std::uint64_t>(width) * height * n;
+    stats->cancelled = skipped;
   }
   return image;
 }

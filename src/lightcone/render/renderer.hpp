@@ -1,9 +1,11 @@
 // The offline renderer: one or more camera rays per pixel, tiles in parallel on TBB.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "lightcone/render/emission.hpp"
 #include "lightcone/render/lighting.hpp"
@@ -13,17 +15,30 @@
 
 namespace lightcone {
 
+// A window of pixels [x0, x1) x [y0, y1) of the camera's image.
+struct PixelWindow {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
 struct RenderOptions {
   int threads = 0;         // 0: all cores
   std::uint64_t seed = 0;  // of the sample pattern (render_image is deterministic for each)
   // Called from worker threads (must be thread-safe) after each finished tile.
   std::function<void(std::size_t done, std::size_t total)> progress;
+  // Render only this window (pbrt's crop window): the image is the window's size and equals
+  // that region of the whole render pixel for pixel (with a fixed exposure; "auto" looks at
+  // the window only).
+  std::optional<PixelWindow> crop;
+  // When set (from any thread, e.g. a signal handler), tiles not yet started are skipped and
+  // stay black; RenderStats::cancelled says so.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct RenderStats {
   double seconds = 0;
   std::uint64_t rays = 0;  // camera rays traced
   double exposure = 0;     // EV applied
+  bool cancelled = false;  // some tiles were skipped (RenderOptions::cancel)
 };
 
 // Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F). Lit
