@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Configures and builds lightcone (Release) into build/.
+# Configures lightcone (Release) in build/ and builds the `lightcone` program, or the targets
+# given (scripts/test.sh builds everything: `./scripts/build.sh all`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$(nproc)"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$(nproc)" --target "${@:-lightcone}"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds lightcone and runs every test.
+# Builds lightcone, its tests and benchmarks, and runs every test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-./scripts/build.sh
+./scripts/build.sh all
 ctest --test-dir build --output-on-failure -j"$(nproc)"
