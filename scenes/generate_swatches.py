@@ -72,7 +72,7 @@ scene = {
     "camera": {"position": [0, 0, 0], "fov": 12.5, "width": 540, "height": 480, "samples": 4},
     "objects": objects,
     "sky": {"color": [0, 0, 0]},
-    "render": {"doppler": "spectral", "searchlight": "physical", "exposure": -1},
+    "render": {"doppler": "spectral", "searchlight": "physical", "exposure": -2},
 }
 out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__),
                                                           "doppler-swatches.json")
