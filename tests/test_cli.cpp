@@ -1374,5 +1374,63 @@ TEST_F(CliTest, InterruptWritesThePartialImageAndExits130) {
   EXPECT_EQ(image->width, 64);
 }
 
+TEST_F(CliTest, AovChannelsGoIntoTheExrByName) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r =
+      render(scene, "--quiet --aov doppler,emission_time,distance,object,depth,normal");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto image = read_exr();
+  std::vector<std::string> names;
+  for (const NamedChannel& c : image->channels) names.push_back(c.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"depth", "distance", "doppler", "emission_time",
+                                             "normal.X", "normal.Y", "normal.Z", "object"}));
+  // The ball at rest 10 ahead, radius 2: its near point is 8 away and sent its light at t = -8.
+  for (const NamedChannel& c : image->channels) {
+    const float centre = c.values[24 * 64 + 32];
+    if (c.name == "distance") EXPECT_NEAR(centre, 8.0, 5e-3);  // half a pixel off the axis
+    if (c.name == "emission_time") EXPECT_NEAR(centre, -8.0, 5e-3);
+    if (c.name == "doppler") EXPECT_EQ(centre, 1.0f);
+    if (c.name == "object") EXPECT_EQ(centre, 0.0f);
+    if (c.name == "object") EXPECT_EQ(c.values[0], -1.0f);  // the sky in the corner
+  }
+}
+
+TEST_F(CliTest, MapWritesAColourMappedPictureWithAScaleBar) {
+  const fs::path scene = write_scene(edited(kScene, "\"velocity\": [0, 0, 0],\n    \"fov\"",
+                                            "\"velocity\": [0, 0, -0.6],\n    \"fov\""));
+  const CommandResult r = render(scene, "--quiet --map doppler");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto picture = read_png();
+  EXPECT_EQ(picture->width, 64);
+  EXPECT_GT(picture->height, 48 + 30);
+  const auto exr_image = read_exr();  // the EXR keeps the render and the mapped channel
+  ASSERT_EQ(exr_image->channels.size(), 1u);
+  EXPECT_EQ(exr_image->channels[0].name, "doppler");
+  EXPECT_NEAR(exr_image->channels[0].values[24 * 64 + 32], 2.0, 1e-3);
+}
+
+TEST_F(CliTest, BadAovAndMapRequestsAreErrors) {
+  const fs::path scene = write_scene(kScene);
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"-o " + quoted(exr()) + " --aov doppler,speed",
+       "--aov doppler,speed: unknown output variable 'speed'"},
+      {"-o " + quoted(png()) + " --aov doppler",
+       "--aov: the output variables go into an OpenEXR file"},
+      {"-o " + quoted(exr()) + " --aov ''", "--aov"},
+      {"-o " + quoted(png()) + " --map normal", "--map normal: unknown quantity"},
+      {"-o " + quoted(exr()) + " --map doppler", "--map: the map is a picture"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = run_lightcone("render " + quoted(scene) + " " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_EQ(line_count(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    expect_nothing_written();
+  }
+}
+
 }  // namespace
 }  // namespace lightcone

@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
+#include "lightcone/render/false_colour.hpp"
 #include "lightcone/render/locate.hpp"
 #include "lightcone/render/renderer.hpp"
 #include "lightcone/render/scene_info.hpp"
@@ -78,7 +80,7 @@ nlohmann::ordered_json to_json(const Vec3& v) {
 
 struct RenderArgs {
   std::string scene, output;
-  std::optional<std::string> exr, crop;
+  std::optional<std::string> exr, crop, aov, map;
   std::optional<int> width, height, samples;
   int threads = 0;
   std::uint64_t seed = 0;
@@ -109,6 +111,23 @@ PixelWindow parse_crop(const std::string& text, int width, int height) {
                      std::to_string(width) + "x" + std::to_string(height) + " image");
   return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]),
           static_cast<int>(v[3])};
+}
+
+constexpr const char* kAovNames = "doppler, emission_time, distance, object, depth, normal";
+
+std::vector<Aov> parse_aovs(const std::string& text) {
+  std::vector<Aov> aovs;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const std::optional<Aov> aov = aov_from_name(part);
+    if (!aov)
+      throw InputError("--aov " + text + ": unknown output variable '" + part + "' (use " +
+                       kAovNames + ")");
+    if (std::find(aovs.begin(), aovs.end(), *aov) == aovs.end()) aovs.push_back(*aov);
+  }
+  if (aovs.empty()) throw InputError("--aov: give one or more of " + std::string(kAovNames));
+  return aovs;
 }
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -147,6 +166,27 @@ int run_render(const RenderArgs& a) {
       throw InputError("--exr " + *a.exr + ": is the same file as -o");
   }
 
+  std::vector<Aov> aovs;
+  if (a.aov) {
+    aovs = parse_aovs(*a.aov);
+    if (format != ImageFormat::kExr && !a.exr)
+      throw InputError(
+          "--aov: the output variables go into an OpenEXR file: give -o NAME.exr "
+          "or --exr NAME.exr");
+  }
+  std::optional<Aov> map;
+  if (a.map) {
+    map = aov_from_name(*a.map);
+    if (!map || *map == Aov::kNormal)
+      throw InputError("--map " + *a.map +
+                       ": unknown quantity (use doppler, emission_time, distance, object, depth)");
+    if (format == ImageFormat::kExr)
+      throw InputError(
+          "--map: the map is a picture: give -o NAME.png or NAME.jpg (the values "
+          "themselves go into an EXR with --aov)");
+    if (std::find(aovs.begin(), aovs.end(), *map) == aovs.end()) aovs.push_back(*map);
+  }
+
   Scene scene = [&] {
     try {
       return load(a.scene, overrides);
@@ -172,6 +212,7 @@ int run_render(const RenderArgs& a) {
   options.seed = a.seed;
   if (a.crop) options.crop = parse_crop(*a.crop, scene.camera.width, scene.camera.height);
   options.cancel = &interrupted;
+  options.aovs = aovs;
   RenderStats stats;
   Image image;
   std::atomic<std::size_t> tiles_done{0}, tiles_total{0};
@@ -187,7 +228,15 @@ int run_render(const RenderArgs& a) {
     std::signal(SIGINT, SIG_DFL);
   }
 
-  const Image display = tone_map(image, scene.render.tonemap);
+  Image display;
+  if (map) {
+    const std::vector<std::string> names = aov_channel_names(*map);
+    const auto channel = std::find_if(image.channels.begin(), image.channels.end(),
+                                      [&](const NamedChannel& c) { return c.name == names[0]; });
+    display = false_colour(*channel, image.width, image.height, names[0]);
+  } else {
+    display = tone_map(image, scene.render.tonemap);
+  }
   if (to_stdout) {
     const std::vector<unsigned char> png = encode_png(display);
     if (std::fwrite(png.data(), 1, png.size(), stdout) != png.size() || std::fflush(stdout) != 0)
@@ -339,6 +388,12 @@ int main(int argc, char** argv) {
                          "Seed of the sample pattern (another deterministic pattern)");
   render_cmd->add_option("--crop", render.crop,
                          "Render only the pixels x0,y0,x1,y1 (x1, y1 exclusive)");
+  render_cmd->add_option("--aov", render.aov,
+                         "Also write output variables into the EXR as channels: any of "
+                         "doppler,emission_time,distance,object,depth,normal");
+  render_cmd->add_option("--map", render.map,
+                         "Write a colour-mapped picture of doppler, emission_time, distance, "
+                         "object or depth (with a scale bar) instead of the render");
   render_cmd->add_flag("--preview", render.preview,
                        "Quick look: a quarter of the size, 1 sample, automatic exposure");
   render_cmd->add_option("--set", render.overrides, "Override a scene value: key.path=value");

@@ -84,6 +84,16 @@ std::shared_ptr<Image> load_exr(const fs::path& file) {
     for (int c = 0; c < (grey ? 1 : 3); ++c)
       frame.insert(grey ? "Y" : names[c],
                    Imf::Slice::Make(Imf::FLOAT, image->rgb.data() + c, window, x_stride, y_stride));
+    // Every other channel (output variables such as "doppler") is kept by name.
+    for (auto c = channels.begin(); c != channels.end(); ++c) {
+      const std::string name = c.name();
+      if (name == "R" || name == "G" || name == "B" || name == "Y") continue;
+      image->channels.push_back(
+          {name, std::vector<float>(static_cast<std::size_t>(image->width) * image->height)});
+    }
+    for (NamedChannel& c : image->channels)
+      frame.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.values.data(), window, sizeof(float),
+                                            sizeof(float) * image->width));
     in.setFrameBuffer(frame);
     in.readPixels(window.min.y, window.max.y);
     if (grey)
@@ -210,12 +220,21 @@ void write_exr(const Image& image, const fs::path& temp, const fs::path& target)
     header.compression() = Imf::ZIP_COMPRESSION;
     const char* names[] = {"R", "G", "B"};
     for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    for (const NamedChannel& c : image.channels)
+      header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
     // OpenEXR only reads through these pointers when writing.
     char* base = reinterpret_cast<char*>(const_cast<float*>(image.rgb.data()));
     const std::size_t x_stride = 3 * sizeof(float), y_stride = x_stride * image.width;
     Imf::FrameBuffer frame;
     for (int c = 0; c < 3; ++c)
       frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride));
+    for (const NamedChannel& c : image.channels) {
+      if (c.values.size() != static_cast<std::size_t>(image.width) * image.height)
+        throw std::runtime_error("channel " + c.name + " has the wrong size");
+      frame.insert(c.name, Imf::Slice(Imf::FLOAT,
+                                      reinterpret_cast<char*>(const_cast<float*>(c.values.data())),
+                                      sizeof(float), sizeof(float) * image.width));
+    }
     Imf::OutputFile out(temp.c_str(), header);
     out.setFrameBuffer(frame);
     out.writePixels(image.height);

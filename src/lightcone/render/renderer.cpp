@@ -58,6 +58,15 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const int tiles_x = (width + kTileSize - 1) / kTileSize;
   const int tiles_y = (height + kTileSize - 1) / kTileSize;
   const std::size_t total = static_cast<std::size_t>(tiles_x) * tiles_y;
+  // The output variables' channels, and where each AOV's first channel is among them.
+  std::vector<std::size_t> aov_first, aov_count;
+  for (const Aov aov : options.aovs) {
+    aov_first.push_back(image.channels.size());
+    aov_count.push_back(aov_channel_names(aov).size());
+    for (const std::string& name : aov_channel_names(aov))
+      image.channels.push_back(
+          {name, std::vector<float>(static_cast<std::size_t>(width) * height)});
+  }
   std::atomic<std::size_t> done{0};
   std::atomic<bool> skipped{false};
   const int n = cam.samples;
@@ -89,6 +98,17 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
           px[0] = static_cast<float>(r / n);
           px[1] = static_cast<float>(g / n);
           px[2] = static_cast<float>(b / n);
+          if (!options.aovs.empty()) {
+            const std::size_t at =
+                static_cast<std::size_t>(j - window.y0) * width + (i - window.x0);
+            const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
+            for (std::size_t a = 0; a < options.aovs.size(); ++a) {
+              float values[3];
+              aov_values(resolved, tracer, centre, options.aovs[a], values);
+              for (std::size_t c = 0; c < aov_count[a]; ++c)
+                image.channels[aov_first[a] + c].values[at] = values[c];
+            }
+          }
         }
       const std::size_t now = ++done;
       if (options.progress) options.progress(now, total);

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
+#include "lightcone/render/aov.hpp"
 #include "lightcone/render/emission.hpp"
 #include "lightcone/render/lighting.hpp"
 #include "lightcone/render/resolved_scene.hpp"
@@ -32,6 +34,9 @@ struct RenderOptions {
   // When set (from any thread, e.g. a signal handler), tiles not yet started are skipped and
   // stay black; RenderStats::cancelled says so.
   const std::atomic<bool>* cancel = nullptr;
+  // Output variables to add to the image as named channels (Image::channels), each from the
+  // ray through the pixel's centre.
+  std::vector<Aov> aovs;
 };
 
 struct RenderStats {

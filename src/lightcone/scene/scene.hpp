@@ -37,11 +37,19 @@ struct Mesh {
   std::string source;  // file it came from, for messages
 };
 
-// A linear-RGB image, row-major from the top-left, 3 floats per pixel.
+// A named channel of one float per pixel (an output variable beside the colour: the Doppler
+// factor, a depth), row-major like the image it belongs to.
+struct NamedChannel {
+  std::string name;
+  std::vector<float> values;
+};
+
+// A linear-RGB image, row-major from the top-left, 3 floats per pixel, and any extra channels.
 struct Image {
   int width = 0, height = 0;
   std::vector<float> rgb;
   std::string source;
+  std::vector<NamedChannel> channels;
 
   Rgb texel(int x, int y) const {
     const float* p = &rgb[3 * (static_cast<std::size_t>(y) * width + x)];

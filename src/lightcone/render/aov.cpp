@@ -1,0 +1,88 @@
+#include "lightcone/render/aov.hpp"
+
+#include <limits>
+
+namespace lightcone {
+namespace {
+
+constexpr struct {
+  Aov aov;
+  const char* name;
+} kNames[] = {{Aov::kDoppler, "doppler"},   {Aov::kEmissionTime, "emission_time"},
+              {Aov::kDistance, "distance"}, {Aov::kObject, "object"},
+              {Aov::kDepth, "depth"},       {Aov::kNormal, "normal"}};
+
+const char* name_of(Aov aov) {
+  for (const auto& n : kNames)
+    if (n.aov == aov) return n.name;
+  return "";
+}
+
+}  // namespace
+
+std::optional<Aov> aov_from_name(std::string_view name) {
+  for (const auto& n : kNames)
+    if (name == n.name) return n.aov;
+  return std::nullopt;
+}
+
+std::vector<std::string> aov_channel_names(Aov aov) {
+  const std::string name = name_of(aov);
+  if (aov == Aov::kNormal) return {name + ".X", name + ".Y", name + ".Z"};
+  return {name};
+}
+
+void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
+                float* out) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  const auto hit = tracer.trace(u);
+  if (!hit) {
+    switch (aov) {
+      case Aov::kDoppler:
+        out[0] = static_cast<float>(scene.doppler(u, scene.sky_velocity));
+        return;
+      case Aov::kEmissionTime:
+        out[0] = -kInf;
+        return;
+      case Aov::kDistance:
+      case Aov::kDepth:
+        out[0] = kInf;
+        return;
+      case Aov::kObject:
+        out[0] = -1;
+        return;
+      case Aov::kNormal:
+        out[0] = out[1] = out[2] = 0;
+        return;
+    }
+  }
+  const ResolvedBody& body = scene.bodies[hit->body];
+  switch (aov) {
+    case Aov::kDoppler:
+      out[0] = static_cast<float>(scene.doppler(u, body.velocity));
+      return;
+    case Aov::kEmissionTime:
+      out[0] =
+          static_cast<float>(scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s}).t);
+      return;
+    case Aov::kDistance:
+      out[0] = static_cast<float>(hit->s);
+      return;
+    case Aov::kObject:
+      out[0] = static_cast<float>(hit->body);
+      return;
+    case Aov::kDepth:
+      out[0] = static_cast<float>(hit->s * dot(u, scene.camera.forward));
+      return;
+    case Aov::kNormal: {
+      const Object& o = *body.object;
+      const Vec3 n = normalize(o.rotation * component_div(hit->shape_normal, o.scale));
+      out[0] = static_cast<float>(n.x);
+      out[1] = static_cast<float>(n.y);
+      out[2] = static_cast<float>(n.z);
+      return;
+    }
+  }
+}
+
+}  // namespace lightcone

@@ -1,0 +1,33 @@
+// Output variables beside the colour, for research use (`lightcone render --aov`, `--map`): per
+// pixel, what the ray through the pixel's centre meets.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lightcone/render/resolved_scene.hpp"
+#include "lightcone/render/tracer.hpp"
+
+namespace lightcone {
+
+enum class Aov {
+  kDoppler,       // D = nu_camera / nu_emitter of the light seen
+  kEmissionTime,  // the W-time at which that light left the surface (-inf: the sky)
+  kDistance,      // its travel distance in the camera's frame (+inf: the sky)
+  kObject,        // the index of the object in the scene's list (-1: the sky)
+  kDepth,         // the distance along the camera's forward axis, camera frame (+inf: the sky)
+  kNormal,        // the surface normal in the body's rest frame, 3 channels (0: the sky)
+};
+
+// By name: doppler, emission_time, distance, object, depth, normal.
+std::optional<Aov> aov_from_name(std::string_view name);
+// The EXR channel names of an output variable: its name, or name.X, name.Y, name.Z.
+std::vector<std::string> aov_channel_names(Aov aov);
+
+// The values of `aov` along the look direction u (as many as its channels).
+void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
+                float* out);
+
+}  // namespace lightcone

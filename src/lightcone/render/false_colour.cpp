@@ -1,0 +1,121 @@
+#include "lightcone/render/false_colour.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+// stb_easy_font: tiny bitmap text as quads (Debian's libstb-dev).
+#include <stb_easy_font.h>
+
+namespace lightcone {
+namespace {
+
+LinearRgb from_oklab(double l, double a, double b) {
+  const double l_ = l + 0.3963377774 * a + 0.2158037573 * b;
+  const double m_ = l - 0.1055613458 * a - 0.0638541728 * b;
+  const double s_ = l - 0.0894841775 * a - 1.2914855480 * b;
+  const double L = l_ * l_ * l_, M = m_ * m_ * m_, S = s_ * s_ * s_;
+  return {4.0767416621 * L - 3.3077115913 * M + 0.2309699292 * S,
+          -1.2684380046 * L + 2.6097574011 * M - 0.3413193965 * S,
+          -0.0041960863 * L - 0.7034186147 * M + 1.7076147010 * S};
+}
+
+bool in_gamut(const LinearRgb& c) {
+  return c.r >= 0 && c.r <= 1 && c.g >= 0 && c.g <= 1 && c.b >= 0 && c.b <= 1;
+}
+
+constexpr int kBarHeight = 48;  // pixels below the picture: the bar and its labels
+constexpr float kGrey = 0.18f;
+
+void put(Image& image, int x, int y, const LinearRgb& c) {
+  if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+  float* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
+  p[0] = static_cast<float>(c.r);
+  p[1] = static_cast<float>(c.g);
+  p[2] = static_cast<float>(c.b);
+}
+
+// Text at (x, y), 2 pixels per font unit.
+void text(Image& image, int x, int y, const std::string& s) {
+  std::vector<char> buffer(s.size() * 300 + 64);
+  std::string copy = s;
+  unsigned char colour[4] = {255, 255, 255, 255};
+  const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer.data(),
+                                        static_cast<int>(buffer.size()));
+  const float* v = reinterpret_cast<const float*>(buffer.data());
+  for (int q = 0; q < quads; ++q) {
+    const float* quad = v + q * 16;  // 4 vertices of x, y, z and 4 colour bytes
+    const int x0 = static_cast<int>(2 * quad[0]), y0 = static_cast<int>(2 * quad[1]);
+    const int x1 = static_cast<int>(2 * quad[8]), y1 = static_cast<int>(2 * quad[9]);
+    for (int yy = std::min(y0, y1); yy < std::max(y0, y1); ++yy)
+      for (int xx = std::min(x0, x1); xx < std::max(x0, x1); ++xx)
+        put(image, x + xx, y + yy, {1, 1, 1});
+  }
+}
+
+int text_width(const std::string& s) {
+  std::string copy = s;
+  return 2 * stb_easy_font_width(copy.data());
+}
+
+std::string number(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", v);
+  return s;
+}
+
+}  // namespace
+
+LinearRgb colour_map(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  const double l = 0.30 + 0.62 * t;
+  const double hue = (265.0 - 170.0 * t) * std::numbers::pi / 180;
+  // The largest chroma up to 0.12 that sRGB shows at this lightness and hue.
+  double lo = 0, hi = 0.12;
+  if (in_gamut(from_oklab(l, hi * std::cos(hue), hi * std::sin(hue)))) lo = hi;
+  for (int k = 0; k < 30 && hi - lo > 1e-6; ++k) {
+    const double c = 0.5 * (lo + hi);
+    (in_gamut(from_oklab(l, c * std::cos(hue), c * std::sin(hue))) ? lo : hi) = c;
+  }
+  const LinearRgb c = from_oklab(l, lo * std::cos(hue), lo * std::sin(hue));
+  return {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
+}
+
+Image false_colour(const NamedChannel& channel, int width, int height, const std::string& label) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const float v : channel.values)
+    if (std::isfinite(v))
+      lo = std::min(lo, static_cast<double>(v)), hi = std::max(hi, static_cast<double>(v));
+  if (!(lo <= hi)) lo = hi = 0;
+  const double span = hi > lo ? hi - lo : 1.0;
+
+  Image image;
+  image.width = width;
+  image.height = height + kBarHeight;
+  image.rgb.assign(3 * static_cast<std::size_t>(image.width) * image.height, 0.0f);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float v = channel.values[static_cast<std::size_t>(y) * width + x];
+      put(image, x, y,
+          std::isfinite(v) ? colour_map((v - lo) / span) : LinearRgb{kGrey, kGrey, kGrey});
+    }
+  // The bar, its ticks and labels.
+  const int x0 = std::max(4, width / 10), x1 = std::min(width - 4, width - width / 10);
+  const int bar_top = height + 6, bar_bottom = height + 18;
+  for (int x = x0; x <= x1; ++x)
+    for (int y = bar_top; y < bar_bottom; ++y)
+      put(image, x, y, colour_map(static_cast<double>(x - x0) / std::max(1, x1 - x0)));
+  for (int k = 0; k <= 4; ++k) {
+    const int x = x0 + (x1 - x0) * k / 4;
+    for (int y = bar_bottom; y < bar_bottom + 4; ++y) put(image, x, y, {1, 1, 1});
+    const std::string s = number(lo + (hi - lo) * k / 4);
+    text(image, std::clamp(x - text_width(s) / 2, 0, std::max(0, width - text_width(s))),
+         bar_bottom + 6, s);
+  }
+  text(image, std::max(0, x0 - text_width(label) - 6), bar_top - 1, label);
+  return image;
+}
+
+}  // namespace lightcone
