@@ -35,3 +35,4 @@ render street-spectral street.json --set render.searchlight=off
 render street-rgb3 street.json --set render.searchlight=off --set render.doppler=rgb3
 render street-hue street.json --set render.searchlight=off --set render.doppler=hue
 render doppler-swatches doppler-swatches.json
+render terrell-doppler terrell.json --map doppler
