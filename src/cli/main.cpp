@@ -53,25 +53,32 @@ void require_writable_target(const std::string& option, const std::string& path)
     throw InputError(option + " " + path + ": folder " + parent.string() + " does not exist");
 }
 
-Vec3 parse_triple(const std::string& option, const std::string& text) {
-  Vec3 v;
+// `count` comma-separated finite numbers (integers if `integers`), or an error that says so:
+// "OPTION TEXT: expected WHAT".
+std::vector<double> parse_numbers(const std::string& option, const std::string& text,
+                                  std::size_t count, bool integers, const std::string& what) {
+  std::vector<double> v;
   std::stringstream in(text);
   std::string part;
-  int n = 0;
+  const InputError error(option + " " + text + ": expected " + what);
   while (std::getline(in, part, ',')) {
     std::size_t used = 0;
     double x = 0;
     try {
-      x = std::stod(part, &used);
+      x = integers ? static_cast<double>(std::stol(part, &used)) : std::stod(part, &used);
     } catch (const std::exception&) {
       used = 0;
     }
-    if (n >= 3 || used != part.size() || part.empty() || !std::isfinite(x))
-      throw InputError(option + " " + text + ": expected three numbers x,y,z");
-    v[n++] = x;
+    if (used != part.size() || part.empty() || !std::isfinite(x)) throw error;
+    v.push_back(x);
   }
-  if (n != 3) throw InputError(option + " " + text + ": expected three numbers x,y,z");
+  if (v.size() != count) throw error;
   return v;
+}
+
+Vec3 parse_triple(const std::string& option, const std::string& text) {
+  const std::vector<double> v = parse_numbers(option, text, 3, false, "three numbers x,y,z");
+  return {v[0], v[1], v[2]};
 }
 
 nlohmann::ordered_json to_json(const Vec3& v) {
@@ -90,22 +97,7 @@ struct RenderArgs {
 
 // x0,y0,x1,y1 in pixels, a non-empty window inside the image.
 PixelWindow parse_crop(const std::string& text, int width, int height) {
-  std::stringstream in(text);
-  std::string part;
-  std::vector<long> v;
-  while (std::getline(in, part, ',')) {
-    std::size_t used = 0;
-    long x = 0;
-    try {
-      x = std::stol(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != part.size() || part.empty())
-      throw InputError("--crop " + text + ": expected four integers x0,y0,x1,y1");
-    v.push_back(x);
-  }
-  if (v.size() != 4) throw InputError("--crop " + text + ": expected four integers x0,y0,x1,y1");
+  const std::vector<double> v = parse_numbers("--crop", text, 4, true, "four integers x0,y0,x1,y1");
   if (v[0] < 0 || v[1] < 0 || v[2] > width || v[3] > height || v[0] >= v[2] || v[1] >= v[3])
     throw InputError("--crop " + text + ": the window must be non-empty and inside the " +
                      std::to_string(width) + "x" + std::to_string(height) + " image");
