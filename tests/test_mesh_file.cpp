@@ -424,6 +424,43 @@ TEST_F(MeshFileTest, GltfIndexOutOfRange) {
             path.string() + ": mesh 0 primitive 0: index 5 out of range (3 vertices)");
 }
 
+// Declared offsets, lengths and counts near 2^64 must not wrap past the bounds checks.
+TEST_F(MeshFileTest, GltfHugeOffsetsAndCountsAreErrorsNotCrashes) {
+  const std::string buffer = triangle_buffer();
+  const std::string good = triangle_gltf("", buffer.size(), translated_node, "[0]");
+  const struct {
+    const char* from;
+    const char* to;
+  } cases[] = {
+      {R"("byteOffset": 0, "byteLength": 36})",
+       R"("byteOffset": 9223372036854775808, "byteLength": 9223372036854775832})"},
+      {R"("byteOffset": 0, "byteLength": 36})",
+       R"("byteOffset": 18446744073709551608, "byteLength": 36})"},
+      {R"("componentType": 5123, "count": 3,)",
+       R"("componentType": 5123, "count": 4611686018427387905,)"},
+      {R"("componentType": 5126, "count": 3, "type": "VEC3")",
+       R"("componentType": 5126, "count": 18446744073709551615, "type": "VEC3")"},
+  };
+  for (const auto& c : cases) {
+    std::string json = good;
+    const std::size_t at = json.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    json.replace(at, std::string(c.from).size(), c.to);
+    const auto path = write("huge.glb", glb(json, buffer));
+    const std::string error = load_error(path);
+    EXPECT_EQ(error.rfind(path.string() + ": ", 0), 0u) << c.to << ": " << error;
+  }
+}
+
+TEST_F(MeshFileTest, PlyDeclaringBillionsOfVerticesFailsAtTheEndOfItsData) {
+  const auto path = write("huge.ply",
+                          "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n"
+                          "property float x\nproperty float y\nproperty float z\nend_header\n" +
+                              std::string(24, '\0'));
+  const std::string error = load_error(path);
+  EXPECT_EQ(error.rfind(path.string() + ": ", 0), 0u) << error;
+}
+
 TEST_F(MeshFileTest, GltfGarbageFails) {
   const auto path = write("garbage.gltf", "{ not json");
   const std::string error = load_error(path);

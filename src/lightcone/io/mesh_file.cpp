@@ -561,8 +561,11 @@ void read_ply_body(Reader& in, const PlyHeader& header, Mesh& mesh, std::size_t&
       for (const auto& [un, vn] : uv_names)
         if (u < 0 && element.find(un) >= 0 && element.find(vn) >= 0)
           u = element.find(un), v = element.find(vn);
-      mesh.positions.reserve(element.count);
-      if (u >= 0) mesh.uvs.reserve(element.count);
+      // The declared count may be anything: reserve no more than a file could plausibly hold
+      // at once; a count beyond the data ends at the end of the file with an error.
+      const std::size_t plausible = std::min<std::size_t>(element.count, std::size_t{1} << 20);
+      mesh.positions.reserve(plausible);
+      if (u >= 0) mesh.uvs.reserve(plausible);
     }
     if (is_face) {
       indices = element.find("vertex_indices");
@@ -818,12 +821,17 @@ class GltfReader {
     const std::size_t element_size = std::size_t(component_size) * components;
     v.stride = bv.byteStride > 0 ? bv.byteStride : element_size;
     if (v.stride < element_size) fail_in(fmt::format("{} buffer view stride is too small", what));
-    const std::size_t start = bv.byteOffset + a.byteOffset;
-    const std::size_t view_end = bv.byteOffset + bv.byteLength;
-    if (view_end > buffer.size() || bv.byteLength < a.byteOffset ||
-        (v.count > 0 && (v.count - 1) * v.stride + element_size > view_end - start))
+    // Every sum and product checked against the bytes present: declared offsets, lengths and
+    // counts come from the file and may be anything up to 2^64.
+    const std::size_t size = buffer.size();
+    if (bv.byteOffset > size || bv.byteLength > size - bv.byteOffset ||
+        a.byteOffset > bv.byteLength)
       fail_in(fmt::format("{} accessor reaches beyond its buffer", what));
-    v.data = buffer.data() + start;
+    const std::size_t available = bv.byteLength - a.byteOffset;
+    if (v.count > 0 &&
+        (available < element_size || v.count - 1 > (available - element_size) / v.stride))
+      fail_in(fmt::format("{} accessor reaches beyond its buffer", what));
+    v.data = buffer.data() + bv.byteOffset + a.byteOffset;
     return v;
   }
 
