@@ -172,6 +172,11 @@ TEST_F(CliTest, BadSceneValuesNameFileLineAndPathAndWriteNothing) {
       {"object faster than light", "\n      \"velocity\": [0, 0, 0]",
        "\n      \"velocity\": [0.8, 0.8, 0]", 14, "objects[0].velocity",
        "must be below the speed of light"},
+      // |beta|^2 = 1 - 2.2e-16: once a frame of NaN pixels.
+      {"camera a rounding error below c", "\n    \"velocity\": [0, 0, 0]",
+       "\n    \"velocity\": [0.7071067811865475, 0.7071067811865475, 0]", 4, "camera.velocity",
+       "is too close to the speed of light (gamma 6.71e+07; at most 1e+06)"},
+
       {"unknown camera key", "\"fov\": 30", "\"fovy\": 30", 5, "camera.fovy",
        "unknown key \"fovy\""},
       {"unknown render key", "\"exposure\": 0", "\"exposur\": 0", 19, "render.exposur",
@@ -1252,6 +1257,28 @@ TEST_F(CliTest, BadOutputRequestsAreErrorsBeforeRendering) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     expect_nothing_written();
   }
+}
+
+TEST_F(CliTest, BodiesMovingApartTooFastForDoublePrecisionAreErrors) {
+  // Each at gamma 2236, but 1e7 relative to each other: once a frame of NaN pixels.
+  const fs::path scene = write_scene(edited(
+      edited(kScene, "\n    \"velocity\": [0, 0, 0]", "\n    \"velocity\": [0, 0, 0.9999999]"),
+      "\n      \"velocity\": [0, 0, 0]", "\n      \"velocity\": [0, 0, -0.9999999]"));
+  const CommandResult r = render(scene);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(scene.string() + ":14: objects[0].velocity: relative to the camera its "
+                                        "speed is too close to the speed of light"),
+            std::string::npos)
+      << r.err;
+  expect_nothing_written();
+}
+
+TEST_F(CliTest, NonFiniteRendersAreErrorsAndWriteNothing) {
+  const fs::path scene = write_scene(kScene);
+  const CommandResult r = render(scene, "--set render.exposure=1e308");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("non-finite values"), std::string::npos) << r.err;
+  expect_nothing_written();
 }
 
 TEST_F(CliTest, DashWritesThePngToStandardOutput) {

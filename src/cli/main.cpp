@@ -1,4 +1,5 @@
 // The `lightcone` command: a thin layer over the library (scene file -> renderer / locate).
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -220,6 +221,14 @@ int run_render(const RenderArgs& a) {
     std::signal(SIGINT, SIG_DFL);
   }
 
+  // A picture with non-finite values is wrong, not merely dark or bright: say so, write nothing.
+  const auto non_finite =
+      std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); });
+  if (non_finite > 0)
+    throw std::runtime_error(fmt::format(
+        "the render has {} non-finite values (NaN or infinity; is render.exposure {} too "
+        "large?): nothing written",
+        non_finite, stats.exposure));
   Image display;
   if (map) {
     const std::vector<std::string> names = aov_channel_names(*map);

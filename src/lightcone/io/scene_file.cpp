@@ -19,6 +19,7 @@
 #include "lightcone/io/json_locator.hpp"
 #include "lightcone/io/mesh_file.hpp"
 #include "lightcone/io/scene_overrides.hpp"
+#include "lightcone/physics/lorentz.hpp"
 
 namespace lightcone {
 namespace {
@@ -74,6 +75,7 @@ class SceneReader {
     if (Node schema = member(root, "$schema"); schema.value) string(schema);
     Scene scene;
     scene.camera = camera(member(root, "camera"));
+    camera_velocity_ = scene.camera.world_line.velocity;
     if (Node objects = member(root, "objects"); objects.value) read_objects(objects, scene);
     if (Node lights = member(root, "lights"); lights.value) read_lights(lights, scene);
     if (Node sky_node = member(root, "sky"); sky_node.value) scene.sky = sky(sky_node);
@@ -84,6 +86,9 @@ class SceneReader {
   }
 
  private:
+  static constexpr double kMaxGamma = 1e6;
+  Vec3 camera_velocity_;  // set once the camera is read; relative speeds are checked against it
+
   // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
   // a typo near the end does not wait for large files to load first).
   struct Asset {
@@ -220,10 +225,25 @@ class SceneReader {
     return normalize(v / largest);
   }
 
+  // Below the speed of light, and not so close to it, for the body or relative to the camera,
+  // that double precision cannot hold the physics: gamma at most kMaxGamma.
   Vec3 velocity(const Node& n) const {
     const Vec3 beta = vec3(n);
     if (!(dot(beta, beta) < 1))
       fail(n, fmt::format("speed {} must be below the speed of light (1)", length(beta)));
+    const double speed = length(beta);
+    // (1 - v)(1 + v), not 1 - v^2: no cancellation near v = 1.
+    const double gamma = 1 / std::sqrt((1 - speed) * (1 + speed));
+    if (!(gamma <= kMaxGamma))
+      fail(n,
+           fmt::format("speed {} is too close to the speed of light (gamma {:.3g}; at most {:g})",
+                       speed, gamma, kMaxGamma));
+    const double relative =
+        gamma * lorentz_gamma(camera_velocity_) * (1 - dot(beta, camera_velocity_));
+    if (!(relative <= kMaxGamma))
+      fail(n, fmt::format("relative to the camera its speed is too close to the speed of light "
+                          "(gamma {:.3g}; at most {:g})",
+                          relative, kMaxGamma));
     return beta;
   }
 
