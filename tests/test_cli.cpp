@@ -2,6 +2,8 @@
 // names the file, line and JSON path, nothing written), valid renders (sizes, options, the PNG
 // and EXR value contract, --stats, the progress bar), `locate` and --help.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -1271,6 +1273,35 @@ TEST_F(CliTest, BodiesMovingApartTooFastForDoublePrecisionAreErrors) {
             std::string::npos)
       << r.err;
   expect_nothing_written();
+}
+
+TEST_F(CliTest, OnlyRegularFilesAreReplacedAndLinksAreKept) {
+  const fs::path scene = write_scene(kScene);
+  // A FIFO and (where the test may create one) a character device named like images.
+  const fs::path fifo = out_ / "fifo.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  const fs::path device = out_ / "device.png";
+  const bool have_device = ::mknod(device.c_str(), S_IFCHR | 0644, makedev(1, 3)) == 0;
+  for (const fs::path& special : {fifo, device}) {
+    if (special == device && !have_device) continue;
+    const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " + quoted(special));
+    EXPECT_EQ(r.status, 2) << special;
+    EXPECT_NE(r.err.find("is not a regular file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::is_regular_file(special)) << special << " was replaced";
+  }
+  // A symbolic link to a regular file: the file is written, the link stays a link.
+  const fs::path real = out_ / "real.png", link = out_ / "link.png";
+  test::write_text(real, "old");
+  fs::create_symlink(real, link);
+  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " + quoted(link));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(load_image_file(real)->width, 64);
+  // A name of 250 characters: the temporary name beside it stays short.
+  const fs::path long_name = out_ / (std::string(246, 'n') + ".png");
+  const CommandResult l = run_lightcone("render " + quoted(scene) + " -o " + quoted(long_name));
+  EXPECT_EQ(l.status, 0) << l.err;
+  EXPECT_TRUE(fs::is_regular_file(long_name));
 }
 
 TEST_F(CliTest, NonFiniteRendersAreErrorsAndWriteNothing) {

@@ -47,11 +47,23 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides) {
   return scene;
 }
 
+// Checked before rendering: the target is a regular file or absent (a symbolic link counts as
+// the file it points to, which is then written and the link kept), and its folder exists and
+// is writable, so that nothing but a regular file is ever replaced and a render is never lost
+// to a bad output name.
 void require_writable_target(const std::string& option, const std::string& path) {
-  if (fs::is_directory(path)) throw InputError(option + " " + path + ": is a folder, not a file");
-  const fs::path parent = fs::absolute(fs::path(path)).parent_path();
+  std::error_code ec;
+  const fs::path target = fs::weakly_canonical(fs::absolute(path), ec);
+  const fs::file_status status = fs::status(ec ? fs::path(path) : target, ec);
+  if (fs::is_directory(status)) throw InputError(option + " " + path + ": is a folder, not a file");
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw InputError(option + " " + path +
+                     ": is not a regular file (a device, a FIFO or a socket); it is not replaced");
+  const fs::path parent = (ec ? fs::absolute(path) : target).parent_path();
   if (!fs::is_directory(parent))
     throw InputError(option + " " + path + ": folder " + parent.string() + " does not exist");
+  if (::access(parent.c_str(), W_OK) != 0)
+    throw InputError(option + " " + path + ": folder " + parent.string() + " is not writable");
 }
 
 // `count` comma-separated finite numbers (integers if `integers`), or an error that says so:

@@ -5,6 +5,7 @@
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <fmt/format.h>
@@ -187,8 +188,9 @@ void write_bytes(const std::vector<unsigned char>& encoded, const char* kind, co
   std::FILE* f = std::fopen(temp.c_str(), "wb");
   if (f == nullptr)
     fail_write(target, fmt::format("cannot write {} image: {}", kind, std::strerror(errno)));
-  const bool written =
-      std::fwrite(encoded.data(), 1, encoded.size(), f) == encoded.size() && std::fflush(f) == 0;
+  // Every byte written and on the disk (fsync) before the file may replace its target.
+  const bool written = std::fwrite(encoded.data(), 1, encoded.size(), f) == encoded.size() &&
+                       std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
   const int saved_errno = errno;
   if (std::fclose(f) != 0 || !written)
     fail_write(target, fmt::format("cannot write {} image: {}", kind,
@@ -214,7 +216,27 @@ void write_jpeg(const Image& image, const fs::path& temp, const fs::path& target
   write_bytes(encoded, "JPEG", temp, target);
 }
 
+// OpenEXR writing into memory, so that every byte of the file then goes through one checked
+// write (OpenEXR reports a failed final flush only from a destructor, where it is lost).
+class MemoryStream : public Imf::OStream {
+ public:
+  MemoryStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    if (position_ + n > bytes_.size()) bytes_.resize(position_ + n);
+    std::memcpy(bytes_.data() + position_, c, static_cast<std::size_t>(n));
+    position_ += n;
+  }
+  std::uint64_t tellp() override { return position_; }
+  void seekp(std::uint64_t pos) override { position_ = pos; }
+  const std::vector<unsigned char>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<unsigned char> bytes_;
+  std::uint64_t position_ = 0;
+};
+
 void write_exr(const Image& image, const fs::path& temp, const fs::path& target) {
+  MemoryStream stream;
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
@@ -235,19 +257,29 @@ void write_exr(const Image& image, const fs::path& temp, const fs::path& target)
                                       reinterpret_cast<char*>(const_cast<float*>(c.values.data())),
                                       sizeof(float), sizeof(float) * image.width));
     }
-    Imf::OutputFile out(temp.c_str(), header);
+    Imf::OutputFile out(stream, header);
     out.setFrameBuffer(frame);
     out.writePixels(image.height);
   } catch (const std::exception& e) {
     fail_write(target, fmt::format("cannot write OpenEXR image ({})", e.what()));
   }
+  write_bytes(stream.bytes(), "OpenEXR", temp, target);
 }
 
+// A short name beside the target (a long target name must not push it past the limit).
 fs::path temporary_name(const fs::path& target) {
   static std::atomic<unsigned> counter{0};
-  fs::path temp = target;
-  temp += fmt::format(".tmp-{}-{}", ::getpid(), counter++);
-  return temp;
+  return target.parent_path() / fmt::format(".lightcone-{}-{}.tmp", ::getpid(), counter++);
+}
+
+// Where writing `path` must go: a symbolic link's target (the link is kept), else the path.
+fs::path write_target(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_symlink(path, ec)) {
+    const fs::path target = fs::weakly_canonical(path, ec);
+    if (!ec) return target;
+  }
+  return path;
 }
 
 }  // namespace
@@ -297,10 +329,13 @@ void write_images(const Image& display, const Image& linear,
     bool renamed = false;
   };
   std::vector<Pending> pending;
-  for (const ImageOutput& o : outputs) pending.push_back({o.path, temporary_name(o.path)});
+  for (const ImageOutput& o : outputs) {
+    const fs::path target = write_target(o.path);
+    pending.push_back({target, temporary_name(target)});
+  }
   try {
     for (std::size_t i = 0; i < outputs.size(); ++i) {
-      const fs::path& target = outputs[i].path;
+      const fs::path& target = pending[i].target;
       switch (outputs[i].format) {
         case ImageFormat::kPng: {
           std::vector<unsigned char> encoded;
