@@ -476,8 +476,9 @@ TEST_F(CliTest, BrokenMeshesAndMissingTextures) {
   {
     SCOPED_TRACE("missing mesh file");
     const fs::path scene = scene_with_mesh("nowhere.obj");
-    expect_rejected(render(scene), scene.string() + where_mesh,
-                    {(dir_ / "nowhere.obj").string() + ": cannot open"});
+    expect_rejected(
+        render(scene), scene.string() + where_mesh,
+        {(dir_ / "nowhere.obj").string() + ": cannot read mesh file: No such file or directory"});
   }
   {
     SCOPED_TRACE("unknown mesh format");
@@ -489,8 +490,9 @@ TEST_F(CliTest, BrokenMeshesAndMissingTextures) {
     SCOPED_TRACE("missing texture");
     const fs::path scene =
         write_scene(edited(kScene, "{\"color\": [0, 1, 0]}", "{\"texture\": \"missing.png\"}"));
-    expect_rejected(render(scene), scene.string() + ":15: objects[0].material.texture: ",
-                    {(dir_ / "missing.png").string() + ": cannot open"});
+    expect_rejected(
+        render(scene), scene.string() + ":15: objects[0].material.texture: ",
+        {(dir_ / "missing.png").string() + ": cannot read image: No such file or directory"});
   }
   {
     SCOPED_TRACE("texture that is not an image");
@@ -504,8 +506,9 @@ TEST_F(CliTest, BrokenMeshesAndMissingTextures) {
     SCOPED_TRACE("missing sky image");
     const fs::path scene = write_scene(
         edited(kScene, "\"sky\": {\"color\": [0, 0, 1]}", "\"sky\": {\"image\": \"sky.exr\"}"));
-    expect_rejected(render(scene), scene.string() + ":18: sky.image: ",
-                    {(dir_ / "sky.exr").string() + ": cannot open"});
+    expect_rejected(
+        render(scene), scene.string() + ":18: sky.image: ",
+        {(dir_ / "sky.exr").string() + ": cannot read image: No such file or directory"});
   }
 }
 
@@ -1302,6 +1305,28 @@ TEST_F(CliTest, OnlyRegularFilesAreReplacedAndLinksAreKept) {
   const CommandResult l = run_lightcone("render " + quoted(scene) + " -o " + quoted(long_name));
   EXPECT_EQ(l.status, 0) << l.err;
   EXPECT_TRUE(fs::is_regular_file(long_name));
+}
+
+TEST_F(CliTest, DevicesAndFifosAreNotReadAsInputs) {
+  // /dev/zero never ends and a FIFO blocks: both are refused before they are opened.
+  const fs::path fifo = dir_ / "fifo.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  for (const std::string scene : {std::string("/dev/zero"), fifo.string()}) {
+    const CommandResult r = run_lightcone("render '" + scene + "' -o " + quoted(png()));
+    EXPECT_EQ(r.status, 2) << scene;
+    EXPECT_NE(r.err.find(scene + ": cannot read scene file: it is not a regular file"),
+              std::string::npos)
+        << r.err;
+  }
+  fs::create_symlink("/dev/zero", dir_ / "zero.obj");  // a mesh name that leads to /dev/zero
+  const fs::path mesh_scene = write_scene(
+      edited(kScene, "{\"sphere\": {\"radius\": 2}}", "{\"mesh\": {\"file\": \"zero.obj\"}}"));
+  const CommandResult r = render(mesh_scene);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("zero.obj: cannot read mesh file: it is not a regular file"),
+            std::string::npos)
+      << r.err;
+  expect_nothing_written();
 }
 
 TEST_F(CliTest, NonFiniteRendersAreErrorsAndWriteNothing) {

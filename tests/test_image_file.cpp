@@ -199,7 +199,7 @@ TEST_F(ImageFileTest, GreyImagesAreReplicated) {
 
 TEST_F(ImageFileTest, MissingOrGarbageFileNamesIt) {
   const fs::path missing = dir_ / "missing.png";
-  EXPECT_EQ(load_error(missing), missing.string() + ": cannot open: No such file or directory");
+  EXPECT_EQ(load_error(missing), missing.string() + ": cannot read image: No such file or directory");
   const auto garbage = write("garbage.png", "this is not an image");
   const std::string error = load_error(garbage);
   EXPECT_EQ(error.rfind(garbage.string() + ": not a readable image (", 0), 0u) << error;

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/input_file.hpp"
 
 namespace lightcone {
 
@@ -49,14 +50,8 @@ namespace fs = std::filesystem;
 }
 
 std::vector<unsigned char> read_bytes(const fs::path& file) {
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) fail(file, "is a directory, not an image");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file, fmt::format("cannot open: {}", std::strerror(errno)));
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                   std::istreambuf_iterator<char>());
-  if (in.bad()) fail(file, "read error");
-  return bytes;
+  const std::string bytes = read_input_file(file, "image", kMaxAssetFileBytes);
+  return {bytes.begin(), bytes.end()};
 }
 
 bool is_exr(const std::vector<unsigned char>& bytes) {

@@ -11,7 +11,8 @@
 namespace lightcone {
 
 // PNG and JPEG (sRGB-encoded, decoded to linear) through stb_image; EXR (linear) through
-// OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels. Throws InputError naming the file when it is missing, unreadable or not an image.
+// OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels. Throws InputError naming
+// the file when it is missing, unreadable or not an image.
 std::shared_ptr<Image> load_image_file(const std::filesystem::path& file);
 
 // sRGB opto-electronic transfer function for a linear value in [0, 1].
@@ -31,9 +32,9 @@ struct ImageOutput {
 };
 
 // Writes every output, PNG and JPEG (quality 95) 8-bit sRGB from `display` (values in [0, 1]),
-// EXR linear 32-bit float from `linear` (with its named channels), each first under a temporary name beside its target,
-// all renamed only when every write succeeded: a failure leaves no half-written output.
-// Throws std::runtime_error on failure.
+// EXR linear 32-bit float from `linear` (with its named channels), each first under a temporary
+// name beside its target, all renamed only when every write succeeded: a failure leaves no
+// half-written output. Throws std::runtime_error on failure.
 void write_images(const Image& display, const Image& linear,
                   const std::vector<ImageOutput>& outputs);
 

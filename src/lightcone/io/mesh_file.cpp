@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/input_file.hpp"
 
 namespace lightcone {
 namespace {
@@ -44,13 +45,7 @@ namespace fs = std::filesystem;
 }
 
 std::string read_whole_file(const fs::path& file) {
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) fail(file, "is a directory, not a mesh file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file, fmt::format("cannot open: {}", std::strerror(errno)));
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(file, "read error");
-  return data;
+  return read_input_file(file, "mesh file", kMaxAssetFileBytes);
 }
 
 bool finite(const Vec3& p) {

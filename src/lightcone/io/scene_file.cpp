@@ -16,6 +16,7 @@
 
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/input_file.hpp"
 #include "lightcone/io/json_locator.hpp"
 #include "lightcone/io/mesh_file.hpp"
 #include "lightcone/io/scene_overrides.hpp"
@@ -711,17 +712,7 @@ class SceneReader {
 };
 
 std::string read_text(const fs::path& file) {
-  auto fail = [&](const std::string& reason) {
-    throw InputError(fmt::format("{}: cannot read scene file: {}", file.string(), reason));
-  };
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) fail("it is a directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) fail(std::strerror(errno));
-  return text.str();
+  return read_input_file(file, "scene file", kMaxSceneFileBytes);
 }
 
 // nlohmann's DOM builder with the position of the first error recorded. Parsing through this
