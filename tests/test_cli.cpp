@@ -1329,6 +1329,22 @@ TEST_F(CliTest, DevicesAndFifosAreNotReadAsInputs) {
   expect_nothing_written();
 }
 
+TEST_F(CliTest, MessagesAreCutAndShowControlCharacters) {
+  const fs::path big = write_scene(
+      edited(kScene, "\"fov\": 30", "\"" + std::string(1000000, 'k') + "\": 1, \"fov\": 30"),
+      "big.json");
+  const CommandResult r = run_lightcone("check " + quoted(big));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_LT(r.err.size(), 600u) << r.err.substr(0, 600);
+  EXPECT_NE(r.err.find(std::string(70, 'k') + "..."), std::string::npos);
+  const fs::path control = write_scene(
+      edited(kScene, "\"fov\": 30", "\"a\\u0000\\u001b[31m\": 1, \"fov\": 30"), "control.json");
+  const CommandResult c = run_lightcone("check " + quoted(control));
+  EXPECT_EQ(c.status, 2);
+  EXPECT_NE(c.err.find("camera.a\\x00\\x1b[31m: unknown key"), std::string::npos) << c.err;
+  EXPECT_EQ(c.err.find('\x1b'), std::string::npos);
+}
+
 TEST_F(CliTest, NonFiniteRendersAreErrorsAndWriteNothing) {
   const fs::path scene = write_scene(kScene);
   const CommandResult r = render(scene, "--set render.exposure=1e308");

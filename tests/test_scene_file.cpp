@@ -602,6 +602,19 @@ TEST_F(SceneFileTest, MissingOrUnreadableFile) {
   EXPECT_THROW(load_scene_file(dir_, {}, report), InputError);  // a directory
 }
 
+TEST_F(SceneFileTest, DeeplyNestedJsonIsRefusedAsItIsRead) {
+  const fs::path file = write("deep.json", "{\"camera\": " + std::string(100000, '[') + "0" +
+                                               std::string(100000, ']') + "}");
+  SceneLoadReport report;
+  try {
+    load_scene_file(file, {}, report);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nested more than 64 levels deep"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(SceneFileTest, SyntaxErrors) {
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n}\n", 3, "(syntax)", "unexpected '}'");
   expect_error("{\n  \"camera\": {\"position\": [0, 0, NaN]}\n}", 2, "(syntax)", "invalid literal");

@@ -26,6 +26,12 @@ TEST(Checker, IndexIsFloorSumModTwoInShapeCoordinates) {
   EXPECT_EQ(colour_at({-0.1, 0.1, 0.1}), 0.0f);    // -1 is odd, the index is non-negative
   EXPECT_EQ(colour_at({-0.1, -0.1, 0.1}), 1.0f);   // -2 even
   EXPECT_EQ(colour_at({-0.6, -0.1, -0.1}), 1.0f);  // floor(-1.2) = -2: -2 - 1 - 1 = -4, even
+  // Far beyond any integer type's range (once an overflowing cast): a valid index all the same.
+  for (const Vec3 far : {Vec3{1e300, 0.1, 0.1}, Vec3{-1e19, 3e18, 0.1}, Vec3{1e19 + 0.7, 0, 0}}) {
+    const int i = checker_index(checker, far);
+    EXPECT_TRUE(i == 0 || i == 1) << far.x;
+  }
+  EXPECT_EQ(checker_index(checker, {3.0 * 0.5 + 0.1, 0.1, 0.1}), 1);  // 3: odd
 }
 
 TEST(Texture, BilinearHitsTexelCentresExactlyAndWrapsInU) {

@@ -39,6 +39,38 @@ extern "C" void on_interrupt(int) {
   interrupted = true;
 }
 
+// A message fit for a terminal: control characters (a NUL, escape sequences) shown as \xNN, and
+// any run of more than 160 characters without a space (a 10 MB key echoed back) cut to its
+// first 80 and "...".
+std::string printable(const std::string& message) {
+  std::string out;
+  std::size_t start = 0;
+  while (start <= message.size()) {
+    std::size_t end = message.find(' ', start);
+    if (end == std::string::npos) end = message.size();
+    std::string_view word(message.data() + start, end - start);
+    const bool cut = word.size() > 160;
+    if (cut) word = word.substr(0, 80);
+    for (const char ch : word) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c < 0x20 || c == 0x7f)
+        out += fmt::format("\\x{:02x}", c);
+      else
+        out += ch;
+    }
+    if (cut) out += "...";
+    if (end == message.size()) break;
+    out += ' ';
+    start = end + 1;
+  }
+  return out;
+}
+
+void print_error(const std::string& message) {
+  const std::string line = "lightcone: " + printable(message) + "\n";
+  std::fwrite(line.data(), 1, line.size(), stderr);
+}
+
 Scene load(const std::string& file, const std::vector<std::string>& overrides) {
   SceneLoadReport report;
   Scene scene = load_scene_file(file, overrides, report);
@@ -463,10 +495,10 @@ int main(int argc, char** argv) {
     if (*info_cmd) return run_info(info_scene, info_overrides, info_json);
     return run_locate(loc);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "lightcone: %s\n", e.what());
+    print_error(e.what());
     return kBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "lightcone: error: %s\n", e.what());
+    print_error(std::string("error: ") + e.what());
     return 1;
   }
 }

@@ -59,12 +59,24 @@ bool is_exr(const std::vector<unsigned char>& bytes) {
   return bytes.size() >= 4 && std::equal(std::begin(magic), std::end(magic), bytes.begin());
 }
 
+// Images larger than this many pixels are refused before anything is allocated for them (a
+// header may declare any size).
+constexpr long long kMaxImagePixels = 1LL << 26;  // 67 million: 8192 x 8192
+
+void check_image_size(const fs::path& file, long long width, long long height) {
+  if (width <= 0 || height <= 0 || width * height > kMaxImagePixels)
+    fail(file, fmt::format("{}x{} pixels: more than the limit of {} pixels for an image", width,
+                           height, kMaxImagePixels));
+}
+
 std::shared_ptr<Image> load_exr(const fs::path& file) {
   auto image = std::make_shared<Image>();
   image->source = file.string();
   try {
     Imf::InputFile in(file.c_str());
     const Imath::Box2i window = in.header().dataWindow();
+    check_image_size(file, static_cast<long long>(window.max.x) - window.min.x + 1,
+                     static_cast<long long>(window.max.y) - window.min.y + 1);
     image->width = window.max.x - window.min.x + 1;
     image->height = window.max.y - window.min.y + 1;
     image->rgb.assign(3 * static_cast<std::size_t>(image->width) * image->height, 0.0f);
@@ -124,6 +136,9 @@ std::shared_ptr<Image> load_stb(const fs::path& file, const std::vector<unsigned
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(file, "image file too large");
   const auto* data = bytes.data();
   const int size = static_cast<int>(bytes.size());
+  int declared_width = 0, declared_height = 0, declared_channels = 0;
+  if (stbi_info_from_memory(data, size, &declared_width, &declared_height, &declared_channels))
+    check_image_size(file, declared_width, declared_height);
   auto image = std::make_shared<Image>();
   image->source = file.string();
   int channels = 0;
@@ -281,7 +296,16 @@ fs::path write_target(const fs::path& path) {
 
 std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
   const std::vector<unsigned char> bytes = read_bytes(file);
-  return is_exr(bytes) ? load_exr(file) : load_stb(file, bytes);
+  if (is_exr(bytes)) return load_exr(file);
+  // Only the documented formats reach a decoder: PNG and JPEG by their signatures.
+  static constexpr unsigned char kPng[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static constexpr unsigned char kJpeg[] = {0xff, 0xd8, 0xff};
+  const auto starts_with = [&](const auto& signature) {
+    return bytes.size() >= sizeof signature &&
+           std::equal(std::begin(signature), std::end(signature), bytes.begin());
+  };
+  if (!starts_with(kPng) && !starts_with(kJpeg)) fail(file, "not a PNG, JPEG or OpenEXR image");
+  return load_stb(file, bytes);
 }
 
 std::optional<ImageFormat> image_format_of(const std::filesystem::path& file) {

@@ -6,7 +6,20 @@
 namespace lightcone {
 
 std::string json_member_path(const std::string& parent, std::string_view key) {
-  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+  // Control characters in a key (a NUL, an escape sequence) are shown, not passed on.
+  std::string shown;
+  for (const char ch : key) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      shown += "\\x";
+      shown += kHex[c >> 4];
+      shown += kHex[c & 15];
+    } else {
+      shown += ch;
+    }
+  }
+  return parent.empty() ? shown : parent + "." + shown;
 }
 
 std::string json_element_path(const std::string& parent, std::size_t index) {

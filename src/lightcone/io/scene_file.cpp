@@ -139,8 +139,8 @@ class SceneReader {
       if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
       const std::string path = json_member_path(n.path, item.key());
       fail_at(path, lines_.key_line(path),
-              fmt::format("unknown key \"{}\"{} (expected one of: {})", item.key(), context,
-                          join(allowed)));
+              fmt::format("unknown key \"{}\"{} (expected one of: {})",
+                          json_member_path("", item.key()), context, join(allowed)));
     }
   }
 
@@ -733,8 +733,34 @@ class PositionedDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
     return false;
   }
 
+  // Nesting deeper than any scene needs is refused as it is read (each level costs memory
+  // and stack in the DOM and the line map).
+  bool start_object(std::size_t elements) {
+    return deeper() && json_sax_dom_parser::start_object(elements);
+  }
+  bool start_array(std::size_t elements) {
+    return deeper() && json_sax_dom_parser::start_array(elements);
+  }
+  bool end_object() {
+    --depth_;
+    return json_sax_dom_parser::end_object();
+  }
+  bool end_array() {
+    --depth_;
+    return json_sax_dom_parser::end_array();
+  }
+
+  static constexpr int kMaxDepth = 64;
   std::size_t error_byte = 0;  // 1-based offset of the last character read
   std::string error;
+
+ private:
+  bool deeper() {
+    if (++depth_ <= kMaxDepth) return true;
+    error = fmt::format("nested more than {} levels deep", kMaxDepth);
+    return false;
+  }
+  int depth_ = 0;
 };
 
 json parse_document(const fs::path& file, const std::string& text) {

@@ -42,10 +42,13 @@ Rgb sample_bilinear(const Image& image, double u, double v, bool wrap_v) {
 }
 
 int checker_index(const Checker& c, const Vec3& p) {
-  const long long sum = static_cast<long long>(std::floor(p.x / c.size)) +
-                        static_cast<long long>(std::floor(p.y / c.size)) +
-                        static_cast<long long>(std::floor(p.z / c.size));
-  return static_cast<int>(((sum % 2) + 2) % 2);
+  // The parity of each cell index in floating point: no integer cast can overflow, however far
+  // out the point (beyond 2^53 every cell index is even).
+  const auto parity = [&](double x) {
+    const double cell = std::floor(x / c.size);
+    return std::isfinite(cell) ? std::abs(std::fmod(cell, 2.0)) : 0.0;
+  };
+  return static_cast<int>(std::fmod(parity(p.x) + parity(p.y) + parity(p.z), 2.0));
 }
 
 Rgb texture_colour(const Texture& t, const Hit& hit) {
