@@ -121,6 +121,14 @@ PointEmission EmissionTable::fixed_rgb(const Rgb& rgb) {
   PointEmission e;
   e.rest_rgb = linear(rgb);
   if (!spectral_) return e;
+  // Objects of one colour share its table.
+  const std::array<float, 3> key{rgb.r, rgb.g, rgb.b};
+  if (const auto it = rgb_tables_.find(key); it != rgb_tables_.end()) {
+    e.tables[0] = it->second;
+    e.weights[0] = 1;
+    e.table_count = 1;
+    return e;
+  }
   // The table of this colour's spectrum, combined node by node from the white's and the two
   // emitter nodes' tables (the spectrum is their weighted sum).
   const RgbEmitterSpectrum s = RgbEmitterSpectrum::from_rgb(e.rest_rgb);
@@ -145,6 +153,7 @@ PointEmission EmissionTable::fixed_rgb(const Rgb& rgb) {
   e.tables[0] = &fixed_tables_.emplace_back(grid_, std::move(nodes));
   e.weights[0] = 1;
   e.table_count = 1;
+  rgb_tables_.emplace(key, e.tables[0]);
   return e;
 }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <deque>
+#include <map>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
@@ -85,6 +86,7 @@ class EmissionTable {
   std::vector<DopplerXyzTable> nodes_;  // kRgbEmitterCases * kRgbToSpectrumRes, built on demand
   std::vector<bool> node_built_;
   std::deque<DopplerXyzTable> fixed_tables_;  // stable addresses
+  std::map<std::array<float, 3>, const DopplerXyzTable*> rgb_tables_;  // one per distinct colour
   std::vector<Fixed> objects_;
   Fixed sky_;
 };
