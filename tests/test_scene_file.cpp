@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -28,6 +29,11 @@ namespace fs = std::filesystem;
 // A single triangle, and the same with one degenerate (repeated-vertex) triangle added.
 constexpr const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 constexpr const char* kTriangleObjWithDegenerate = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n";
+
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 class SceneFileTest : public ::testing::Test {
  protected:
@@ -613,6 +619,18 @@ TEST_F(SceneFileTest, DeeplyNestedJsonIsRefusedAsItIsRead) {
     EXPECT_NE(std::string(e.what()).find("nested more than 64 levels deep"), std::string::npos)
         << e.what();
   }
+}
+
+// Found by the fuzzer: comments holding NUL bytes and override lines before the scene made the
+// line map's scanner loop forever, recording array elements until memory ran out.
+TEST_F(SceneFileTest, TheLineMapScannerAlwaysMovesOn) {
+  const std::string input =
+      read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / "scanner-loop.fuzz");
+  const std::size_t split = input.find("\n---\n");
+  ASSERT_NE(split, std::string::npos);
+  const fs::path file = write("scene.json", input.substr(split + 5));
+  SceneLoadReport report;
+  EXPECT_THROW(load_scene_file(file, {}, report), InputError);
 }
 
 TEST_F(SceneFileTest, SyntaxErrors) {

@@ -111,10 +111,14 @@ class JsonScanner {
       advance();
       skip_space();
       for (std::size_t index = 0; peek() != ']' && i_ < s_.size(); ++index) {
+        const std::size_t before = i_;
         value(json_element_path(path, index), 0, depth + 1);
         skip_space();
         if (peek() == ',') advance();
         skip_space();
+        // Text the scanner does not understand (the parser accepted it, the scanner is simpler)
+        // must not make it loop: stop recording this array.
+        if (i_ == before) return skip_rest_of_array();
       }
       advance();  // ']'
     } else if (c == '"') {
@@ -123,6 +127,22 @@ class JsonScanner {
       while (i_ < s_.size() &&
              std::string_view(" \t\r\n,]}/").find(s_[i_]) == std::string_view::npos)
         advance();
+    }
+  }
+
+  // Moves past the ']' that closes the array being scanned, skipping what is in between.
+  void skip_rest_of_array() {
+    int open = 1;
+    while (i_ < s_.size() && open > 0) {
+      skip_space();
+      const char c = peek();
+      if (c == '"') {
+        string_token();
+        continue;
+      }
+      if (c == '{' || c == '[') ++open;
+      if (c == '}' || c == ']') --open;
+      advance();
     }
   }
 
