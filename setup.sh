@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # Installs everything lightcone needs on Debian 12 (bookworm). Safe to run again.
+#   ./setup.sh            the build and the tests
+#   ./setup.sh --checks   also clang and its sanitizer and fuzzer runtimes (scripts/sanitize.sh,
+#                         scripts/fuzz.sh)
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format
   libembree-dev libtbb-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev
   libstb-dev libopenexr-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
 )
+if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

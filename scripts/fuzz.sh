@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses in fuzz/ with clang, AddressSanitizer and UBSan (into
 # build-fuzz/) and runs each for SECONDS (default 30) from its seed corpus in fuzz/corpus/, with
-# its dictionary. Any crash, sanitizer finding, leak, hang (10 s) or allocation beyond 2 GB
-# stops the run with the input that caused it.
+# its dictionary and random seed 1 (the same inputs on every run). Any crash, sanitizer finding,
+# leak, hang (10 s) or allocation beyond 2 GB stops the run with the input that caused it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
@@ -18,7 +18,7 @@ for harness in scene mesh image; do
   [ -f "fuzz/$harness.dict" ] && dict=(-dict="fuzz/$harness.dict")
   echo "fuzzing $harness for $seconds s"
   status=0
-  ./build-fuzz/fuzz_$harness "$work" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  ./build-fuzz/fuzz_$harness "$work" "${dict[@]}" -max_total_time="$seconds" -seed=1 -timeout=10 \
     -rss_limit_mb=2048 -malloc_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="build-fuzz/" >"build-fuzz/fuzz_$harness.log" 2>&1 || status=$?
   grep -E "^(Done|stat::number_of_executed_units)|ERROR|SUMMARY" "build-fuzz/fuzz_$harness.log" || true

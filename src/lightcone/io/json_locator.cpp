@@ -83,8 +83,11 @@ class JsonScanner {
   static std::string decode_key(std::string_view token) {
     if (token.find('\\') == std::string_view::npos)
       return std::string(token.substr(1, token.size() - 2));
-    return nlohmann::json::parse(std::string(token))
-        .get<std::string>();  // the parser knows every escape
+    // The parser knows every escape; a token it does not take (the scanner is simpler than the
+    // parser, and may read text the parser skipped) is recorded as written.
+    const nlohmann::json key = nlohmann::json::parse(std::string(token), nullptr, false);
+    if (key.is_string()) return key.get<std::string>();
+    return std::string(token.size() >= 2 ? token.substr(1, token.size() - 2) : token);
   }
 
   void value(const std::string& path, int key_line, int depth) {

@@ -711,8 +711,15 @@ class SceneReader {
   std::vector<Asset> assets_;
 };
 
+// A scene file is text: a NUL byte (which JSON never needs) would end the parser's input early
+// while the line map read on.
 std::string read_text(const fs::path& file) {
-  return read_input_file(file, "scene file", kMaxSceneFileBytes);
+  std::string text = read_input_file(file, "scene file", kMaxSceneFileBytes);
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(fmt::format("{}:{}: (syntax): a NUL byte: this is not a text file",
+                                 file.string(),
+                                 1 + std::count(text.begin(), text.begin() + nul, '\n')));
+  return text;
 }
 
 // nlohmann's DOM builder with the position of the first error recorded. Parsing through this
