@@ -633,27 +633,33 @@ TEST_F(SceneFileTest, TheLineMapScannerAlwaysMovesOn) {
   EXPECT_THROW(load_scene_file(file, {}, report), InputError);
 }
 
-// Found by the fuzzer: a key the scanner reads with an escape the parser never saw threw the
-// parser's own exception out of the line map.
-TEST_F(SceneFileTest, TheLineMapScannerTakesKeysItCannotDecode) {
-  std::string input =
-      read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / "scanner-bad-escape.fuzz");
-  std::vector<std::string> overrides;
-  if (const std::size_t split = input.find("\n---\n"); split != std::string::npos) {
-    std::size_t start = 0;
-    while (start < split) {
-      const std::size_t end = std::min(input.find('\n', start), split);
-      overrides.push_back(input.substr(start, end - start));
-      start = end + 1;
+// Inputs found by the fuzzer (fuzz/fuzz_scene.cpp: override lines, "---", the scene): each may
+// only end in a clear error, never in another exception.
+//   scanner-bad-escape: a key the scanner read with an escape the parser never saw threw the
+//     parser's own exception out of the line map;
+//   invalid-utf8-override: a --set value of invalid UTF-8 threw while being quoted in the
+//     error message.
+TEST_F(SceneFileTest, FuzzerFindingsEndInClearErrors) {
+  for (const char* name : {"scanner-bad-escape.fuzz", "invalid-utf8-override.fuzz"}) {
+    SCOPED_TRACE(name);
+    std::string input = read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / name);
+    std::vector<std::string> overrides;
+    if (const std::size_t split = input.find("\n---\n"); split != std::string::npos) {
+      std::size_t start = 0;
+      while (start < split) {
+        const std::size_t end = std::min(input.find('\n', start), split);
+        overrides.push_back(input.substr(start, end - start));
+        start = end + 1;
+      }
+      input = input.substr(split + 5);
     }
-    input = input.substr(split + 5);
+    const fs::path file = write("scene.json", input);
+    SceneLoadReport report;
+    try {
+      load_scene_file(file, overrides, report);
+    } catch (const InputError&) {
+    }  // any other exception fails the test
   }
-  const fs::path file = write("scene.json", input);
-  SceneLoadReport report;
-  try {
-    load_scene_file(file, overrides, report);
-  } catch (const InputError&) {
-  }  // any other exception fails the test
 }
 
 TEST_F(SceneFileTest, SyntaxErrors) {

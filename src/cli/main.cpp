@@ -342,7 +342,7 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
         {"memory_bytes", info.memory_bytes}};
     if (info.emission_time_min)
       out["emission_time"] = {*info.emission_time_min, *info.emission_time_max};
-    std::printf("%s\n", out.dump().c_str());
+    std::printf("%s\n", out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
   std::printf("%s: %dx%d pixels, %d samples each\n", file.c_str(), info.width, info.height,
