@@ -4,10 +4,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace lightcone::fuzz {
 
@@ -26,6 +28,25 @@ inline std::filesystem::path input_file(const std::string& name, const std::uint
     std::fclose(f);
   }
   return file;
+}
+
+// A scene loader input: override lines ("key.path=value"), a line "---", then the scene file
+// (without the line, all of it is the scene).
+struct SceneInput {
+  std::vector<std::string> overrides;
+  std::string scene;
+};
+inline SceneInput split_scene_input(const std::string& input) {
+  SceneInput out{{}, input};
+  if (const std::size_t split = input.find("\n---\n"); split != std::string::npos) {
+    for (std::size_t start = 0; start < split;) {
+      const std::size_t end = std::min(input.find('\n', start), split);
+      out.overrides.push_back(input.substr(start, end - start));
+      start = end + 1;
+    }
+    out.scene = input.substr(split + 5);
+  }
+  return out;
 }
 
 }  // namespace lightcone::fuzz

@@ -137,7 +137,8 @@ TEST_F(MeshFileTest, ObjNonFiniteCoordinateNamesTheLine) {
 
 TEST_F(MeshFileTest, MissingAndEmptyFiles) {
   const fs::path missing = dir_ / "missing.obj";
-  EXPECT_EQ(load_error(missing), missing.string() + ": cannot read mesh file: No such file or directory");
+  EXPECT_EQ(load_error(missing),
+            missing.string() + ": cannot read mesh file: No such file or directory");
   const auto empty = write("empty.obj", "");
   EXPECT_EQ(load_error(empty), empty.string() + ": mesh has no triangles");
   const auto only_degenerate = write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");

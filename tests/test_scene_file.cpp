@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "../fuzz/fuzz_support.hpp"  // how the fuzzer splits its inputs
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/json_locator.hpp"
@@ -624,11 +625,10 @@ TEST_F(SceneFileTest, DeeplyNestedJsonIsRefusedAsItIsRead) {
 // Found by the fuzzer: comments holding NUL bytes and override lines before the scene made the
 // line map's scanner loop forever, recording array elements until memory ran out.
 TEST_F(SceneFileTest, TheLineMapScannerAlwaysMovesOn) {
-  const std::string input =
-      read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / "scanner-loop.fuzz");
-  const std::size_t split = input.find("\n---\n");
-  ASSERT_NE(split, std::string::npos);
-  const fs::path file = write("scene.json", input.substr(split + 5));
+  const fuzz::SceneInput input = fuzz::split_scene_input(
+      read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / "scanner-loop.fuzz"));
+  ASSERT_FALSE(input.overrides.empty());
+  const fs::path file = write("scene.json", input.scene);
   SceneLoadReport report;
   EXPECT_THROW(load_scene_file(file, {}, report), InputError);
 }
@@ -642,21 +642,12 @@ TEST_F(SceneFileTest, TheLineMapScannerAlwaysMovesOn) {
 TEST_F(SceneFileTest, FuzzerFindingsEndInClearErrors) {
   for (const char* name : {"scanner-bad-escape.fuzz", "invalid-utf8-override.fuzz"}) {
     SCOPED_TRACE(name);
-    std::string input = read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / name);
-    std::vector<std::string> overrides;
-    if (const std::size_t split = input.find("\n---\n"); split != std::string::npos) {
-      std::size_t start = 0;
-      while (start < split) {
-        const std::size_t end = std::min(input.find('\n', start), split);
-        overrides.push_back(input.substr(start, end - start));
-        start = end + 1;
-      }
-      input = input.substr(split + 5);
-    }
-    const fs::path file = write("scene.json", input);
+    const fuzz::SceneInput input = fuzz::split_scene_input(
+        read_file(fs::path(LIGHTCONE_SOURCE_DIR) / "tests" / "data" / name));
+    const fs::path file = write("scene.json", input.scene);
     SceneLoadReport report;
     try {
-      load_scene_file(file, overrides, report);
+      load_scene_file(file, input.overrides, report);
     } catch (const InputError&) {
     }  // any other exception fails the test
   }

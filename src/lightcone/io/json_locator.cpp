@@ -94,7 +94,7 @@ class JsonScanner {
     skip_space();
     map_.lines_[path] = {key_line > 0 ? key_line : line_, line_};
     const char c = peek();
-    if (depth >= kMaxDepth && (c == '{' || c == '[')) return skip_nested();
+    if (depth >= kMaxDepth && (c == '{' || c == '[')) return skip_values(0);
     if (c == '{') {
       advance();
       std::unordered_set<std::string> seen;
@@ -121,7 +121,7 @@ class JsonScanner {
         skip_space();
         // Text the scanner does not understand (the parser accepted it, the scanner is simpler)
         // must not make it loop: stop recording this array.
-        if (i_ == before) return skip_rest_of_array();
+        if (i_ == before) return skip_values(1);
       }
       advance();  // ']'
     } else if (c == '"') {
@@ -133,25 +133,10 @@ class JsonScanner {
     }
   }
 
-  // Moves past the ']' that closes the array being scanned, skipping what is in between.
-  void skip_rest_of_array() {
-    int open = 1;
-    while (i_ < s_.size() && open > 0) {
-      skip_space();
-      const char c = peek();
-      if (c == '"') {
-        string_token();
-        continue;
-      }
-      if (c == '{' || c == '[') ++open;
-      if (c == '}' || c == ']') --open;
-      advance();
-    }
-  }
-
-  // Skips one object or array iteratively.
-  void skip_nested() {
-    int open = 0;
+  // Skips values until `open` more brackets have closed than opened: skip_values(0) at a '{'
+  // or '[' skips that object or array, skip_values(1) inside an array moves past its ']'.
+  // Iterative, so no nesting can exhaust the stack.
+  void skip_values(int open) {
     do {
       skip_space();
       const char c = peek();

@@ -85,7 +85,7 @@ class EmissionTable {
   DopplerXyzTable white_;
   std::vector<DopplerXyzTable> nodes_;  // kRgbEmitterCases * kRgbToSpectrumRes, built on demand
   std::vector<bool> node_built_;
-  std::deque<DopplerXyzTable> fixed_tables_;  // stable addresses
+  std::deque<DopplerXyzTable> fixed_tables_;                           // stable addresses
   std::map<std::array<float, 3>, const DopplerXyzTable*> rgb_tables_;  // one per distinct colour
   std::vector<Fixed> objects_;
   Fixed sky_;
