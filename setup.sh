@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format
   libembree-dev libtbb-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev
-  libstb-dev libopenexr-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libstb-dev libspng-dev libturbojpeg0-dev libopenexr-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()

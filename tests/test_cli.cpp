@@ -75,6 +75,11 @@ std::string quoted(const fs::path& p) {
   return q;
 }
 
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 std::size_t line_count(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
@@ -1218,9 +1223,15 @@ TEST_F(CliTest, OutputFormatFollowsTheExtension) {
     const std::string ext = image_format_of(out) == ImageFormat::kExr    ? "exr"
                             : image_format_of(out) == ImageFormat::kJpeg ? "jpg"
                                                                          : "png";
-    if (ext == "png") EXPECT_EQ(magic.substr(1, 3), "PNG") << name;
-    if (ext == "jpg") EXPECT_EQ(static_cast<unsigned char>(magic[0]), 0xFF) << name;
-    if (ext == "exr") EXPECT_EQ(magic, std::string("\x76\x2f\x31\x01", 4)) << name;
+    if (ext == "png") {
+      EXPECT_EQ(magic.substr(1, 3), "PNG") << name;
+    }
+    if (ext == "jpg") {
+      EXPECT_EQ(static_cast<unsigned char>(magic[0]), 0xFF) << name;
+    }
+    if (ext == "exr") {
+      EXPECT_EQ(magic, std::string("\x76\x2f\x31\x01", 4)) << name;
+    }
     // Every format decodes to the same picture (the EXR holds the linear radiance: green 1).
     const auto image = load_image_file(out);
     ASSERT_EQ(image->width, 64);
@@ -1307,11 +1318,45 @@ TEST_F(CliTest, OnlyRegularFilesAreReplacedAndLinksAreKept) {
   EXPECT_TRUE(fs::is_regular_file(long_name));
 }
 
+TEST_F(CliTest, AFullDiskLeavesThePreviousImagesAndExitsOne) {
+  const fs::path scene = write_scene(kScene);
+  // The sizes of the two files, from a render where the disk has room.
+  const fs::path roomy = dir_ / "roomy";
+  fs::create_directories(roomy);
+  ASSERT_EQ(run_lightcone("render " + quoted(scene) + " -o " + quoted(roomy / "a.png") + " --exr " +
+                          quoted(roomy / "a.exr"))
+                .status,
+            0);
+  const auto png_bytes = static_cast<long long>(fs::file_size(roomy / "a.png"));
+  const auto exr_bytes = static_cast<long long>(fs::file_size(roomy / "a.exr"));
+  // Full at once; full in the middle of the PNG; full in the middle of the EXR (the PNG, written
+  // first, fits).
+  for (long long budget : {0LL, png_bytes / 2, png_bytes + exr_bytes / 2}) {
+    test::write_text(png(), "previous PNG");
+    test::write_text(exr(), "previous EXR");
+    const std::string environment = "LD_PRELOAD=" + quoted(LIGHTCONE_FULL_DISK_LIBRARY) +
+                                    " LIGHTCONE_FULL_DISK_BYTES=" + std::to_string(budget) +
+                                    " ASAN_OPTIONS=verify_asan_link_order=0";
+    const CommandResult r = run_lightcone(
+        "render " + quoted(scene) + " -o " + quoted(png()) + " --exr " + quoted(exr()),
+        environment);
+    EXPECT_EQ(r.status, 1) << budget << ": " << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    EXPECT_EQ(read_text(png()), "previous PNG") << budget;
+    EXPECT_EQ(read_text(exr()), "previous EXR") << budget;
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(out_))
+      names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"image.exr", "image.png"})) << budget;
+  }
+}
+
 TEST_F(CliTest, DevicesAndFifosAreNotReadAsInputs) {
   // /dev/zero never ends and a FIFO blocks: both are refused before they are opened.
   const fs::path fifo = dir_ / "fifo.json";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
-  for (const std::string scene : {std::string("/dev/zero"), fifo.string()}) {
+  for (const std::string& scene : {std::string("/dev/zero"), fifo.string()}) {
     const CommandResult r = run_lightcone("render '" + scene + "' -o " + quoted(png()));
     EXPECT_EQ(r.status, 2) << scene;
     EXPECT_NE(r.err.find(scene + ": cannot read scene file: it is not a regular file"),
@@ -1494,11 +1539,21 @@ TEST_F(CliTest, AovChannelsGoIntoTheExrByName) {
   // The ball at rest 10 ahead, radius 2: its near point is 8 away and sent its light at t = -8.
   for (const NamedChannel& c : image->channels) {
     const float centre = c.values[24 * 64 + 32];
-    if (c.name == "distance") EXPECT_NEAR(centre, 8.0, 5e-3);  // half a pixel off the axis
-    if (c.name == "emission_time") EXPECT_NEAR(centre, -8.0, 5e-3);
-    if (c.name == "doppler") EXPECT_EQ(centre, 1.0f);
-    if (c.name == "object") EXPECT_EQ(centre, 0.0f);
-    if (c.name == "object") EXPECT_EQ(c.values[0], -1.0f);  // the sky in the corner
+    if (c.name == "distance") {
+      EXPECT_NEAR(centre, 8.0, 5e-3);
+    }  // half a pixel off the axis
+    if (c.name == "emission_time") {
+      EXPECT_NEAR(centre, -8.0, 5e-3);
+    }
+    if (c.name == "doppler") {
+      EXPECT_EQ(centre, 1.0f);
+    }
+    if (c.name == "object") {
+      EXPECT_EQ(centre, 0.0f);
+    }
+    if (c.name == "object") {
+      EXPECT_EQ(c.values[0], -1.0f);
+    }  // the sky in the corner
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -144,8 +145,17 @@ TEST_F(ImageFileTest, RejectsInconsistentImage) {
   EXPECT_TRUE(files().empty());
 }
 
-// A 16-bit greyscale PNG with an uncompressed ("stored") zlib stream, so no encoder is needed.
-std::string grey16_png(int width, int height, const std::vector<std::uint16_t>& values) {
+// A PNG written by hand with an uncompressed ("stored") zlib stream, so that no encoder is
+// needed: `samples` holds each pixel's samples (of `channels` per pixel, 8 or 16 bits), row-major;
+// `palette` (RGB triples) makes it an indexed image; `interlaced` stores it in Adam7's passes.
+struct HandPng {
+  int width = 0, height = 0, bit_depth = 8, colour_type = 2, channels = 3;
+  std::vector<std::uint16_t> samples;
+  std::vector<std::uint8_t> palette;
+  bool interlaced = false;
+};
+
+std::string encode_by_hand(const HandPng& png) {
   const auto be32 = [](std::uint32_t v) {
     return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
   };
@@ -160,13 +170,24 @@ std::string grey16_png(int width, int height, const std::vector<std::uint16_t>& 
   const auto chunk = [&](const std::string& type, const std::string& data) {
     return be32(std::uint32_t(data.size())) + type + data + be32(crc32(type + data));
   };
-  std::string raw;  // each row: filter type 0, then big-endian samples
-  for (int y = 0; y < height; ++y) {
-    raw += '\0';
-    for (int x = 0; x < width; ++x) {
-      const std::uint16_t v = values[std::size_t(y) * width + x];
-      raw += char(v >> 8);
-      raw += char(v & 0xff);
+  struct Pass {
+    int x0, y0, dx, dy;
+  };
+  const std::vector<Pass> passes =
+      png.interlaced ? std::vector<Pass>{{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4},
+                                         {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}}
+                     : std::vector<Pass>{{0, 0, 1, 1}};
+  std::string raw;  // each row of each pass: filter type 0, then big-endian samples
+  for (const Pass& pass : passes) {
+    if (pass.x0 >= png.width) continue;
+    for (int y = pass.y0; y < png.height; y += pass.dy) {
+      raw += '\0';
+      for (int x = pass.x0; x < png.width; x += pass.dx)
+        for (int c = 0; c < png.channels; ++c) {
+          const std::uint16_t v = png.samples[(std::size_t(y) * png.width + x) * png.channels + c];
+          if (png.bit_depth == 16) raw += char(v >> 8);
+          raw += char(v & 0xff);
+        }
     }
   }
   std::uint32_t a = 1, b = 0;
@@ -176,13 +197,104 @@ std::string grey16_png(int width, int height, const std::vector<std::uint16_t>& 
       std::string{char(0x78),     char(0x01),        char(0x01),     char(len & 0xff),
                   char(len >> 8), char(nlen & 0xff), char(nlen >> 8)} +
       raw + be32((b << 16) | a);
-  const std::string ihdr = be32(width) + be32(height) + std::string{char(16), 0, 0, 0, 0};
-  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", zlib) +
-         chunk("IEND", "");
+  const std::string ihdr =
+      be32(png.width) + be32(png.height) +
+      std::string{char(png.bit_depth), char(png.colour_type), 0, 0, char(png.interlaced ? 1 : 0)};
+  const std::string plte(png.palette.begin(), png.palette.end());
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) +
+         (plte.empty() ? "" : chunk("PLTE", plte)) + chunk("IDAT", zlib) + chunk("IEND", "");
+}
+
+// A 16-bit greyscale PNG.
+std::string grey16_png(int width, int height, const std::vector<std::uint16_t>& values) {
+  HandPng png;
+  png.width = width;
+  png.height = height;
+  png.bit_depth = 16;
+  png.colour_type = 0;
+  png.channels = 1;
+  png.samples = values;
+  return encode_by_hand(png);
+}
+
+// The decoded value of every 8-bit sample, as the loader must give it.
+float decoded8(int level) {
+  return static_cast<float>(srgb_decode(level / 255.0));
+}
+
+TEST_F(ImageFileTest, PalettedInterlacedAnd16BitRgbaPngsDecodeExactly) {
+  // 9 x 7 pixels: every Adam7 pass holds some of them.
+  const int width = 9, height = 7;
+  std::vector<std::uint8_t> palette;
+  for (int k = 0; k < 16; ++k)
+    palette.insert(palette.end(),
+                   {std::uint8_t(16 * k), std::uint8_t(255 - 9 * k), std::uint8_t(k * k)});
+  HandPng indexed{width, height, 8, 3, 1, {}, palette, false};
+  HandPng rgba16{width, height, 16, 6, 4, {}, {}, false};
+  std::vector<float> expected_indexed, expected_rgba16;
+  for (int i = 0; i < width * height; ++i) {
+    const int k = (i * 7) % 16;
+    indexed.samples.push_back(std::uint16_t(k));
+    for (int c = 0; c < 3; ++c) expected_indexed.push_back(decoded8(palette[3 * k + c]));
+    const std::uint16_t rgba[4] = {std::uint16_t(1000 * i), std::uint16_t(65535 - 977 * i),
+                                   std::uint16_t(i * i), std::uint16_t(i)};
+    rgba16.samples.insert(rgba16.samples.end(), rgba, rgba + 4);
+    for (int c = 0; c < 3; ++c)
+      expected_rgba16.push_back(static_cast<float>(srgb_decode(rgba[c] / 65535.0)));
+  }
+  for (bool interlaced : {false, true}) {
+    indexed.interlaced = rgba16.interlaced = interlaced;
+    const std::string suffix = interlaced ? "-adam7.png" : ".png";
+    const auto a = load_image_file(write("indexed" + suffix, encode_by_hand(indexed)));
+    EXPECT_EQ(a->rgb, expected_indexed) << suffix;
+    const auto b = load_image_file(write("rgba16" + suffix, encode_by_hand(rgba16)));
+    EXPECT_EQ(b->rgb, expected_rgba16) << suffix;
+    EXPECT_EQ(b->width, width);
+    EXPECT_EQ(b->height, height);
+  }
+}
+
+TEST_F(ImageFileTest, TruncatedPngAndJpegAreErrorsNamingTheFile) {
+  HandPng png{9, 7, 8, 2, 3, std::vector<std::uint16_t>(9 * 7 * 3, 200), {}, false};
+  const std::string whole = encode_by_hand(png);
+  const auto cut = write("cut.png", whole.substr(0, whole.size() - 40));
+  EXPECT_EQ(load_error(cut).rfind(cut.string() + ": not a readable PNG image (", 0), 0u)
+      << load_error(cut);
+
+  std::vector<float> rgb;
+  for (int i = 0; i < 32 * 16; ++i) rgb.insert(rgb.end(), {0.2f, float(i % 32) / 32, 0.7f});
+  const fs::path jpeg = dir_ / "whole.jpg";
+  write_images(make_image(32, 16, rgb), make_image(32, 16, rgb), {{jpeg, ImageFormat::kJpeg}});
+  std::ifstream in(jpeg, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const auto cut_jpeg = write("cut.jpg", bytes.substr(0, bytes.size() / 2));
+  EXPECT_EQ(load_error(cut_jpeg).rfind(cut_jpeg.string() + ": not a readable JPEG image (", 0), 0u)
+      << load_error(cut_jpeg);
+}
+
+TEST_F(ImageFileTest, JpegRoundTripIsCloseInEveryChannel) {
+  // Quality 95 without chroma subsampling: a smooth image comes back within a few levels.
+  const int width = 40, height = 24;
+  std::vector<float> rgb;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      rgb.insert(rgb.end(), {decoded8(40 + 4 * x), decoded8(200 - 6 * y), decoded8(128)});
+  const fs::path jpeg = dir_ / "round.jpeg";
+  write_images(make_image(width, height, rgb), make_image(width, height, rgb),
+               {{jpeg, ImageFormat::kJpeg}});
+  EXPECT_EQ(files(), std::vector<std::string>{"round.jpeg"});
+  const auto loaded = load_image_file(jpeg);
+  ASSERT_EQ(loaded->width, width);
+  ASSERT_EQ(loaded->height, height);
+  double worst = 0;
+  for (std::size_t i = 0; i < rgb.size(); ++i)
+    worst = std::max(worst, std::abs(255 * (srgb_encode(loaded->rgb[i]) - srgb_encode(rgb[i]))));
+  EXPECT_LE(worst, 3.0);
+  EXPECT_GT(worst, 0.0);  // it did go through the lossy codec
 }
 
 TEST_F(ImageFileTest, OnlyPngJpegAndExrAreDecoded) {
-  // stb_image would read these; only the documented formats reach a decoder.
+  // Formats that a general image library would read: only the documented ones reach a decoder.
   for (const auto& [name, bytes] :
        {std::pair{"grey.pgm", std::string("P5\n2 1\n255\n") + char(0) + char(128)},
         std::pair{"tiny.gif", std::string("GIF89a\x01\x00\x01\x00\x00\x00\x00", 13)},

@@ -92,9 +92,9 @@ static std::string read_all(const fs::path& file) {
   return s.str();
 }
 
-CommandResult run_lightcone(const std::string& arguments) {
+CommandResult run_lightcone(const std::string& arguments, const std::string& environment) {
   const fs::path dir = fresh_temp_dir("cmd");
-  const std::string command = std::string("'") + LIGHTCONE_BINARY + "' " + arguments + " >'" +
+  const std::string command = environment + " '" + LIGHTCONE_BINARY + "' " + arguments + " >'" +
                               (dir / "out").string() + "' 2>'" + (dir / "err").string() +
                               "' </dev/null";
   const int raw = std::system(command.c_str());

@@ -44,8 +44,9 @@ struct CommandResult {
   int status = -1;
   std::string out, err;
 };
-// Runs the built `lightcone` binary with the given arguments (shell-quoted by the caller).
-CommandResult run_lightcone(const std::string& arguments);
+// Runs the built `lightcone` binary with the given arguments (shell-quoted by the caller), with
+// `environment` ("NAME=value ...", shell-quoted) added to its environment.
+CommandResult run_lightcone(const std::string& arguments, const std::string& environment = "");
 // The same with stderr on a pseudo-terminal (so the program sees a terminal there); `err` is what
 // the terminal received (its line discipline turns "\n" into "\r\n").
 CommandResult run_lightcone_on_terminal(const std::string& arguments);

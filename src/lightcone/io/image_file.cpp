@@ -1,5 +1,5 @@
-// Images: PNG/JPEG/BMP/TGA/HDR read through stb_image and PNG written through stb_image_write
-// (both implemented in Debian's libstb, so no *_IMPLEMENTATION here); EXR through OpenEXR.
+// Images: PNG through libspng, JPEG through libjpeg-turbo and EXR through OpenEXR, each both
+// read and written; only those three formats, recognised by their signatures, reach a decoder.
 #include "lightcone/io/image_file.hpp"
 
 #include <OpenEXR/ImfChannelList.h>
@@ -8,9 +8,10 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <fcntl.h>
 #include <fmt/format.h>
-#include <stb_image.h>
-#include <stb_image_write.h>
+#include <spng.h>
+#include <turbojpeg.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,7 +21,8 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -115,72 +117,120 @@ std::shared_ptr<Image> load_exr(const fs::path& file) {
   return image;
 }
 
-struct StbFree {
-  void operator()(void* p) const { stbi_image_free(p); }
-};
-
-// Spreads n-channel pixels (grey, grey+alpha, RGB, RGBA) to RGB, decoding each value. stb's own
-// conversion (req_comp = 3) mangles 16-bit PNM in the packaged version, so it is done here.
-template <class T, class Decode>
-void to_rgb(const T* pixels, int channels, Image& image, Decode decode) {
-  const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
-  image.rgb.resize(3 * count);
-  const bool grey = channels < 3;
-  for (std::size_t i = 0; i < count; ++i) {
-    const T* p = pixels + i * channels;
-    for (int c = 0; c < 3; ++c) image.rgb[3 * i + c] = decode(p[grey ? 0 : c]);
-  }
+const std::array<float, 256>& srgb_8bit_decoded() {
+  static const std::array<float, 256> decoded = [] {
+    std::array<float, 256> table;
+    for (int i = 0; i < 256; ++i) table[i] = static_cast<float>(srgb_decode(i / 255.0));
+    return table;
+  }();
+  return decoded;
 }
 
-std::shared_ptr<Image> load_stb(const fs::path& file, const std::vector<unsigned char>& bytes) {
-  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(file, "image file too large");
-  const auto* data = bytes.data();
-  const int size = static_cast<int>(bytes.size());
-  int declared_width = 0, declared_height = 0, declared_channels = 0;
-  if (stbi_info_from_memory(data, size, &declared_width, &declared_height, &declared_channels))
-    check_image_size(file, declared_width, declared_height);
+struct SpngFree {
+  void operator()(spng_ctx* ctx) const { spng_ctx_free(ctx); }
+};
+using SpngContext = std::unique_ptr<spng_ctx, SpngFree>;
+
+// Limits on ancillary chunks: text, ICC profiles and the like are not used here, and a file may
+// declare them at any size.
+constexpr std::size_t kMaxPngChunkBytes = 1 << 24;
+constexpr std::size_t kMaxPngChunkCache = 1 << 26;
+
+// PNG through libspng, row by row, so that memory follows the rows actually decoded rather than
+// the size the header declares. Values are sRGB-encoded (8 or 16 bits); alpha is ignored.
+std::shared_ptr<Image> load_png(const fs::path& file, const std::vector<unsigned char>& bytes) {
+  const SpngContext ctx(spng_ctx_new(0));
+  if (!ctx) throw std::bad_alloc();
+  const auto check = [&](int error) {
+    if (error != 0) fail(file, fmt::format("not a readable PNG image ({})", spng_strerror(error)));
+  };
+  check(spng_set_chunk_limits(ctx.get(), kMaxPngChunkBytes, kMaxPngChunkCache));
+  check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()));
+  spng_ihdr header{};
+  check(spng_get_ihdr(ctx.get(), &header));
+  check_image_size(file, header.width, header.height);
   auto image = std::make_shared<Image>();
   image->source = file.string();
-  int channels = 0;
-  const auto check = [&](const void* pixels) {
-    if (pixels == nullptr)
-      fail(file, fmt::format("not a readable image ({})", stbi_failure_reason()));
-    if (channels < 1 || channels > 4) fail(file, fmt::format("unsupported {} channels", channels));
-  };
-  if (stbi_is_hdr_from_memory(data, size)) {
-    // Radiance HDR holds linear values already.
-    std::unique_ptr<float, StbFree> pixels(
-        stbi_loadf_from_memory(data, size, &image->width, &image->height, &channels, 0));
-    check(pixels.get());
-    to_rgb(pixels.get(), channels, *image, [](float v) { return v; });
-  } else if (stbi_is_16_bit_from_memory(data, size)) {
-    std::unique_ptr<stbi_us, StbFree> pixels(
-        stbi_load_16_from_memory(data, size, &image->width, &image->height, &channels, 0));
-    check(pixels.get());
-    to_rgb(pixels.get(), channels, *image,
-           [](stbi_us v) { return static_cast<float>(srgb_decode(v / 65535.0)); });
-  } else {
-    std::unique_ptr<stbi_uc, StbFree> pixels(
-        stbi_load_from_memory(data, size, &image->width, &image->height, &channels, 0));
-    check(pixels.get());
-    static const std::array<float, 256> decoded = [] {
-      std::array<float, 256> table;
-      for (int i = 0; i < 256; ++i) table[i] = static_cast<float>(srgb_decode(i / 255.0));
-      return table;
-    }();
-    to_rgb(pixels.get(), channels, *image, [](stbi_uc v) { return decoded[v]; });
+  image->width = static_cast<int>(header.width);
+  image->height = static_cast<int>(header.height);
+  const bool sixteen_bit = header.bit_depth == 16;
+  const int format = sixteen_bit ? SPNG_FMT_RGBA16 : SPNG_FMT_RGB8;
+  check(spng_decode_image(ctx.get(), nullptr, 0, format, SPNG_DECODE_PROGRESSIVE));
+  std::size_t row_bytes = 0;
+  check(spng_decoded_image_size(ctx.get(), format, &row_bytes));
+  row_bytes /= header.height;
+  std::vector<unsigned char> row(row_bytes);
+  const std::size_t width = header.width;
+  // An interlaced image arrives in Adam7's seven passes, each giving every dx-th pixel from x0
+  // of some rows; the rows of a plain image arrive in order, and memory grows with them.
+  static constexpr int kAdam7FirstColumn[7] = {0, 4, 0, 2, 0, 1, 0};
+  static constexpr int kAdam7ColumnStep[7] = {8, 8, 4, 4, 2, 2, 1};
+  const bool interlaced = header.interlace_method != 0;
+  std::vector<float> rgb;
+  if (interlaced) rgb.resize(3 * width * header.height);
+  const auto& decoded8 = srgb_8bit_decoded();
+  bool finished = false;
+  while (!finished) {
+    spng_row_info info{};
+    check(spng_get_row_info(ctx.get(), &info));
+    const int error = spng_decode_row(ctx.get(), row.data(), row.size());
+    if (error != SPNG_EOI) check(error);
+    finished = error == SPNG_EOI;
+    const std::size_t first = interlaced ? kAdam7FirstColumn[info.pass] : 0;
+    const std::size_t step = interlaced ? kAdam7ColumnStep[info.pass] : 1;
+    if (!interlaced) rgb.resize(rgb.size() + 3 * width);
+    float* out = rgb.data() + 3 * width * info.row_num;
+    for (std::size_t x = first; x < width; x += step)
+      for (int c = 0; c < 3; ++c) {
+        if (sixteen_bit) {
+          std::uint16_t v;
+          std::memcpy(&v, row.data() + 2 * (4 * x + c), 2);
+          out[3 * x + c] = static_cast<float>(srgb_decode(v / 65535.0));
+        } else {
+          out[3 * x + c] = decoded8[row[3 * x + c]];
+        }
+      }
   }
+  image->rgb = std::move(rgb);
+  return image;
+}
+
+struct TurboJpegFree {
+  void operator()(void* handle) const { tjDestroy(handle); }
+};
+using TurboJpegHandle = std::unique_ptr<void, TurboJpegFree>;
+
+// JPEG through libjpeg-turbo's TurboJPEG interface, as 8-bit sRGB RGB.
+std::shared_ptr<Image> load_jpeg(const fs::path& file, const std::vector<unsigned char>& bytes) {
+  const TurboJpegHandle handle(tjInitDecompress());
+  if (!handle) throw std::bad_alloc();
+  if (bytes.size() > ULONG_MAX) fail(file, "image file too large");
+  const auto reason = [&] { return std::string(tjGetErrorStr2(handle.get())); };
+  int width = 0, height = 0, subsampling = 0, colourspace = 0;
+  if (tjDecompressHeader3(handle.get(), bytes.data(), static_cast<unsigned long>(bytes.size()),
+                          &width, &height, &subsampling, &colourspace) != 0)
+    fail(file, fmt::format("not a readable JPEG image ({})", reason()));
+  check_image_size(file, width, height);
+  std::vector<unsigned char> pixels(3 * static_cast<std::size_t>(width) * height);
+  // A progressive file may hold any number of scans: libjpeg-turbo's limit stops a file that
+  // would take minutes. A warning (a truncated or corrupt file) is an error too.
+  if (tjDecompress2(handle.get(), bytes.data(), static_cast<unsigned long>(bytes.size()),
+                    pixels.data(), width, 3 * width, height, TJPF_RGB,
+                    TJFLAG_ACCURATEDCT | TJFLAG_LIMITSCANS | TJFLAG_STOPONWARNING) != 0)
+    fail(file, fmt::format("not a readable JPEG image ({})", reason()));
+  auto image = std::make_shared<Image>();
+  image->source = file.string();
+  image->width = width;
+  image->height = height;
+  image->rgb.resize(pixels.size());
+  const auto& decoded = srgb_8bit_decoded();
+  std::transform(pixels.begin(), pixels.end(), image->rgb.begin(),
+                 [&](unsigned char v) { return decoded[v]; });
   return image;
 }
 
 [[noreturn]] void fail_write(const fs::path& target, std::string_view what) {
   throw std::runtime_error(fmt::format("{}: {}", target.string(), what));
-}
-
-void append_bytes(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<unsigned char>*>(context);
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  out->insert(out->end(), bytes, bytes + size);
 }
 
 std::vector<unsigned char> display_bytes(const Image& image) {
@@ -195,35 +245,72 @@ std::vector<unsigned char> display_bytes(const Image& image) {
 
 void write_bytes(const std::vector<unsigned char>& encoded, const char* kind, const fs::path& temp,
                  const fs::path& target) {
-  std::FILE* f = std::fopen(temp.c_str(), "wb");
-  if (f == nullptr)
-    fail_write(target, fmt::format("cannot write {} image: {}", kind, std::strerror(errno)));
+  const auto failed = [&](int error) {
+    fail_write(target, fmt::format("cannot write {} image: {}", kind, std::strerror(error)));
+  };
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) failed(errno);
   // Every byte written and on the disk (fsync) before the file may replace its target.
-  const bool written = std::fwrite(encoded.data(), 1, encoded.size(), f) == encoded.size() &&
-                       std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
-  const int saved_errno = errno;
-  if (std::fclose(f) != 0 || !written)
-    fail_write(target, fmt::format("cannot write {} image: {}", kind,
-                                   std::strerror(written ? errno : saved_errno)));
+  std::size_t done = 0;
+  int error = 0;
+  while (done < encoded.size()) {
+    const ssize_t n = ::write(fd, encoded.data() + done, encoded.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error = n < 0 ? errno : EIO;
+      break;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (error == 0 && ::fsync(fd) != 0) error = errno;
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) failed(error);
 }
 
-// Encoding to memory lets every write error be checked, which stbi_write_png does not do.
+struct MallocFree {
+  void operator()(void* p) const { std::free(p); }
+};
+
+// PNG encoded into memory by libspng, so that every write error is then checked in one place.
 std::vector<unsigned char> png_bytes(const Image& image) {
   const std::vector<unsigned char> pixels = display_bytes(image);
-  std::vector<unsigned char> encoded;
-  if (!stbi_write_png_to_func(append_bytes, &encoded, image.width, image.height, 3, pixels.data(),
-                              3 * image.width))
-    throw std::runtime_error("cannot encode PNG image");
-  return encoded;
+  const SpngContext ctx(spng_ctx_new(SPNG_CTX_ENCODER));
+  if (!ctx) throw std::bad_alloc();
+  const auto check = [](int error) {
+    if (error != 0)
+      throw std::runtime_error(fmt::format("cannot encode PNG image ({})", spng_strerror(error)));
+  };
+  check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1));
+  spng_ihdr header{};
+  header.width = static_cast<std::uint32_t>(image.width);
+  header.height = static_cast<std::uint32_t>(image.height);
+  header.bit_depth = 8;
+  header.color_type = SPNG_COLOR_TYPE_TRUECOLOR;
+  check(spng_set_ihdr(ctx.get(), &header));
+  check(spng_encode_image(ctx.get(), pixels.data(), pixels.size(), SPNG_FMT_PNG,
+                          SPNG_ENCODE_FINALIZE));
+  std::size_t size = 0;
+  int error = 0;
+  const std::unique_ptr<unsigned char, MallocFree> buffer(
+      static_cast<unsigned char*>(spng_get_png_buffer(ctx.get(), &size, &error)));
+  check(error);
+  if (!buffer) throw std::runtime_error("cannot encode PNG image");
+  return {buffer.get(), buffer.get() + size};
 }
 
 void write_jpeg(const Image& image, const fs::path& temp, const fs::path& target) {
   const std::vector<unsigned char> pixels = display_bytes(image);
-  std::vector<unsigned char> encoded;
-  if (!stbi_write_jpg_to_func(append_bytes, &encoded, image.width, image.height, 3, pixels.data(),
-                              95))
-    fail_write(target, "cannot encode JPEG image");
-  write_bytes(encoded, "JPEG", temp, target);
+  const TurboJpegHandle handle(tjInitCompress());
+  if (!handle) throw std::bad_alloc();
+  unsigned char* buffer = nullptr;
+  unsigned long size = 0;
+  const int status =
+      tjCompress2(handle.get(), pixels.data(), image.width, 3 * image.width, image.height, TJPF_RGB,
+                  &buffer, &size, TJSAMP_444, 95, TJFLAG_ACCURATEDCT);
+  const std::unique_ptr<unsigned char, decltype(&tjFree)> owned(buffer, &tjFree);
+  if (status != 0)
+    fail_write(target, fmt::format("cannot encode JPEG image ({})", tjGetErrorStr2(handle.get())));
+  write_bytes({buffer, buffer + size}, "JPEG", temp, target);
 }
 
 // OpenEXR writing into memory, so that every byte of the file then goes through one checked
@@ -305,7 +392,7 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
            std::equal(std::begin(signature), std::end(signature), bytes.begin());
   };
   if (!starts_with(kPng) && !starts_with(kJpeg)) fail(file, "not a PNG, JPEG or OpenEXR image");
-  return load_stb(file, bytes);
+  return starts_with(kPng) ? load_png(file, bytes) : load_jpeg(file, bytes);
 }
 
 std::optional<ImageFormat> image_format_of(const std::filesystem::path& file) {
