@@ -411,6 +411,11 @@ TEST_F(CliTest, BadOverridesNameTheSetting) {
                   "--set camera.fov: ", {"must be a number"});
   expect_rejected(render(scene, "--set camera.fov=200"),
                   "--set camera.fov: ", {"between 0 and 180"});
+  for (const char* setting : {"camera=null", "camera.fov=null"}) {
+    const CommandResult r = render(scene, std::string("--set ") + setting);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(r.err.ends_with(", got null\n")) << r.err;
+  }
   expect_rejected(render(scene, "--set camera.fov"), "--set camera.fov: ", {"key.path=value"});
   expect_rejected(render(scene, "--set camera.fovy=40"),
                   "--set camera.fovy: ", {"unknown key \"fovy\""});
@@ -600,6 +605,13 @@ TEST_F(CliTest, LocateRejectsBadQueries) {
   expect_rejected(locate(scene, ""), "locate: ", {"exactly one of"});
   expect_rejected(locate(scene, "--world-point 0,0,-10 --direction 0,0,-1"),
                   "locate: ", {"exactly one of"});
+  // Points whose light path overflows double precision: an error, not a line of nulls.
+  for (const char* far : {"1e308,0,0", "0,0,-1e300"}) {
+    expect_rejected(locate(scene, std::string("--world-point ") + far),
+                    std::string("--world-point ") + far + ": ", {"too far from the camera"});
+    expect_rejected(locate(scene, std::string("--object ball --point ") + far),
+                    std::string("--point ") + far + ": ", {"too far from the camera"});
+  }
 }
 
 // ----------------------------------------------------------------------------------------------
@@ -1070,6 +1082,14 @@ TEST_F(CliTest, LocateDirectionHasNoEmissionEvent) {
   EXPECT_NEAR(at(tilted, "direction", 1), 0, 1e-12);
   EXPECT_NEAR(at(tilted, "direction", 2), -0.8, 1e-12);
   EXPECT_FALSE(tilted["in_view"].get<bool>());  // 37 degrees off axis, the half-width is ~21
+
+  // Directions are scaled before they are normalised: huge and tiny components work alike.
+  for (const char* direction : {"0,0,-1e300", "0,0,-1e-300"}) {
+    const auto scaled = locate_output(locate(scene, std::string("--direction ") + direction));
+    ASSERT_FALSE(scaled.empty()) << direction;
+    EXPECT_NEAR(at(scaled, "pixel", 0), 32, 1e-9) << direction;
+    EXPECT_NEAR(at(scaled, "direction", 2), -1, 1e-12) << direction;
+  }
 }
 
 // locate's "doppler" is D = nu_camera / nu_emitter (PHYSICS.md, "Doppler factor").

@@ -317,6 +317,27 @@ TEST_F(ImageFileTest, ImagesDeclaringTooManyPixelsAreRefusedBeforeDecoding) {
       << load_error(path);
 }
 
+TEST_F(ImageFileTest, ExrDeclaringTooManyPixelsIsRefusedBeforeAllocating) {
+  // A valid 4 x 2 OpenEXR file whose data window is then made 20000 x 20000.
+  const fs::path small = dir_ / "small.exr";
+  write_images(make_image(4, 2, std::vector<float>(24, 0.5f)), std::nullopt, small);
+  std::ifstream in(small, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const std::string attribute("dataWindow\0box2i\0", 17);
+  const std::size_t at = bytes.find(attribute);
+  ASSERT_NE(at, std::string::npos);
+  const std::int32_t window[4] = {0, 0, 19999, 19999};
+  bytes.replace(at + attribute.size() + 4, sizeof window,
+                std::string(reinterpret_cast<const char*>(window), sizeof window));
+  // Room for the table of line offsets the header now implies, so that OpenEXR reads the header
+  // through and the size itself is what is refused.
+  bytes += std::string(20000 * 8, '\0');
+  const auto huge = write("huge.exr", bytes);
+  EXPECT_EQ(load_error(huge).rfind(huge.string() + ": 20000x20000 pixels: more than the limit", 0),
+            0u)
+      << load_error(huge);
+}
+
 TEST_F(ImageFileTest, GreyImagesAreReplicated) {
   const auto grey16 = write("grey16.png", grey16_png(2, 1, {0x8000, 0xffff}));
   const auto image16 = load_image_file(grey16);

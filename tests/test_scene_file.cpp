@@ -1400,5 +1400,40 @@ TEST(JsonLineMap, FindsDuplicateKeysAndSurvivesDeepNesting) {
   EXPECT_EQ(lines.value_line("b"), 2);
 }
 
+TEST(JsonLineMap, ElementLinesComeFromRunsAndMemoryFollowsKeysAndLines) {
+  // Elements on lines of their own, elements sharing a line, and a nested array over lines.
+  const JsonLineMap lines(R"({"v": [1,
+  2, 3,
+  4,
+  [5,
+   6]],
+  "w": [7, 8]})");
+  EXPECT_EQ(lines.value_line("v[0]"), 1);
+  EXPECT_EQ(lines.value_line("v[1]"), 2);
+  EXPECT_EQ(lines.value_line("v[2]"), 2);
+  EXPECT_EQ(lines.value_line("v[3]"), 3);
+  EXPECT_EQ(lines.value_line("v[4]"), 4);
+  EXPECT_EQ(lines.value_line("v[4][0]"), 4);
+  EXPECT_EQ(lines.value_line("v[4][1]"), 5);
+  EXPECT_EQ(lines.key_line("v[3]"), 3);
+  EXPECT_EQ(lines.value_line("w[1]"), 6);
+  EXPECT_EQ(lines.value_line("v[99]"), 4);  // past the end: the last run
+  EXPECT_EQ(lines.recorded_paths(), 3u);    // the root, v and w; runs for v and v[4]
+
+  // A million numbers on one line and a thousand on lines of their own: nothing per element on
+  // one line, one run per line otherwise.
+  std::string many = "{\"a\": [0";
+  for (int i = 1; i < 1000000; ++i) many += ",0";
+  many += "],\n\"b\": [0";
+  for (int i = 1; i < 1000; ++i) many += ",\n0";
+  many += "]}";
+  const JsonLineMap big(many);
+  EXPECT_EQ(big.recorded_paths(), 3u);
+  EXPECT_EQ(big.recorded_runs(), 1000u);
+  EXPECT_EQ(big.value_line("a[999999]"), 1);
+  EXPECT_EQ(big.value_line("b[0]"), 2);
+  EXPECT_EQ(big.value_line("b[999]"), 1001);
+}
+
 }  // namespace
 }  // namespace lightcone

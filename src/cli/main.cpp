@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -382,7 +383,11 @@ int run_locate(const LocateArgs& a) {
   } else {
     query.kind = LocateQuery::Kind::SkyDirection;
     query.value = parse_triple("--direction", *a.direction);
-    if (length(query.value) == 0) throw InputError("--direction: must not be zero");
+    // Scaled first, so that components near the limits of double precision square safely.
+    const double largest =
+        std::max({std::abs(query.value.x), std::abs(query.value.y), std::abs(query.value.z)});
+    if (largest == 0) throw InputError("--direction: must not be zero");
+    query.value = query.value / largest;
   }
   const Scene scene = load(a.scene, a.overrides);
   LocateResult r;
@@ -391,6 +396,18 @@ int run_locate(const LocateArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw InputError(a.scene + ": --object: " + e.what());
   }
+  // A point so far away that its light path overflows double precision has no answer to print.
+  const auto finite = [](const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  if (!finite(r.direction) || !std::isfinite(r.doppler) ||
+      (r.in_view && !(std::isfinite(r.pixel_x) && std::isfinite(r.pixel_y))) ||
+      (r.emission_time && !std::isfinite(*r.emission_time)) ||
+      (r.emission_position && !finite(*r.emission_position)) ||
+      (r.distance && !std::isfinite(*r.distance)))
+    throw InputError(fmt::format(
+        "{}: too far from the camera to be located in double precision",
+        a.point ? "--point " + *a.point : "--world-point " + a.world_point.value_or("")));
   nlohmann::ordered_json out = {{"pixel", {r.pixel_x, r.pixel_y}},
                                 {"direction", to_json(r.direction)},
                                 {"emission_time", nullptr},

@@ -11,8 +11,8 @@
 namespace lightcone {
 
 // PNG and JPEG (sRGB-encoded, decoded to linear) through libspng and libjpeg-turbo; EXR (linear)
-// through OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels. Throws InputError naming
-// the file when it is missing, unreadable or not an image.
+// through OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels. Throws
+// InputError naming the file when it is missing, unreadable or not an image.
 std::shared_ptr<Image> load_image_file(const std::filesystem::path& file);
 
 // sRGB opto-electronic transfer function for a linear value in [0, 1].

@@ -1,5 +1,8 @@
 #include "lightcone/io/json_locator.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <unordered_set>
 
@@ -34,7 +37,7 @@ class JsonScanner {
 
   void run() {
     if (s_.substr(0, 3) == "\xEF\xBB\xBF") i_ = 3;  // nlohmann skips a UTF-8 byte order mark
-    value("", 0, 0);
+    value("", 0, 0, true);
   }
 
  private:
@@ -90,9 +93,12 @@ class JsonScanner {
     return std::string(token.size() >= 2 ? token.substr(1, token.size() - 2) : token);
   }
 
-  void value(const std::string& path, int key_line, int depth) {
+  // Scans the value at `path`; `record` says whether it is an object member or the root (an
+  // array element's line is kept in its array's runs instead, so that memory grows with the keys
+  // and the lines of the text, not with the elements).
+  void value(const std::string& path, int key_line, int depth, bool record) {
     skip_space();
-    map_.lines_[path] = {key_line > 0 ? key_line : line_, line_};
+    if (record) map_.lines_[path] = {key_line > 0 ? key_line : line_, line_};
     const char c = peek();
     if (depth >= kMaxDepth && (c == '{' || c == '[')) return skip_values(0);
     if (c == '{') {
@@ -105,25 +111,38 @@ class JsonScanner {
         if (!seen.insert(key).second) map_.duplicates_.push_back({member, line});
         skip_space();
         advance();  // ':'
-        value(member, line, depth + 1);
+        value(member, line, depth + 1, true);
         skip_space();
         if (peek() == ',') advance();
       }
       advance();  // '}'
     } else if (c == '[') {
+      const int array_line = line_;
       advance();
       skip_space();
+      std::vector<JsonLineMap::ElementRun> runs;
       for (std::size_t index = 0; peek() != ']' && i_ < s_.size(); ++index) {
         const std::size_t before = i_;
-        value(json_element_path(path, index), 0, depth + 1);
+        if (runs.empty() ? line_ != array_line : line_ != runs.back().line)
+          runs.push_back({index, line_});
+        value(json_element_path(path, index), 0, depth + 1, false);
         skip_space();
         if (peek() == ',') advance();
         skip_space();
         // Text the scanner does not understand (the parser accepted it, the scanner is simpler)
         // must not make it loop: stop recording this array.
-        if (i_ == before) return skip_values(1);
+        if (i_ == before) {
+          skip_values(1);
+          break;
+        }
       }
-      advance();  // ']'
+      if (i_ < s_.size() && peek() == ']') advance();
+      // An array on one line needs no runs: its elements share its line.
+      if (!runs.empty()) {
+        if (runs.front().first_index != 0) runs.insert(runs.begin(), {0, array_line});
+        runs.shrink_to_fit();
+        map_.element_runs_[path] = std::move(runs);
+      }
     } else if (c == '"') {
       string_token();
     } else {  // number, true, false, null
@@ -160,15 +179,33 @@ JsonLineMap::JsonLineMap(std::string_view text) {
   JsonScanner(text, *this).run();
 }
 
-const JsonLineMap::Lines& JsonLineMap::find(std::string path) const {
-  static const Lines first_line;
+JsonLineMap::Lines JsonLineMap::find(std::string path) const {
   for (;;) {
     if (auto it = lines_.find(path); it != lines_.end()) return it->second;
-    if (path.empty()) return first_line;
+    if (path.empty()) return {};
     // Drop the last component: "[i]" or ".key" (or the whole path when it has a single key).
-    const std::size_t cut = path.back() == ']' ? path.rfind('[') : path.rfind('.');
+    const bool element = path.back() == ']';
+    const std::size_t cut = element ? path.rfind('[') : path.rfind('.');
+    if (element && cut != std::string::npos) {
+      // An element: its line is in its array's runs (the last run starting at or before it).
+      const std::string array = path.substr(0, cut);
+      if (auto it = element_runs_.find(array); it != element_runs_.end()) {
+        const std::size_t index = std::strtoull(path.c_str() + cut + 1, nullptr, 10);
+        const auto run =
+            std::upper_bound(it->second.begin(), it->second.end(), index,
+                             [](std::size_t i, const ElementRun& r) { return i < r.first_index; });
+        const int line = std::prev(run)->line;
+        return {line, line};
+      }
+    }
     path.resize(cut == std::string::npos ? 0 : cut);
   }
+}
+
+std::size_t JsonLineMap::recorded_runs() const {
+  std::size_t runs = 0;
+  for (const auto& [path, array_runs] : element_runs_) runs += array_runs.size();
+  return runs;
 }
 
 int JsonLineMap::value_line(const std::string& path) const {

@@ -1,7 +1,8 @@
 // Line numbers for the values of a JSON text. nlohmann::json keeps no source positions, so after
-// a successful parse the text is scanned once more and, for every value, the line where it (and,
-// inside an object, its key) starts is remembered under its readable path: `camera.velocity`,
-// `objects[2].shape.sphere.radius`; the root is "".
+// a successful parse the text is scanned once more and, for every object member, the line where
+// its key and its value start is remembered under its readable path: `camera.velocity`,
+// `objects[2].shape.sphere.radius`; the root is "". Array elements are kept as runs of elements
+// per line of their array, so that memory follows the keys and lines, not the elements.
 #pragma once
 
 #include <cstddef>
@@ -36,14 +37,27 @@ class JsonLineMap {
   // nlohmann::json silently keeps the last one, which hides typos, so callers reject them.
   const std::vector<DuplicateKey>& duplicate_keys() const { return duplicates_; }
 
+  // What the map holds: one path per object member (and the root), one run per line of an array
+  // that spans lines.
+  std::size_t recorded_paths() const { return lines_.size(); }
+  std::size_t recorded_runs() const;
+
  private:
   friend class JsonScanner;
   struct Lines {
     int key = 1, value = 1;
   };
-  const Lines& find(std::string path) const;
+  // Elements from `first_index` on (up to the next run) start on `line`.
+  struct ElementRun {
+    std::size_t first_index = 0;
+    int line = 1;
+  };
+  Lines find(std::string path) const;
 
+  // Lines of the root and of every object member, by path.
   std::unordered_map<std::string, Lines> lines_;
+  // Lines of the elements of every array that spans lines, by the array's path.
+  std::unordered_map<std::string, std::vector<ElementRun>> element_runs_;
   std::vector<DuplicateKey> duplicates_;
 };
 

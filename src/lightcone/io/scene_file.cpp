@@ -51,6 +51,7 @@ Node element(const Node& array, std::size_t index) {
 std::string describe(const json& v) {
   if (v.is_object()) return "an object";
   if (v.is_array()) return fmt::format("an array of {} elements", v.size());
+  if (v.is_null()) return "null";
   // Invalid UTF-8 (from a --set value) is shown replaced, not thrown.
   std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
   if (text.size() > 40) text = text.substr(0, 37) + "...";
