@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -284,6 +285,88 @@ TEST(DopplerGrid, CoversItsRangeWithTwoSpareNodesAndHoldsDOne) {
   const GridPosition p = grid_position(symmetric, 1.0);
   EXPECT_EQ(p.first + 1, symmetric.rest_index());
   EXPECT_EQ(p.fraction, 0.0);
+}
+
+TEST(EmissionTable, ColoursPastTheTableLimitCombineTheSharedTablesToTheSameColour) {
+  // More distinct colours than get tables of their own, at 0.6c: the last ones are combined
+  // per lookup from the white's and the nodes' tables, and must show what a table gives over
+  // the factors the image shows.
+  Scene s;
+  s.camera.width = 8;
+  s.camera.height = 8;
+  const int count = static_cast<int>(EmissionTable::kMaxColourTables) + 8;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> colour(0, 1);
+  for (int i = 0; i < count; ++i) {
+    Material m;
+    m.pattern = SolidColor{{colour(rng), colour(rng), colour(rng)}};
+    s.objects.push_back(
+        test::make_object("s" + std::to_string(i), Sphere{0.1}, {0, 0, -5.0 - i}, {0.6, 0, 0}, m));
+  }
+  const ResolvedScene resolved = resolve_scene(s);
+  const EmissionTable emission(resolved);
+  const Hit hit{};
+  for (int i = count - 8; i < count; ++i) {
+    const PointEmission combined = emission.surface(static_cast<std::size_t>(i), hit);
+    // The same colour alone in a scene of the same velocities gets a table of its own.
+    Scene alone = s;
+    alone.objects = {s.objects[static_cast<std::size_t>(i)], s.objects[0]};
+    const ResolvedScene resolved_alone = resolve_scene(alone);
+    const EmissionTable own(resolved_alone);
+    const PointEmission tabled = own.surface(0, hit);
+    ASSERT_EQ(tabled.table_count, 1);
+    EXPECT_GT(combined.table_count, 1) << i;
+    const LogDopplerRange seen = visible_log_doppler(resolved, false);
+    for (double f : {0.0, 0.3, 0.5, 0.9, 1.0}) {
+      const double d = std::exp(seen.lo + f * (seen.hi - seen.lo));
+      const Xyz a = combined.seen_with_doppler(d), b = tabled.seen_with_doppler(d);
+      EXPECT_NEAR(a.y, b.y, 2e-3 * b.y + 1e-12) << i << " at D " << d;
+      EXPECT_NEAR(chromaticity(a).x, chromaticity(b).x, 1e-3) << i << " at D " << d;
+      EXPECT_NEAR(chromaticity(a).y, chromaticity(b).y, 1e-3) << i << " at D " << d;
+    }
+  }
+}
+
+TEST(ViewExtremes, AreTheExtremesOfADenseSamplingOfTheImage) {
+  // Wide and narrow views, turned cameras, and velocities in and out of view: the exact
+  // extremes bound every sampled direction and a dense sampling comes within its spacing.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 60; ++trial) {
+    Camera camera;
+    camera.width = 40 + trial * 7;
+    camera.height = 30 + (trial * 13) % 50;
+    camera.fov_degrees = 10 + (trial * 37) % 160;
+    camera.forward = normalize(Vec3{u(rng), u(rng), u(rng)});
+    camera.up = normalize(cross(camera.forward, Vec3{u(rng), u(rng), u(rng)}));
+    const CameraBasis basis = camera_basis(camera);
+    const Vec3 b = Vec3{u(rng), u(rng), u(rng)} * (trial % 5 == 0 ? 1e-9 : 0.99);
+    const ViewExtremes e = view_extremes_along(basis, b);
+    for (const Vec3& extreme : {e.smallest, e.largest}) {
+      const ImagePoint p = project_direction(basis, extreme);
+      EXPECT_TRUE(p.in_front);
+      EXPECT_GE(p.x, -1e-9 * camera.width);
+      EXPECT_LE(p.x, camera.width * (1 + 1e-9));
+      EXPECT_GE(p.y, -1e-9 * camera.height);
+      EXPECT_LE(p.y, camera.height * (1 + 1e-9));
+    }
+    const int n = 200;
+    double lo = 1e300, hi = -1e300;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double d = dot(
+            b, look_direction(basis, camera.width * i / double(n), camera.height * j / double(n)));
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+    const double tolerance = 1e-12 * length(b);
+    EXPECT_LE(dot(b, e.smallest), lo + tolerance) << trial;
+    EXPECT_GE(dot(b, e.largest), hi - tolerance) << trial;
+    // A direction n-th of the view apart changes the product by at most about this much.
+    const double spacing = 3 * length(b) * std::numbers::pi / n;
+    EXPECT_GT(dot(b, e.smallest), lo - spacing) << trial;
+    EXPECT_LT(dot(b, e.largest), hi + spacing) << trial;
+  }
 }
 
 TEST(DopplerXyzTable, AZeroTailInterpolatesLinearlyAndNeverGoesNegative) {

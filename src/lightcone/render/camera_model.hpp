@@ -26,4 +26,13 @@ struct ImagePoint {
 // Inverse of look_direction: the image point where a look direction lands.
 ImagePoint project_direction(const CameraBasis& basis, const Vec3& direction);
 
+// The look directions of the image (its edges included) along which dot(u, b) is smallest and
+// largest. Exact: the image is a spherical polygon bounded by four great-circle arcs, so each
+// extreme lies at +-b itself (when in view), at a corner, or on an edge where the edge's great
+// circle comes nearest to +-b. For b = 0 both are the forward direction.
+struct ViewExtremes {
+  Vec3 smallest, largest;
+};
+ViewExtremes view_extremes_along(const CameraBasis& basis, const Vec3& b);
+
 }  // namespace lightcone

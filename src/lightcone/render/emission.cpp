@@ -35,32 +35,19 @@ PointEmission lit_colour(const Rgb& albedo, int fixed_colour) {
 LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
   LogDopplerRange range;
   if (!scene.scene->render.relativity) return range;
-  // The distinct velocities (in the camera's frame) of what is seen.
-  std::vector<Vec3> velocities;
+  // D depends on the look direction u only through dot(u, velocity), and falls as it grows: its
+  // extremes over the image are at the directions where that product is extreme.
   const auto add = [&](const Vec3& v) {
-    if (std::find_if(velocities.begin(), velocities.end(), [&](const Vec3& w) {
-          return w.x == v.x && w.y == v.y && w.z == v.z;
-        }) == velocities.end())
-      velocities.push_back(v);
+    const ViewExtremes e = view_extremes_along(scene.camera, v);
+    const double hi = std::log(scene.doppler(e.smallest, v));
+    const double lo = std::log(scene.doppler(e.largest, v));
+    range.lo = range.empty ? lo : std::min(range.lo, lo);
+    range.hi = range.empty ? hi : std::max(range.hi, hi);
+    range.empty = false;
   };
   if (!lit) add(scene.sky_velocity);
   for (const ResolvedBody& b : scene.bodies)
     if (b.object->material.unlit != lit) add(b.velocity);
-  constexpr int kSamples = 33;
-  const Camera& camera = scene.scene->camera;
-  bool first = true;
-  for (int j = 0; j < kSamples; ++j)
-    for (int i = 0; i < kSamples; ++i) {
-      const Vec3 u = look_direction(scene.camera, camera.width * i / (kSamples - 1.0),
-                                    camera.height * j / (kSamples - 1.0));
-      for (const Vec3& v : velocities) {
-        const double l = std::log(scene.doppler(u, v));
-        range.lo = first ? l : std::min(range.lo, l);
-        range.hi = first ? l : std::max(range.hi, l);
-        first = false;
-        range.empty = false;
-      }
-    }
   return range;
 }
 
@@ -129,16 +116,31 @@ PointEmission EmissionTable::fixed_rgb(const Rgb& rgb) {
     e.table_count = 1;
     return e;
   }
-  // The table of this colour's spectrum, combined node by node from the white's and the two
-  // emitter nodes' tables (the spectrum is their weighted sum).
   const RgbEmitterSpectrum s = RgbEmitterSpectrum::from_rgb(e.rest_rgb);
-  std::vector<Xyz> nodes(grid_.size());
   const DopplerXyzTable* a = nullptr;
   const DopplerXyzTable* b = nullptr;
   if (s.scale > 0) {
     a = &node_table(s.node_case, s.node);
     b = &node_table(s.node_case, s.node + 1);
   }
+  // Past a few thousand distinct colours a table each would cost more memory than it saves
+  // time: the rest combine the white's and the two nodes' tables per lookup.
+  if (rgb_tables_.size() >= kMaxColourTables) {
+    e.tables[0] = &white_;
+    e.weights[0] = s.grey;
+    e.table_count = 1;
+    if (a) {
+      e.tables[1] = a;
+      e.tables[2] = b;
+      e.weights[1] = s.scale * (1 - s.blend);
+      e.weights[2] = s.scale * s.blend;
+      e.table_count = 3;
+    }
+    return e;
+  }
+  // The table of this colour's spectrum, combined node by node from the white's and the two
+  // emitter nodes' tables (the spectrum is their weighted sum).
+  std::vector<Xyz> nodes(grid_.size());
   for (int i = 0; i < grid_.size(); ++i) {
     const Xyz w = white_.node(i);
     Xyz c{s.grey * w.x, s.grey * w.y, s.grey * w.z};

@@ -43,10 +43,8 @@ struct PointEmission {
 };
 
 // The range of ln D with which the camera sees the lit bodies (`lit`), or the emitters and the
-// sky, over every direction of its image (0 for the classical picture). Sampled on a 33 x 33
-// grid of image positions, edges included: ln D is smooth across the view, and what falls
-// between samples (a few thousandths at the widest views) is far inside the two spare nodes
-// a grid keeps beyond each end.
+// sky, over every direction of its image, edges included (0 for the classical picture): exact,
+// from the directions where each velocity's D is extreme (view_extremes_along).
 struct LogDopplerRange {
   double lo = 0, hi = 0;
   bool empty = true;  // nothing of the kind is seen (lo = hi = 0)
@@ -54,11 +52,14 @@ struct LogDopplerRange {
 LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit);
 
 // The emission of every object's material and of the sky, prepared once per render. For the
-// spectral model every fixed colour gets its own table against ln D; textures and sky images
-// are combined per lookup from the tables of the RGB white and the emitter nodes
-// (RgbEmitterSpectrum), which are then all built.
+// spectral model every fixed colour gets its own table against ln D, up to kMaxColourTables
+// distinct colours; the colours past them, textures and sky images are combined per lookup
+// from the tables of the RGB white and the emitter nodes (RgbEmitterSpectrum); all the node
+// tables are built when the scene has textures or sky images, those used otherwise.
 class EmissionTable {
  public:
+  static constexpr std::size_t kMaxColourTables = 4096;
+
   explicit EmissionTable(const ResolvedScene& scene);
   EmissionTable(const EmissionTable&) = delete;  // emissions point into its tables
   EmissionTable& operator=(const EmissionTable&) = delete;

@@ -147,6 +147,7 @@ ResolvedScene resolve_scene(const Scene& scene) {
   r.bodies.reserve(scene.objects.size());
   // Each body's centre world-line in W and bounding radius, for its shadow bounds below.
   std::vector<std::pair<TraceWorldLine, double>> world_centres;
+  world_centres.reserve(scene.objects.size());
   for (const Object& object : scene.objects) {
     const AffineMap4 world_to_body = body_frame_map(settings, object.world_line);
     const AffineMap4 trace_to_body = compose(world_to_body, r.trace_to_world);

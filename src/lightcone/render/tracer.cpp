@@ -116,12 +116,13 @@ struct Tracer::Impl {
   RTCScene shadows = nullptr;  // shadow rays: bodies within their shadow bounds
   std::unordered_map<const Mesh*, RTCScene> mesh_scenes;
   std::vector<RTCScene> body_mesh_scene;  // per body, null for analytic shapes
-  struct BodyRef {
+  // Every body is one primitive (its index) of one user geometry per scene, so that Embree
+  // keeps no geometry object per body.
+  struct BodiesRef {
     const Impl* impl;
-    unsigned index;
     bool shadow;  // which bounds
   };
-  std::vector<BodyRef> body_refs;  // Embree's user data for each body's geometry
+  BodiesRef trace_bodies{this, false}, shadow_bodies{this, true};  // Embree's user data
   std::atomic<long long> embree_bytes{0};
 
   explicit Impl(const ResolvedScene& s) : scene(s) {
@@ -137,15 +138,12 @@ struct Tracer::Impl {
     top = rtcNewScene(device);
     shadows = rtcNewScene(device);
     body_mesh_scene.resize(scene.bodies.size(), nullptr);
-    body_refs.reserve(2 * scene.bodies.size());
-    for (bool shadow : {false, true})
-      for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-        body_refs.push_back({this, static_cast<unsigned>(i), shadow});
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
       if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape))
         body_mesh_scene[i] = mesh_scene(*m->mesh);
-      attach_body(top, body_refs[i]);
-      attach_body(shadows, body_refs[scene.bodies.size() + i]);
+    if (!scene.bodies.empty()) {
+      attach_bodies(top, trace_bodies);
+      attach_bodies(shadows, shadow_bodies);
     }
     rtcCommitScene(top);
     rtcCommitScene(shadows);
@@ -189,21 +187,21 @@ struct Tracer::Impl {
     return s;
   }
 
-  void attach_body(RTCScene target, BodyRef& ref) {
+  void attach_bodies(RTCScene target, BodiesRef& ref) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(scene.bodies.size()));
     rtcSetGeometryUserData(g, &ref);
     rtcSetGeometryBoundsFunction(g, &Impl::bounds_callback, nullptr);
     rtcSetGeometryIntersectFunction(g, &Impl::intersect_callback);
     rtcSetGeometryOccludedFunction(g, &Impl::occluded_callback);
     rtcCommitGeometry(g);
-    rtcAttachGeometryByID(target, g, ref.index);
+    rtcAttachGeometry(target, g);
     rtcReleaseGeometry(g);
   }
 
   static void bounds_callback(const RTCBoundsFunctionArguments* args) {
-    const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
-    const ResolvedBody& body = ref->impl->scene.bodies[ref->index];
+    const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
+    const ResolvedBody& body = ref->impl->scene.bodies[args->primID];
     const Bounds3& b = ref->shadow ? body.shadow_bounds : body.trace_bounds;
     // Round outwards so that float bounds still contain the double ones.
     args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
@@ -259,15 +257,17 @@ struct Tracer::Impl {
 
   static void intersect_callback(const RTCIntersectFunctionNArguments* args) {
     if (!args->valid[0]) return;
-    const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
+    const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
     const ShapeHit hit =
-        ref->impl->intersect(ref->index, ref->shadow, context->origin, context->direction,
+        ref->impl->intersect(args->primID, ref->shadow, context->origin, context->direction,
                              rh->ray.tnear, rh->ray.tfar, args->context);
     if (!(hit.s < rh->ray.tfar)) return;
     rh->ray.tfar = static_cast<float>(hit.s);
-    rh->hit.geomID = args->geomID;
+    // The hit is this code's own record, which Embree passes through: geomID holds the body,
+    // primID the triangle of a mesh body.
+    rh->hit.geomID = args->primID;
     rh->hit.primID = hit.prim;
     rh->hit.u = hit.bary_u;
     rh->hit.v = hit.bary_v;
@@ -276,11 +276,11 @@ struct Tracer::Impl {
 
   static void occluded_callback(const RTCOccludedFunctionNArguments* args) {
     if (!args->valid[0]) return;
-    const auto* ref = static_cast<const BodyRef*>(args->geometryUserPtr);
+    const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
     auto* ray = reinterpret_cast<RTCRay*>(args->ray);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
     const ShapeHit hit =
-        ref->impl->intersect(ref->index, ref->shadow, context->origin, context->direction,
+        ref->impl->intersect(args->primID, ref->shadow, context->origin, context->direction,
                              ray->tnear, ray->tfar, args->context);
     if (hit.s < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
   }
