@@ -13,7 +13,7 @@
 #include <random>
 #include <string>
 
-#include "lightcone/render/renderer.hpp"
+#include "lightcone/trace/renderer.hpp"
 
 using namespace lightcone;
 

@@ -16,9 +16,9 @@
 #include <random>
 
 #include "lightcone/io/scene_file.hpp"
-#include "lightcone/render/renderer.hpp"
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/trace/tracer.hpp"
 
 using namespace lightcone;
 

@@ -7,11 +7,11 @@
 #include <limits>
 #include <string>
 
-#include "lightcone/render/aov.hpp"
-#include "lightcone/render/camera_model.hpp"
-#include "lightcone/render/false_colour.hpp"
-#include "lightcone/render/locate.hpp"
-#include "lightcone/render/renderer.hpp"
+#include "lightcone/trace/aov.hpp"
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/false_colour.hpp"
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "lightcone/io/image_file.hpp"
-#include "lightcone/render/renderer.hpp"
-#include "lightcone/render/tone_map.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/frame/tone_map.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -7,10 +7,10 @@
 
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/render/locate.hpp"
-#include "lightcone/render/renderer.hpp"
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/trace/tracer.hpp"
 #include "lightcone/scene/reframe.hpp"
 #include "support/test_support.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "lightcone/render/shading.hpp"
+#include "lightcone/frame/shading.hpp"
 
 namespace lightcone {
 namespace {

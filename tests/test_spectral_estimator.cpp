@@ -19,13 +19,13 @@
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/spectrum.hpp"
 #include "lightcone/physics/light_path.hpp"
-#include "lightcone/render/camera_model.hpp"
-#include "lightcone/render/emission.hpp"
-#include "lightcone/render/lighting.hpp"
-#include "lightcone/render/renderer.hpp"
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/sampler.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/lighting.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/trace/sampler.hpp"
+#include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {
@@ -67,7 +67,7 @@ CentreColour centre_colour(const Scene& s) {
   const ResolvedScene r = resolve_scene(s);
   const Tracer tracer(r);
   const EmissionTable emission(r);
-  const Lighting lighting(r, tracer);
+  const Lighting lighting(r, &tracer);
   const Vec3 u = look_direction(r.camera, 0.5 * s.camera.width, 0.5 * s.camera.height);
   return {radiance_along(r, emission, tracer, u, &lighting), r.doppler(u, r.bodies[0].velocity)};
 }

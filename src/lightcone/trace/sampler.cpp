@@ -1,4 +1,4 @@
-#include "lightcone/render/sampler.hpp"
+#include "lightcone/trace/sampler.hpp"
 
 #include <algorithm>
 #include <bit>

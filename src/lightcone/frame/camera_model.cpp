@@ -1,4 +1,4 @@
-#include "lightcone/render/camera_model.hpp"
+#include "lightcone/frame/camera_model.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
 

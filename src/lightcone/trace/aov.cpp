@@ -1,4 +1,4 @@
-#include "lightcone/render/aov.hpp"
+#include "lightcone/trace/aov.hpp"
 
 #include <limits>
 

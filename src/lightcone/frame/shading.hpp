@@ -2,7 +2,7 @@
 // rest frame (checker cells, texture and sky-image texels, grid lines).
 #pragma once
 
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/frame/surface_hit.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {

@@ -1,4 +1,4 @@
-#include "lightcone/render/false_colour.hpp"
+#include "lightcone/frame/false_colour.hpp"
 
 #include <algorithm>
 #include <cmath>

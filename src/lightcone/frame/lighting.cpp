@@ -1,15 +1,15 @@
-#include "lightcone/render/lighting.hpp"
+#include "lightcone/frame/lighting.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "lightcone/color/colour_models.hpp"
+#include "lightcone/frame/received_colour.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
-#include "lightcone/render/received_colour.hpp"
 
 namespace lightcone {
 namespace {
@@ -82,8 +82,8 @@ double Lighting::ResolvedLight::spectral(double lambda_nm) const {
   return std::get<BlackbodySpectrum>(spectrum)(lambda_nm);
 }
 
-Lighting::Lighting(const ResolvedScene& scene, const Tracer& tracer)
-    : scene_(scene), tracer_(tracer) {
+Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
+    : scene_(scene), shadows_(shadows) {
   const Scene& s = *scene.scene;
   const RenderSettings& settings = s.render;
   const Vec4& observation = scene.observation_event;
@@ -194,11 +194,11 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     set_irradiance(out, settings.searchlight, sun->irradiance * cos_i,
                    plane_wave_irradiance(out.doppler, sun->irradiance, cos_i),
                    sun->irradiance * plane_wave_spectral_factor(out.doppler, cos_i));
-    if (settings.shadows) {
+    if (settings.shadows && shadows_) {
       // Backward along the light's direction, as far as shadow rays are bounded.
       const Vec4 back = (-1.0 / k_world.t) * k_world;
       const double reach = surface_world.t - scene_.shadow_time_min;
-      if (reach > 0 && tracer_.occluded(surface_world, back, kShadowEpsilon, reach)) return false;
+      if (reach > 0 && shadows_->occluded(surface_world, back, kShadowEpsilon, reach)) return false;
     }
     return true;
   }
@@ -252,8 +252,9 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
                  point_source_irradiance(leg, intensity, cos_i),
                  intensity * point_source_spectral_factor(leg, cos_i));
 
-  if (settings.shadows &&
-      tracer_.occluded(surface_world, emission - surface_world, kShadowEpsilon, 1 - kShadowEpsilon))
+  if (settings.shadows && shadows_ &&
+      shadows_->occluded(surface_world, emission - surface_world, kShadowEpsilon,
+                         1 - kShadowEpsilon))
     return false;
   return true;
 }

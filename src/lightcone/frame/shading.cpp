@@ -1,4 +1,4 @@
-#include "lightcone/render/shading.hpp"
+#include "lightcone/frame/shading.hpp"
 
 #include <algorithm>
 #include <cmath>

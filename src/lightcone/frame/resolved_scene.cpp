@@ -1,4 +1,4 @@
-#include "lightcone/render/resolved_scene.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "lightcone/render/renderer.hpp"
+#include "lightcone/trace/renderer.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <memory>
 
-#include "lightcone/render/received_colour.hpp"
-#include "lightcone/render/sampler.hpp"
-#include "lightcone/render/tone_map.hpp"
+#include "lightcone/frame/received_colour.hpp"
+#include "lightcone/frame/tone_map.hpp"
+#include "lightcone/trace/sampler.hpp"
 
 namespace lightcone {
 namespace {
@@ -46,7 +46,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const ResolvedScene resolved = resolve_scene(scene);
   const Tracer tracer(resolved);
   const EmissionTable emission(resolved);
-  const Lighting lighting(resolved, tracer);
+  const Lighting lighting(resolved, &tracer);
 
   const Camera& cam = scene.camera;
   const PixelWindow window = options.crop.value_or(PixelWindow{0, 0, cam.width, cam.height});

@@ -1,4 +1,4 @@
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/trace/tracer.hpp"
 
 #include <embree3/rtcore.h>
 

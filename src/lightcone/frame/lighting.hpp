@@ -9,17 +9,19 @@
 #include "lightcone/color/doppler_table.hpp"
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/spectrum.hpp"
-#include "lightcone/render/emission.hpp"
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/shadow_query.hpp"
+#include "lightcone/frame/surface_hit.hpp"
 
 namespace lightcone {
 
 class Lighting {
  public:
   // Prepares, for the spectral model, the colour of every fixed albedo of every lit object
-  // under every light against the camera's and the light's Doppler factors.
-  Lighting(const ResolvedScene& scene, const Tracer& tracer);
+  // under every light against the camera's and the light's Doppler factors. Shadows (where the
+  // scene asks for them) come from `shadows`; without one nothing is shadowed.
+  Lighting(const ResolvedScene& scene, const ShadowQuery* shadows);
 
   // Linear sRGB received at the camera from the lit surface point of `hit`, seen along look
   // direction u with Doppler factor d_camera; `surface` carries the rest-frame albedo (RGB in
@@ -52,7 +54,7 @@ class Lighting {
                 const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out) const;
 
   const ResolvedScene& scene_;
-  const Tracer& tracer_;
+  const ShadowQuery* shadows_;
   std::vector<ResolvedLight> lights_;
   DopplerGrid camera_grid_, light_grid_;
   // The colour of one fixed albedo lit by one light, against the camera's factor (a light at

@@ -11,33 +11,24 @@
 #include <memory>
 #include <optional>
 
-#include "lightcone/render/resolved_scene.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/shadow_query.hpp"
+#include "lightcone/frame/surface_hit.hpp"
 
 namespace lightcone {
 
-struct Hit {
-  int body = -1;                   // index into ResolvedScene::bodies
-  double s = 0;                    // ray parameter: light travel time (or distance) in F
-  Vec3 shape_point;                // the point met, in the shape's own coordinates
-  std::array<double, 2> uv{0, 0};  // texture coordinates (v from the top of the image)
-  Vec3 shape_normal;               // unit, in shape coordinates, facing the incoming ray
-};
-
-class Tracer {
+class Tracer : public ShadowQuery {
  public:
   explicit Tracer(const ResolvedScene& scene);
-  ~Tracer();
+  ~Tracer() override;
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
 
   // The nearest body along the ray with look direction u (unit, in F), if any.
   std::optional<Hit> trace(const Vec3& u) const;
 
-  // Whether a body blocks the spacetime segment origin + sigma direction, sigma in
-  // (t_near, t_far), with events and direction in the world frame W (a shadow ray: its events
-  // must lie within W-times [ResolvedScene::shadow_time_min, shadow_time_max]). Bodies are met
-  // where they are at each event.
-  bool occluded(const Vec4& origin, const Vec4& direction, double t_near, double t_far) const;
+  bool occluded(const Vec4& origin, const Vec4& direction, double t_near,
+                double t_far) const override;
 
   // Bytes Embree holds for the acceleration structures (for memory benchmarks).
   std::size_t acceleration_bytes() const;

@@ -1,4 +1,4 @@
-#include "lightcone/render/received_colour.hpp"
+#include "lightcone/frame/received_colour.hpp"
 
 #include "lightcone/color/colour_models.hpp"
 

@@ -11,8 +11,8 @@
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/doppler_table.hpp"
 #include "lightcone/color/rgb_spectrum.hpp"
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/surface_hit.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {

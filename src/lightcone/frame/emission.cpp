@@ -1,4 +1,4 @@
-#include "lightcone/render/emission.hpp"
+#include "lightcone/frame/emission.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "lightcone/color/spectrum.hpp"
-#include "lightcone/render/camera_model.hpp"
-#include "lightcone/render/shading.hpp"
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/shading.hpp"
 
 namespace lightcone {
 namespace {

@@ -1,4 +1,4 @@
-#include "lightcone/render/tone_map.hpp"
+#include "lightcone/frame/tone_map.hpp"
 
 #include <algorithm>
 #include <cmath>

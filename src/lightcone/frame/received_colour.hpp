@@ -2,7 +2,7 @@
 // scene's Doppler colour model and searchlight model.
 #pragma once
 
-#include "lightcone/render/emission.hpp"
+#include "lightcone/frame/emission.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {

@@ -1,8 +1,8 @@
-#include "lightcone/render/locate.hpp"
+#include "lightcone/frame/locate.hpp"
 
 #include <stdexcept>
 
-#include "lightcone/render/resolved_scene.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 
 namespace lightcone {
 namespace {

@@ -1,14 +1,14 @@
-#include "lightcone/render/scene_info.hpp"
+#include "lightcone/trace/scene_info.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/render/camera_model.hpp"
-#include "lightcone/render/emission.hpp"
-#include "lightcone/render/resolved_scene.hpp"
-#include "lightcone/render/tracer.hpp"
+#include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
 namespace {

@@ -14,8 +14,8 @@
 
 #include <vector>
 
+#include "lightcone/frame/camera_model.hpp"
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/render/camera_model.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
