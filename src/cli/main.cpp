@@ -16,14 +16,16 @@
 #include <tuple>
 #include <vector>
 
+#include "lightcone/frame/false_colour.hpp"
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
-#include "lightcone/frame/false_colour.hpp"
-#include "lightcone/frame/locate.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
-#include "lightcone/frame/tone_map.hpp"
 #include "progress_bar.hpp"
 #include "version.hpp"
 
@@ -132,7 +134,7 @@ nlohmann::ordered_json to_json(const Vec3& v) {
 }
 
 struct RenderArgs {
-  std::string scene, output;
+  std::string scene, output, renderer = "trace";
   std::optional<std::string> exr, crop, aov, map;
   std::optional<int> width, height, samples;
   int threads = 0;
@@ -204,6 +206,14 @@ int run_render(const RenderArgs& a) {
       throw InputError("--exr " + *a.exr + ": is the same file as -o");
   }
 
+  const bool raster = a.renderer == "raster";
+  if (raster)
+    for (const auto& [given, option] :
+         {std::pair{a.crop.has_value(), "--crop"}, std::pair{a.aov.has_value(), "--aov"},
+          std::pair{a.map.has_value(), "--map"}})
+      if (given)
+        throw InputError(std::string(option) +
+                         ": only the ray tracer has it (leave out --renderer raster)");
   std::vector<Aov> aovs;
   if (a.aov) {
     aovs = parse_aovs(*a.aov);
@@ -261,9 +271,27 @@ int run_render(const RenderArgs& a) {
       tiles_total = total;
       bar.update(done, total);
     };
-    std::signal(SIGINT, on_interrupt);
-    image = render_image(scene, options, &stats);
-    std::signal(SIGINT, SIG_DFL);
+    if (raster) {
+      for (const std::string& difference : raster_differences(scene))
+        std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
+                     a.scene.c_str(), difference.c_str());
+      RasterStats raster_stats;
+      try {
+        image = render_raster(scene, &raster_stats);
+      } catch (const GlUnavailable& e) {
+        throw InputError(fmt::format(
+            "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) through "
+            "EGL, e.g. Mesa's llvmpipe; the ray tracer (the default) needs neither",
+            e.what()));
+      }
+      stats.seconds = raster_stats.seconds;
+      stats.exposure = raster_stats.exposure;
+      stats.rays = static_cast<std::uint64_t>(image.width) * image.height * scene.camera.samples;
+    } else {
+      std::signal(SIGINT, on_interrupt);
+      image = render_image(scene, options, &stats);
+      std::signal(SIGINT, SIG_DFL);
+    }
   }
 
   // A picture with non-finite values is wrong, not merely dark or bright: say so, write nothing.
@@ -441,6 +469,11 @@ int main(int argc, char** argv) {
                    "on standard output")
       ->required();
   render_cmd->add_option("--exr", render.exr, "Also write linear radiance to this OpenEXR file");
+  render_cmd
+      ->add_option("--renderer", render.renderer,
+                   "trace (the exact ray tracer, the default) or raster (the real-time polygon "
+                   "renderer, through OpenGL)")
+      ->check(CLI::IsMember({"trace", "raster"}));
   render_cmd->add_option("--width", render.width, "Override camera.width");
   render_cmd->add_option("--height", render.height, "Override camera.height");
   render_cmd->add_option("--samples", render.samples, "Override camera.samples");

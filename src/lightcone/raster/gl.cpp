@@ -1,0 +1,69 @@
+#include "lightcone/raster/gl.hpp"
+
+#include <fmt/format.h>
+
+#include <vector>
+
+namespace lightcone {
+
+void check_gl(const char* what) {
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    throw std::runtime_error(fmt::format("OpenGL error 0x{:x} while {}", error, what));
+}
+
+std::string gl_description() {
+  const auto text = [](GLenum name) {
+    const auto* s = reinterpret_cast<const char*>(glGetString(name));
+    return std::string(s != nullptr ? s : "?");
+  };
+  return fmt::format("OpenGL {}, {}", text(GL_VERSION), text(GL_RENDERER));
+}
+
+namespace {
+
+GLuint compile(GLenum stage, const std::string& source) {
+  const GLuint shader = glCreateShader(stage);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
+    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteShader(shader);
+    throw std::runtime_error(fmt::format("{} shader does not compile: {}",
+                                         stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
+                                         log.data()));
+  }
+  return shader;
+}
+
+}  // namespace
+
+GLuint link_program(const std::string& vertex, const std::string& fragment) {
+  const GLuint v = compile(GL_VERTEX_SHADER, vertex);
+  const GLuint f = compile(GL_FRAGMENT_SHADER, fragment);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, v);
+  glAttachShader(program, f);
+  glLinkProgram(program);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
+    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteProgram(program);
+    throw std::runtime_error(fmt::format("shaders do not link: {}", log.data()));
+  }
+  return program;
+}
+
+}  // namespace lightcone

@@ -1,0 +1,25 @@
+// The OpenGL 3.3 core functions, as libglvnd's libOpenGL exports them, and small helpers that
+// turn GL errors into exceptions.
+#pragma once
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "lightcone/raster/gl_context.hpp"
+
+namespace lightcone {
+
+// Throws std::runtime_error naming `what` when GL reports an error.
+void check_gl(const char* what);
+
+// The current context's version and renderer, for messages.
+std::string gl_description();
+
+// A program from vertex and fragment shader sources; throws with the compiler's log.
+GLuint link_program(const std::string& vertex, const std::string& fragment);
+
+}  // namespace lightcone

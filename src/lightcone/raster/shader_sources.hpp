@@ -1,0 +1,13 @@
+// The real-time renderer's shader sources (src/lightcone/raster/shaders/), embedded at build
+// time, without their version lines.
+#pragma once
+
+namespace lightcone::shader_sources {
+
+extern const char* const common_glsl;
+extern const char* const body_vert;
+extern const char* const body_frag;
+extern const char* const sky_vert;
+extern const char* const sky_frag;
+
+}  // namespace lightcone::shader_sources

@@ -1,0 +1,40 @@
+// The sky: each sample's look direction mapped into the sky's pattern coordinates through the
+// event (ray_time, u), as frame/resolved_scene.hpp's sky_direction does, and received with its
+// Doppler factor.
+uniform vec3 sky_time_column;
+uniform mat3 sky_spatial;
+uniform float ray_time;
+uniform vec3 doppler_velocity;
+uniform float doppler_gamma;
+uniform int colour_row;
+uniform int pattern;  // 0: one colour; 1: grid
+uniform float grid_spacing;     // degrees
+uniform float grid_half_width;  // degrees
+
+layout(location = 0) out vec4 colour;
+
+const float kDegrees = 57.29577951308232;
+
+// frame/shading.cpp: the angle's distance, in degrees, to the nearest multiple of the spacing.
+float distance_to_grid(float angle, float spacing) {
+  float r = mod(abs(angle), spacing);
+  return min(r, spacing - r);
+}
+
+// frame/shading.cpp, on_grid_line.
+bool on_grid_line(vec3 d) {
+  float latitude = kDegrees * asin(clamp(d.y, -1.0, 1.0));
+  float longitude = kDegrees * atan(d.x, -d.z);
+  float along_parallel =
+      distance_to_grid(longitude, grid_spacing) * cos(latitude / kDegrees);
+  return distance_to_grid(latitude, grid_spacing) <= grid_half_width ||
+         along_parallel <= grid_half_width;
+}
+
+void main() {
+  vec3 u = fragment_look_direction();
+  vec3 d = normalize(sky_time_column * ray_time + sky_spatial * u);
+  float doppler = doppler_factor(u, doppler_velocity, doppler_gamma);
+  int row = colour_row + (pattern == 1 && on_grid_line(d) ? 1 : 0);
+  colour = vec4(received_colour(row, doppler), 1.0);
+}

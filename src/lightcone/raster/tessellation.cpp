@@ -1,0 +1,176 @@
+#include "lightcone/raster/tessellation.hpp"
+
+#include <cmath>
+
+namespace lightcone {
+
+BodyView body_view(const ResolvedBody& body) {
+  // shape = shape_origin + time_column t + spatial x, so x = spatial^-1 (shape - shape_origin)
+  // - spatial^-1 time_column t.
+  const Mat3 inverse = body.spatial.inverse();
+  return {inverse, body.shape_origin, (inverse * body.time_column) * -1.0};
+}
+
+Vec3 RestMesh::midpoint(const Vec3& a, const Vec3& b) const {
+  const Vec3 m = (a + b) * 0.5;
+  if (sphere_radius <= 0) return m;
+  const double l = length(m);
+  return l > 0 ? m * (sphere_radius / l) : m;
+}
+
+namespace {
+
+// An octahedron's faces: the sphere is refined from there by the edge rule.
+RestMesh sphere_mesh(double radius) {
+  RestMesh m;
+  m.sphere_radius = radius;
+  m.positions = {{radius, 0, 0},  {-radius, 0, 0}, {0, radius, 0},
+                 {0, -radius, 0}, {0, 0, radius},  {0, 0, -radius}};
+  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                 {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  return m;
+}
+
+// A rectangle given by a corner and two edge vectors, as a grid of n x n quads (long edges are
+// split here so that the tessellation's maximum level suffices).
+void add_grid(RestMesh& m, const Vec3& corner, const Vec3& along_u, const Vec3& along_v, int n) {
+  const auto first = static_cast<std::uint32_t>(m.positions.size());
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      m.positions.push_back(corner + along_u * (double(i) / n) + along_v * (double(j) / n));
+  const auto at = [&](int i, int j) { return first + static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+}
+
+constexpr int kFaceGrid = 8;
+
+}  // namespace
+
+RestMesh rest_mesh(const Shape& shape) {
+  struct Visitor {
+    RestMesh operator()(const Sphere& s) const { return sphere_mesh(s.radius); }
+    RestMesh operator()(const Box& b) const {
+      RestMesh m;
+      const Vec3 h = b.size * 0.5;
+      const Vec3 x{b.size.x, 0, 0}, y{0, b.size.y, 0}, z{0, 0, b.size.z};
+      add_grid(m, {-h.x, -h.y, -h.z}, y, x, kFaceGrid);  // z = -h
+      add_grid(m, {-h.x, -h.y, h.z}, x, y, kFaceGrid);   // z = +h
+      add_grid(m, {-h.x, -h.y, -h.z}, z, y, kFaceGrid);  // x = -h
+      add_grid(m, {h.x, -h.y, -h.z}, y, z, kFaceGrid);   // x = +h
+      add_grid(m, {-h.x, -h.y, -h.z}, x, z, kFaceGrid);  // y = -h
+      add_grid(m, {-h.x, h.y, -h.z}, z, x, kFaceGrid);   // y = +h
+      return m;
+    }
+    RestMesh operator()(const Plane& p) const {
+      RestMesh m;
+      add_grid(m, {-p.size_x / 2, 0, -p.size_z / 2}, {p.size_x, 0, 0}, {0, 0, p.size_z},
+               4 * kFaceGrid);
+      return m;
+    }
+    RestMesh operator()(const MeshShape& s) const {
+      RestMesh m;
+      m.positions = s.mesh->positions;
+      m.triangles = s.mesh->triangles;
+      return m;
+    }
+  };
+  return std::visit(Visitor{}, shape);
+}
+
+ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
+                             const Vec3& shape_point) {
+  const RayEvent event = meet_world_line(scene.ray_time, view.world_line(shape_point));
+  return {event.position, project_direction(scene.camera, event.position)};
+}
+
+double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
+                         const Vec3& a, const Vec3& b) {
+  const ApparentPoint pa = apparent_point(scene, view, a), pb = apparent_point(scene, view, b);
+  const ApparentPoint pm = apparent_point(scene, view, mesh.midpoint(a, b));
+  const CameraBasis& camera = scene.camera;
+  const auto well_in_front = [&](const ApparentPoint& p) {
+    return dot(p.position, camera.forward) > 1e-6 * length(p.position);
+  };
+  if (well_in_front(pa) && well_in_front(pb) && well_in_front(pm))
+    return std::hypot(pm.image.x - 0.5 * (pa.image.x + pb.image.x),
+                      pm.image.y - 0.5 * (pa.image.y + pb.image.y));
+  // An end at or behind the camera: the rasteriser draws the great circle through the ends'
+  // directions (it clips in homogeneous coordinates), so measure the midpoint's angle from
+  // it, in pixels at the image centre.
+  const Vec3 normal = cross(pa.position, pb.position);
+  const double n = length(normal), m = length(pm.position);
+  if (n == 0 || m == 0) return 0;
+  const double pixels_per_radian = camera.height / (2 * camera.tan_half_fov);
+  return std::abs(dot(normal, pm.position)) / (n * m) * pixels_per_radian;
+}
+
+namespace {
+
+struct Tessellator {
+  const ResolvedScene& scene;
+  const BodyView& view;
+  const RestMesh& mesh;
+  const TessellationLimits& limits;
+  std::vector<float>& out;
+
+  bool split(const Vec3& a, const Vec3& b, int level) const {
+    return level < limits.max_level &&
+           edge_error_pixels(scene, view, mesh, a, b) > limits.max_error_pixels;
+  }
+
+  void emit(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    for (const Vec3* p : {&a, &b, &c})
+      out.insert(out.end(),
+                 {static_cast<float>(p->x), static_cast<float>(p->y), static_cast<float>(p->z)});
+  }
+
+  // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.
+  void triangle(const Vec3& a, const Vec3& b, const Vec3& c, int lab, int lbc, int lca) const {
+    const bool sab = split(a, b, lab), sbc = split(b, c, lbc), sca = split(c, a, lca);
+    const int count = int(sab) + int(sbc) + int(sca);
+    if (count == 0) return emit(a, b, c);
+    if (count == 3) {
+      const Vec3 mab = mesh.midpoint(a, b), mbc = mesh.midpoint(b, c), mca = mesh.midpoint(c, a);
+      const int l = std::max({lab, lbc, lca}) + 1;
+      triangle(a, mab, mca, lab + 1, l, lca + 1);
+      triangle(mab, b, mbc, lab + 1, lbc + 1, l);
+      triangle(mca, mbc, c, l, lbc + 1, lca + 1);
+      triangle(mab, mbc, mca, l, l, l);
+      return;
+    }
+    // One or two edges split: rotate so that ab is split (and, for two, bc as well).
+    if (!sab) {
+      if (sbc) return triangle(b, c, a, lbc, lca, lab);
+      return triangle(c, a, b, lca, lab, lbc);
+    }
+    if (count == 2 && !sbc) return triangle(c, a, b, lca, lab, lbc);
+    const Vec3 mab = mesh.midpoint(a, b);
+    if (count == 1) {
+      // The new edge from the midpoint to c lies inside: its level follows the split edge's.
+      triangle(a, mab, c, lab + 1, lab + 1, lca);
+      triangle(mab, b, c, lab + 1, lbc, lab + 1);
+      return;
+    }
+    // ab and bc split (ca not).
+    const Vec3 mbc = mesh.midpoint(b, c);
+    const int l = std::max(lab, lbc) + 1;
+    triangle(mab, b, mbc, lab + 1, lbc + 1, l);
+    triangle(a, mab, mbc, lab + 1, l, l);
+    triangle(a, mbc, c, l, lbc + 1, lca);
+  }
+};
+
+}  // namespace
+
+void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
+                const TessellationLimits& limits, std::vector<float>& out) {
+  const Tessellator t{scene, view, mesh, limits, out};
+  for (const auto& [i, j, k] : mesh.triangles)
+    t.triangle(mesh.positions[i], mesh.positions[j], mesh.positions[k], 0, 0, 0);
+}
+
+}  // namespace lightcone

@@ -1,0 +1,65 @@
+// Adaptive tessellation for the real-time renderer: a straight edge of a moving body is seen as
+// a curve (each of its points is seen at its own retarded event), while the rasteriser draws
+// the chord between its ends. Edges are split until their apparent midpoint lies within half a
+// pixel of the chord (docs/design/raster.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+
+namespace lightcone {
+
+// A body's world-lines for one frame: the shape point p is at
+// shape_to_trace (p - shape_origin) + velocity t in F at F-time t (the inverse of the map from F
+// events to shape coordinates that ResolvedBody holds).
+struct BodyView {
+  Mat3 shape_to_trace;
+  Vec3 shape_origin;
+  Vec3 velocity;
+  TraceWorldLine world_line(const Vec3& shape_point) const {
+    return {shape_to_trace * (shape_point - shape_origin), velocity};
+  }
+};
+BodyView body_view(const ResolvedBody& body);
+
+// The shape's triangles in shape coordinates before tessellation, and how an edge's midpoint
+// is found: the chord's for flat faces, the great circle's for a sphere (so that tessellation
+// also follows the sphere's curvature).
+struct RestMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  double sphere_radius = 0;  // > 0: a sphere about the origin
+  Vec3 midpoint(const Vec3& a, const Vec3& b) const;
+};
+RestMesh rest_mesh(const Shape& shape);
+
+// Where a shape point is seen: its event on the camera's ray family and that event's image
+// point (pixels), for the tessellation's decisions.
+struct ApparentPoint {
+  Vec3 position;  // in F, relative to the camera
+  ImagePoint image;
+};
+ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
+                             const Vec3& shape_point);
+
+// How far, in pixels, the apparent midpoint of the edge (a, b) lies from the chord the
+// rasteriser draws between the apparent ends; the same from both ends.
+double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
+                         const Vec3& a, const Vec3& b);
+
+struct TessellationLimits {
+  double max_error_pixels = 0.5;
+  int max_level = 10;  // an edge is split into at most 2^max_level pieces
+};
+
+// Appends the tessellated triangles (three shape points each, as floats) to `out`. Each edge's
+// split depends only on its own ends and level, so neighbouring triangles agree (no cracks).
+void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
+                const TessellationLimits& limits, std::vector<float>& out);
+
+}  // namespace lightcone
