@@ -24,7 +24,7 @@
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
-#include "lightcone/trace/sampler.hpp"
+#include "lightcone/frame/sampler.hpp"
 #include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
 

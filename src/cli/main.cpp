@@ -262,6 +262,7 @@ int run_render(const RenderArgs& a) {
   options.cancel = &interrupted;
   options.aovs = aovs;
   RenderStats stats;
+  std::size_t raster_triangles = 0;
   Image image;
   std::atomic<std::size_t> tiles_done{0}, tiles_total{0};
   {
@@ -284,6 +285,7 @@ int run_render(const RenderArgs& a) {
             "EGL, e.g. Mesa's llvmpipe; the ray tracer (the default) needs neither",
             e.what()));
       }
+      raster_triangles = raster_stats.triangles;
       stats.seconds = raster_stats.seconds;
       stats.exposure = raster_stats.exposure;
       stats.rays = static_cast<std::uint64_t>(image.width) * image.height * scene.camera.samples;
@@ -331,7 +333,12 @@ int run_render(const RenderArgs& a) {
     return kInterrupted;
   }
   const double mrays = stats.rays / std::max(stats.seconds, 1e-9) / 1e6;
-  if (!a.quiet)
+  if (!a.quiet && raster)
+    std::fprintf(stderr,
+                 "lightcone: %dx%d, %d samples (raster, %zu triangles): %.2f s; wrote %s%s\n",
+                 image.width, image.height, scene.camera.samples, raster_triangles, stats.seconds,
+                 written.c_str(), a.exr ? (" and " + *a.exr).c_str() : "");
+  else if (!a.quiet)
     std::fprintf(stderr, "lightcone: %dx%d, %d samples: %.2f s, %.2f Mrays/s; wrote %s%s\n",
                  image.width, image.height, scene.camera.samples, stats.seconds, mrays,
                  written.c_str(), a.exr ? (" and " + *a.exr).c_str() : "");

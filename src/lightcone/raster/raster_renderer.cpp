@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "lightcone/frame/received_colour.hpp"
+#include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/gl.hpp"
@@ -38,6 +39,7 @@ namespace {
 // each end; linear interpolation between nodes 1/512 of a unit of ln D apart is far below
 // what 8 bits show.
 constexpr double kLogDopplerStep = 1.0 / 512;
+constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
 
 std::string vertex_shader(const char* source) {
   return std::string("#version 330 core\n") + shader_sources::common_glsl + source;
@@ -83,7 +85,7 @@ EmissionKey key_of(const PointEmission& e) {
 
 struct RasterRenderer::Impl {
   GLuint body_program = 0, sky_program = 0;
-  GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0;
+  GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0;
   std::vector<float> vertices;  // reused from frame to frame
 
   Impl() {
@@ -94,15 +96,20 @@ struct RasterRenderer::Impl {
     glGenVertexArrays(1, &vertex_array);
     glGenBuffers(1, &vertex_buffer);
     glGenTextures(1, &rows_texture);
+    glGenTextures(1, &offsets_texture);
     glBindVertexArray(vertex_array);
     glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
     glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
     check_gl("creating the renderer");
   }
 
   ~Impl() {
     glDeleteTextures(1, &rows_texture);
+    glDeleteTextures(1, &offsets_texture);
     glDeleteBuffers(1, &vertex_buffer);
     glDeleteVertexArrays(1, &vertex_array);
     glDeleteProgram(body_program);
@@ -121,6 +128,8 @@ struct RasterRenderer::Impl {
                 static_cast<float>(c.height));
     glUniform2f(uniform(program, "pixel_offset"), static_cast<float>(ox), static_cast<float>(oy));
     glUniform1i(uniform(program, "colour_rows"), 0);
+    glUniform1i(uniform(program, "sample_offsets"), 1);
+    glUniform1i(uniform(program, "shade_at_sample_offsets"), shading_offsets ? 1 : 0);
     glUniform1f(uniform(program, "log_doppler_first"), static_cast<float>(first_log_doppler));
     glUniform1f(uniform(program, "log_doppler_step"), static_cast<float>(kLogDopplerStep));
     glUniform1f(uniform(program, "ray_time"), static_cast<float>(scene.ray_time));
@@ -134,9 +143,21 @@ struct RasterRenderer::Impl {
                 relativity ? static_cast<float>(lorentz_gamma(velocity)) : 1.0f);
   }
 
-  RasterFrameStats draw(const ResolvedScene& scene, const EmissionTable& emission, double ox,
-                        double oy, const TessellationLimits& limits) {
-    const Scene& s = *scene.scene;
+  // What one frame keeps between its passes.
+  struct BodyDraw {
+    std::size_t body = 0, first_vertex = 0, vertex_count = 0;
+    int first_row = 0, pattern = 0;
+  };
+  const ResolvedScene* scene = nullptr;
+  std::vector<BodyDraw> draws;
+  double first_log_doppler = 0;
+  int sky_first_row = 0;
+
+  // Tessellates every body and tabulates the colour rows for one frame.
+  RasterFrameStats prepare(const ResolvedScene& resolved, const EmissionTable& emission,
+                           const TessellationLimits& limits) {
+    scene = &resolved;
+    const Scene& s = *resolved.scene;
     // Rows: every distinct fixed emission of the bodies and the sky.
     std::map<EmissionKey, int> row_of;
     std::vector<const PointEmission*> rows;
@@ -145,46 +166,48 @@ struct RasterRenderer::Impl {
       if (added) rows.push_back(&e);
       return it->second;
     };
-    struct BodyRows {
-      int first = 0;
-      int pattern = 0;  // 0 one colour, 1 checker, -1 not drawn in colour (black)
-    };
-    std::vector<BodyRows> body_rows(scene.bodies.size());
     static const PointEmission kBlack{};
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      const Material& m = scene.bodies[i].object->material;
-      const bool checker = std::holds_alternative<Checker>(m.pattern);
+    draws.clear();
+    vertices.clear();
+    std::map<const void*, RestMesh> meshes;  // per shape, for this frame
+    for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
+      const ResolvedBody& body = resolved.bodies[i];
+      BodyDraw draw;
+      draw.body = i;
+      const Material& m = body.object->material;
       const bool drawable = m.unlit && !std::holds_alternative<Texture>(m.pattern);
       if (!drawable) {
-        body_rows[i] = {row(kBlack), 0};
-        continue;
-      }
-      // A checker's two colours take consecutive rows (the second may repeat the first's).
-      const int first = row(emission.object_colour(i, 0));
-      if (checker) {
-        const int second = static_cast<int>(rows.size());
+        draw.first_row = row(kBlack);
+      } else if (std::holds_alternative<Checker>(m.pattern)) {
+        // A checker's two colours take consecutive rows of their own.
+        draw.first_row = static_cast<int>(rows.size());
+        draw.pattern = 1;
+        rows.push_back(&emission.object_colour(i, 0));
         rows.push_back(&emission.object_colour(i, 1));
-        body_rows[i] = {first, 1};
-        if (second != first + 1) {
-          body_rows[i].first = static_cast<int>(rows.size());
-          rows.push_back(&emission.object_colour(i, 0));
-          rows.push_back(&emission.object_colour(i, 1));
-        }
       } else {
-        body_rows[i] = {first, 0};
+        draw.first_row = row(emission.object_colour(i, 0));
       }
+      const Shape& shape = body.object->shape;
+      const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
+      auto it = meshes.find(shape_key);
+      if (it == meshes.end()) it = meshes.emplace(shape_key, rest_mesh(shape)).first;
+      draw.first_vertex = vertices.size() / kFloatsPerVertex;
+      tessellate(resolved, body_view(body), it->second, limits, vertices);
+      draw.vertex_count = vertices.size() / kFloatsPerVertex - draw.first_vertex;
+      if (draw.vertex_count > 0) draws.push_back(draw);
     }
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
-    const int sky_first = static_cast<int>(rows.size());
+    sky_first_row = static_cast<int>(rows.size());
     rows.push_back(sky_image ? &kBlack : &emission.sky_colour(0));
     rows.push_back(grid ? &emission.sky_colour(1) : rows.back());
 
     // The nodes cover the factors the image shows (both kinds: lit bodies are drawn black).
-    const LogDopplerRange unlit = visible_log_doppler(scene, false);
-    const LogDopplerRange lit = visible_log_doppler(scene, true);
+    const LogDopplerRange unlit = visible_log_doppler(resolved, false);
+    const LogDopplerRange lit = visible_log_doppler(resolved, true);
     const double lo = std::min(unlit.lo, lit.empty ? unlit.lo : lit.lo) - 2 * kLogDopplerStep;
     const double hi = std::max(unlit.hi, lit.empty ? unlit.hi : lit.hi) + 2 * kLogDopplerStep;
+    first_log_doppler = lo;
     const int nodes = std::max(2, static_cast<int>(std::ceil((hi - lo) / kLogDopplerStep)) + 1);
     std::vector<float> texels(static_cast<std::size_t>(nodes) * rows.size() * 3);
     for (std::size_t r = 0; r < rows.size(); ++r)
@@ -202,58 +225,82 @@ struct RasterRenderer::Impl {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, nodes, static_cast<GLsizei>(rows.size()), 0, GL_RGB,
                  GL_FLOAT, texels.data());
-    check_gl("uploading the colour rows");
+    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+                 vertices.data(), GL_STATIC_DRAW);
+    check_gl("uploading the frame");
+    RasterFrameStats stats;
+    stats.triangles = vertices.size() / (3 * kFloatsPerVertex);
+    return stats;
+  }
 
+  const std::vector<float>* shading_offsets = nullptr;
+
+  // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
+  void pass(double ox, double oy, const std::vector<float>* offsets) {
+    const ResolvedScene& resolved = *scene;
+    const Scene& s = *resolved.scene;
+    shading_offsets = offsets;
+    if (offsets) {
+      glActiveTexture(GL_TEXTURE1);
+      glBindTexture(GL_TEXTURE_2D, offsets_texture);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, resolved.camera.width, resolved.camera.height, 0,
+                   GL_RG, GL_FLOAT, offsets->data());
+    }
     glClearColor(0, 0, 0, 0);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, rows_texture);
 
-    RasterFrameStats stats;
     glUseProgram(body_program);
-    set_common(body_program, scene, lo, ox, oy);
+    set_common(body_program, resolved, first_log_doppler, ox, oy);
     // Depth: the light travel distance on a log scale between these.
     glUniform2f(uniform(body_program, "depth_range"), std::log(1e-6f), std::log(1e12f));
     glDepthFunc(GL_LESS);
     glBindVertexArray(vertex_array);
-    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
-    std::map<const void*, RestMesh> meshes;  // per shape, for this frame
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      const ResolvedBody& body = scene.bodies[i];
-      const Shape& shape = body.object->shape;
-      const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
-      auto it = meshes.find(shape_key);
-      if (it == meshes.end()) it = meshes.emplace(shape_key, rest_mesh(shape)).first;
+    for (const BodyDraw& draw : draws) {
+      const ResolvedBody& body = resolved.bodies[draw.body];
       const BodyView view = body_view(body);
-      vertices.clear();
-      tessellate(scene, view, it->second, limits, vertices);
-      if (vertices.empty()) continue;
       set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
       set_vec3(body_program, "shape_origin", view.shape_origin);
       set_vec3(body_program, "world_line_velocity", view.velocity);
       glUniform1f(uniform(body_program, "one_minus_beta2"),
                   static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
-      set_doppler(body_program, scene, body.velocity);
-      glUniform1i(uniform(body_program, "colour_row"), body_rows[i].first);
-      glUniform1i(uniform(body_program, "pattern"), body_rows[i].pattern);
+      set_vec3(body_program, "ray_offset", body.ray_offset);
+      set_mat3(body_program, "shape_spatial", body.spatial);
+      set_doppler(body_program, resolved, body.velocity);
+      glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
+      glUniform1i(uniform(body_program, "pattern"), draw.pattern);
+      const Shape& shape = body.object->shape;
       const auto* checker = std::get_if<Checker>(&body.object->material.pattern);
       glUniform1f(uniform(body_program, "checker_size"),
                   checker ? static_cast<float>(checker->size) : 1.0f);
-      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
-                   vertices.data(), GL_STREAM_DRAW);
-      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size() / 3));
-      stats.triangles += vertices.size() / 9;
+      const auto* box = std::get_if<Box>(&shape);
+      const auto* sphere = std::get_if<Sphere>(&shape);
+      glUniform1i(uniform(body_program, "shape_kind"), box                                    ? 1
+                                                       : std::holds_alternative<Plane>(shape) ? 2
+                                                       : sphere                               ? 3
+                                                                                              : 0);
+      set_vec3(body_program, "box_size", box ? box->size : Vec3{1, 1, 1});
+      glUniform1f(uniform(body_program, "sphere_radius"),
+                  sphere ? static_cast<float>(sphere->radius) : 0.0f);
+      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
+                   static_cast<GLsizei>(draw.vertex_count));
     }
     check_gl("drawing the bodies");
 
     glUseProgram(sky_program);
-    set_common(sky_program, scene, lo, ox, oy);
-    set_vec3(sky_program, "sky_time_column", scene.sky_time_column);
-    set_mat3(sky_program, "sky_spatial", scene.sky_spatial);
-    set_doppler(sky_program, scene, scene.sky_velocity);
-    glUniform1i(uniform(sky_program, "colour_row"), sky_first);
+    set_common(sky_program, resolved, first_log_doppler, ox, oy);
+    set_vec3(sky_program, "sky_time_column", resolved.sky_time_column);
+    set_mat3(sky_program, "sky_spatial", resolved.sky_spatial);
+    set_doppler(sky_program, resolved, resolved.sky_velocity);
+    glUniform1i(uniform(sky_program, "colour_row"), sky_first_row);
     const auto* g = std::get_if<SkyGrid>(&s.sky.pattern);
     glUniform1i(uniform(sky_program, "pattern"), g ? 1 : 0);
     glUniform1f(uniform(sky_program, "grid_spacing"),
@@ -263,17 +310,20 @@ struct RasterRenderer::Impl {
     glDepthFunc(GL_LEQUAL);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     check_gl("drawing the sky");
-    return stats;
   }
 };
 
 RasterRenderer::RasterRenderer() : impl_(std::make_unique<Impl>()) {}
 RasterRenderer::~RasterRenderer() = default;
 
-RasterFrameStats RasterRenderer::draw(const ResolvedScene& scene, const EmissionTable& emission,
-                                      double pixel_offset_x, double pixel_offset_y,
-                                      const TessellationLimits& limits) {
-  return impl_->draw(scene, emission, pixel_offset_x, pixel_offset_y, limits);
+RasterFrameStats RasterRenderer::prepare(const ResolvedScene& scene, const EmissionTable& emission,
+                                         const TessellationLimits& limits) {
+  return impl_->prepare(scene, emission, limits);
+}
+
+void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
+                          const std::vector<float>* shading_offsets) {
+  impl_->pass(pixel_offset_x, pixel_offset_y, shading_offsets);
 }
 
 namespace {
@@ -311,7 +361,8 @@ class Framebuffer {
 
 }  // namespace
 
-Image render_raster(const Scene& scene, RasterStats* stats) {
+Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
+                    std::uint64_t seed) {
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;
   const ResolvedScene resolved = resolve_scene(scene);
@@ -319,31 +370,45 @@ Image render_raster(const Scene& scene, RasterStats* stats) {
   RasterRenderer renderer;
   const int width = scene.camera.width, height = scene.camera.height;
   const Framebuffer framebuffer(width, height);
-  // camera.samples passes on a k x k grid of offsets within the pixel (k^2 >= samples).
-  const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(scene.camera.samples))));
+  // camera.samples passes: each covers the pixels at one point of a multi-jittered pattern and
+  // shades every pixel at the ray tracer's own sample for it (one sample: the centres).
+  const int n = std::max(1, scene.camera.samples);
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<double> sum(3 * pixels, 0.0);
-  std::vector<float> pass(4 * pixels);
-  std::size_t triangles = 0;
+  std::vector<float> pass(4 * pixels), offsets(n > 1 ? 2 * pixels : 0);
+  const std::size_t triangles = renderer.prepare(resolved, emission, limits).triangles;
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i) {
-      triangles += renderer.draw(resolved, emission, (i + 0.5) / k, (j + 0.5) / k).triangles;
-      glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, pass.data());
-      check_gl("reading the image back");
-      // GL's rows run from the bottom up.
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (int k = 0; k < n; ++k) {
+    if (n == 1) {
+      renderer.pass(0.5, 0.5);
+    } else {
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-          const float* p = &pass[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
-          double* q = &sum[3 * (static_cast<std::size_t>(y) * width + x)];
-          q[0] += p[0], q[1] += p[1], q[2] += p[2];
+          const PixelSample p = pixel_sample(x, y, k, n, seed);
+          float* o = &offsets[2 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
+          o[0] = static_cast<float>(p.x);
+          o[1] = static_cast<float>(p.y);
         }
+      const std::array<double, 2> cover =
+          multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);
+      renderer.pass(cover[0], cover[1], &offsets);
     }
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, pass.data());
+    check_gl("reading the image back");
+    // GL's rows run from the bottom up.
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const float* p = &pass[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
+        double* q = &sum[3 * (static_cast<std::size_t>(y) * width + x)];
+        q[0] += p[0], q[1] += p[1], q[2] += p[2];
+      }
+  }
   Image image;
   image.width = width;
   image.height = height;
   image.rgb.resize(3 * pixels);
-  for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / (k * k));
+  for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / n);
   const double ev = scene.render.auto_exposure ? auto_exposure(image) : scene.render.exposure;
   const auto scale = static_cast<float>(std::exp2(ev));
   for (float& v : image.rgb) v *= scale;

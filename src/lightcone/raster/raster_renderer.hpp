@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,7 +22,7 @@ namespace lightcone {
 std::vector<std::string> raster_differences(const Scene& scene);
 
 struct RasterFrameStats {
-  std::size_t triangles = 0;  // after tessellation, all samples' passes together
+  std::size_t triangles = 0;  // after tessellation
 };
 
 // The GL programs and buffers of the renderer; needs a current OpenGL 3.3 core context.
@@ -32,12 +33,17 @@ class RasterRenderer {
   RasterRenderer(const RasterRenderer&) = delete;
   RasterRenderer& operator=(const RasterRenderer&) = delete;
 
-  // Draws one pass of the scene into the bound framebuffer (linear radiance, before exposure),
-  // its samples at `pixel_offset` within each pixel ((0.5, 0.5): the centres). The viewport
-  // must be the camera's image size.
-  RasterFrameStats draw(const ResolvedScene& scene, const EmissionTable& emission,
-                        double pixel_offset_x = 0.5, double pixel_offset_y = 0.5,
-                        const TessellationLimits& limits = {});
+  // Tessellates the scene's bodies and tabulates their colours for one frame. The scene and the
+  // emission table must outlive the passes drawn from it.
+  RasterFrameStats prepare(const ResolvedScene& scene, const EmissionTable& emission,
+                           const TessellationLimits& limits = {});
+  // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
+  // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The
+  // viewport must be the camera's image size.
+  // `shading_offsets` (two floats a pixel, rows from the bottom) moves each pixel's shading to
+  // its own point in the pixel.
+  void pass(double pixel_offset_x = 0.5, double pixel_offset_y = 0.5,
+            const std::vector<float>* shading_offsets = nullptr);
 
  private:
   struct Impl;
@@ -51,8 +57,12 @@ struct RasterStats {
   std::string gl;  // the OpenGL version and renderer used
 };
 
-// The whole image, headless (EGL): camera.samples passes at stratified offsets, averaged, and
-// the scene's exposure applied, as render_image does. Throws GlUnavailable without OpenGL 3.3.
-Image render_raster(const Scene& scene, RasterStats* stats = nullptr);
+// The whole image, headless (EGL): camera.samples passes, averaged, and the scene's exposure
+// applied, as render_image does. Pass k covers the pixels at point k of a multi-jittered
+// pattern and shades each pixel at the ray tracer's sample k for it (pixel_sample with `seed`),
+// so that away from outlines both renderers average the same directions. Throws GlUnavailable
+// without OpenGL 3.3.
+Image render_raster(const Scene& scene, RasterStats* stats = nullptr,
+                    const TessellationLimits& limits = {}, std::uint64_t seed = 0);
 
 }  // namespace lightcone

@@ -1,5 +1,6 @@
 #include "lightcone/raster/tessellation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lightcone {
@@ -92,12 +93,25 @@ double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const
   const ApparentPoint pa = apparent_point(scene, view, a), pb = apparent_point(scene, view, b);
   const ApparentPoint pm = apparent_point(scene, view, mesh.midpoint(a, b));
   const CameraBasis& camera = scene.camera;
-  const auto well_in_front = [&](const ApparentPoint& p) {
-    return dot(p.position, camera.forward) > 1e-6 * length(p.position);
+  // An edge seen wholly beyond one side of the view (its ends and midpoint) needs no accuracy.
+  const double ax = camera.tan_half_fov * camera.aspect, ay = camera.tan_half_fov;
+  const Vec3 sides[5] = {camera.forward * ax + camera.right, camera.forward * ax - camera.right,
+                         camera.forward * ay + camera.up, camera.forward * ay - camera.up,
+                         camera.forward};
+  for (const Vec3& inward : sides)
+    if (dot(pa.position, inward) < 0 && dot(pb.position, inward) < 0 &&
+        dot(pm.position, inward) < 0)
+      return 0;
+  // The rasteriser interpolates linearly in clip space, which is linear in the apparent
+  // positions: the edge's midpoint attributes land where the apparent chord's midpoint projects.
+  const Vec3 chord_middle = (pa.position + pb.position) * 0.5;
+  const auto well_in_front = [&](const Vec3& p) {
+    return dot(p, camera.forward) > 1e-6 * length(p);
   };
-  if (well_in_front(pa) && well_in_front(pb) && well_in_front(pm))
-    return std::hypot(pm.image.x - 0.5 * (pa.image.x + pb.image.x),
-                      pm.image.y - 0.5 * (pa.image.y + pb.image.y));
+  if (well_in_front(chord_middle) && well_in_front(pm.position)) {
+    const ImagePoint drawn = project_direction(camera, chord_middle);
+    return std::hypot(pm.image.x - drawn.x, pm.image.y - drawn.y);
+  }
   // An end at or behind the camera: the rasteriser draws the great circle through the ends'
   // directions (it clips in homogeneous coordinates), so measure the midpoint's angle from
   // it, in pixels at the image centre.
@@ -122,10 +136,12 @@ struct Tessellator {
            edge_error_pixels(scene, view, mesh, a, b) > limits.max_error_pixels;
   }
 
+  std::array<float, 4> plane{};  // of the untessellated triangle being split
+
   void emit(const Vec3& a, const Vec3& b, const Vec3& c) const {
     for (const Vec3* p : {&a, &b, &c})
-      out.insert(out.end(),
-                 {static_cast<float>(p->x), static_cast<float>(p->y), static_cast<float>(p->z)});
+      out.insert(out.end(), {static_cast<float>(p->x), static_cast<float>(p->y),
+                             static_cast<float>(p->z), plane[0], plane[1], plane[2], plane[3]});
   }
 
   // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.
@@ -168,9 +184,16 @@ struct Tessellator {
 
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out) {
-  const Tessellator t{scene, view, mesh, limits, out};
-  for (const auto& [i, j, k] : mesh.triangles)
-    t.triangle(mesh.positions[i], mesh.positions[j], mesh.positions[k], 0, 0, 0);
+  Tessellator t{scene, view, mesh, limits, out};
+  for (const auto& [i, j, k] : mesh.triangles) {
+    const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
+    const Vec3 n = cross(b - a, c - a);
+    const double l = length(n);
+    const Vec3 unit = l > 0 ? n * (1 / l) : Vec3{0, 1, 0};
+    t.plane = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
+               static_cast<float>(dot(unit, a))};
+    t.triangle(a, b, c, 0, 0, 0);
+  }
 }
 
 }  // namespace lightcone

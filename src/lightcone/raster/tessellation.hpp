@@ -1,12 +1,11 @@
 // Adaptive tessellation for the real-time renderer: a straight edge of a moving body is seen as
 // a curve (each of its points is seen at its own retarded event), while the rasteriser draws
 // the chord between its ends. Edges are split until their apparent midpoint lies within half a
-// pixel of the chord (docs/design/raster.md).
+// pixel of where the rasteriser draws it (docs/design/raster.md).
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
@@ -47,8 +46,10 @@ struct ApparentPoint {
 ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                              const Vec3& shape_point);
 
-// How far, in pixels, the apparent midpoint of the edge (a, b) lies from the chord the
-// rasteriser draws between the apparent ends; the same from both ends.
+// How far, in pixels, the apparent midpoint of the edge (a, b) lies from where the rasteriser
+// draws it: the projection of the midpoint of the chord between the apparent ends (clip space is
+// linear in the apparent positions, so that is where the midpoint's attributes land, not at the
+// midpoint of the projected ends); the same from both ends.
 double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                          const Vec3& a, const Vec3& b);
 
@@ -57,8 +58,9 @@ struct TessellationLimits {
   int max_level = 10;  // an edge is split into at most 2^max_level pieces
 };
 
-// Appends the tessellated triangles (three shape points each, as floats) to `out`. Each edge's
-// split depends only on its own ends and level, so neighbouring triangles agree (no cracks).
+// Appends the tessellated triangles to `out`: per vertex its shape point and the plane of the
+// untessellated triangle it lies in (unit normal, offset), seven floats. Each edge's split
+// depends only on its own ends and level, so neighbouring triangles agree (no cracks).
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out);
 

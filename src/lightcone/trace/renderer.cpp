@@ -11,7 +11,7 @@
 
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/tone_map.hpp"
-#include "lightcone/trace/sampler.hpp"
+#include "lightcone/frame/sampler.hpp"
 
 namespace lightcone {
 namespace {

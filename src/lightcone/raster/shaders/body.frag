@@ -1,12 +1,23 @@
-// A body's fragment: the colour its rest-frame pattern has at the shape point, received with
-// the Doppler factor of the exact look direction through the sample.
-in vec3 shape_point;
+// A body's fragment: the sample's own ray, carried into the body's shape coordinates (where the
+// body is static), meets the face the fragment belongs to (or the sphere) exactly, as the ray
+// tracer's does; that surface point's rest-frame pattern colour is received with the Doppler
+// factor of the exact look direction, and its light travel distance is the fragment's depth.
+flat in vec4 plane;
 
+// The body's map from a ray of look direction u to shape coordinates (frame/resolved_scene.hpp):
+// shape_origin + s (ray_offset + shape_spatial u).
+uniform vec3 shape_origin;
+uniform vec3 ray_offset;
+uniform mat3 shape_spatial;
+uniform vec2 depth_range;
 uniform vec3 doppler_velocity;  // the body's velocity in F (0 for the classical picture)
 uniform float doppler_gamma;
-uniform int colour_row;      // the row of the pattern's first colour
-uniform int pattern;         // 0: one colour; 1: checker
+uniform int colour_row;  // the row of the pattern's first colour
+uniform int pattern;     // 0: one colour; 1: checker
 uniform float checker_size;
+uniform int shape_kind;  // 0: mesh; 1: box; 2: plane; 3: sphere
+uniform vec3 box_size;
+uniform float sphere_radius;
 
 layout(location = 0) out vec4 colour;
 
@@ -16,9 +27,41 @@ int checker_index(vec3 p, float size) {
   return int(mod(cell.x + cell.y + cell.z, 2.0));
 }
 
+// The ray parameter where the sample's ray meets the surface: trace/tracer.cpp's sphere and
+// plane intersections (the nearer root; where the tessellated outline covers a sample just
+// past the true one, the ray's closest approach).
+float surface_parameter(vec3 origin, vec3 direction) {
+  if (shape_kind == 3) {
+    float a = dot(direction, direction), b = dot(origin, direction);
+    float c = dot(origin, origin) - sphere_radius * sphere_radius;
+    float root = sqrt(max(b * b - a * c, 0.0));
+    return b < 0.0 ? c / (root - b) : -(b + root) / a;
+  }
+  return (plane.w - dot(plane.xyz, origin)) / dot(plane.xyz, direction);
+}
+
+// trace/tracer.cpp: a hit on a box lies exactly on the face where it is relatively farthest
+// out, a hit on a plane exactly at y = 0.
+vec3 surface_point(vec3 p) {
+  if (shape_kind == 1) {
+    vec3 rel = abs(p / box_size);
+    if (rel.x >= rel.y && rel.x >= rel.z) p.x = sign(p.x) * 0.5 * box_size.x;
+    else if (rel.y >= rel.z) p.y = sign(p.y) * 0.5 * box_size.y;
+    else p.z = sign(p.z) * 0.5 * box_size.z;
+  } else if (shape_kind == 2) {
+    p.y = 0.0;
+  }
+  return p;
+}
+
 void main() {
   vec3 u = fragment_look_direction();
+  vec3 direction = ray_offset + shape_spatial * u;
+  float s = max(surface_parameter(shape_origin, direction), 0.0);
+  vec3 p = surface_point(shape_origin + direction * s);
+  gl_FragDepth = clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x),
+                       0.0, 1.0);
   float d = doppler_factor(u, doppler_velocity, doppler_gamma);
-  int row = colour_row + (pattern == 1 ? checker_index(shape_point, checker_size) : 0);
+  int row = colour_row + (pattern == 1 ? checker_index(p, checker_size) : 0);
   colour = vec4(received_colour(row, d), 1.0);
 }

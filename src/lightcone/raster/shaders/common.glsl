@@ -44,9 +44,18 @@ vec3 look_direction(vec2 p) {
 }
 
 #ifdef LIGHTCONE_FRAGMENT_STAGE
-// The fragment's look direction through its sample position.
+// Where in its pixel a fragment is shaded: the pass's offset, or (for many samples a pixel)
+// the ray tracer's own sample position for this pixel and pass (frame/sampler.cpp's
+// pixel_sample, tabulated on the CPU), so that both renderers shade the same directions.
+uniform int shade_at_sample_offsets;
+uniform sampler2D sample_offsets;  // rows from the bottom, as the framebuffer's
+
+// The fragment's look direction through its shading position.
 vec3 fragment_look_direction() {
-  vec2 p = vec2(gl_FragCoord.x, image_size.y - gl_FragCoord.y) - vec2(0.5) + pixel_offset;
+  vec2 offset = shade_at_sample_offsets == 1
+                    ? texelFetch(sample_offsets, ivec2(gl_FragCoord.xy), 0).rg
+                    : pixel_offset;
+  vec2 p = vec2(floor(gl_FragCoord.x), image_size.y - 1.0 - floor(gl_FragCoord.y)) + offset;
   return look_direction(p);
 }
 #endif

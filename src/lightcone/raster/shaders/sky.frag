@@ -21,9 +21,10 @@ float distance_to_grid(float angle, float spacing) {
   return min(r, spacing - r);
 }
 
-// frame/shading.cpp, on_grid_line.
+// frame/shading.cpp, on_grid_line (the latitude as atan rather than asin, the same angle but
+// well conditioned near the poles in single precision).
 bool on_grid_line(vec3 d) {
-  float latitude = kDegrees * asin(clamp(d.y, -1.0, 1.0));
+  float latitude = kDegrees * atan(d.y, length(d.xz));
   float longitude = kDegrees * atan(d.x, -d.z);
   float along_parallel =
       distance_to_grid(longitude, grid_spacing) * cos(latitude / kDegrees);

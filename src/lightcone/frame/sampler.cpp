@@ -1,4 +1,4 @@
-#include "lightcone/trace/sampler.hpp"
+#include "lightcone/frame/sampler.hpp"
 
 #include <algorithm>
 #include <bit>

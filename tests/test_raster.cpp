@@ -1,0 +1,295 @@
+// The real-time renderer against the ray tracer and against the C++ kernels: its GLSL
+// functions on random inputs, its pictures of the bundled scenes, the tessellation of a pole
+// bent by aberration, the principle of relativity, and its shaders as GLSL ES 3.00.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/io/image_file.hpp"
+#include "lightcone/physics/doppler.hpp"
+#include "lightcone/physics/retarded_time.hpp"
+#include "lightcone/raster/gl.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/shader_sources.hpp"
+#include "lightcone/scene/reframe.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------------
+// The GLSL functions against the C++ kernels, through transform feedback.
+
+// Runs `expression` (GLSL, of the vertex inputs a, b, c, giving a vec4) once per input triple
+// and returns the results.
+std::vector<std::array<float, 4>> evaluate_glsl(const std::string& expression,
+                                                const std::vector<std::array<float, 9>>& inputs) {
+  const std::string vertex = std::string("#version 330 core\n") + shader_sources::common_glsl +
+                             "layout(location = 0) in vec3 a;\n"
+                             "layout(location = 1) in vec3 b;\n"
+                             "layout(location = 2) in vec3 c;\n"
+                             "out vec4 result;\n"
+                             "void main() { result = " +
+                             expression + "; gl_Position = vec4(0.0); }\n";
+  const std::string fragment =
+      "#version 330 core\nout vec4 colour;\nvoid main() { colour = vec4(0.0); }\n";
+  const auto compile = [](GLenum stage, const std::string& source) {
+    const GLuint s = glCreateShader(stage);
+    const char* text = source.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    char log[4096] = "";
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    EXPECT_TRUE(ok) << log;
+    return s;
+  };
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, compile(GL_VERTEX_SHADER, vertex));
+  glAttachShader(program, compile(GL_FRAGMENT_SHADER, fragment));
+  const char* varyings[] = {"result"};
+  glTransformFeedbackVaryings(program, 1, varyings, GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(program);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  EXPECT_TRUE(linked);
+  glUseProgram(program);
+  // A surfaceless context has no default framebuffer: draw into a 1x1 one.
+  GLuint framebuffer = 0, colour = 0;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glGenRenderbuffers(1, &colour);
+  glBindRenderbuffer(GL_RENDERBUFFER, colour);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  GLuint array = 0, buffers[2] = {0, 0};
+  glGenVertexArrays(1, &array);
+  glBindVertexArray(array);
+  glGenBuffers(2, buffers);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(inputs.size() * sizeof(inputs[0])),
+               inputs.data(), GL_STATIC_DRAW);
+  for (GLuint k = 0; k < 3; ++k) {
+    glEnableVertexAttribArray(k);
+    glVertexAttribPointer(k, 3, GL_FLOAT, GL_FALSE, sizeof(inputs[0]),
+                          reinterpret_cast<const void*>(k * 3 * sizeof(float)));
+  }
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[1]);
+  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER,
+               static_cast<GLsizeiptr>(inputs.size() * 4 * sizeof(float)), nullptr, GL_STATIC_READ);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[1]);
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(inputs.size()));
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+  std::vector<std::array<float, 4>> out(inputs.size());
+  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                     static_cast<GLsizeiptr>(out.size() * sizeof(out[0])), out.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glDeleteBuffers(2, buffers);
+  glDeleteVertexArrays(1, &array);
+  glDeleteProgram(program);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteRenderbuffers(1, &colour);
+  glDeleteFramebuffers(1, &framebuffer);
+  return out;
+}
+
+class GlslKernels : public testing::Test {
+ protected:
+  HeadlessGlContext context_;
+  std::mt19937 rng_{5};
+  std::uniform_real_distribution<double> u_{-1, 1};
+
+  Vec3 random_vector(double scale) { return Vec3{u_(rng_), u_(rng_), u_(rng_)} * scale; }
+  Vec3 random_velocity() {
+    Vec3 v;
+    do v = random_vector(1);
+    while (length(v) >= 1 || length(v) < 1e-3);
+    return v * (0.99 * std::abs(u_(rng_)) / length(v) + 1e-3);
+  }
+  static std::array<float, 9> pack(const Vec3& a, const Vec3& b, const Vec3& c) {
+    return {float(a.x), float(a.y), float(a.z), float(b.x), float(b.y),
+            float(b.z), float(c.x), float(c.y), float(c.z)};
+  }
+  // The inputs as the GPU holds them: the double kernels are given the same float values.
+  static Vec3 as_float(const Vec3& v) { return {float(v.x), float(v.y), float(v.z)}; }
+};
+
+TEST_F(GlslKernels, RetardedEventMatchesMeetWorldLineToOnePartIn1e5) {
+  std::vector<std::array<float, 9>> inputs;
+  std::vector<TraceWorldLine> lines;
+  std::vector<double> ray_times;
+  for (int i = 0; i < 2000; ++i) {
+    const TraceWorldLine line{as_float(random_vector(std::pow(10.0, 3 * u_(rng_)))),
+                              as_float(random_velocity())};
+    const double ray_time = i % 10 == 0 ? 0.0 : -1.0;
+    lines.push_back(line);
+    ray_times.push_back(ray_time);
+    inputs.push_back(pack(line.position_at_zero, line.velocity,
+                          {1 - dot(line.velocity, line.velocity), ray_time, 0}));
+  }
+  const auto out = evaluate_glsl("meet_world_line(c.y, a, b, c.x)", inputs);
+  double worst = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const RayEvent want = meet_world_line(ray_times[i], lines[i]);
+    const double scale = want.s;
+    const double error =
+        std::max({std::abs(out[i][3] - want.s), std::abs(out[i][0] - want.position.x),
+                  std::abs(out[i][1] - want.position.y), std::abs(out[i][2] - want.position.z)}) /
+        scale;
+    worst = std::max(worst, error);
+  }
+  EXPECT_LE(worst, 1e-5);
+  // The kernel the shader mirrors is the closed form itself.
+  const auto delays = evaluate_glsl("vec4(retarded_delay(a, b, c.x))", inputs);
+  for (std::size_t i = 0; i < delays.size(); ++i) {
+    const double want = retarded_delay(lines[i].position_at_zero, lines[i].velocity);
+    EXPECT_NEAR(delays[i][0], want, 1e-5 * want) << i;
+  }
+}
+
+TEST_F(GlslKernels, DopplerFactorMatchesTheFourVectorFormWithinItsConditionNumber) {
+  // D = 1 / (gamma (1 + beta.u)): in single precision 1 + beta.u loses digits when the body
+  // comes straight at the camera, so the bound grows with |beta.u| / (1 + beta.u).
+  std::vector<std::array<float, 9>> inputs;
+  std::vector<std::pair<Vec3, Vec3>> cases;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 look = as_float(normalize(random_vector(1)));
+    const Vec3 beta = as_float(random_velocity());
+    cases.push_back({look, beta});
+    inputs.push_back(pack(look, beta, {lorentz_gamma(beta), 0, 0}));
+  }
+  const auto out = evaluate_glsl("vec4(doppler_factor(a, b, c.x))", inputs);
+  int beyond_1e5 = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const auto& [look, beta] = cases[i];
+    const double want = doppler_factor(look * -1.0, beta, {});
+    const double condition = std::abs(dot(beta, look)) / (1 + dot(beta, look));
+    EXPECT_NEAR(out[i][0], want, 2e-6 * (1 + condition) * want) << i;
+    beyond_1e5 += std::abs(out[i][0] - want) > 1e-5 * want;
+  }
+  EXPECT_LE(beyond_1e5, 20);  // only bodies coming almost straight at the camera
+}
+
+// ---------------------------------------------------------------------------------------------
+// Agreement with the ray tracer, through `lightcone render` with and without --renderer raster.
+
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+// The 8-bit value a PNG holds for a pixel read back as linear.
+int level(float linear) {
+  return static_cast<int>(std::lround(255 * srgb_encode(linear)));
+}
+
+struct Agreement {
+  double within = 0;         // fraction of the compared pixels within 4/255 in every channel
+  std::size_t compared = 0;  // pixels off the silhouette band
+  std::string raster_err;    // what the raster render said on stderr
+};
+
+// Renders a bundled scene both ways at 640x360 with `samples` samples (the ray tracer's
+// object ids mark the silhouettes) and compares the PNGs off a one-pixel band along them.
+Agreement agreement(const std::string& scene, int samples, const std::string& extra = "") {
+  const fs::path dir = test::fresh_temp_dir("agreement");
+  const std::string source = quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes" / scene);
+  const std::string common =
+      " --width 640 --height 360 --samples " + std::to_string(samples) + " --quiet " + extra;
+  const auto traced =
+      test::run_lightcone("render " + source + common + " -o " + quoted(dir / "trace.png") +
+                          " --exr " + quoted(dir / "trace.exr") + " --aov object");
+  EXPECT_EQ(traced.status, 0) << traced.err;
+  const auto rastered = test::run_lightcone("render " + source + common + " --renderer raster -o " +
+                                            quoted(dir / "raster.png"));
+  EXPECT_EQ(rastered.status, 0) << rastered.err;
+  Agreement result;
+  result.raster_err = rastered.err;
+  if (traced.status != 0 || rastered.status != 0) return result;
+  const auto a = load_image_file(dir / "trace.png"), b = load_image_file(dir / "raster.png");
+  const auto exr = load_image_file(dir / "trace.exr");
+  const std::vector<float>* object = nullptr;
+  for (const NamedChannel& c : exr->channels)
+    if (c.name == "object") object = &c.values;
+  EXPECT_NE(object, nullptr);
+  if (object == nullptr || a->width != b->width || a->height != b->height) return result;
+  const int w = a->width, h = a->height;
+  std::size_t within = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float id = (*object)[static_cast<std::size_t>(y) * w + x];
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
+          edge = edge || (*object)[static_cast<std::size_t>(ny) * w + nx] != id;
+        }
+      if (edge) continue;
+      ++result.compared;
+      const Rgb p = a->texel(x, y), q = b->texel(x, y);
+      within += std::abs(level(p.r) - level(q.r)) <= 4 && std::abs(level(p.g) - level(q.g)) <= 4 &&
+                std::abs(level(p.b) - level(q.b)) <= 4;
+    }
+  result.within = static_cast<double>(within) / std::max<std::size_t>(result.compared, 1);
+  fs::remove_all(dir);
+  return result;
+}
+
+TEST(RasterAgreement, BundledScenesMatchTheRayTracerOffTheSilhouettes) {
+  for (const char* scene : {"terrell.json", "cubes.json", "sky.json", "street.json"}) {
+    const Agreement a = agreement(scene, 16);
+    EXPECT_GE(a.within, 0.99) << scene << ": " << a.compared << " pixels compared";
+    EXPECT_GT(a.compared, 640u * 360u / 2) << scene;
+    EXPECT_EQ(a.raster_err, "") << scene;  // nothing this renderer shows differently
+    std::printf("%s: %.4f of %zu pixels within 4/255\n", scene, a.within, a.compared);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The shaders as GLSL ES 3.00 (WebGL 2): the same sources with only the version and precision
+// lines changed, through the reference compiler.
+
+TEST(RasterShaders, CompileAsGlslEs300) {
+  const fs::path dir = test::fresh_temp_dir("glsl-es");
+  struct Stage {
+    const char* name;
+    const char* source;
+    bool fragment;
+  };
+  const Stage stages[] = {{"body.vert", shader_sources::body_vert, false},
+                          {"body.frag", shader_sources::body_frag, true},
+                          {"sky.vert", shader_sources::sky_vert, false},
+                          {"sky.frag", shader_sources::sky_frag, true}};
+  for (const Stage& stage : stages) {
+    const fs::path file = dir / stage.name;
+    test::write_text(file, std::string("#version 300 es\nprecision highp float;\nprecision highp "
+                                       "int;\nprecision highp sampler2D;\n") +
+                               (stage.fragment ? "#define LIGHTCONE_FRAGMENT_STAGE 1\n" : "") +
+                               shader_sources::common_glsl + stage.source);
+    const std::string command =
+        "glslangValidator '" + file.string() + "' > '" + (dir / "log").string() + "' 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream log(dir / "log");
+    const std::string text((std::istreambuf_iterator<char>(log)), {});
+    EXPECT_EQ(status, 0) << stage.name << ": " << text;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lightcone
