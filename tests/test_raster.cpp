@@ -261,6 +261,110 @@ TEST(RasterAgreement, BundledScenesMatchTheRayTracerOffTheSilhouettes) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Tessellation: a straight pole beside a camera moving sideways is seen bent.
+
+Scene pole_scene() {
+  Scene s;
+  s.camera.width = 1280;
+  s.camera.height = 720;
+  s.camera.samples = 4;
+  s.camera.fov_degrees = 90;
+  s.camera.world_line.velocity = {0.9, 0, 0};
+  s.render.doppler = DopplerModel::kOff;
+  s.render.searchlight = SearchlightModel::kOff;
+  Material red;
+  red.pattern = SolidColor{{1, 0, 0}};
+  // 10 units tall and 0.1 thick, 3 to the side of the camera's path and 2 ahead.
+  s.objects.push_back(test::make_object("pole", Box{{0.1, 10, 0.1}}, {-1.5, 0, -2}, {}, red));
+  s.sky.pattern = SolidColor{{0, 0, 0}};
+  return s;
+}
+
+// The pole's centre in each image row (its coverage-weighted column), where it covers at
+// least half a pixel of the row.
+std::vector<std::pair<int, double>> pole_centres(const Image& image) {
+  std::vector<std::pair<int, double>> centres;
+  for (int y = 0; y < image.height; ++y) {
+    double cover = 0, moment = 0;
+    for (int x = 0; x < image.width; ++x) {
+      const double r = std::clamp(image.texel(x, y).r, 0.0f, 1.0f);
+      cover += r;
+      moment += r * (x + 0.5);
+    }
+    if (cover >= 0.5) centres.push_back({y, moment / cover});
+  }
+  return centres;
+}
+
+// The largest difference in the pole's centre over the rows both images show it in.
+double worst_offset(const Image& a, const Image& b) {
+  const auto ca = pole_centres(a), cb = pole_centres(b);
+  double worst = 0;
+  std::size_t j = 0;
+  for (const auto& [y, x] : ca) {
+    while (j < cb.size() && cb[j].first < y) ++j;
+    if (j < cb.size() && cb[j].first == y) worst = std::max(worst, std::abs(x - cb[j].second));
+  }
+  return worst;
+}
+
+TEST(RasterTessellation, ABentPoleStaysWithinAPixelOfTheRayTracersOutline) {
+  const Scene scene = pole_scene();
+  const Image traced = render_image(scene, RenderOptions{});
+  const auto centres = pole_centres(traced);
+  ASSERT_GT(centres.size(), 300u);
+  // It is bent: the middle row's centre lies far off the line between the ends.
+  const auto& [y0, x0] = centres.front();
+  const auto& [y1, x1] = centres.back();
+  double bend = 0;
+  for (const auto& [y, x] : centres)
+    bend = std::max(bend, std::abs(x - (x0 + (x1 - x0) * (y - y0) / double(y1 - y0))));
+  EXPECT_GT(bend, 100);
+  std::printf("the pole bends by %.0f px; tracer rows %zu\n", bend, centres.size());
+
+  RasterStats stats;
+  const Image adaptive = render_raster(scene, &stats);
+  EXPECT_EQ(pole_centres(adaptive).size(), centres.size());
+  EXPECT_LE(worst_offset(traced, adaptive), 1.0);
+  // Without adaptive tessellation (the box's faces split only as they are at load), it fails.
+  TessellationLimits none;
+  none.max_level = 0;
+  const Image fixed = render_raster(scene, nullptr, none);
+  EXPECT_GT(worst_offset(traced, fixed), 1.0);
+  std::printf("worst offset: adaptive %.3f px (%zu triangles), without %.3f px\n",
+              worst_offset(traced, adaptive), stats.triangles, worst_offset(traced, fixed));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The principle of relativity: one scene described in two frames, one picture.
+
+TEST(RasterRelativity, TheSameSceneFromAnotherFrameRendersTheSameImage) {
+  Scene scene;
+  scene.camera.width = 160;
+  scene.camera.height = 100;
+  scene.camera.fov_degrees = 70;
+  scene.camera.world_line.position = {0, 0.5, 6};
+  scene.camera.world_line.velocity = {0.2, -0.1, -0.5};
+  Material checker;
+  checker.pattern = Checker{0.3, {{1, 0.2, 0.1}, {0.1, 0.2, 1}}};
+  Material solid;
+  solid.pattern = SolidColor{{0.9, 0.9, 0.2}};
+  scene.objects.push_back(
+      test::make_object("sphere", Sphere{1.0}, {-1.5, 0.5, -2}, {0.7, 0, 0}, checker));
+  scene.objects.push_back(
+      test::make_object("box", Box{{1, 1.5, 0.8}}, {1.8, 0.3, -1}, {0, 0.35, 0.28}, solid));
+  scene.objects.push_back(test::make_object("ground", Plane{20, 20}, {0, -1, -3}, {}, checker));
+  scene.sky.pattern = SkyGrid{};
+  scene.sky.velocity = {0.3, 0.1, 0.0};
+  for (const Vec3 frame : {Vec3{0.4, -0.3, 0.5}, Vec3{-0.8, 0.1, 0.2}}) {
+    const Scene other = describe_in_frame(scene, frame);
+    ASSERT_GT(length(other.camera.world_line.velocity - scene.camera.world_line.velocity), 0.1);
+    const Image a = render_raster(scene), b = render_raster(other);
+    EXPECT_LT(test::fraction_differing(a, b), 0.003) << frame.x;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // The shaders as GLSL ES 3.00 (WebGL 2): the same sources with only the version and precision
 // lines changed, through the reference compiler.
 
