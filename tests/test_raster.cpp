@@ -377,7 +377,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
   };
   const Stage stages[] = {{"body.vert", shader_sources::body_vert, false},
                           {"body.frag", shader_sources::body_frag, true},
-                          {"sky.vert", shader_sources::sky_vert, false},
+                          {"fullscreen.vert", shader_sources::fullscreen_vert, false},
+                          {"display.frag", shader_sources::display_frag, true},
                           {"sky.frag", shader_sources::sky_frag, true}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;

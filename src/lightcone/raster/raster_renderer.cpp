@@ -11,6 +11,7 @@
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/shader_sources.hpp"
@@ -91,7 +92,7 @@ struct RasterRenderer::Impl {
   Impl() {
     body_program = link_program(vertex_shader(shader_sources::body_vert),
                                 fragment_shader(shader_sources::body_frag));
-    sky_program = link_program(vertex_shader(shader_sources::sky_vert),
+    sky_program = link_program(vertex_shader(shader_sources::fullscreen_vert),
                                fragment_shader(shader_sources::sky_frag));
     glGenVertexArrays(1, &vertex_array);
     glGenBuffers(1, &vertex_buffer);
@@ -326,41 +327,6 @@ void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
   impl_->pass(pixel_offset_x, pixel_offset_y, shading_offsets);
 }
 
-namespace {
-
-// A float colour target with a depth buffer, bound while it lives.
-class Framebuffer {
- public:
-  Framebuffer(int width, int height) {
-    glGenFramebuffers(1, &framebuffer_);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-    glGenRenderbuffers(2, renderbuffers_);
-    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffers_[0]);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                              renderbuffers_[0]);
-    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffers_[1]);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                              renderbuffers_[1]);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw std::runtime_error("cannot create a float framebuffer");
-    glViewport(0, 0, width, height);
-  }
-  ~Framebuffer() {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteRenderbuffers(2, renderbuffers_);
-    glDeleteFramebuffers(1, &framebuffer_);
-  }
-  Framebuffer(const Framebuffer&) = delete;
-  Framebuffer& operator=(const Framebuffer&) = delete;
-
- private:
-  GLuint framebuffer_ = 0, renderbuffers_[2] = {0, 0};
-};
-
-}  // namespace
-
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
                     std::uint64_t seed) {
   const auto start = std::chrono::steady_clock::now();
@@ -369,15 +335,14 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   const EmissionTable emission(resolved);
   RasterRenderer renderer;
   const int width = scene.camera.width, height = scene.camera.height;
-  const Framebuffer framebuffer(width, height);
+  const FloatTarget target(width, height);
   // camera.samples passes: each covers the pixels at one point of a multi-jittered pattern and
   // shades every pixel at the ray tracer's own sample for it (one sample: the centres).
   const int n = std::max(1, scene.camera.samples);
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<double> sum(3 * pixels, 0.0);
-  std::vector<float> pass(4 * pixels), offsets(n > 1 ? 2 * pixels : 0);
+  std::vector<float> offsets(n > 1 ? 2 * pixels : 0);
   const std::size_t triangles = renderer.prepare(resolved, emission, limits).triangles;
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int k = 0; k < n; ++k) {
     if (n == 1) {
@@ -394,15 +359,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
           multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);
       renderer.pass(cover[0], cover[1], &offsets);
     }
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, pass.data());
-    check_gl("reading the image back");
-    // GL's rows run from the bottom up.
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const float* p = &pass[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
-        double* q = &sum[3 * (static_cast<std::size_t>(y) * width + x)];
-        q[0] += p[0], q[1] += p[1], q[2] += p[2];
-      }
+    target.add_to(sum);
   }
   Image image;
   image.width = width;

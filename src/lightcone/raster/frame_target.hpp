@@ -1,0 +1,51 @@
+// Where the raster renderer draws: a float colour texture with a depth buffer, and the display
+// pass that shows such a texture, exposed and tone-mapped, in the viewer's window.
+#pragma once
+
+#include <vector>
+
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+// Needs a current OpenGL 3.3 context.
+class FloatTarget {
+ public:
+  FloatTarget(int width, int height);
+  ~FloatTarget();
+  FloatTarget(const FloatTarget&) = delete;
+  FloatTarget& operator=(const FloatTarget&) = delete;
+
+  // Binds the target for drawing and sets the viewport to it.
+  void bind() const;
+  unsigned texture() const { return colour_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The linear RGB of the bound target, rows from the top.
+  Image read() const;
+  // The same, added to `sum` (3 values a pixel, rows from the top).
+  void add_to(std::vector<double>& sum) const;
+
+ private:
+  int width_, height_;
+  unsigned framebuffer_ = 0, colour_ = 0, depth_ = 0;
+  mutable std::vector<float> pixels_;
+};
+
+// Draws float textures into the bound framebuffer: radiance times 2^exposure, tone-mapped and
+// sRGB-encoded as a PNG of `lightcone render` is; with a classical texture too, its left half
+// shows that one.
+class DisplayPass {
+ public:
+  DisplayPass();
+  ~DisplayPass();
+  DisplayPass(const DisplayPass&) = delete;
+  DisplayPass& operator=(const DisplayPass&) = delete;
+  void draw(const FloatTarget& relativistic, const FloatTarget* classical, double exposure_ev,
+            ToneMap curve) const;
+
+ private:
+  unsigned program_ = 0, vertex_array_ = 0;
+};
+
+}  // namespace lightcone
