@@ -28,6 +28,7 @@
 #include "lightcone/trace/scene_info.hpp"
 #include "progress_bar.hpp"
 #include "version.hpp"
+#include "viewer/viewer.hpp"
 
 namespace fs = std::filesystem;
 using namespace lightcone;
@@ -458,6 +459,41 @@ int run_locate(const LocateArgs& a) {
   return 0;
 }
 
+struct ViewArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::optional<int> width, height, benchmark;
+  bool split = false;
+  double time_scale = 1;
+};
+
+int run_view(const ViewArgs& a) {
+  std::vector<std::string> overrides = a.overrides;
+  if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
+  if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
+  const Scene scene = load(a.scene, overrides);
+  for (const std::string& difference : raster_differences(scene))
+    std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
+                 a.scene.c_str(), difference.c_str());
+  if (!(a.time_scale >= 0 && a.time_scale <= 1e6))
+    throw InputError("--time-scale: must be from 0 to 1e6");
+  try {
+    if (a.benchmark) {
+      if (*a.benchmark < 1)
+        throw InputError("--benchmark: the number of frames must be at least 1");
+      return run_viewer_benchmark(scene, *a.benchmark);
+    }
+    ViewerOptions options;
+    options.scene_path = a.scene;
+    options.split = a.split;
+    options.time_scale = a.time_scale;
+    return run_viewer(scene, options);
+  } catch (const GlUnavailable& e) {
+    throw InputError(fmt::format(
+        "view: {}: the viewer needs OpenGL 3.3 (core profile), e.g. Mesa's llvmpipe", e.what()));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -529,12 +565,27 @@ int main(int argc, char** argv) {
   info_cmd->add_option("--set", info_overrides, "Override a scene value: key.path=value");
   info_cmd->add_flag("--json", info_json, "One JSON object, for scripts");
 
+  ViewArgs view;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view", "Fly through a scene in a window (the real-time renderer, OpenGL 3.3)");
+  view_cmd->add_option("scene", view.scene, "Scene file (JSON)")->required();
+  view_cmd->add_option("--set", view.overrides, "Override a scene value: key.path=value");
+  view_cmd->add_option("--width", view.width, "Window width (default: camera.width)");
+  view_cmd->add_option("--height", view.height, "Window height (default: camera.height)");
+  view_cmd->add_flag("--split", view.split, "Start with the classical | relativistic split");
+  view_cmd->add_option("--time-scale", view.time_scale,
+                       "Units of the camera's proper time per second (default 1)");
+  view_cmd->add_option("--benchmark", view.benchmark,
+                       "Render this many frames of a scripted flight offscreen and print one "
+                       "JSON line (no window)");
+
   if (argc > 1 && argv[1][0] != '-') {
     const std::string command = argv[1];
-    if (command != "render" && command != "locate" && command != "check" && command != "info") {
+    if (command != "render" && command != "locate" && command != "check" && command != "info" &&
+        command != "view") {
       std::fprintf(stderr,
-                   "lightcone: unknown command '%s' (use render, locate, check or info; see "
-                   "--help)\n",
+                   "lightcone: unknown command '%s' (use render, view, locate, check or info; "
+                   "see --help)\n",
                    argv[1]);
       return kBadInput;
     }
@@ -550,6 +601,7 @@ int main(int argc, char** argv) {
     if (*render_cmd) return run_render(render);
     if (*check_cmd) return run_check(check_scene, check_overrides);
     if (*info_cmd) return run_info(info_scene, info_overrides, info_json);
+    if (*view_cmd) return run_view(view);
     return run_locate(loc);
   } catch (const InputError& e) {
     print_error(e.what());

@@ -1,0 +1,289 @@
+#include "viewer/viewer.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/tone_map.hpp"
+#include "lightcone/io/image_file.hpp"
+#include "lightcone/io/input_error.hpp"
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/raster/frame_target.hpp"
+#include "lightcone/raster/gl.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
+#include "viewer/flight.hpp"
+
+namespace lightcone {
+namespace {
+
+// One picture of the scene as the camera now sees it: resolved, tabulated, tessellated, drawn.
+struct FrameDraw {
+  std::size_t triangles = 0;
+  double doppler_min = 1, doppler_max = 1;
+};
+
+FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target) {
+  const ResolvedScene resolved = resolve_scene(scene);
+  const EmissionTable emission(resolved);
+  target.bind();
+  FrameDraw draw;
+  draw.triangles = renderer.prepare(resolved, emission).triangles;
+  renderer.pass();
+  const LogDopplerRange seen = visible_log_doppler(resolved, false);
+  draw.doppler_min = std::exp(seen.lo);
+  draw.doppler_max = std::exp(seen.hi);
+  return draw;
+}
+
+// A name for the next screenshot in the working folder that is not taken yet.
+std::filesystem::path next_screenshot() {
+  for (int i = 1;; ++i) {
+    const std::filesystem::path name = fmt::format("lightcone-view-{:04d}.png", i);
+    if (!std::filesystem::exists(name)) return name;
+  }
+}
+
+struct GlfwSession {
+  GlfwSession() {
+    if (!glfwInit()) throw InputError("view: GLFW cannot open the display");
+  }
+  ~GlfwSession() { glfwTerminate(); }
+};
+
+const char* const kDopplerModels[] = {"spectral", "rgb3", "hue", "off"};
+const DopplerModel kDopplerValues[] = {DopplerModel::kSpectral, DopplerModel::kRgb3,
+                                       DopplerModel::kHue, DopplerModel::kOff};
+const char* const kSearchlightModels[] = {"physical", "chang1996", "off"};
+const SearchlightModel kSearchlightValues[] = {
+    SearchlightModel::kPhysical, SearchlightModel::kChang1996, SearchlightModel::kOff};
+const char* const kToneMaps[] = {"clamp", "reinhard", "filmic"};
+const ToneMap kToneMapValues[] = {ToneMap::kClamp, ToneMap::kReinhard, ToneMap::kFilmic};
+
+template <class T, std::size_t N>
+int index_of(const T (&values)[N], T value) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (values[i] == value) return static_cast<int>(i);
+  return 0;
+}
+
+}  // namespace
+
+int run_viewer(Scene scene, const ViewerOptions& options) {
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0'))
+    throw InputError(
+        "view: no display to open a window on (DISPLAY is not set): run it on a desktop or under "
+        "Xvfb, or render without one: `lightcone view SCENE --benchmark FRAMES`, `lightcone "
+        "render SCENE --renderer raster -o FILE.png`");
+  const GlfwSession glfw;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(
+      scene.camera.width, scene.camera.height,
+      fmt::format("lightcone view {}", options.scene_path).c_str(), nullptr, nullptr);
+  if (window == nullptr)
+    throw InputError("view: no OpenGL 3.3 core context for a window on this display");
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+
+  // Key presses, queued for the frame loop (set before ImGui's backend, which chains to it).
+  static std::vector<int> pressed;
+  pressed.clear();
+  glfwSetKeyCallback(window, [](GLFWwindow*, int key, int, int action, int) {
+    if (action == GLFW_PRESS) pressed.push_back(key);
+  });
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  {
+    RasterRenderer renderer;
+    const DisplayPass display_pass;
+    std::unique_ptr<FloatTarget> relativistic, classical;
+    Flight flight(scene.camera);
+    bool split = options.split, hud = options.hud;
+    double time_scale = options.time_scale;
+    double exposure = scene.render.auto_exposure ? 0.0 : scene.render.exposure;
+    auto last = std::chrono::steady_clock::now();
+    double fps = 0;
+    double last_x = 0, last_y = 0;
+    bool dragging = false;
+    FrameDraw drawn;
+    while (!glfwWindowShouldClose(window)) {
+      glfwPollEvents();
+      const auto now = std::chrono::steady_clock::now();
+      const double dt = std::chrono::duration<double>(now - last).count();
+      last = now;
+      fps = fps == 0 ? 1 / std::max(dt, 1e-6) : 0.9 * fps + 0.1 / std::max(dt, 1e-6);
+
+      const ImGuiIO& io = ImGui::GetIO();
+      bool screenshot = false;
+      if (!io.WantCaptureKeyboard) {
+        for (const int key : pressed) {
+          if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, GLFW_TRUE);
+          if (key == GLFW_KEY_W) flight.change_speed(1);
+          if (key == GLFW_KEY_S) flight.change_speed(-1);
+          if (key == GLFW_KEY_SPACE) flight.set_speed(0);
+          if (key == GLFW_KEY_C) split = !split;
+          if (key == GLFW_KEY_H) hud = !hud;
+          if (key == GLFW_KEY_F12) screenshot = true;
+          if (key == GLFW_KEY_W || key == GLFW_KEY_S || key == GLFW_KEY_SPACE)
+            std::fprintf(stderr, "lightcone: speed %.4f c\n", flight.speed);
+        }
+        const double turn = 1.2 * dt;
+        if (glfwGetKey(window, GLFW_KEY_LEFT) == GLFW_PRESS) flight.turn(turn, 0);
+        if (glfwGetKey(window, GLFW_KEY_RIGHT) == GLFW_PRESS) flight.turn(-turn, 0);
+        if (glfwGetKey(window, GLFW_KEY_UP) == GLFW_PRESS) flight.turn(0, turn);
+        if (glfwGetKey(window, GLFW_KEY_DOWN) == GLFW_PRESS) flight.turn(0, -turn);
+      }
+      pressed.clear();
+      if (!io.WantCaptureMouse) {
+        double x = 0, y = 0;
+        glfwGetCursorPos(window, &x, &y);
+        const bool down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        if (down && dragging) flight.turn(-(x - last_x) * 0.004, -(y - last_y) * 0.004);
+        dragging = down;
+        last_x = x;
+        last_y = y;
+      }
+      flight.advance(dt * time_scale);
+
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window, &width, &height);
+      if (width <= 0 || height <= 0) continue;
+      if (!relativistic || relativistic->width() != width || relativistic->height() != height) {
+        relativistic = std::make_unique<FloatTarget>(width, height);
+        classical = std::make_unique<FloatTarget>(width, height);
+      }
+      Scene frame = scene;
+      frame.camera = flight.camera;
+      frame.camera.width = width;
+      frame.camera.height = height;
+      drawn = draw_scene(renderer, frame, *relativistic);
+      if (split) {
+        Scene still = frame;
+        still.render.relativity = false;
+        draw_scene(renderer, still, *classical);
+      }
+
+      // F12: the view as a PNG, as `lightcone render` would write it (no panel).
+      if (screenshot) {
+        Image linear = relativistic->read();
+        if (split) {
+          const Image left = classical->read();
+          for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width / 2; ++x)
+              for (int c = 0; c < 3; ++c) {
+                const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x) + c;
+                linear.rgb[i] = left.rgb[i];
+              }
+        }
+        const auto scale = static_cast<float>(std::exp2(exposure));
+        for (float& v : linear.rgb) v *= scale;
+        const std::filesystem::path file = next_screenshot();
+        write_images(tone_map(linear, scene.render.tonemap), linear, {{file, ImageFormat::kPng}});
+        std::fprintf(stderr, "lightcone: wrote %s\n", file.string().c_str());
+      }
+
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      glViewport(0, 0, width, height);
+      display_pass.draw(*relativistic, split ? classical.get() : nullptr, exposure,
+                        scene.render.tonemap);
+
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      if (hud) {
+        ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+        ImGui::Begin("lightcone", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+        const double gamma = lorentz_gamma(flight.camera.world_line.velocity);
+        ImGui::Text("beta %.4f   gamma %.3f", flight.speed, gamma);
+        ImGui::Text("Doppler on screen %.3g to %.3g", drawn.doppler_min, drawn.doppler_max);
+        ImGui::Text("%.1f fps, %zu triangles", fps, drawn.triangles);
+        float speed = static_cast<float>(flight.speed);
+        if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
+        ImGui::Checkbox("relativity", &scene.render.relativity);
+        ImGui::Checkbox("light delay", &scene.render.light_delay);
+        int doppler = index_of(kDopplerValues, scene.render.doppler);
+        if (ImGui::Combo("colour", &doppler, kDopplerModels, 4))
+          scene.render.doppler = kDopplerValues[doppler];
+        int searchlight = index_of(kSearchlightValues, scene.render.searchlight);
+        if (ImGui::Combo("searchlight", &searchlight, kSearchlightModels, 3))
+          scene.render.searchlight = kSearchlightValues[searchlight];
+        float ev = static_cast<float>(exposure);
+        if (ImGui::SliderFloat("exposure (EV)", &ev, -10.0f, 10.0f, "%.1f")) exposure = ev;
+        int curve = index_of(kToneMapValues, scene.render.tonemap);
+        if (ImGui::Combo("tone map", &curve, kToneMaps, 3))
+          scene.render.tonemap = kToneMapValues[curve];
+        float scale = static_cast<float>(time_scale);
+        if (ImGui::SliderFloat("time scale", &scale, 0.0f, 20.0f, "%.2f")) time_scale = scale;
+        ImGui::Checkbox("classical | relativistic (C)", &split);
+        ImGui::TextUnformatted("W/S speed, Space stop, drag or arrows look, F12 PNG, H panel");
+        ImGui::End();
+      }
+      ImGui::Render();
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      glfwSwapBuffers(window);
+    }
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  return 0;
+}
+
+int run_viewer_benchmark(Scene scene, int frames) {
+  const HeadlessGlContext context;
+  RasterRenderer renderer;
+  const FloatTarget target(scene.camera.width, scene.camera.height);
+  // The scripted flight: from the scene's camera, up to 0.9c along the view within the first
+  // third, turning a little each frame.
+  Flight flight(scene.camera);
+  std::size_t triangles = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i) {
+    flight.set_speed(0.9 * std::min(1.0, 3.0 * i / std::max(frames, 1)));
+    flight.turn(0.002, 0);
+    flight.advance(1.0 / 30);
+    Scene frame = scene;
+    frame.camera = flight.camera;
+    triangles += draw_scene(renderer, frame, target).triangles;
+  }
+  glFinish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const nlohmann::ordered_json line = {
+      {"frames", frames},
+      {"seconds", seconds},
+      {"fps", frames / std::max(seconds, 1e-9)},
+      {"triangles", frames > 0 ? triangles / static_cast<std::size_t>(frames) : 0},
+      {"width", scene.camera.width},
+      {"height", scene.camera.height},
+      {"gl", context.description()}};
+  std::printf("%s\n", line.dump().c_str());
+  return 0;
+}
+
+}  // namespace lightcone

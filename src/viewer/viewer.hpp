@@ -1,0 +1,27 @@
+// `lightcone view`: the interactive viewer on the raster renderer (a GLFW window with a Dear
+// ImGui panel), and its offscreen benchmark.
+#pragma once
+
+#include <string>
+
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+struct ViewerOptions {
+  std::string scene_path;  // for messages and the window's title
+  bool split = false;      // start with the classical | relativistic split
+  bool hud = true;
+  double time_scale = 1;  // units of camera proper time per second of wall-clock time
+};
+
+// Opens the window and runs until it is closed (Esc). Throws InputError when there is no
+// display to open it on.
+int run_viewer(Scene scene, const ViewerOptions& options);
+
+// Renders `frames` frames of a scripted flight through the scene offscreen (EGL), at the
+// scene's image size, and prints one JSON line {"frames", "seconds", "fps", "triangles"}
+// (triangles: the average a frame after tessellation).
+int run_viewer_benchmark(Scene scene, int frames);
+
+}  // namespace lightcone
