@@ -8,7 +8,8 @@ packages=(
   build-essential cmake ninja-build pkg-config git clang-format
   libembree-dev libtbb-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev
   libstb-dev libspng-dev libturbojpeg0-dev libopenexr-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools
+  libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools libglfw3-dev libimgui-dev
+  xvfb xdotool x11-apps
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()

@@ -1,0 +1,271 @@
+// `lightcone view` under a virtual X server (Xvfb), driven by xdotool and looked at through
+// xwd: the window shows the scene, keys change the speed in the panel and the picture, F12
+// writes the view as a PNG, Esc quits; and --benchmark without any display.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lightcone/io/image_file.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kScene = R"({
+  "camera": {"position": [0, 1, 6], "velocity": [0, 0, -0.5], "fov": 60,
+             "width": 800, "height": 500},
+  "objects": [
+    {"name": "ball", "shape": {"sphere": {"radius": 1.2}}, "position": [1.5, 1.2, 0],
+     "velocity": [0.6, 0, 0], "material": {"color": [0.9, 0.5, 0.2]}},
+    {"name": "floor", "shape": {"plane": {"size": [40, 40]}}, "position": [0, 0, 0],
+     "material": {"checker": {"size": 1, "colors": [[0.7, 0.7, 0.7], [0.2, 0.2, 0.25]]}}}
+  ],
+  "sky": {"grid": {"spacing": 15}},
+  "render": {"exposure": 0, "tonemap": "clamp"}
+})";
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Runs a shell command and returns its standard output.
+std::string output_of(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[4096];
+    std::size_t n;
+    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+    pclose(pipe);
+  }
+  return out;
+}
+
+// An X window dump (xwd's format: a big-endian header, a colour map, then ZPixmap rows) of a
+// 24-bit TrueColor window, as 8-bit RGB.
+struct Screenshot {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const std::uint8_t* p = &rgb[3 * (static_cast<std::size_t>(y) * width + x)];
+    return {p[0], p[1], p[2]};
+  }
+};
+
+Screenshot parse_xwd(const std::string& bytes) {
+  Screenshot shot;
+  if (bytes.size() < 100) return shot;
+  const auto field = [&](int i) {
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + 4 * i;
+    return static_cast<std::uint32_t>(p[0]) << 24 | p[1] << 16 | p[2] << 8 | p[3];
+  };
+  const std::uint32_t header = field(0), width = field(4), height = field(5), byte_order = field(7),
+                      bits_per_pixel = field(11), line = field(12), red_mask = field(14),
+                      colours = field(19);
+  const std::size_t start = header + 12 * static_cast<std::size_t>(colours);
+  if (bits_per_pixel != 32 || bytes.size() < start + line * static_cast<std::size_t>(height))
+    return shot;
+  shot.width = static_cast<int>(width);
+  shot.height = static_cast<int>(height);
+  for (std::uint32_t y = 0; y < height; ++y)
+    for (std::uint32_t x = 0; x < width; ++x) {
+      const auto* p =
+          reinterpret_cast<const unsigned char*>(bytes.data()) + start + y * line + 4 * x;
+      const std::uint32_t v =
+          byte_order == 0
+              ? (p[0] | p[1] << 8 | p[2] << 16 | static_cast<std::uint32_t>(p[3]) << 24)
+              : (static_cast<std::uint32_t>(p[0]) << 24 | p[1] << 16 | p[2] << 8 | p[3]);
+      const bool red_high = red_mask == 0xff0000;
+      shot.rgb.push_back(static_cast<std::uint8_t>(red_high ? v >> 16 : v));
+      shot.rgb.push_back(static_cast<std::uint8_t>(v >> 8));
+      shot.rgb.push_back(static_cast<std::uint8_t>(red_high ? v : v >> 16));
+    }
+  return shot;
+}
+
+// The fraction of pixels of the region [x0, x1) x [y0, y1) where two pictures differ by more
+// than `levels` in some channel.
+template <class A, class B>
+double fraction_different(const A& a, const B& b, int x0, int y0, int x1, int y1, int levels) {
+  std::size_t differing = 0, total = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const auto p = a(x, y), q = b(x, y);
+      bool d = false;
+      for (int c = 0; c < 3; ++c) d = d || std::abs(p[c] - q[c]) > levels;
+      differing += d;
+      ++total;
+    }
+  return static_cast<double>(differing) / std::max<std::size_t>(total, 1);
+}
+
+std::array<int, 3> png_level(const Image& image, int x, int y) {
+  const Rgb c = image.texel(x, y);
+  return {static_cast<int>(std::lround(255 * srgb_encode(c.r))),
+          static_cast<int>(std::lround(255 * srgb_encode(c.g))),
+          static_cast<int>(std::lround(255 * srgb_encode(c.b)))};
+}
+
+class ViewerTest : public test::TempDirTest {
+ protected:
+  void SetUp() override {
+    test::TempDirTest::SetUp();
+    display_ = ":" + std::to_string(50 + getpid() % 200);
+    xvfb_ = fork();
+    if (xvfb_ == 0) {
+      execlp("Xvfb", "Xvfb", display_.c_str(), "-screen", "0", "1024x768x24", "-nolisten", "tcp",
+             static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    const fs::path socket = "/tmp/.X11-unix/X" + display_.substr(1);
+    for (int i = 0; i < 100 && !fs::exists(socket); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(fs::exists(socket)) << "Xvfb did not start (is the xvfb package installed?)";
+  }
+  void TearDown() override {
+    if (viewer_ > 0) {
+      kill(viewer_, SIGKILL);
+      waitpid(viewer_, nullptr, 0);
+    }
+    if (xvfb_ > 0) {
+      kill(xvfb_, SIGTERM);
+      waitpid(xvfb_, nullptr, 0);
+    }
+    test::TempDirTest::TearDown();
+  }
+
+  // Starts `lightcone view` on the virtual display in the test's folder.
+  void start_viewer(const fs::path& scene, const std::string& options) {
+    viewer_ = fork();
+    if (viewer_ == 0) {
+      if (chdir(dir_.c_str()) != 0) _exit(126);
+      setenv("DISPLAY", display_.c_str(), 1);
+      const std::string err = (dir_ / "viewer.err").string();
+      if (!freopen(err.c_str(), "w", stderr)) _exit(126);
+      const std::string command =
+          std::string("exec '") + LIGHTCONE_BINARY + "' view '" + scene.string() + "' " + options;
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    const std::string found = output_of(
+        "DISPLAY=" + display_ + " timeout 30 xdotool search --sync --name 'lightcone view'");
+    window_ = found.substr(0, found.find('\n'));
+    ASSERT_FALSE(window_.empty()) << "no viewer window: " << read_text(dir_ / "viewer.err");
+  }
+
+  void key(const std::string& name) {
+    output_of("DISPLAY=" + display_ + " xdotool key --window " + window_ + " " + name);
+  }
+
+  Screenshot screenshot() {
+    return parse_xwd(output_of("DISPLAY=" + display_ + " xwd -silent -id " + window_));
+  }
+
+  // Waits until the folder holds `count` screenshots of the viewer's, and returns the last.
+  fs::path wait_for_png(int count) {
+    const fs::path file = dir_ / fmt::format("lightcone-view-{:04d}.png", count);
+    for (int i = 0; i < 200 && !fs::exists(file); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // renamed into place whole
+    return file;
+  }
+
+  // Lets a few frames pass.
+  static void settle() { std::this_thread::sleep_for(std::chrono::milliseconds(1500)); }
+
+  std::string display_, window_;
+  pid_t xvfb_ = -1, viewer_ = -1;
+};
+
+TEST_F(ViewerTest, ShowsTheSceneChangesSpeedOnAKeySavesPngsAndQuits) {
+  const fs::path scene = write("scene.json", kScene);
+  start_viewer(scene, "--time-scale 0");  // the camera's clock stands still
+  settle();
+  const Screenshot first = screenshot();
+  ASSERT_EQ(first.width, 800);
+  ASSERT_EQ(first.height, 500);
+
+  // F12: the view as `lightcone render --renderer raster` renders it, and the window shows it
+  // (away from the panel in the top left corner).
+  key("F12");
+  const fs::path png = wait_for_png(1);
+  ASSERT_TRUE(fs::exists(png)) << read_text(dir_ / "viewer.err");
+  const auto saved = load_image_file(png);
+  const auto rendered =
+      test::run_lightcone("render '" + scene.string() + "' --renderer raster --quiet -o '" +
+                          (dir_ / "rendered.png").string() + "'");
+  ASSERT_EQ(rendered.status, 0) << rendered.err;
+  const auto reference = load_image_file(dir_ / "rendered.png");
+  const auto saved_at = [&](int x, int y) { return png_level(*saved, x, y); };
+  const auto reference_at = [&](int x, int y) { return png_level(*reference, x, y); };
+  const auto first_at = [&](int x, int y) { return first.at(x, y); };
+  EXPECT_LT(fraction_different(saved_at, reference_at, 0, 0, 800, 500, 1), 0.001);
+  EXPECT_LT(fraction_different(first_at, saved_at, 450, 300, 800, 500, 2), 0.001);
+
+  // W: faster by a tenth of rapidity (tanh(atanh(0.5) + 0.1) = 0.5712), said on stderr, shown
+  // in the panel, and the picture changes.
+  key("w");
+  settle();
+  EXPECT_NE(read_text(dir_ / "viewer.err").find("speed 0.5712 c"), std::string::npos)
+      << read_text(dir_ / "viewer.err");
+  const Screenshot second = screenshot();
+  const auto second_at = [&](int x, int y) { return second.at(x, y); };
+  EXPECT_GT(fraction_different(first_at, second_at, 0, 0, 300, 120, 2), 0.001);  // the panel
+  EXPECT_GT(fraction_different(first_at, second_at, 450, 300, 800, 500, 2), 0.05);
+  key("F12");
+  ASSERT_TRUE(fs::exists(wait_for_png(2)));
+
+  key("Escape");
+  int status = -1;
+  for (int i = 0; i < 100; ++i) {
+    if (waitpid(viewer_, &status, WNOHANG) == viewer_) {
+      viewer_ = -1;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_EQ(viewer_, -1) << "Esc did not quit";
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+}
+
+TEST(ViewerBenchmark, RendersItsFramesWithoutADisplayAndPrintsOneJsonLine) {
+  const fs::path dir = test::fresh_temp_dir("benchmark");
+  test::write_text(dir / "scene.json", kScene);
+  const auto r = test::run_lightcone(
+      "view '" + (dir / "scene.json").string() + "' --benchmark 5 --width 160 --height 100",
+      "env -u DISPLAY -u WAYLAND_DISPLAY");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto line = nlohmann::json::parse(r.out);
+  EXPECT_EQ(line["frames"], 5);
+  EXPECT_GT(line["fps"].get<double>(), 0);
+  EXPECT_GT(line["triangles"].get<double>(), 100);
+  fs::remove_all(dir);
+}
+
+TEST(ViewerWithoutDisplay, IsStatusTwoNamingDisplayAndTheHeadlessWays) {
+  const fs::path dir = test::fresh_temp_dir("nodisplay");
+  test::write_text(dir / "scene.json", kScene);
+  const auto r = test::run_lightcone("view '" + (dir / "scene.json").string() + "'",
+                                     "env -u DISPLAY -u WAYLAND_DISPLAY");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("DISPLAY"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--benchmark"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--renderer raster"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lightcone
