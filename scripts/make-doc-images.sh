@@ -36,3 +36,33 @@ render street-rgb3 street.json --set render.searchlight=off --set render.doppler
 render street-hue street.json --set render.searchlight=off --set render.doppler=hue
 render doppler-swatches doppler-swatches.json
 render terrell-doppler terrell.json --map doppler
+render street-raster street.json --renderer raster
+# The viewer's split view, as F12 saves it (under a virtual X server when there is no display):
+#   lightcone view scenes/street.json --split --time-scale 0, then F12.
+view_screenshot() {
+  local dir
+  dir=$(mktemp -d)
+  local display=${DISPLAY:-}
+  local xvfb=""
+  if [ -z "$display" ]; then
+    display=:93
+    Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
+    xvfb=$!
+    sleep 1
+  fi
+  echo "lightcone view scenes/street.json --split --time-scale 0 (F12)" >&2
+  (cd "$dir" && DISPLAY=$display "$OLDPWD/$lc" view "$OLDPWD/scenes/street.json" --split \
+    --time-scale 0 --width 960 --height 540 2>/dev/null) &
+  local viewer=$!
+  local window
+  window=$(DISPLAY=$display timeout 30 xdotool search --sync --name 'lightcone view' | head -1)
+  sleep 2
+  DISPLAY=$display xdotool key --window "$window" F12
+  sleep 2
+  DISPLAY=$display xdotool key --window "$window" Escape
+  wait "$viewer" || true
+  [ -n "$xvfb" ] && kill "$xvfb"
+  mv "$dir/lightcone-view-0001.png" "$out/view-split.png"
+  rm -rf "$dir"
+}
+view_screenshot

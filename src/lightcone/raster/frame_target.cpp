@@ -40,6 +40,7 @@ void FloatTarget::bind() const {
 
 void FloatTarget::add_to(std::vector<double>& sum) const {
   pixels_.resize(4 * static_cast<std::size_t>(width_) * height_);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, pixels_.data());
   check_gl("reading the image back");

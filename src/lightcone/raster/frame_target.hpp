@@ -21,7 +21,7 @@ class FloatTarget {
   unsigned texture() const { return colour_; }
   int width() const { return width_; }
   int height() const { return height_; }
-  // The linear RGB of the bound target, rows from the top.
+  // The linear RGB of the target, rows from the top.
   Image read() const;
   // The same, added to `sum` (3 values a pixel, rows from the top).
   void add_to(std::vector<double>& sum) const;
