@@ -47,7 +47,7 @@ void add_grid(RestMesh& m, const Vec3& corner, const Vec3& along_u, const Vec3& 
     }
 }
 
-constexpr int kFaceGrid = 8;
+constexpr int kFaceGrid = 2;
 
 }  // namespace
 
@@ -146,7 +146,13 @@ struct Tessellator {
 
   // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.
   void triangle(const Vec3& a, const Vec3& b, const Vec3& c, int lab, int lbc, int lca) const {
-    const bool sab = split(a, b, lab), sbc = split(b, c, lbc), sca = split(c, a, lca);
+    cut(a, b, c, lab, lbc, lca, split(a, b, lab), split(b, c, lbc), split(c, a, lca));
+  }
+
+  // The same, with each edge's decision made (so that rotating the triangle decides nothing
+  // twice).
+  void cut(const Vec3& a, const Vec3& b, const Vec3& c, int lab, int lbc, int lca, bool sab,
+           bool sbc, bool sca) const {
     const int count = int(sab) + int(sbc) + int(sca);
     if (count == 0) return emit(a, b, c);
     if (count == 3) {
@@ -160,10 +166,10 @@ struct Tessellator {
     }
     // One or two edges split: rotate so that ab is split (and, for two, bc as well).
     if (!sab) {
-      if (sbc) return triangle(b, c, a, lbc, lca, lab);
-      return triangle(c, a, b, lca, lab, lbc);
+      if (sbc) return cut(b, c, a, lbc, lca, lab, sbc, sca, sab);
+      return cut(c, a, b, lca, lab, lbc, sca, sab, sbc);
     }
-    if (count == 2 && !sbc) return triangle(c, a, b, lca, lab, lbc);
+    if (count == 2 && !sbc) return cut(c, a, b, lca, lab, lbc, sca, sab, sbc);
     const Vec3 mab = mesh.midpoint(a, b);
     if (count == 1) {
       // The new edge from the midpoint to c lies inside: its level follows the split edge's.
