@@ -259,6 +259,20 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
   return true;
 }
 
+Xyz Lighting::reflected_at(const Reflection& t, const GridStencil& camera, double d_camera,
+                           double d_light) {
+  // A co-moving light's leg has D = 1 (to rounding), so only the camera's factor counts.
+  if (t.co_moving) return d_camera == 1 ? t.co_moving->at_rest() : (*t.co_moving)(camera.position);
+  if (d_camera == 1 && d_light == 1) return t.moving->at_rest();
+  return (*t.moving)(camera, d_light);
+}
+
+Xyz Lighting::reflected(std::size_t object, int colour, std::size_t l, double d_camera,
+                        double d_light) const {
+  return reflected_at(object_reflections_[object][static_cast<std::size_t>(colour)][l],
+                      grid_stencil(camera_grid_, d_camera), d_camera, d_light);
+}
+
 LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
                              const PointEmission& surface,
                              const std::array<double, 2>& light_sample) const {
@@ -306,15 +320,9 @@ LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
       // Reflected per unit spectral irradiance: albedo / pi (diffuse) plus the flat glossy lobe.
       const bool at_rest = d_camera == 1 && in.doppler == 1;
       Xyz reflected;
-      if (reflections) {
-        const Reflection& t = (*reflections)[l];
-        // A co-moving light's leg has D = 1 (to rounding), so only the camera's factor counts.
-        if (t.co_moving)
-          reflected =
-              d_camera == 1 ? t.co_moving->at_rest() : (*t.co_moving)(camera_stencil.position);
-        else
-          reflected = at_rest ? t.moving->at_rest() : (*t.moving)(camera_stencil, in.doppler);
-      } else
+      if (reflections)
+        reflected = reflected_at((*reflections)[l], camera_stencil, d_camera, in.doppler);
+      else
         reflected = xyz_of_reflection_seen_with_doppler(
             per_hit_albedo, [&light](double lambda) { return light.spectral(lambda); }, d_camera,
             in.doppler);

@@ -30,6 +30,22 @@ class Lighting {
   LinearRgb received(const Hit& hit, const Vec3& u, double d_camera, const PointEmission& surface,
                      const std::array<double, 2>& light_sample) const;
 
+  // What `received` reads, for a renderer that tabulates it (the raster renderer):
+  // light l's colour at rest (Y = 1 per unit intensity);
+  const LinearRgb& light_rgb(std::size_t l) const { return lights_[l].rgb; }
+  // spectral model: the colour (before searchlight factors, per unit spectral irradiance
+  // factor) of fixed colour `colour` of lit object `object` lit by light l, seen with the two
+  // factors; whether that light is at rest relative to the object (then d_light is 1);
+  Xyz reflected(std::size_t object, int colour, std::size_t l, double d_camera,
+                double d_light) const;
+  bool co_moving(std::size_t object, std::size_t l) const {
+    return object_reflections_[object][0][l].co_moving != nullptr;
+  }
+  // and light l's own colour seen with factor d (the glossy lobe's).
+  Xyz light_seen(std::size_t l, double d) const { return lights_[l].seen(d); }
+  // The range of ln D on the light's legs that the tables cover (spectral model).
+  const DopplerGrid& light_grid() const { return light_grid_; }
+
  private:
   struct ResolvedLight {
     const Light* light = nullptr;
@@ -63,6 +79,8 @@ class Lighting {
     const DopplerXyzTable* co_moving = nullptr;
     const ReflectionXyzTable* moving = nullptr;
   };
+  static Xyz reflected_at(const Reflection& t, const GridStencil& camera, double d_camera,
+                          double d_light);
   std::deque<DopplerXyzTable> co_moving_reflections_;
   std::deque<ReflectionXyzTable> reflections_;
   // [object][fixed colour][light] (spectral model, lit objects only).

@@ -4,19 +4,24 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <tuple>
 
+#include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/retarded_time.hpp"
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/shader_sources.hpp"
 
 namespace lightcone {
+
+constexpr std::size_t kMaxRasterLights = 16;  // lighting.glsl's kMaxLights
 
 std::vector<std::string> raster_differences(const Scene& scene) {
   std::vector<std::string> differences;
@@ -25,10 +30,13 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     lit = lit || !o.material.unlit;
     textured = textured || std::holds_alternative<Texture>(o.material.pattern);
   }
-  if (lit) differences.push_back("lit materials are drawn black (not yet lit)");
   if (textured) differences.push_back("textured materials are drawn black");
   if (std::holds_alternative<SkyImage>(scene.sky.pattern))
     differences.push_back("the sky image is drawn black");
+  if (lit && scene.render.doppler == DopplerModel::kHue)
+    differences.push_back("lit materials under the hue colour model are drawn black");
+  if (lit && scene.lights.size() > kMaxRasterLights)
+    differences.push_back(fmt::format("only the first {} lights light surfaces", kMaxRasterLights));
   if (lit && scene.render.shadows && !scene.lights.empty())
     differences.push_back("no shadows are cast");
   return differences;
@@ -41,13 +49,16 @@ namespace {
 // what 8 bits show.
 constexpr double kLogDopplerStep = 1.0 / 512;
 constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
+constexpr int kMaxLights = 16;       // lighting.glsl's
+// A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
+constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 
 std::string vertex_shader(const char* source) {
   return std::string("#version 330 core\n") + shader_sources::common_glsl + source;
 }
-std::string fragment_shader(const char* source) {
+std::string fragment_shader(const char* source, const char* extra = "") {
   return std::string("#version 330 core\n#define LIGHTCONE_FRAGMENT_STAGE 1\n") +
-         shader_sources::common_glsl + source;
+         shader_sources::common_glsl + extra + source;
 }
 
 GLint uniform(GLuint program, const char* name) {
@@ -86,18 +97,21 @@ EmissionKey key_of(const PointEmission& e) {
 
 struct RasterRenderer::Impl {
   GLuint body_program = 0, sky_program = 0;
-  GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0;
+  GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
+         tables_texture = 0;
   std::vector<float> vertices;  // reused from frame to frame
 
   Impl() {
-    body_program = link_program(vertex_shader(shader_sources::body_vert),
-                                fragment_shader(shader_sources::body_frag));
+    body_program =
+        link_program(vertex_shader(shader_sources::body_vert),
+                     fragment_shader(shader_sources::body_frag, shader_sources::lighting_glsl));
     sky_program = link_program(vertex_shader(shader_sources::fullscreen_vert),
                                fragment_shader(shader_sources::sky_frag));
     glGenVertexArrays(1, &vertex_array);
     glGenBuffers(1, &vertex_buffer);
     glGenTextures(1, &rows_texture);
     glGenTextures(1, &offsets_texture);
+    glGenTextures(1, &tables_texture);
     glBindVertexArray(vertex_array);
     glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
     glEnableVertexAttribArray(0);
@@ -111,6 +125,7 @@ struct RasterRenderer::Impl {
   ~Impl() {
     glDeleteTextures(1, &rows_texture);
     glDeleteTextures(1, &offsets_texture);
+    glDeleteTextures(1, &tables_texture);
     glDeleteBuffers(1, &vertex_buffer);
     glDeleteVertexArrays(1, &vertex_array);
     glDeleteProgram(body_program);
@@ -148,26 +163,131 @@ struct RasterRenderer::Impl {
   struct BodyDraw {
     std::size_t body = 0, first_vertex = 0, vertex_count = 0;
     int first_row = 0, pattern = 0;
+    bool lit = false;
+    std::array<int, 2 * kMaxLights> reflection_row{}, reflection_moving{};
+  };
+  struct LightDraw {
+    int kind = 0, fixed_event = 0, row = 0;
+    Vec4 event;  // relative to the observation event
+    Vec3 position, velocity, axis;
+    double time = 0, intensity = 0, radius = 0, half_cone = 0, falloff = 0;
   };
   const ResolvedScene* scene = nullptr;
   std::vector<BodyDraw> draws;
+  std::vector<LightDraw> lights;
+  std::array<int, 3> final_rows{};
   double first_log_doppler = 0;
   int sky_first_row = 0;
+  double table_camera_first = 0, table_light_first = 0;
+  int table_light_nodes = 2;
 
   // Tessellates every body and tabulates the colour rows for one frame.
   RasterFrameStats prepare(const ResolvedScene& resolved, const EmissionTable& emission,
                            const TessellationLimits& limits) {
     scene = &resolved;
     const Scene& s = *resolved.scene;
-    // Rows: every distinct fixed emission of the bodies and the sky.
+    const RenderSettings& settings = s.render;
+    const Lighting lighting(resolved, nullptr);
+    const bool spectral = settings.doppler == DopplerModel::kSpectral;
+    // Rows: each a colour against D, tabulated over the frame's range of ln D.
+    std::vector<std::function<LinearRgb(double)>> rows;
+    const auto add_row = [&](std::function<LinearRgb(double)> f) {
+      rows.push_back(std::move(f));
+      return static_cast<int>(rows.size() - 1);
+    };
     std::map<EmissionKey, int> row_of;
-    std::vector<const PointEmission*> rows;
-    const auto row = [&](const PointEmission& e) {
+    const auto emission_row = [&](const PointEmission& e) {
       const auto [it, added] = row_of.emplace(key_of(e), static_cast<int>(rows.size()));
-      if (added) rows.push_back(&e);
+      if (added) add_row([&e, &settings](double d) { return received_colour(e, d, settings); });
       return it->second;
     };
     static const PointEmission kBlack{};
+
+    // The lights, relative to the observation event in W.
+    const Vec4& observation = resolved.observation_event;
+    lights.clear();
+    RenderSettings unshifted = settings;  // the light's colour shift alone
+    unshifted.searchlight = SearchlightModel::kOff;
+    for (std::size_t l = 0; l < s.lights.size() && l < kMaxLights; ++l) {
+      const Light& light = s.lights[l];
+      LightDraw d;
+      d.velocity = settings.relativity ? light.world_line.velocity : Vec3{};
+      d.position = light.world_line.position - observation.x;
+      d.time = light.world_line.time - observation.t;
+      d.intensity = light.intensity;
+      if (const auto* spot = std::get_if<SpotLight>(&light.kind)) {
+        d.kind = 1;
+        d.axis = normalize(spot->direction);
+        d.half_cone = spot->cone_degrees / 2;
+        d.falloff = spot->falloff_degrees;
+      } else if (const auto* sun = std::get_if<DirectionalLight>(&light.kind)) {
+        d.kind = 2;
+        d.axis = normalize(sun->direction);
+        d.intensity = sun->irradiance;
+      } else if (const auto* sphere = std::get_if<SphereLight>(&light.kind)) {
+        d.kind = 3;
+        d.radius = sphere->radius;
+      }
+      // frame/lighting.cpp: the emission event by the light-source delay mode.
+      const bool exact =
+          settings.relativity && settings.light_source_delay == LightSourceDelay::kSurface;
+      if (!exact) {
+        d.fixed_event = 1;
+        if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
+          const Vec3 at = light.world_line.position_at(observation.t);
+          const double tau = retarded_delay(at - observation.x, light.world_line.velocity);
+          d.event = {-tau, at - light.world_line.velocity * tau - observation.x};
+        } else {
+          d.event = {0.0, light.world_line.position_at(observation.t) - observation.x};
+        }
+      }
+      if (spectral) {
+        d.row = add_row(
+            [&lighting, l](double x) { return linear_srgb_from_xyz(lighting.light_seen(l, x)); });
+      } else {
+        const LinearRgb rgb = lighting.light_rgb(l);
+        d.row = add_row([rgb, &unshifted](double x) {
+          return received_colour(PointEmission{rgb}, x, unshifted);
+        });
+      }
+      lights.push_back(d);
+    }
+    // The colour models other than spectral: the received colour of outgoing radiance.
+    for (int c = 0; c < 3; ++c) {
+      const LinearRgb unit{c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
+      final_rows[c] = add_row([unit, &settings](double x) {
+        return received_colour(PointEmission{unit}, x, settings);
+      });
+    }
+
+    // Lit bodies' reflection rows (co-moving lights) and tables (moving lights).
+    const LogDopplerRange unlit = visible_log_doppler(resolved, false);
+    const LogDopplerRange lit_range = visible_log_doppler(resolved, true);
+    const DopplerGrid& light_grid = lighting.light_grid();
+    const double reach =
+        spectral && light_grid.size() > 1
+            ? std::max(-light_grid.log_d(0), light_grid.log_d(light_grid.size() - 1))
+            : 0.0;
+    table_camera_first = (lit_range.empty ? 0.0 : lit_range.lo) - 2 * kTableCameraStep;
+    const double table_camera_last = (lit_range.empty ? 0.0 : lit_range.hi) + 2 * kTableCameraStep;
+    const int table_camera_nodes = std::max(
+        2,
+        static_cast<int>(std::ceil((table_camera_last - table_camera_first) / kTableCameraStep)) +
+            1);
+    table_light_first = -reach - 2 * kTableLightStep;
+    table_light_nodes = std::max(
+        2, static_cast<int>(std::ceil(2 * (reach + 2 * kTableLightStep) / kTableLightStep)) + 1);
+    std::vector<float> table_texels;
+    int table_rows = 0;
+    struct ReflectionKey {
+      float r, g, b;
+      std::size_t light;
+      bool operator<(const ReflectionKey& o) const {
+        return std::tie(r, g, b, light) < std::tie(o.r, o.g, o.b, o.light);
+      }
+    };
+    std::map<ReflectionKey, int> reflection_rows, reflection_tables;
+
     draws.clear();
     vertices.clear();
     std::map<const void*, RestMesh> meshes;  // per shape, for this frame
@@ -176,17 +296,57 @@ struct RasterRenderer::Impl {
       BodyDraw draw;
       draw.body = i;
       const Material& m = body.object->material;
-      const bool drawable = m.unlit && !std::holds_alternative<Texture>(m.pattern);
-      if (!drawable) {
-        draw.first_row = row(kBlack);
-      } else if (std::holds_alternative<Checker>(m.pattern)) {
-        // A checker's two colours take consecutive rows of their own.
-        draw.first_row = static_cast<int>(rows.size());
-        draw.pattern = 1;
-        rows.push_back(&emission.object_colour(i, 0));
-        rows.push_back(&emission.object_colour(i, 1));
+      const bool checker = std::holds_alternative<Checker>(m.pattern);
+      const bool textured = std::holds_alternative<Texture>(m.pattern);
+      draw.pattern = checker ? 1 : 0;
+      if (textured) {
+        draw.first_row = emission_row(kBlack);
+        draw.pattern = 0;
+      } else if (m.unlit) {
+        if (checker) {
+          // A checker's two colours take consecutive rows of their own.
+          const PointEmission& a = emission.object_colour(i, 0);
+          const PointEmission& b = emission.object_colour(i, 1);
+          draw.first_row =
+              add_row([&a, &settings](double d) { return received_colour(a, d, settings); });
+          add_row([&b, &settings](double d) { return received_colour(b, d, settings); });
+        } else {
+          draw.first_row = emission_row(emission.object_colour(i, 0));
+        }
       } else {
-        draw.first_row = row(emission.object_colour(i, 0));
+        draw.lit = true;
+        const std::size_t object = static_cast<std::size_t>(body.object - s.objects.data());
+        for (int k = 0; k < (checker ? 2 : 1) && spectral; ++k) {
+          const Rgb albedo = checker ? std::get<Checker>(m.pattern).colors[k]
+                                     : std::get<SolidColor>(m.pattern).color;
+          for (std::size_t l = 0; l < lights.size(); ++l) {
+            const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
+            const std::size_t slot = kMaxLights * static_cast<std::size_t>(k) + l;
+            if (lighting.co_moving(object, l)) {
+              auto [it, added] = reflection_rows.emplace(key, 0);
+              if (added)
+                it->second = add_row([&lighting, object, k, l](double d) {
+                  return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
+                });
+              draw.reflection_row[slot] = it->second;
+            } else {
+              auto [it, added] = reflection_tables.emplace(key, table_rows);
+              if (added) {
+                for (int jl = 0; jl < table_light_nodes; ++jl, ++table_rows)
+                  for (int jc = 0; jc < table_camera_nodes; ++jc) {
+                    const LinearRgb c = linear_srgb_from_xyz(lighting.reflected(
+                        object, k, l, std::exp(table_camera_first + jc * kTableCameraStep),
+                        std::exp(table_light_first + jl * kTableLightStep)));
+                    table_texels.insert(table_texels.end(),
+                                        {static_cast<float>(c.r), static_cast<float>(c.g),
+                                         static_cast<float>(c.b)});
+                  }
+              }
+              draw.reflection_row[slot] = it->second;
+              draw.reflection_moving[slot] = 1;
+            }
+          }
+        }
       }
       const Shape& shape = body.object->shape;
       const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
@@ -199,22 +359,35 @@ struct RasterRenderer::Impl {
     }
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
-    sky_first_row = static_cast<int>(rows.size());
-    rows.push_back(sky_image ? &kBlack : &emission.sky_colour(0));
-    rows.push_back(grid ? &emission.sky_colour(1) : rows.back());
+    const PointEmission& sky0 = sky_image ? kBlack : emission.sky_colour(0);
+    const PointEmission& sky1 = grid ? emission.sky_colour(1) : sky0;
+    sky_first_row =
+        add_row([&sky0, &settings](double d) { return received_colour(sky0, d, settings); });
+    add_row([&sky1, &settings](double d) { return received_colour(sky1, d, settings); });
 
-    // The nodes cover the factors the image shows (both kinds: lit bodies are drawn black).
-    const LogDopplerRange unlit = visible_log_doppler(resolved, false);
-    const LogDopplerRange lit = visible_log_doppler(resolved, true);
-    const double lo = std::min(unlit.lo, lit.empty ? unlit.lo : lit.lo) - 2 * kLogDopplerStep;
-    const double hi = std::max(unlit.hi, lit.empty ? unlit.hi : lit.hi) + 2 * kLogDopplerStep;
+    // The rows' nodes cover every factor a fragment can ask for: the camera's of emitters, the
+    // sky and lit bodies, the lights' on their legs, and the glossy lobe's product of both.
+    double lo = std::min(unlit.lo, lit_range.empty ? unlit.lo : lit_range.lo);
+    double hi = std::max(unlit.hi, lit_range.empty ? unlit.hi : lit_range.hi);
+    if (!lights.empty() && settings.relativity) {
+      double light_rapidity = 0;
+      for (const ResolvedBody& b : resolved.bodies)
+        if (!b.object->material.unlit)
+          for (const Light& light : s.lights)
+            light_rapidity = std::max(
+                light_rapidity,
+                relative_rapidity(light.world_line.velocity, b.object->world_line.velocity));
+      lo = std::min(lo - light_rapidity, -light_rapidity);
+      hi = std::max(hi + light_rapidity, light_rapidity);
+    }
+    lo -= 2 * kLogDopplerStep;
+    hi += 2 * kLogDopplerStep;
     first_log_doppler = lo;
     const int nodes = std::max(2, static_cast<int>(std::ceil((hi - lo) / kLogDopplerStep)) + 1);
     std::vector<float> texels(static_cast<std::size_t>(nodes) * rows.size() * 3);
     for (std::size_t r = 0; r < rows.size(); ++r)
       for (int k = 0; k < nodes; ++k) {
-        const double d = std::exp(lo + k * kLogDopplerStep);
-        const LinearRgb c = received_colour(*rows[r], d, s.render);
+        const LinearRgb c = rows[r](std::exp(lo + k * kLogDopplerStep));
         float* t = &texels[3 * (r * nodes + k)];
         t[0] = static_cast<float>(c.r);
         t[1] = static_cast<float>(c.g);
@@ -226,6 +399,13 @@ struct RasterRenderer::Impl {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, nodes, static_cast<GLsizei>(rows.size()), 0, GL_RGB,
                  GL_FLOAT, texels.data());
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, tables_texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (table_rows == 0) table_texels.assign(3 * 2 * table_camera_nodes, 0.0f);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, table_camera_nodes, std::max(table_rows, 2), 0,
+                 GL_RGB, GL_FLOAT, table_texels.data());
     glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
                  vertices.data(), GL_STATIC_DRAW);
@@ -237,6 +417,87 @@ struct RasterRenderer::Impl {
 
   const std::vector<float>* shading_offsets = nullptr;
 
+  // The lights and what lit bodies share (lighting.glsl's uniforms).
+  void set_lights(const ResolvedScene& resolved) {
+    const GLuint p = body_program;
+    const RenderSettings& settings = resolved.scene->render;
+    const int n = static_cast<int>(lights.size());
+    glUniform1i(uniform(p, "light_count"), n);
+    for (int l = 0; l < n; ++l) {
+      const LightDraw& d = lights[static_cast<std::size_t>(l)];
+      const auto name = [l](const char* field) { return fmt::format("{}[{}]", field, l); };
+      glUniform1i(uniform(p, name("light_kind").c_str()), d.kind);
+      glUniform1i(uniform(p, name("light_fixed_event").c_str()), d.fixed_event);
+      glUniform4f(uniform(p, name("light_event").c_str()), static_cast<float>(d.event.t),
+                  static_cast<float>(d.event.x.x), static_cast<float>(d.event.x.y),
+                  static_cast<float>(d.event.x.z));
+      set_vec3(p, name("light_position").c_str(), d.position);
+      glUniform1f(uniform(p, name("light_time").c_str()), static_cast<float>(d.time));
+      set_vec3(p, name("light_velocity").c_str(), d.velocity);
+      glUniform1f(uniform(p, name("light_one_minus_beta2").c_str()),
+                  static_cast<float>(1.0 - dot(d.velocity, d.velocity)));
+      glUniform1f(uniform(p, name("light_intensity").c_str()), static_cast<float>(d.intensity));
+      set_vec3(p, name("light_axis").c_str(), d.axis);
+      glUniform2f(uniform(p, name("light_cone").c_str()), static_cast<float>(d.half_cone),
+                  static_cast<float>(d.falloff));
+      glUniform1f(uniform(p, name("light_radius").c_str()), static_cast<float>(d.radius));
+      glUniform1i(uniform(p, name("light_row").c_str()), d.row);
+    }
+    // The linear part of the map from F to W: events relative to the observation event.
+    float to_world[16];
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        to_world[4 * r + c] = static_cast<float>(resolved.trace_to_world.linear.m[r][c]);
+    glUniformMatrix4fv(uniform(p, "trace_to_world"), 1, GL_TRUE, to_world);
+    set_vec3(p, "camera_velocity",
+             settings.relativity ? resolved.scene->camera.world_line.velocity : Vec3{});
+    glUniform1i(uniform(p, "searchlight_model"),
+                settings.searchlight == SearchlightModel::kPhysical    ? 0
+                : settings.searchlight == SearchlightModel::kChang1996 ? 1
+                                                                       : 2);
+    glUniform1i(uniform(p, "spectral"), settings.doppler == DopplerModel::kSpectral ? 1 : 0);
+    glUniform1iv(uniform(p, "final_rows"), 3, final_rows.data());
+    glUniform1i(uniform(p, "reflection_tables"), 2);
+    glUniform4f(uniform(p, "reflection_grid"), static_cast<float>(table_camera_first),
+                static_cast<float>(kTableCameraStep), static_cast<float>(table_light_first),
+                static_cast<float>(kTableLightStep));
+    glUniform1i(uniform(p, "reflection_light_nodes"), table_light_nodes);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, tables_texture);
+    glActiveTexture(GL_TEXTURE0);
+  }
+
+  // A body's own lighting uniforms.
+  void set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw) {
+    const GLuint p = body_program;
+    glUniform1i(uniform(p, "lit"), draw.lit ? 1 : 0);
+    if (!draw.lit) return;
+    const Object& object = *resolved.bodies[draw.body].object;
+    const Material& m = object.material;
+    Rgb albedo[2];
+    if (const auto* c = std::get_if<SolidColor>(&m.pattern)) albedo[0] = albedo[1] = c->color;
+    if (const auto* ch = std::get_if<Checker>(&m.pattern)) {
+      albedo[0] = ch->colors[0];
+      albedo[1] = ch->colors[1];
+    }
+    const float albedos[6] = {albedo[0].r, albedo[0].g, albedo[0].b,
+                              albedo[1].r, albedo[1].g, albedo[1].b};
+    glUniform3fv(uniform(p, "albedo"), 2, albedos);
+    const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
+    set_mat3(p, "normal_to_rest", object.rotation * Mat3::diagonal(inverse_scale));
+    set_vec3(p, "surface_velocity",
+             resolved.scene->render.relativity ? object.world_line.velocity : Vec3{});
+    glUniform1f(uniform(p, "diffuse"),
+                m.glossy ? static_cast<float>(1 - m.glossy->specular) : 1.0f);
+    glUniform1i(uniform(p, "glossy"), m.glossy ? 1 : 0);
+    glUniform1f(uniform(p, "glossy_roughness"),
+                m.glossy ? static_cast<float>(m.glossy->roughness) : 1.0f);
+    glUniform1f(uniform(p, "glossy_specular"),
+                m.glossy ? static_cast<float>(m.glossy->specular) : 0.0f);
+    glUniform1iv(uniform(p, "reflection_row"), 2 * kMaxLights, draw.reflection_row.data());
+    glUniform1iv(uniform(p, "reflection_moving"), 2 * kMaxLights, draw.reflection_moving.data());
+  }
+
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
   void pass(double ox, double oy, const std::vector<float>* offsets) {
     const ResolvedScene& resolved = *scene;
@@ -247,8 +508,8 @@ struct RasterRenderer::Impl {
       glBindTexture(GL_TEXTURE_2D, offsets_texture);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, resolved.camera.width, resolved.camera.height, 0,
-                   GL_RG, GL_FLOAT, offsets->data());
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, resolved.camera.width, resolved.camera.height, 0,
+                   GL_RGBA, GL_FLOAT, offsets->data());
     }
     glClearColor(0, 0, 0, 0);
     glClearDepth(1.0);
@@ -264,6 +525,7 @@ struct RasterRenderer::Impl {
     // Depth: the light travel distance on a log scale between these.
     glUniform2f(uniform(body_program, "depth_range"), std::log(1e-6f), std::log(1e12f));
     glDepthFunc(GL_LESS);
+    set_lights(resolved);
     glBindVertexArray(vertex_array);
     for (const BodyDraw& draw : draws) {
       const ResolvedBody& body = resolved.bodies[draw.body];
@@ -291,6 +553,7 @@ struct RasterRenderer::Impl {
       set_vec3(body_program, "box_size", box ? box->size : Vec3{1, 1, 1});
       glUniform1f(uniform(body_program, "sphere_radius"),
                   sphere ? static_cast<float>(sphere->radius) : 0.0f);
+      set_lit_body(resolved, draw);
       glDrawArrays(GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
                    static_cast<GLsizei>(draw.vertex_count));
     }
@@ -341,7 +604,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   const int n = std::max(1, scene.camera.samples);
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<double> sum(3 * pixels, 0.0);
-  std::vector<float> offsets(n > 1 ? 2 * pixels : 0);
+  std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
   const std::size_t triangles = renderer.prepare(resolved, emission, limits).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int k = 0; k < n; ++k) {
@@ -351,9 +614,11 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
           const PixelSample p = pixel_sample(x, y, k, n, seed);
-          float* o = &offsets[2 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
+          float* o = &offsets[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
           o[0] = static_cast<float>(p.x);
           o[1] = static_cast<float>(p.y);
+          o[2] = static_cast<float>(p.light[0]);
+          o[3] = static_cast<float>(p.light[1]);
         }
       const std::array<double, 2> cover =
           multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);

@@ -40,8 +40,8 @@ class RasterRenderer {
   // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
   // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The
   // viewport must be the camera's image size.
-  // `shading_offsets` (two floats a pixel, rows from the bottom) moves each pixel's shading to
-  // its own point in the pixel.
+  // `shading_offsets` (four floats a pixel, rows from the bottom: the point in the pixel and
+  // the point on sphere lights) moves each pixel's shading to its own sample.
   void pass(double pixel_offset_x = 0.5, double pixel_offset_y = 0.5,
             const std::vector<float>* shading_offsets = nullptr);
 

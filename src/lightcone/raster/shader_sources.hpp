@@ -7,6 +7,7 @@ namespace lightcone::shader_sources {
 extern const char* const common_glsl;
 extern const char* const body_vert;
 extern const char* const body_frag;
+extern const char* const lighting_glsl;
 extern const char* const fullscreen_vert;
 extern const char* const display_frag;
 extern const char* const sky_frag;

@@ -54,6 +54,32 @@ vec3 surface_point(vec3 p) {
   return p;
 }
 
+// trace/tracer.cpp: the normal at a surface point, in shape coordinates, facing the ray.
+vec3 shape_normal(vec3 p, vec3 direction) {
+  vec3 n = plane.xyz;
+  if (shape_kind == 3) {
+    n = p;
+  } else if (shape_kind == 1) {
+    vec3 rel = abs(p / box_size);
+    if (rel.x >= rel.y && rel.x >= rel.z) n = vec3(sign(p.x), 0.0, 0.0);
+    else if (rel.y >= rel.z) n = vec3(0.0, sign(p.y), 0.0);
+    else n = vec3(0.0, 0.0, sign(p.z));
+  } else if (shape_kind == 2) {
+    n = vec3(0.0, 1.0, 0.0);
+  }
+  n = normalize(n);
+  return dot(n, direction) > 0.0 ? -n : n;
+}
+
+// frame/received_colour.cpp, spectral_searchlight.
+float spectral_searchlight(float d) {
+  if (searchlight_model == 0) return d * d * d * d * d;
+  if (searchlight_model == 1) return d;
+  return 1.0;
+}
+
+uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
+
 void main() {
   vec3 u = fragment_look_direction();
   vec3 direction = ray_offset + shape_spatial * u;
@@ -62,6 +88,11 @@ void main() {
   gl_FragDepth = clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x),
                        0.0, 1.0);
   float d = doppler_factor(u, doppler_velocity, doppler_gamma);
-  int row = colour_row + (pattern == 1 ? checker_index(p, checker_size) : 0);
-  colour = vec4(received_colour(row, d), 1.0);
+  int k = pattern == 1 ? checker_index(p, checker_size) : 0;
+  if (lit == 1) {
+    vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
+    colour = vec4(spectral == 1 ? c * spectral_searchlight(d) : c, 1.0);
+  } else {
+    colour = vec4(received_colour(colour_row + k, d), 1.0);
+  }
 }

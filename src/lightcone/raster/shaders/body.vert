@@ -13,7 +13,6 @@ uniform mat3 shape_to_trace;
 uniform vec3 shape_origin;
 uniform vec3 world_line_velocity;
 uniform float one_minus_beta2;
-uniform float ray_time;
 uniform vec2 depth_range;  // (ln near, ln far) of the light travel distance
 
 flat out vec4 plane;

@@ -28,6 +28,10 @@ float doppler_factor(vec3 u, vec3 beta, float gamma) {
   return 1.0 / (gamma * (1.0 + dot(beta, u)));
 }
 
+// The camera's ray family s (ray_time, u): -1 the backward null rays, 0 the simultaneous
+// picture (frame/resolved_scene.hpp).
+uniform float ray_time;
+
 // The camera's pinhole (frame/camera_model.cpp).
 uniform vec3 camera_forward;
 uniform vec3 camera_right;
@@ -48,7 +52,9 @@ vec3 look_direction(vec2 p) {
 // the ray tracer's own sample position for this pixel and pass (frame/sampler.cpp's
 // pixel_sample, tabulated on the CPU), so that both renderers shade the same directions.
 uniform int shade_at_sample_offsets;
-uniform sampler2D sample_offsets;  // rows from the bottom, as the framebuffer's
+// Per pixel: the position in the pixel and the point on sphere lights (rg, ba); rows from the
+// bottom, as the framebuffer's.
+uniform sampler2D sample_offsets;
 
 // The fragment's look direction through its shading position.
 vec3 fragment_look_direction() {
@@ -57,6 +63,12 @@ vec3 fragment_look_direction() {
                     : pixel_offset;
   vec2 p = vec2(floor(gl_FragCoord.x), image_size.y - 1.0 - floor(gl_FragCoord.y)) + offset;
   return look_direction(p);
+}
+
+// The fragment's point on sphere lights (one sample a pixel: the same for every pixel).
+vec2 fragment_light_sample() {
+  return shade_at_sample_offsets == 1 ? texelFetch(sample_offsets, ivec2(gl_FragCoord.xy), 0).ba
+                                      : vec2(0.5);
 }
 #endif
 

@@ -3,7 +3,6 @@
 // Doppler factor.
 uniform vec3 sky_time_column;
 uniform mat3 sky_spatial;
-uniform float ray_time;
 uniform vec3 doppler_velocity;
 uniform float doppler_gamma;
 uniform int colour_row;

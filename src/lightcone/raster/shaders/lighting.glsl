@@ -1,0 +1,227 @@
+// Lit surfaces, for the body fragment shader: frame/lighting.cpp's Lighting::received, law for
+// law, in the world frame W with its origin moved to the observation event (so that single
+// precision stays accurate). Shadows are not cast. Each function names the C++ it mirrors.
+
+const int kMaxLights = 16;
+const float kPi = 3.141592653589793;
+
+uniform int light_count;
+uniform int light_kind[kMaxLights];       // 0 point, 1 spot, 2 directional, 3 sphere
+uniform int light_fixed_event[kMaxLights];  // 1: emission at light_event (delay camera or none)
+uniform vec4 light_event[kMaxLights];      // (t, x) relative to the observation event
+uniform vec3 light_position[kMaxLights];   // its world-line: position at light_time
+uniform float light_time[kMaxLights];
+uniform vec3 light_velocity[kMaxLights];   // in W (0 for the classical picture)
+uniform float light_one_minus_beta2[kMaxLights];
+uniform float light_intensity[kMaxLights];  // point, spot, sphere: I; directional: E
+uniform vec3 light_axis[kMaxLights];        // spot axis, or the directional light's direction
+uniform vec2 light_cone[kMaxLights];        // spot: half angle, falloff (degrees)
+uniform float light_radius[kMaxLights];     // sphere
+uniform int light_row[kMaxLights];  // its colour row: against ln D (others), or the glossy row
+
+uniform int lit;
+uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
+uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
+uniform vec3 surface_velocity;  // in W (0 for the classical picture)
+uniform vec3 camera_velocity;   // in W (0 for the classical picture)
+uniform int searchlight_model;  // 0 physical, 1 chang1996, 2 off
+uniform int spectral;
+uniform float diffuse;  // 1 - glossy specular, or 1
+uniform int glossy;
+uniform float glossy_roughness;
+uniform float glossy_specular;
+// Spectral: the reflected colour of (fixed colour k, light l) in row reflection_row[16 k + l],
+// a row against ln D_camera (a light co-moving with the surface) or, where reflection_moving
+// is set, the first of a block of rows of reflection_tables, one per node of ln D_light.
+uniform int reflection_row[2 * kMaxLights];
+uniform int reflection_moving[2 * kMaxLights];
+uniform sampler2D reflection_tables;
+uniform vec4 reflection_grid;  // (first ln D_camera, step, first ln D_light, step)
+uniform int reflection_light_nodes;
+// The colour models other than spectral: the received colour of outgoing radiance o is
+// o.r row[0] + o.g row[1] + o.b row[2] (rgb3 is linear in the colour; off scales it).
+uniform int final_rows[3];
+
+// physics/lorentz.cpp, boost: coordinates in the frame moving with beta.
+vec4 boost(vec3 beta, vec4 e) {
+  float b2 = dot(beta, beta);
+  if (b2 == 0.0) return e;
+  float g = 1.0 / sqrt(1.0 - b2);
+  float bx = dot(beta, e.yzw);
+  return vec4(g * (e.x - bx), e.yzw + ((g - 1.0) / b2 * bx - g * e.x) * beta);
+}
+
+// physics/doppler.cpp, doppler_factor: D = (k.U_R) / (k.U_E) for propagation direction n.
+float doppler_between(vec3 n, vec3 beta_e, vec3 beta_r) {
+  float ge = 1.0 / sqrt(1.0 - dot(beta_e, beta_e)), gr = 1.0 / sqrt(1.0 - dot(beta_r, beta_r));
+  return gr * (1.0 - dot(beta_r, n)) / (ge * (1.0 - dot(beta_e, n)));
+}
+
+// physics/light_path.cpp, receive_leg.
+struct Leg {
+  float doppler, distance;
+  vec3 direction, emitted_direction;
+};
+Leg receive_leg(vec4 emission, vec3 beta_emitter, vec4 reception, vec3 beta_receiver) {
+  Leg leg;
+  vec4 in_receiver = boost(beta_receiver, reception - emission);
+  leg.distance = length(in_receiver.yzw);
+  leg.direction = in_receiver.yzw / leg.distance;
+  vec4 k_common = boost(-beta_receiver, vec4(1.0, leg.direction));
+  vec4 k_emitter = boost(beta_emitter, k_common);
+  leg.emitted_direction = normalize(k_emitter.yzw);
+  leg.doppler = doppler_between(k_common.yzw / k_common.x, beta_emitter, beta_receiver);
+  return leg;
+}
+
+// frame/lighting.cpp, contracted: a rest offset of a body moving with beta at one instant of W.
+vec3 contracted(vec3 offset, vec3 beta) {
+  float b2 = dot(beta, beta);
+  if (b2 == 0.0) return offset;
+  float g = 1.0 / sqrt(1.0 - b2);
+  return offset - beta * ((1.0 - 1.0 / g) * dot(beta, offset) / b2);
+}
+
+// frame/lighting.cpp, sphere_point: a uniform point on the unit sphere.
+vec3 sphere_point(vec2 u) {
+  float z = 1.0 - 2.0 * u.x, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * u.y;
+  return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+// frame/lighting.cpp, glossy_reflectance (GGX, Smith, Schlick).
+float glossy_reflectance(vec3 n, vec3 to_light, vec3 to_camera) {
+  float cos_i = dot(n, to_light), cos_o = dot(n, to_camera);
+  if (cos_i <= 0.0 || cos_o <= 0.0) return 0.0;
+  vec3 h = normalize(to_light + to_camera);
+  float a2 = pow(glossy_roughness, 4.0);
+  float cos_h = dot(n, h);
+  float denom = cos_h * cos_h * (a2 - 1.0) + 1.0;
+  float distribution = a2 / (kPi * denom * denom);
+  float g1i = 2.0 * cos_i / (cos_i + sqrt(a2 + (1.0 - a2) * cos_i * cos_i));
+  float g1o = 2.0 * cos_o / (cos_o + sqrt(a2 + (1.0 - a2) * cos_o * cos_o));
+  float fresnel = glossy_specular + (1.0 - glossy_specular) * pow(1.0 - dot(h, to_camera), 5.0);
+  return distribution * g1i * g1o * fresnel / (4.0 * cos_i * cos_o);
+}
+
+struct Incoming {
+  vec3 direction_to_light;
+  float doppler, irradiance, spectral_factor;
+};
+
+// frame/lighting.cpp, set_irradiance: the searchlight model's irradiance factors.
+void set_irradiance(inout Incoming in_light, float geometric, float physical,
+                    float physical_spectral) {
+  if (searchlight_model == 0) {
+    in_light.irradiance = physical;
+    in_light.spectral_factor = physical_spectral;
+  } else if (searchlight_model == 1) {
+    in_light.irradiance = in_light.spectral_factor = geometric * in_light.doppler;
+  } else {
+    in_light.irradiance = in_light.spectral_factor = geometric;
+  }
+}
+
+// frame/lighting.cpp, Lighting::incoming (without shadows).
+bool incoming(int l, vec4 surface, vec3 normal, vec2 light_sample, out Incoming result) {
+  result = Incoming(vec3(0.0), 1.0, 0.0, 0.0);
+  vec3 beta_l = light_velocity[l];
+  if (light_kind[l] == 2) {
+    // A plane wave: physics/light_path.cpp's plane-wave laws.
+    vec4 k_world = boost(-beta_l, vec4(1.0, normalize(light_axis[l])));
+    vec4 k_surface = boost(surface_velocity, k_world);
+    result.direction_to_light = -(k_surface.yzw / k_surface.x);
+    result.doppler = k_surface.x;
+    float cos_i = dot(normal, result.direction_to_light);
+    if (!(cos_i > 0.0)) return false;
+    float e = light_intensity[l];
+    set_irradiance(result, e * cos_i, result.doppler * result.doppler * e * cos_i,
+                   e * result.doppler * result.doppler * result.doppler * cos_i);
+    return true;
+  }
+  vec3 rest_offset = vec3(0.0);
+  float intensity = light_intensity[l];
+  if (light_kind[l] == 3) rest_offset = sphere_point(light_sample) * light_radius[l];
+  vec3 offset_world = contracted(rest_offset, beta_l);
+  vec4 emission;
+  if (light_fixed_event[l] == 1) {
+    emission = light_event[l] + vec4(0.0, offset_world);
+  } else {
+    vec3 at = light_position[l] + beta_l * (surface.x - light_time[l]) + offset_world;
+    float tau = retarded_delay(at - surface.yzw, beta_l, light_one_minus_beta2[l]);
+    emission = vec4(surface.x - tau, at - beta_l * tau);
+  }
+  Leg leg = receive_leg(emission, beta_l, surface, surface_velocity);
+  result.direction_to_light = -leg.direction;
+  result.doppler = leg.doppler;
+  float cos_i = dot(normal, result.direction_to_light);
+  if (!(cos_i > 0.0) || !(leg.distance > 0.0)) return false;
+  if (light_kind[l] == 1) {
+    float angle = degrees(acos(clamp(dot(leg.emitted_direction, normalize(light_axis[l])), -1.0,
+                                     1.0)));
+    float half_cone = light_cone[l].x, falloff = light_cone[l].y;
+    intensity *= 1.0 - (falloff <= 0.0 ? (angle >= half_cone ? 1.0 : 0.0)
+                                       : smoothstep(half_cone - falloff, half_cone, angle));
+  } else if (light_kind[l] == 3) {
+    intensity *= 4.0 * max(0.0, dot(normalize(rest_offset), leg.emitted_direction));
+  }
+  if (intensity <= 0.0) return false;
+  float d2 = leg.doppler * leg.doppler, r2 = leg.distance * leg.distance;
+  set_irradiance(result, intensity * cos_i / r2, d2 * d2 * intensity * cos_i / r2,
+                 intensity * d2 * d2 * leg.doppler * cos_i / r2);
+  return true;
+}
+
+// A moving light's reflected colour against (ln D_camera, ln D_light): bilinear between the
+// rows of its block.
+vec3 reflection_table(int first_row, float log_camera, float log_light) {
+  float x = (log_camera - reflection_grid.x) / reflection_grid.y;
+  float y = (log_light - reflection_grid.z) / reflection_grid.w;
+  float last_x = float(textureSize(reflection_tables, 0).x - 1);
+  float last_y = float(reflection_light_nodes - 1);
+  x = clamp(x, 0.0, last_x);
+  y = clamp(y, 0.0, last_y);
+  float i = min(floor(x), last_x - 1.0), j = min(floor(y), last_y - 1.0);
+  int r = first_row + int(j);
+  vec3 a = mix(texelFetch(reflection_tables, ivec2(int(i), r), 0).rgb,
+               texelFetch(reflection_tables, ivec2(int(i) + 1, r), 0).rgb, x - i);
+  vec3 b = mix(texelFetch(reflection_tables, ivec2(int(i), r + 1), 0).rgb,
+               texelFetch(reflection_tables, ivec2(int(i) + 1, r + 1), 0).rgb, x - i);
+  return mix(a, b, y - j);
+}
+
+// frame/lighting.cpp, Lighting::received: the light a lit surface point of albedo `albedo`
+// (fixed colour `k`) sends to the camera, seen along u with factor d_camera; s is the ray
+// parameter of the surface point and shape_normal its normal in shape coordinates.
+vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 shape_normal,
+                vec2 light_sample) {
+  vec4 surface = trace_to_world * vec4(ray_time * s, u * s);
+  vec3 normal = normalize(normal_to_rest * shape_normal);
+  Leg view = receive_leg(surface, surface_velocity, vec4(0.0), camera_velocity);
+  vec3 to_camera = view.emitted_direction;
+  vec3 seen = vec3(0.0), outgoing = vec3(0.0);
+  for (int l = 0; l < kMaxLights; ++l) {
+    if (l >= light_count) break;
+    Incoming in_light;
+    if (!incoming(l, surface, normal, light_sample, in_light)) continue;
+    float gloss =
+        glossy == 1 ? glossy_reflectance(normal, in_light.direction_to_light, to_camera) : 0.0;
+    if (spectral == 1) {
+      int index = 16 * k + l;
+      vec3 reflected = reflection_moving[index] == 1
+                           ? reflection_table(reflection_row[index], log(d_camera),
+                                              log(in_light.doppler))
+                           : received_colour(reflection_row[index], d_camera);
+      seen += diffuse / kPi * in_light.spectral_factor * reflected;
+      if (gloss > 0.0)
+        seen += gloss * in_light.spectral_factor *
+                received_colour(light_row[l], d_camera * in_light.doppler);
+    } else {
+      vec3 colour = received_colour(light_row[l], in_light.doppler);
+      outgoing += (diffuse * albedo / kPi + vec3(gloss)) * colour * in_light.irradiance;
+    }
+  }
+  if (spectral == 1) return seen;  // the searchlight factor is applied by the caller
+  return outgoing.r * received_colour(final_rows[0], d_camera) +
+         outgoing.g * received_colour(final_rows[1], d_camera) +
+         outgoing.b * received_colour(final_rows[2], d_camera);
+}
