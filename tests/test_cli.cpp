@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -519,6 +520,51 @@ TEST_F(CliTest, BrokenMeshesAndMissingTextures) {
     expect_rejected(
         render(scene), scene.string() + ":18: sky.image: ",
         {(dir_ / "sky.exr").string() + ": cannot read image: No such file or directory"});
+  }
+}
+
+// A shell prefix that limits the command's address space to 1 GB; none under AddressSanitizer,
+// which reserves terabytes of address space for its shadow memory.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr const char* kOneGigabyteLimit = "";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr const char* kOneGigabyteLimit = "";
+#else
+constexpr const char* kOneGigabyteLimit = "ulimit -v 1048576;";
+#endif
+#else
+constexpr const char* kOneGigabyteLimit = "ulimit -v 1048576;";
+#endif
+
+TEST_F(CliTest, HostileImagesAreRefusedQuicklyAndSmall) {
+  // What stb_image once did with them: a 9-byte JPEG wrote past a table, a PNM's size
+  // overflowed, a 10-byte GIF allocated 532 MB. Each is now a located error, through the real
+  // command, within 5 s and 1 GB (a ulimit on the command's address space).
+  const std::pair<const char*, std::string> images[] = {
+      {"tiny.jpg", std::string("\xff\xd8\xff\xdb\x00\x43\x00\x01\x02", 9)},
+      {"huge.pgm", std::string("P5\n4294967295 4294967295\n255\n")},
+      {"bomb.gif", std::string("GIF89a\xff\xff\xff\xff", 10)},
+      {"truncated.png",
+       std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\x20\0\0\0\x20\0\x08\x02", 26)}};
+  for (const auto& [name, bytes] : images) {
+    SCOPED_TRACE(name);
+    test::write_text(dir_ / name, bytes);
+    const fs::path scene = write_scene(
+        edited(kScene, "{\"color\": [0, 1, 0]}", std::string("{\"texture\": \"") + name + "\"}"));
+    const auto start = std::chrono::steady_clock::now();
+    const CommandResult r = run_lightcone(
+        "render " + quoted(scene) + " -o " + quoted(png()) + " --exr " + quoted(exr()),
+        kOneGigabyteLimit);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(scene.string() +
+                         ":15: objects[0].material.texture: " + (dir_ / name).string() + ": "),
+              std::string::npos)
+        << r.err;
+    EXPECT_LT(seconds, 5.0);
+    expect_nothing_written();
   }
 }
 
