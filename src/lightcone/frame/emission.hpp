@@ -72,6 +72,13 @@ class EmissionTable {
     return objects_[object_index].colours[colour];
   }
   const PointEmission& sky_colour(int colour) const { return sky_.colours[colour]; }
+  // The tables that colours looked up per hit combine (spectral model; the nodes are built
+  // when the scene has textured emitters or a sky image): the RGB white's and node `node` of
+  // emitter case `node_case` (RgbEmitterSpectrum).
+  const DopplerXyzTable& white_table() const { return white_; }
+  const DopplerXyzTable& emitter_node_table(int node_case, int node) const {
+    return nodes_[static_cast<std::size_t>(node_case) * kRgbToSpectrumRes + node];
+  }
 
  private:
   struct Fixed {

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <tuple>
 
+#include "lightcone/color/sigmoid_polynomial.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/sampler.hpp"
@@ -30,9 +32,17 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     lit = lit || !o.material.unlit;
     textured = textured || std::holds_alternative<Texture>(o.material.pattern);
   }
-  if (textured) differences.push_back("textured materials are drawn black");
-  if (std::holds_alternative<SkyImage>(scene.sky.pattern))
-    differences.push_back("the sky image is drawn black");
+  bool textured_mesh = false, lit_textured = false;
+  for (const Object& o : scene.objects)
+    if (std::holds_alternative<Texture>(o.material.pattern)) {
+      textured_mesh = textured_mesh || std::holds_alternative<MeshShape>(o.shape);
+      lit_textured = lit_textured || !o.material.unlit;
+    }
+  if (textured_mesh) differences.push_back("textured meshes are drawn black");
+  if (lit_textured) differences.push_back("lit textured materials are drawn black");
+  const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
+  if ((textured || sky_image) && scene.render.doppler == DopplerModel::kHue)
+    differences.push_back("textures and sky images under the hue colour model are drawn black");
   if (lit && scene.render.doppler == DopplerModel::kHue)
     differences.push_back("lit materials under the hue colour model are drawn black");
   if (lit && scene.lights.size() > kMaxRasterLights)
@@ -123,6 +133,7 @@ struct RasterRenderer::Impl {
   }
 
   ~Impl() {
+    for (const auto& [image, name] : images) glDeleteTextures(1, &name);
     glDeleteTextures(1, &rows_texture);
     glDeleteTextures(1, &offsets_texture);
     glDeleteTextures(1, &tables_texture);
@@ -149,6 +160,13 @@ struct RasterRenderer::Impl {
     glUniform1f(uniform(program, "log_doppler_first"), static_cast<float>(first_log_doppler));
     glUniform1f(uniform(program, "log_doppler_step"), static_cast<float>(kLogDopplerStep));
     glUniform1f(uniform(program, "ray_time"), static_cast<float>(scene.ray_time));
+    glUniform1i(uniform(program, "spectral"),
+                scene.scene->render.doppler == DopplerModel::kSpectral ? 1 : 0);
+    glUniform1iv(uniform(program, "primary_rows"), 3, final_rows.data());
+    glUniform1i(uniform(program, "basis_first_row"), basis_first_row);
+    const LinearRgb w = reference_white();
+    glUniform3f(uniform(program, "reference_white"), static_cast<float>(w.r),
+                static_cast<float>(w.g), static_cast<float>(w.b));
   }
 
   // The Doppler factor's velocity and gamma for an emitter moving with `velocity` in F.
@@ -176,10 +194,28 @@ struct RasterRenderer::Impl {
   std::vector<BodyDraw> draws;
   std::vector<LightDraw> lights;
   std::array<int, 3> final_rows{};
+  int basis_first_row = 0;
+  std::map<const Image*, GLuint> images;  // textures and sky images, uploaded once
   double first_log_doppler = 0;
   int sky_first_row = 0;
   double table_camera_first = 0, table_light_first = 0;
   int table_light_nodes = 2;
+
+  // A texture or sky image as a float texture (once per image).
+  GLuint upload(const Image& image) {
+    auto [it, added] = images.emplace(&image, 0);
+    if (added) {
+      glGenTextures(1, &it->second);
+      glBindTexture(GL_TEXTURE_2D, it->second);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT,
+                   image.rgb.data());
+      check_gl("uploading an image");
+    }
+    return it->second;
+  }
 
   // Tessellates every body and tabulates the colour rows for one frame.
   RasterFrameStats prepare(const ResolvedScene& resolved, const EmissionTable& emission,
@@ -260,6 +296,28 @@ struct RasterRenderer::Impl {
       });
     }
 
+    // Textures and sky images, spectral model: the RGB white's and the emitter nodes' rows,
+    // which received_rgb (common.glsl) combines per sample.
+    const bool per_sample_colours =
+        std::holds_alternative<SkyImage>(s.sky.pattern) ||
+        std::any_of(s.objects.begin(), s.objects.end(), [](const Object& o) {
+          return o.material.unlit && std::holds_alternative<Texture>(o.material.pattern);
+        });
+    basis_first_row = 0;
+    if (spectral && per_sample_colours) {
+      const auto basis_row = [&](const DopplerXyzTable& table) {
+        PointEmission e;
+        e.rest_rgb = linear_srgb_from_xyz(table.at_rest());
+        e.tables[0] = &table;
+        e.weights[0] = 1;
+        e.table_count = 1;
+        return add_row([e, &settings](double d) { return received_colour(e, d, settings); });
+      };
+      basis_first_row = basis_row(emission.white_table());
+      for (int c = 0; c < kRgbEmitterCases; ++c)
+        for (int n = 0; n < kRgbToSpectrumRes; ++n) basis_row(emission.emitter_node_table(c, n));
+    }
+
     // Lit bodies' reflection rows (co-moving lights) and tables (moving lights).
     const LogDopplerRange unlit = visible_log_doppler(resolved, false);
     const LogDopplerRange lit_range = visible_log_doppler(resolved, true);
@@ -301,7 +359,10 @@ struct RasterRenderer::Impl {
       draw.pattern = checker ? 1 : 0;
       if (textured) {
         draw.first_row = emission_row(kBlack);
-        draw.pattern = 0;
+        const bool drawable = m.unlit && !std::holds_alternative<MeshShape>(body.object->shape) &&
+                              settings.doppler != DopplerModel::kHue;
+        draw.pattern = drawable ? 2 : 0;
+        if (drawable) upload(*std::get<Texture>(m.pattern).image);
       } else if (m.unlit) {
         if (checker) {
           // A checker's two colours take consecutive rows of their own.
@@ -359,6 +420,7 @@ struct RasterRenderer::Impl {
     }
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
+    if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image);
     const PointEmission& sky0 = sky_image ? kBlack : emission.sky_colour(0);
     const PointEmission& sky1 = grid ? emission.sky_colour(1) : sky0;
     sky_first_row =
@@ -455,8 +517,6 @@ struct RasterRenderer::Impl {
                 settings.searchlight == SearchlightModel::kPhysical    ? 0
                 : settings.searchlight == SearchlightModel::kChang1996 ? 1
                                                                        : 2);
-    glUniform1i(uniform(p, "spectral"), settings.doppler == DopplerModel::kSpectral ? 1 : 0);
-    glUniform1iv(uniform(p, "final_rows"), 3, final_rows.data());
     glUniform1i(uniform(p, "reflection_tables"), 2);
     glUniform4f(uniform(p, "reflection_grid"), static_cast<float>(table_camera_first),
                 static_cast<float>(kTableCameraStep), static_cast<float>(table_light_first),
@@ -550,7 +610,18 @@ struct RasterRenderer::Impl {
                                                        : std::holds_alternative<Plane>(shape) ? 2
                                                        : sphere                               ? 3
                                                                                               : 0);
-      set_vec3(body_program, "box_size", box ? box->size : Vec3{1, 1, 1});
+      const auto* plane = std::get_if<Plane>(&shape);
+      set_vec3(body_program, "box_size",
+               box     ? box->size
+               : plane ? Vec3{plane->size_x, 0, plane->size_z}
+                       : Vec3{1, 1, 1});
+      glUniform1i(uniform(body_program, "texture_image"), 3);
+      if (draw.pattern == 2) {
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D,
+                      images.at(std::get<Texture>(body.object->material.pattern).image.get()));
+        glActiveTexture(GL_TEXTURE0);
+      }
       glUniform1f(uniform(body_program, "sphere_radius"),
                   sphere ? static_cast<float>(sphere->radius) : 0.0f);
       set_lit_body(resolved, draw);
@@ -566,7 +637,15 @@ struct RasterRenderer::Impl {
     set_doppler(sky_program, resolved, resolved.sky_velocity);
     glUniform1i(uniform(sky_program, "colour_row"), sky_first_row);
     const auto* g = std::get_if<SkyGrid>(&s.sky.pattern);
-    glUniform1i(uniform(sky_program, "pattern"), g ? 1 : 0);
+    const auto* sky_image = std::get_if<SkyImage>(&s.sky.pattern);
+    const bool draw_image = sky_image && s.render.doppler != DopplerModel::kHue;
+    glUniform1i(uniform(sky_program, "pattern"), g ? 1 : draw_image ? 2 : 0);
+    glUniform1i(uniform(sky_program, "sky_image"), 4);
+    if (draw_image) {
+      glActiveTexture(GL_TEXTURE4);
+      glBindTexture(GL_TEXTURE_2D, images.at(sky_image->image.get()));
+      glActiveTexture(GL_TEXTURE0);
+    }
     glUniform1f(uniform(sky_program, "grid_spacing"),
                 g ? static_cast<float>(g->spacing_degrees) : 1.0f);
     glUniform1f(uniform(sky_program, "grid_half_width"),

@@ -13,7 +13,8 @@ uniform vec2 depth_range;
 uniform vec3 doppler_velocity;  // the body's velocity in F (0 for the classical picture)
 uniform float doppler_gamma;
 uniform int colour_row;  // the row of the pattern's first colour
-uniform int pattern;     // 0: one colour; 1: checker
+uniform int pattern;     // 0: one colour; 1: checker; 2: texture
+uniform sampler2D texture_image;
 uniform float checker_size;
 uniform int shape_kind;  // 0: mesh; 1: box; 2: plane; 3: sphere
 uniform vec3 box_size;
@@ -80,6 +81,23 @@ float spectral_searchlight(float d) {
 
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
 
+const float kTwoPi = 6.283185307179586;
+
+// trace/tracer.cpp's texture coordinates of a surface point: sphere_uv, box_uv, the plane's.
+vec2 surface_uv(vec3 p) {
+  if (shape_kind == 3) {
+    vec3 n = normalize(p);
+    return vec2(0.5 + atan(n.x, n.z) / kTwoPi, atan(length(n.xz), n.y) / kPi);
+  }
+  if (shape_kind == 1) {
+    vec3 rel = p / box_size, a = abs(rel);
+    if (a.x >= a.y && a.x >= a.z) return vec2(0.5 + rel.z, 0.5 - rel.y);
+    if (a.y >= a.z) return vec2(0.5 + rel.x, 0.5 + rel.z);
+    return vec2(0.5 + rel.x, 0.5 - rel.y);
+  }
+  return vec2(0.5 + p.x / box_size.x, 0.5 + p.z / box_size.z);  // a plane's size in x and z
+}
+
 void main() {
   vec3 u = fragment_look_direction();
   vec3 direction = ray_offset + shape_spatial * u;
@@ -92,6 +110,8 @@ void main() {
   if (lit == 1) {
     vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
     colour = vec4(spectral == 1 ? c * spectral_searchlight(d) : c, 1.0);
+  } else if (pattern == 2) {
+    colour = vec4(received_rgb(sample_bilinear(texture_image, surface_uv(p), true), d), 1.0);
   } else {
     colour = vec4(received_colour(colour_row + k, d), 1.0);
   }

@@ -88,3 +88,57 @@ vec3 received_colour(int row, float d) {
   vec3 b = texelFetch(colour_rows, ivec2(int(i) + 1, row), 0).rgb;
   return mix(a, b, x - i);
 }
+
+// Colours looked up per sample (textures, sky images), received with factor d. The spectral
+// model: color/rgb_spectrum.cpp's RgbEmitterSpectrum::from_rgb (a grey part of the RGB white,
+// and a blend of two emitter nodes), each part's row tabulated from its table; the others:
+// the colour models are linear in the colour, so the received colour is that of the three
+// primaries, weighted.
+uniform int spectral;
+uniform int primary_rows[3];
+uniform int basis_first_row;  // the white's row, then 6 x 64 emitter nodes' (case-major)
+uniform vec3 reference_white;
+
+vec3 received_rgb(vec3 rgb, float d) {
+  vec3 c = max(rgb, vec3(0.0));
+  if (spectral == 0)
+    return c.r * received_colour(primary_rows[0], d) + c.g * received_colour(primary_rows[1], d) +
+           c.b * received_colour(primary_rows[2], d);
+  float grey = min(c.r, min(c.g, c.b));
+  vec3 result = grey > 0.0 ? grey * received_colour(basis_first_row, d) : vec3(0.0);
+  vec3 q = (c - vec3(grey)) / reference_white;
+  int l = 0;
+  if (q.y > q[l]) l = 1;
+  if (q.z > q[l]) l = 2;
+  if (!(q[l] > 0.0)) return result;
+  int m1 = (l + 1) % 3, m2 = (l + 2) % 3;
+  int m = q[m2] > q[m1] ? m2 : m1;
+  float scale = 2.0 * q[l];
+  int node_case = 2 * l + (m == (l + 1) % 3 ? 0 : 1);  // rgb_emitter_case
+  float position = min(q[m] / q[l], 1.0) * 63.0;
+  int node = min(int(position), 62);
+  float blend = position - float(node);
+  int row = basis_first_row + 1 + 64 * node_case + node;
+  return result + scale * ((1.0 - blend) * received_colour(row, d) +
+                           blend * received_colour(row + 1, d));
+}
+
+// frame/shading.cpp, sample_bilinear: texel centres at ((i + .5)/w, (j + .5)/h); u wraps, v
+// wraps or clamps. The image holds linear RGB, rows from the top.
+vec3 texel(sampler2D image, ivec2 size, int i, int j, bool wrap_v) {
+  i = ((i % size.x) + size.x) % size.x;
+  j = wrap_v ? ((j % size.y) + size.y) % size.y : clamp(j, 0, size.y - 1);
+  return texelFetch(image, ivec2(i, j), 0).rgb;
+}
+vec3 sample_bilinear(sampler2D image, vec2 uv, bool wrap_v) {
+  ivec2 size = textureSize(image, 0);
+  // The wrap is taken first, so that large u and v keep their precision.
+  vec2 at = vec2(fract(uv.x), wrap_v ? fract(uv.y) : uv.y) * vec2(size) - 0.5;
+  vec2 f = floor(at);
+  int x0 = int(f.x), y0 = int(f.y);
+  vec3 top = mix(texel(image, size, x0, y0, wrap_v), texel(image, size, x0 + 1, y0, wrap_v),
+                 at.x - f.x);
+  vec3 bottom = mix(texel(image, size, x0, y0 + 1, wrap_v),
+                    texel(image, size, x0 + 1, y0 + 1, wrap_v), at.x - f.x);
+  return mix(top, bottom, at.y - f.y);
+}

@@ -25,7 +25,6 @@ uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
 uniform vec3 surface_velocity;  // in W (0 for the classical picture)
 uniform vec3 camera_velocity;   // in W (0 for the classical picture)
 uniform int searchlight_model;  // 0 physical, 1 chang1996, 2 off
-uniform int spectral;
 uniform float diffuse;  // 1 - glossy specular, or 1
 uniform int glossy;
 uniform float glossy_roughness;
@@ -38,9 +37,6 @@ uniform int reflection_moving[2 * kMaxLights];
 uniform sampler2D reflection_tables;
 uniform vec4 reflection_grid;  // (first ln D_camera, step, first ln D_light, step)
 uniform int reflection_light_nodes;
-// The colour models other than spectral: the received colour of outgoing radiance o is
-// o.r row[0] + o.g row[1] + o.b row[2] (rgb3 is linear in the colour; off scales it).
-uniform int final_rows[3];
 
 // physics/lorentz.cpp, boost: coordinates in the frame moving with beta.
 vec4 boost(vec3 beta, vec4 e) {
@@ -221,7 +217,6 @@ vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 shape_
     }
   }
   if (spectral == 1) return seen;  // the searchlight factor is applied by the caller
-  return outgoing.r * received_colour(final_rows[0], d_camera) +
-         outgoing.g * received_colour(final_rows[1], d_camera) +
-         outgoing.b * received_colour(final_rows[2], d_camera);
+  // The colour models other than spectral are linear in the colour (common.glsl).
+  return received_rgb(outgoing, d_camera);
 }
