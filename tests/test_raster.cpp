@@ -490,7 +490,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
     const char* name;
     const char* source;
     bool fragment;
-    const char* extra = "";  // what the program puts between the shared code and the stage
+    const char* extra = "";    // what the program puts between the shared code and the stage
+    const char* defines = "";  // which variant of the stage
   };
   const Stage stages[] = {
       {"body.vert", shader_sources::body_vert, false},
@@ -503,7 +504,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
     test::write_text(file, std::string("#version 300 es\nprecision highp float;\nprecision highp "
                                        "int;\nprecision highp sampler2D;\n") +
                                (stage.fragment ? "#define LIGHTCONE_FRAGMENT_STAGE 1\n" : "") +
-                               shader_sources::common_glsl + stage.extra + stage.source);
+                               stage.defines + shader_sources::common_glsl + stage.extra +
+                               stage.source);
     const std::string command =
         "glslangValidator '" + file.string() + "' > '" + (dir / "log").string() + "' 2>&1";
     const int status = std::system(command.c_str());

@@ -66,8 +66,8 @@ constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 std::string vertex_shader(const char* source) {
   return std::string("#version 330 core\n") + shader_sources::common_glsl + source;
 }
-std::string fragment_shader(const char* source, const char* extra = "") {
-  return std::string("#version 330 core\n#define LIGHTCONE_FRAGMENT_STAGE 1\n") +
+std::string fragment_shader(const char* source, const char* extra = "", const char* defines = "") {
+  return std::string("#version 330 core\n#define LIGHTCONE_FRAGMENT_STAGE 1\n") + defines +
          shader_sources::common_glsl + extra + source;
 }
 
@@ -106,17 +106,28 @@ EmissionKey key_of(const PointEmission& e) {
 }  // namespace
 
 struct RasterRenderer::Impl {
-  GLuint body_program = 0, sky_program = 0;
+  // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
+  // image): small programs run faster than one with every branch.
+  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
+  GLuint body_programs[3] = {0, 0, 0}, sky_programs[2] = {0, 0};
+  GLuint body_program = 0;  // the one in use
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
   std::vector<float> vertices;  // reused from frame to frame
 
   Impl() {
-    body_program =
-        link_program(vertex_shader(shader_sources::body_vert),
-                     fragment_shader(shader_sources::body_frag, shader_sources::lighting_glsl));
-    sky_program = link_program(vertex_shader(shader_sources::fullscreen_vert),
-                               fragment_shader(shader_sources::sky_frag));
+    for (int v = 0; v < 3; ++v)
+      body_programs[v] = link_program(
+          vertex_shader(shader_sources::body_vert),
+          fragment_shader(shader_sources::body_frag, v == kLit ? shader_sources::lighting_glsl : "",
+                          v == kLit        ? "#define LIGHTCONE_LIT 1\n"
+                          : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
+                                           : ""));
+    for (int v = 0; v < 2; ++v)
+      sky_programs[v] =
+          link_program(vertex_shader(shader_sources::fullscreen_vert),
+                       fragment_shader(shader_sources::sky_frag, "",
+                                       v == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : ""));
     glGenVertexArrays(1, &vertex_array);
     glGenBuffers(1, &vertex_buffer);
     glGenTextures(1, &rows_texture);
@@ -139,8 +150,8 @@ struct RasterRenderer::Impl {
     glDeleteTextures(1, &tables_texture);
     glDeleteBuffers(1, &vertex_buffer);
     glDeleteVertexArrays(1, &vertex_array);
-    glDeleteProgram(body_program);
-    glDeleteProgram(sky_program);
+    for (GLuint program : body_programs) glDeleteProgram(program);
+    for (GLuint program : sky_programs) glDeleteProgram(program);
   }
 
   void set_common(GLuint program, const ResolvedScene& scene, double first_log_doppler, double ox,
@@ -409,6 +420,7 @@ struct RasterRenderer::Impl {
           }
         }
       }
+      if (!may_be_in_view(resolved.camera, body.trace_bounds)) continue;
       const Shape& shape = body.object->shape;
       const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
       auto it = meshes.find(shape_key);
@@ -530,8 +542,6 @@ struct RasterRenderer::Impl {
   // A body's own lighting uniforms.
   void set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw) {
     const GLuint p = body_program;
-    glUniform1i(uniform(p, "lit"), draw.lit ? 1 : 0);
-    if (!draw.lit) return;
     const Object& object = *resolved.bodies[draw.body].object;
     const Material& m = object.material;
     Rgb albedo[2];
@@ -580,56 +590,65 @@ struct RasterRenderer::Impl {
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, rows_texture);
 
-    glUseProgram(body_program);
-    set_common(body_program, resolved, first_log_doppler, ox, oy);
-    // Depth: the light travel distance on a log scale between these.
-    glUniform2f(uniform(body_program, "depth_range"), std::log(1e-6f), std::log(1e12f));
     glDepthFunc(GL_LESS);
-    set_lights(resolved);
     glBindVertexArray(vertex_array);
-    for (const BodyDraw& draw : draws) {
-      const ResolvedBody& body = resolved.bodies[draw.body];
-      const BodyView view = body_view(body);
-      set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
-      set_vec3(body_program, "shape_origin", view.shape_origin);
-      set_vec3(body_program, "world_line_velocity", view.velocity);
-      glUniform1f(uniform(body_program, "one_minus_beta2"),
-                  static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
-      set_vec3(body_program, "ray_offset", body.ray_offset);
-      set_mat3(body_program, "shape_spatial", body.spatial);
-      set_doppler(body_program, resolved, body.velocity);
-      glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
-      glUniform1i(uniform(body_program, "pattern"), draw.pattern);
-      const Shape& shape = body.object->shape;
-      const auto* checker = std::get_if<Checker>(&body.object->material.pattern);
-      glUniform1f(uniform(body_program, "checker_size"),
-                  checker ? static_cast<float>(checker->size) : 1.0f);
-      const auto* box = std::get_if<Box>(&shape);
-      const auto* sphere = std::get_if<Sphere>(&shape);
-      glUniform1i(uniform(body_program, "shape_kind"), box                                    ? 1
-                                                       : std::holds_alternative<Plane>(shape) ? 2
-                                                       : sphere                               ? 3
-                                                                                              : 0);
-      const auto* plane = std::get_if<Plane>(&shape);
-      set_vec3(body_program, "box_size",
-               box     ? box->size
-               : plane ? Vec3{plane->size_x, 0, plane->size_z}
-                       : Vec3{1, 1, 1});
-      glUniform1i(uniform(body_program, "texture_image"), 3);
-      if (draw.pattern == 2) {
-        glActiveTexture(GL_TEXTURE3);
-        glBindTexture(GL_TEXTURE_2D,
-                      images.at(std::get<Texture>(body.object->material.pattern).image.get()));
-        glActiveTexture(GL_TEXTURE0);
+    for (const Variant variant : {kEmitter, kTextured, kLit}) {
+      body_program = body_programs[variant];
+      glUseProgram(body_program);
+      set_common(body_program, resolved, first_log_doppler, ox, oy);
+      // Depth: the light travel distance on a log scale between these.
+      glUniform2f(uniform(body_program, "depth_range"), std::log(1e-6f), std::log(1e12f));
+      if (variant == kLit) set_lights(resolved);
+      for (const BodyDraw& draw : draws) {
+        if (draw.lit != (variant == kLit) || (draw.pattern == 2) != (variant == kTextured))
+          continue;
+        const ResolvedBody& body = resolved.bodies[draw.body];
+        const BodyView view = body_view(body);
+        set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
+        set_vec3(body_program, "shape_origin", view.shape_origin);
+        set_vec3(body_program, "world_line_velocity", view.velocity);
+        glUniform1f(uniform(body_program, "one_minus_beta2"),
+                    static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
+        set_vec3(body_program, "ray_offset", body.ray_offset);
+        set_mat3(body_program, "shape_spatial", body.spatial);
+        set_doppler(body_program, resolved, body.velocity);
+        glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
+        glUniform1i(uniform(body_program, "pattern"), draw.pattern);
+        const Shape& shape = body.object->shape;
+        const auto* checker = std::get_if<Checker>(&body.object->material.pattern);
+        glUniform1f(uniform(body_program, "checker_size"),
+                    checker ? static_cast<float>(checker->size) : 1.0f);
+        const auto* box = std::get_if<Box>(&shape);
+        const auto* sphere = std::get_if<Sphere>(&shape);
+        glUniform1i(uniform(body_program, "shape_kind"), box                                    ? 1
+                                                         : std::holds_alternative<Plane>(shape) ? 2
+                                                         : sphere                               ? 3
+                                                                  : 0);
+        const auto* plane = std::get_if<Plane>(&shape);
+        set_vec3(body_program, "box_size",
+                 box     ? box->size
+                 : plane ? Vec3{plane->size_x, 0, plane->size_z}
+                         : Vec3{1, 1, 1});
+        glUniform1i(uniform(body_program, "texture_image"), 3);
+        if (draw.pattern == 2) {
+          glActiveTexture(GL_TEXTURE3);
+          glBindTexture(GL_TEXTURE_2D,
+                        images.at(std::get<Texture>(body.object->material.pattern).image.get()));
+          glActiveTexture(GL_TEXTURE0);
+        }
+        glUniform1f(uniform(body_program, "sphere_radius"),
+                    sphere ? static_cast<float>(sphere->radius) : 0.0f);
+        if (variant == kLit) set_lit_body(resolved, draw);
+        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
+                     static_cast<GLsizei>(draw.vertex_count));
       }
-      glUniform1f(uniform(body_program, "sphere_radius"),
-                  sphere ? static_cast<float>(sphere->radius) : 0.0f);
-      set_lit_body(resolved, draw);
-      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
-                   static_cast<GLsizei>(draw.vertex_count));
     }
     check_gl("drawing the bodies");
 
+    const GLuint sky_program = sky_programs[std::holds_alternative<SkyImage>(s.sky.pattern) &&
+                                                    s.render.doppler != DopplerModel::kHue
+                                                ? 1
+                                                : 0];
     glUseProgram(sky_program);
     set_common(sky_program, resolved, first_log_doppler, ox, oy);
     set_vec3(sky_program, "sky_time_column", resolved.sky_time_column);

@@ -82,6 +82,31 @@ RestMesh rest_mesh(const Shape& shape) {
   return std::visit(Visitor{}, shape);
 }
 
+namespace {
+
+// The inward normals of the view's four sides and of the plane through the camera facing
+// forward.
+std::array<Vec3, 5> view_sides(const CameraBasis& camera) {
+  const double ax = camera.tan_half_fov * camera.aspect, ay = camera.tan_half_fov;
+  return {camera.forward * ax + camera.right, camera.forward * ax - camera.right,
+          camera.forward * ay + camera.up, camera.forward * ay - camera.up, camera.forward};
+}
+
+}  // namespace
+
+bool may_be_in_view(const CameraBasis& camera, const Bounds3& b) {
+  for (const Vec3& inward : view_sides(camera)) {
+    bool all_beyond = true;
+    for (int corner = 0; corner < 8 && all_beyond; ++corner) {
+      const Vec3 p{corner & 1 ? b.upper.x : b.lower.x, corner & 2 ? b.upper.y : b.lower.y,
+                   corner & 4 ? b.upper.z : b.lower.z};
+      all_beyond = dot(p, inward) < 0;
+    }
+    if (all_beyond) return false;
+  }
+  return true;
+}
+
 ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                              const Vec3& shape_point) {
   const RayEvent event = meet_world_line(scene.ray_time, view.world_line(shape_point));
@@ -94,11 +119,7 @@ double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const
   const ApparentPoint pm = apparent_point(scene, view, mesh.midpoint(a, b));
   const CameraBasis& camera = scene.camera;
   // An edge seen wholly beyond one side of the view (its ends and midpoint) needs no accuracy.
-  const double ax = camera.tan_half_fov * camera.aspect, ay = camera.tan_half_fov;
-  const Vec3 sides[5] = {camera.forward * ax + camera.right, camera.forward * ax - camera.right,
-                         camera.forward * ay + camera.up, camera.forward * ay - camera.up,
-                         camera.forward};
-  for (const Vec3& inward : sides)
+  for (const Vec3& inward : view_sides(camera))
     if (dot(pa.position, inward) < 0 && dot(pb.position, inward) < 0 &&
         dot(pm.position, inward) < 0)
       return 0;

@@ -53,6 +53,11 @@ ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
 double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                          const Vec3& a, const Vec3& b);
 
+// Whether any point of `bounds` (in F, relative to the camera) can lie in the camera's view:
+// false when all of it lies beyond one side of the view or behind the camera. A body whose
+// trace bounds (every event where a camera ray can meet it) fail this is not drawn.
+bool may_be_in_view(const CameraBasis& camera, const Bounds3& bounds);
+
 struct TessellationLimits {
   double max_error_pixels = 0.5;
   int max_level = 10;  // an edge is split into at most 2^max_level pieces

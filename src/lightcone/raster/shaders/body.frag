@@ -55,6 +55,7 @@ vec3 surface_point(vec3 p) {
   return p;
 }
 
+#if defined(LIGHTCONE_LIT)
 // trace/tracer.cpp: the normal at a surface point, in shape coordinates, facing the ray.
 vec3 shape_normal(vec3 p, vec3 direction) {
   vec3 n = plane.xyz;
@@ -80,14 +81,16 @@ float spectral_searchlight(float d) {
 }
 
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
+#endif
 
 const float kTwoPi = 6.283185307179586;
+const float kHalfTurn = 3.141592653589793;
 
 // trace/tracer.cpp's texture coordinates of a surface point: sphere_uv, box_uv, the plane's.
 vec2 surface_uv(vec3 p) {
   if (shape_kind == 3) {
     vec3 n = normalize(p);
-    return vec2(0.5 + atan(n.x, n.z) / kTwoPi, atan(length(n.xz), n.y) / kPi);
+    return vec2(0.5 + atan(n.x, n.z) / kTwoPi, atan(length(n.xz), n.y) / kHalfTurn);
   }
   if (shape_kind == 1) {
     vec3 rel = p / box_size, a = abs(rel);
@@ -107,12 +110,13 @@ void main() {
                        0.0, 1.0);
   float d = doppler_factor(u, doppler_velocity, doppler_gamma);
   int k = pattern == 1 ? checker_index(p, checker_size) : 0;
-  if (lit == 1) {
-    vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
-    colour = vec4(spectral == 1 ? c * spectral_searchlight(d) : c, 1.0);
-  } else if (pattern == 2) {
-    colour = vec4(received_rgb(sample_bilinear(texture_image, surface_uv(p), true), d), 1.0);
-  } else {
-    colour = vec4(received_colour(colour_row + k, d), 1.0);
-  }
+  // One program per kind of material (the program defines which), so that each stays small.
+#if defined(LIGHTCONE_LIT)
+  vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
+  colour = vec4(spectral == 1 ? c * spectral_searchlight(d) : c, 1.0);
+#elif defined(LIGHTCONE_TEXTURED)
+  colour = vec4(received_rgb(sample_bilinear(texture_image, surface_uv(p), true), d), 1.0);
+#else
+  colour = vec4(received_colour(colour_row + k, d), 1.0);
+#endif
 }

@@ -19,7 +19,6 @@ uniform vec2 light_cone[kMaxLights];        // spot: half angle, falloff (degree
 uniform float light_radius[kMaxLights];     // sphere
 uniform int light_row[kMaxLights];  // its colour row: against ln D (others), or the glossy row
 
-uniform int lit;
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
 uniform vec3 surface_velocity;  // in W (0 for the classical picture)

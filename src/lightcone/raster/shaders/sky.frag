@@ -36,13 +36,15 @@ void main() {
   vec3 u = fragment_look_direction();
   vec3 d = normalize(sky_time_column * ray_time + sky_spatial * u);
   float doppler = doppler_factor(u, doppler_velocity, doppler_gamma);
-  if (pattern == 2) {
+#if defined(LIGHTCONE_SKY_IMAGE)
+  {
     // frame/shading.cpp, sky_image_colour: equirectangular, v from the north pole.
     vec2 uv = vec2(0.5 + atan(d.x, -d.z) / 6.283185307179586,
                    atan(length(d.xz), d.y) / 3.141592653589793);
     colour = vec4(received_rgb(sample_bilinear(sky_image, uv, false), doppler), 1.0);
     return;
   }
+#endif
   int row = colour_row + (pattern == 1 && on_grid_line(d) ? 1 : 0);
   colour = vec4(received_colour(row, doppler), 1.0);
 }
