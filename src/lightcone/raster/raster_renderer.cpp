@@ -1,6 +1,7 @@
 #include "lightcone/raster/raster_renderer.hpp"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -113,7 +114,6 @@ struct RasterRenderer::Impl {
   GLuint body_program = 0;  // the one in use
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
-  std::vector<float> vertices;  // reused from frame to frame
 
   Impl() {
     for (int v = 0; v < 3; ++v)
@@ -194,6 +194,7 @@ struct RasterRenderer::Impl {
     int first_row = 0, pattern = 0;
     bool lit = false;
     std::array<int, 2 * kMaxLights> reflection_row{}, reflection_moving{};
+    const RestMesh* mesh = nullptr;  // during prepare()
   };
   struct LightDraw {
     int kind = 0, fixed_event = 0, row = 0;
@@ -358,7 +359,6 @@ struct RasterRenderer::Impl {
     std::map<ReflectionKey, int> reflection_rows, reflection_tables;
 
     draws.clear();
-    vertices.clear();
     std::map<const void*, RestMesh> meshes;  // per shape, for this frame
     for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
       const ResolvedBody& body = resolved.bodies[i];
@@ -425,11 +425,30 @@ struct RasterRenderer::Impl {
       const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
       auto it = meshes.find(shape_key);
       if (it == meshes.end()) it = meshes.emplace(shape_key, rest_mesh(shape)).first;
-      draw.first_vertex = vertices.size() / kFloatsPerVertex;
-      tessellate(resolved, body_view(body), it->second, limits, vertices);
-      draw.vertex_count = vertices.size() / kFloatsPerVertex - draw.first_vertex;
-      if (draw.vertex_count > 0) draws.push_back(draw);
+      draw.mesh = &it->second;
+      draws.push_back(draw);
     }
+    // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
+    std::vector<std::vector<float>> parts(draws.size());
+    tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
+      tessellate(resolved, body_view(resolved.bodies[draws[d].body]), *draws[d].mesh, limits,
+                 parts[d]);
+    });
+    std::size_t total = 0;
+    for (std::size_t d = 0; d < draws.size(); ++d) {
+      draws[d].first_vertex = total;
+      draws[d].vertex_count = parts[d].size() / kFloatsPerVertex;
+      total += draws[d].vertex_count;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total * kFloatsPerVertex * sizeof(float)),
+                 nullptr, GL_STATIC_DRAW);
+    for (std::size_t d = 0; d < draws.size(); ++d)
+      if (!parts[d].empty())
+        glBufferSubData(
+            GL_ARRAY_BUFFER,
+            static_cast<GLintptr>(draws[d].first_vertex * kFloatsPerVertex * sizeof(float)),
+            static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
     if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image);
@@ -480,12 +499,9 @@ struct RasterRenderer::Impl {
     if (table_rows == 0) table_texels.assign(3 * 2 * table_camera_nodes, 0.0f);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, table_camera_nodes, std::max(table_rows, 2), 0,
                  GL_RGB, GL_FLOAT, table_texels.data());
-    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
-                 vertices.data(), GL_STATIC_DRAW);
     check_gl("uploading the frame");
     RasterFrameStats stats;
-    stats.triangles = vertices.size() / (3 * kFloatsPerVertex);
+    stats.triangles = total / 3;
     return stats;
   }
 

@@ -115,9 +115,13 @@ ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
 
 double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                          const Vec3& a, const Vec3& b) {
-  const ApparentPoint pa = apparent_point(scene, view, a), pb = apparent_point(scene, view, b);
-  const ApparentPoint pm = apparent_point(scene, view, mesh.midpoint(a, b));
-  const CameraBasis& camera = scene.camera;
+  return edge_error_pixels(scene.camera, apparent_point(scene, view, a),
+                           apparent_point(scene, view, b),
+                           apparent_point(scene, view, mesh.midpoint(a, b)));
+}
+
+double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& pa,
+                         const ApparentPoint& pb, const ApparentPoint& pm) {
   // An edge seen wholly beyond one side of the view (its ends and midpoint) needs no accuracy.
   for (const Vec3& inward : view_sides(camera))
     if (dot(pa.position, inward) < 0 && dot(pb.position, inward) < 0 &&
@@ -131,7 +135,8 @@ double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const
   };
   if (well_in_front(chord_middle) && well_in_front(pm.position)) {
     const ImagePoint drawn = project_direction(camera, chord_middle);
-    return std::hypot(pm.image.x - drawn.x, pm.image.y - drawn.y);
+    const double dx = pm.image.x - drawn.x, dy = pm.image.y - drawn.y;
+    return std::sqrt(dx * dx + dy * dy);  // pixel distances: no overflow for hypot to guard
   }
   // An end at or behind the camera: the rasteriser draws the great circle through the ends'
   // directions (it clips in homogeneous coordinates), so measure the midpoint's angle from
@@ -145,39 +150,51 @@ double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const
 
 namespace {
 
+// A vertex of the tessellation: its shape point and where it is seen (each computed once).
+struct Corner {
+  Vec3 p;
+  ApparentPoint seen;
+};
+
 struct Tessellator {
   const ResolvedScene& scene;
   const BodyView& view;
   const RestMesh& mesh;
   const TessellationLimits& limits;
   std::vector<float>& out;
-
-  bool split(const Vec3& a, const Vec3& b, int level) const {
-    return level < limits.max_level &&
-           edge_error_pixels(scene, view, mesh, a, b) > limits.max_error_pixels;
-  }
-
   std::array<float, 4> plane{};  // of the untessellated triangle being split
 
-  void emit(const Vec3& a, const Vec3& b, const Vec3& c) const {
-    for (const Vec3* p : {&a, &b, &c})
-      out.insert(out.end(), {static_cast<float>(p->x), static_cast<float>(p->y),
-                             static_cast<float>(p->z), plane[0], plane[1], plane[2], plane[3]});
+  Corner corner(const Vec3& p) const { return {p, apparent_point(scene, view, p)}; }
+
+  // Whether edge ab (at `level`) is split; its midpoint is set either way.
+  bool split(const Corner& a, const Corner& b, int level, Corner& middle) const {
+    if (level >= limits.max_level) return false;
+    middle = corner(mesh.midpoint(a.p, b.p));
+    return edge_error_pixels(scene.camera, a.seen, b.seen, middle.seen) > limits.max_error_pixels;
+  }
+
+  void emit(const Corner& a, const Corner& b, const Corner& c) const {
+    for (const Corner* k : {&a, &b, &c})
+      out.insert(out.end(), {static_cast<float>(k->p.x), static_cast<float>(k->p.y),
+                             static_cast<float>(k->p.z), plane[0], plane[1], plane[2], plane[3]});
   }
 
   // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.
-  void triangle(const Vec3& a, const Vec3& b, const Vec3& c, int lab, int lbc, int lca) const {
-    cut(a, b, c, lab, lbc, lca, split(a, b, lab), split(b, c, lbc), split(c, a, lca));
+  void triangle(const Corner& a, const Corner& b, const Corner& c, int lab, int lbc,
+                int lca) const {
+    Corner mab, mbc, mca;
+    const bool sab = split(a, b, lab, mab), sbc = split(b, c, lbc, mbc),
+               sca = split(c, a, lca, mca);
+    cut(a, b, c, mab, mbc, mca, lab, lbc, lca, sab, sbc, sca);
   }
 
-  // The same, with each edge's decision made (so that rotating the triangle decides nothing
-  // twice).
-  void cut(const Vec3& a, const Vec3& b, const Vec3& c, int lab, int lbc, int lca, bool sab,
-           bool sbc, bool sca) const {
+  // The same, with each edge's decision (and midpoint) made, so that rotating the triangle
+  // decides nothing twice.
+  void cut(const Corner& a, const Corner& b, const Corner& c, const Corner& mab, const Corner& mbc,
+           const Corner& mca, int lab, int lbc, int lca, bool sab, bool sbc, bool sca) const {
     const int count = int(sab) + int(sbc) + int(sca);
     if (count == 0) return emit(a, b, c);
     if (count == 3) {
-      const Vec3 mab = mesh.midpoint(a, b), mbc = mesh.midpoint(b, c), mca = mesh.midpoint(c, a);
       const int l = std::max({lab, lbc, lca}) + 1;
       triangle(a, mab, mca, lab + 1, l, lca + 1);
       triangle(mab, b, mbc, lab + 1, lbc + 1, l);
@@ -187,11 +204,10 @@ struct Tessellator {
     }
     // One or two edges split: rotate so that ab is split (and, for two, bc as well).
     if (!sab) {
-      if (sbc) return cut(b, c, a, lbc, lca, lab, sbc, sca, sab);
-      return cut(c, a, b, lca, lab, lbc, sca, sab, sbc);
+      if (sbc) return cut(b, c, a, mbc, mca, mab, lbc, lca, lab, sbc, sca, sab);
+      return cut(c, a, b, mca, mab, mbc, lca, lab, lbc, sca, sab, sbc);
     }
-    if (count == 2 && !sbc) return cut(c, a, b, lca, lab, lbc, sca, sab, sbc);
-    const Vec3 mab = mesh.midpoint(a, b);
+    if (count == 2 && !sbc) return cut(c, a, b, mca, mab, mbc, lca, lab, lbc, sca, sab, sbc);
     if (count == 1) {
       // The new edge from the midpoint to c lies inside: its level follows the split edge's.
       triangle(a, mab, c, lab + 1, lab + 1, lca);
@@ -199,7 +215,6 @@ struct Tessellator {
       return;
     }
     // ab and bc split (ca not).
-    const Vec3 mbc = mesh.midpoint(b, c);
     const int l = std::max(lab, lbc) + 1;
     triangle(mab, b, mbc, lab + 1, lbc + 1, l);
     triangle(a, mab, mbc, lab + 1, l, l);
@@ -212,6 +227,10 @@ struct Tessellator {
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out) {
   Tessellator t{scene, view, mesh, limits, out};
+  // Each of the mesh's own vertices is seen once, whatever the number of its triangles.
+  std::vector<Corner> corners;
+  corners.reserve(mesh.positions.size());
+  for (const Vec3& p : mesh.positions) corners.push_back(t.corner(p));
   for (const auto& [i, j, k] : mesh.triangles) {
     const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
     const Vec3 n = cross(b - a, c - a);
@@ -219,7 +238,7 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
     const Vec3 unit = l > 0 ? n * (1 / l) : Vec3{0, 1, 0};
     t.plane = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
                static_cast<float>(dot(unit, a))};
-    t.triangle(a, b, c, 0, 0, 0);
+    t.triangle(corners[i], corners[j], corners[k], 0, 0, 0);
   }
 }
 

@@ -52,6 +52,9 @@ ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
 // midpoint of the projected ends); the same from both ends.
 double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                          const Vec3& a, const Vec3& b);
+// The same from where the ends and the midpoint are seen.
+double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& a, const ApparentPoint& b,
+                         const ApparentPoint& midpoint);
 
 // Whether any point of `bounds` (in F, relative to the camera) can lie in the camera's view:
 // false when all of it lies beyond one side of the view or behind the camera. A body whose
