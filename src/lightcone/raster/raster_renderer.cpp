@@ -213,17 +213,22 @@ struct RasterRenderer::Impl {
   double table_camera_first = 0, table_light_first = 0;
   int table_light_nodes = 2;
 
-  // A texture or sky image as a float texture (once per image).
-  GLuint upload(const Image& image) {
+  // A texture or sky image as a float texture (once per image), with mip levels for the sky's
+  // filtered lookups (exact lookups read level 0 texel by texel).
+  GLuint upload(const Image& image, bool mip_mapped = false) {
     auto [it, added] = images.emplace(&image, 0);
     if (added) {
       glGenTextures(1, &it->second);
       glBindTexture(GL_TEXTURE_2D, it->second);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                      mip_mapped ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mip_mapped ? GL_LINEAR : GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT,
                    image.rgb.data());
+      if (mip_mapped) glGenerateMipmap(GL_TEXTURE_2D);
       check_gl("uploading an image");
     }
     return it->second;
@@ -451,7 +456,7 @@ struct RasterRenderer::Impl {
             static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
-    if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image);
+    if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image, true);
     const PointEmission& sky0 = sky_image ? kBlack : emission.sky_colour(0);
     const PointEmission& sky1 = grid ? emission.sky_colour(1) : sky0;
     sky_first_row =

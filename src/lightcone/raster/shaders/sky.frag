@@ -41,7 +41,20 @@ void main() {
     // frame/shading.cpp, sky_image_colour: equirectangular, v from the north pole.
     vec2 uv = vec2(0.5 + atan(d.x, -d.z) / 6.283185307179586,
                    atan(length(d.xz), d.y) / 3.141592653589793);
-    colour = vec4(received_rgb(sample_bilinear(sky_image, uv, false), doppler), 1.0);
+    vec3 rgb;
+    if (shade_at_sample_offsets == 1) {
+      // Several samples a pixel: each reads the texel as the ray tracer reads it.
+      rgb = sample_bilinear(sky_image, uv, false);
+    } else {
+      // One sample a pixel (the viewer): the mip level the pixel's footprint needs, from
+      // gradients taken across the seam the short way round, so that the sky crowded ahead
+      // does not alias.
+      vec2 dx = dFdx(uv), dy = dFdy(uv);
+      dx.x -= floor(dx.x + 0.5);
+      dy.x -= floor(dy.x + 0.5);
+      rgb = textureGrad(sky_image, uv, dx, dy).rgb;
+    }
+    colour = vec4(received_rgb(rgb, doppler), 1.0);
     return;
   }
 #endif
