@@ -256,6 +256,25 @@ TEST(ViewerBenchmark, RendersItsFramesWithoutADisplayAndPrintsOneJsonLine) {
   fs::remove_all(dir);
 }
 
+TEST(ViewerWithoutOpenGl, RasterRenderAndBenchmarkAreStatusTwoNamingOpenGl) {
+  // No EGL driver at all (libglvnd is pointed at none): a clear error, nothing written.
+  const fs::path dir = test::fresh_temp_dir("nogl");
+  test::write_text(dir / "scene.json", kScene);
+  const std::string no_driver = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json";
+  const auto render =
+      test::run_lightcone("render '" + (dir / "scene.json").string() + "' --renderer raster -o '" +
+                              (dir / "out.png").string() + "'",
+                          no_driver);
+  EXPECT_EQ(render.status, 2);
+  EXPECT_NE(render.err.find("needs OpenGL 3.3"), std::string::npos) << render.err;
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+  const auto benchmark =
+      test::run_lightcone("view '" + (dir / "scene.json").string() + "' --benchmark 2", no_driver);
+  EXPECT_EQ(benchmark.status, 2);
+  EXPECT_NE(benchmark.err.find("needs OpenGL 3.3"), std::string::npos) << benchmark.err;
+  fs::remove_all(dir);
+}
+
 TEST(ViewerWithoutDisplay, IsStatusTwoNamingDisplayAndTheHeadlessWays) {
   const fs::path dir = test::fresh_temp_dir("nodisplay");
   test::write_text(dir / "scene.json", kScene);
