@@ -1,6 +1,7 @@
 // The real-time renderer against the ray tracer and against the C++ kernels: its GLSL
 // functions on random inputs, its pictures of the bundled scenes, the tessellation of a pole
 // bent by aberration, the principle of relativity, and its shaders as GLSL ES 3.00.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,10 +13,12 @@
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/light_path.hpp"
+#include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
@@ -186,6 +189,54 @@ TEST_F(GlslKernels, DopplerFactorMatchesTheFourVectorFormWithinItsConditionNumbe
     beyond_1e5 += std::abs(out[i][0] - want) > 1e-5 * want;
   }
   EXPECT_LE(beyond_1e5, 20);  // only bodies coming almost straight at the camera
+}
+
+TEST_F(GlslKernels, SkyAberrationAndSearchlightMatchTheirKernels) {
+  // The sky's direction through the resolved scene's own map, for cameras and skies in motion.
+  for (int trial = 0; trial < 20; ++trial) {
+    Scene scene;
+    scene.camera.world_line.velocity = random_velocity();
+    scene.camera.forward = normalize(random_vector(1));
+    scene.camera.up = normalize(cross(scene.camera.forward, random_vector(1)));
+    scene.camera.fov_degrees = 20 + 7 * trial;
+    scene.sky.velocity = random_velocity() * 0.5;
+    scene.render.light_delay = trial % 4 != 0;
+    const ResolvedScene resolved = resolve_scene(scene);
+    const Mat3& m = resolved.sky_spatial;
+    std::vector<std::array<float, 9>> inputs;
+    std::vector<Vec3> looks;
+    for (int i = 0; i < 50; ++i) {
+      looks.push_back(as_float(normalize(random_vector(1))));
+      inputs.push_back(pack(looks.back(), resolved.sky_time_column, {resolved.ray_time, 0, 0}));
+    }
+    const std::string matrix = fmt::format("mat3({}, {}, {}, {}, {}, {}, {}, {}, {})", m.m[0][0],
+                                           m.m[1][0], m.m[2][0], m.m[0][1], m.m[1][1], m.m[2][1],
+                                           m.m[0][2], m.m[1][2], m.m[2][2]);  // column by column
+    const auto out = evaluate_glsl("vec4(sky_direction(a, b, " + matrix + ", c.x), 0.0)", inputs);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const Vec3 want = resolved.sky_direction(looks[i]);
+      const double condition =
+          lorentz_gamma(scene.camera.world_line.velocity) * lorentz_gamma(scene.sky.velocity) * 4;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(out[i][k], want[k], 2e-6 * condition) << trial << " " << i;
+    }
+  }
+  // The spectral searchlight factors.
+  std::vector<std::array<float, 9>> inputs;
+  for (int i = 0; i < 200; ++i) {
+    const double d = std::exp(2 * u_(rng_));
+    inputs.push_back(pack({d, 0, 0}, {0, 0, 0}, {0, 0, 0}));
+  }
+  for (int model = 0; model < 3; ++model) {
+    const auto out =
+        evaluate_glsl("vec4(spectral_searchlight(a.x, " + std::to_string(model) + "))", inputs);
+    const SearchlightModel models[] = {SearchlightModel::kPhysical, SearchlightModel::kChang1996,
+                                       SearchlightModel::kOff};
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double want = spectral_searchlight(inputs[i][0], models[model]);
+      EXPECT_NEAR(out[i][0], want, 1e-6 * want) << model << " " << i;
+    }
+  }
 }
 
 TEST_F(GlslKernels, ReceiveLegMatchesTheFourMomentumKernel) {

@@ -73,12 +73,6 @@ vec3 shape_normal(vec3 p, vec3 direction) {
   return dot(n, direction) > 0.0 ? -n : n;
 }
 
-// frame/received_colour.cpp, spectral_searchlight.
-float spectral_searchlight(float d) {
-  if (searchlight_model == 0) return d * d * d * d * d;
-  if (searchlight_model == 1) return d;
-  return 1.0;
-}
 
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
 #endif
@@ -113,7 +107,7 @@ void main() {
   // One program per kind of material (the program defines which), so that each stays small.
 #if defined(LIGHTCONE_LIT)
   vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
-  colour = vec4(spectral == 1 ? c * spectral_searchlight(d) : c, 1.0);
+  colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, 1.0);
 #elif defined(LIGHTCONE_TEXTURED)
   colour = vec4(received_rgb(sample_bilinear(texture_image, surface_uv(p), true), d), 1.0);
 #else

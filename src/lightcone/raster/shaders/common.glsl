@@ -28,6 +28,20 @@ float doppler_factor(vec3 u, vec3 beta, float gamma) {
   return 1.0 / (gamma * (1.0 + dot(beta, u)));
 }
 
+// frame/received_colour.cpp, spectral_searchlight: the factor on spectral radiance for model
+// 0 (physical, D^5), 1 (Chang et al. 1996, D) or 2 (off).
+float spectral_searchlight(float d, int model) {
+  if (model == 0) return d * d * d * d * d;
+  if (model == 1) return d;
+  return 1.0;
+}
+
+// frame/resolved_scene.hpp, sky_direction: the direction in the sky's pattern coordinates of
+// the ray event (ray_time, u).
+vec3 sky_direction(vec3 u, vec3 time_column, mat3 spatial, float ray_time_of_rays) {
+  return normalize(time_column * ray_time_of_rays + spatial * u);
+}
+
 // The camera's ray family s (ray_time, u): -1 the backward null rays, 0 the simultaneous
 // picture (frame/resolved_scene.hpp).
 uniform float ray_time;

@@ -34,7 +34,7 @@ bool on_grid_line(vec3 d) {
 
 void main() {
   vec3 u = fragment_look_direction();
-  vec3 d = normalize(sky_time_column * ray_time + sky_spatial * u);
+  vec3 d = sky_direction(u, sky_time_column, sky_spatial, ray_time);
   float doppler = doppler_factor(u, doppler_velocity, doppler_gamma);
 #if defined(LIGHTCONE_SKY_IMAGE)
   {
