@@ -1,6 +1,7 @@
 # Writes OUTPUT, a C++ file defining one string per shader file in SHADER_DIR:
 # lightcone::shader_sources::<name>_<extension> (common.glsl -> common_glsl).
-file(GLOB shaders "${SHADER_DIR}/*.glsl" "${SHADER_DIR}/*.vert" "${SHADER_DIR}/*.frag")
+file(GLOB shaders "${SHADER_DIR}/*.glsl" "${SHADER_DIR}/*.vert" "${SHADER_DIR}/*.frag"
+  "${SHADER_DIR}/*.tesc" "${SHADER_DIR}/*.tese")
 list(SORT shaders)
 set(text "// Generated from src/lightcone/raster/shaders by cmake/embed_shaders.cmake.\n")
 string(APPEND text "#include \"lightcone/raster/shader_sources.hpp\"\n\n")

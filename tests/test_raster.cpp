@@ -351,7 +351,14 @@ void expect_agreement(const std::string& scene, const std::string& extra = "", i
 
 TEST(RasterAgreement, BundledScenesMatchTheRayTracerOffTheSilhouettes) {
   for (const char* scene : {"terrell.json", "cubes.json", "sky.json", "street.json"})
-    expect_agreement(scene);
+    expect_agreement(scene, "--tessellation cpu");
+}
+
+// The same with the edges cut by tessellation shaders (OpenGL 4; llvmpipe has them).
+TEST(RasterAgreement, TessellatedOnTheGpuTooTheyMatch) {
+  for (const char* scene : {"terrell.json", "cubes.json", "street.json"})
+    expect_agreement(scene, "--tessellation gpu");
+  expect_agreement("street-lit.json", "--tessellation gpu --set render.shadows=false", 4);
 }
 
 // Lit scenes, without shadows (this renderer casts none): point lamps at rest (street-lit), a
@@ -531,14 +538,22 @@ TEST(RasterTessellation, ABentPoleStaysWithinAPixelOfTheRayTracersOutline) {
   std::printf("the pole bends by %.0f px; tracer rows %zu\n", bend, centres.size());
 
   RasterStats stats;
-  const Image adaptive = render_raster(scene, &stats);
+  const Image adaptive = render_raster(scene, &stats, {}, 0, RasterTessellation::kCpu);
   EXPECT_EQ(pole_centres(adaptive).size(), centres.size());
   EXPECT_LE(worst_offset(traced, adaptive), 1.0);
   // Without adaptive tessellation (the box's faces split only as they are at load), it fails.
   TessellationLimits none;
   none.max_level = 0;
-  const Image fixed = render_raster(scene, nullptr, none);
+  const Image fixed = render_raster(scene, nullptr, none, 0, RasterTessellation::kCpu);
   EXPECT_TRUE(worst_offset(traced, fixed) > 1.0 || pole_centres(fixed).size() != centres.size());
+  // Cut on the GPU, in equal pieces: within a pixel too, and not without the cuts.
+  const Image gpu = render_raster(scene, nullptr, {}, 0, RasterTessellation::kGpu);
+  EXPECT_EQ(pole_centres(gpu).size(), centres.size());
+  EXPECT_LE(worst_offset(traced, gpu), 1.0);
+  const Image gpu_fixed = render_raster(scene, nullptr, none, 0, RasterTessellation::kGpu);
+  EXPECT_TRUE(worst_offset(traced, gpu_fixed) > 1.0 ||
+              pole_centres(gpu_fixed).size() != centres.size());
+  std::printf("worst offset cut on the GPU: %.3f px\n", worst_offset(traced, gpu));
   std::printf("worst offset: adaptive %.3f px (%zu triangles), without %.3f px\n",
               worst_offset(traced, adaptive), stats.triangles, worst_offset(traced, fixed));
 }
@@ -586,11 +601,15 @@ TEST(RasterShaders, CompileAsGlslEs300) {
     const char* defines = "";  // which variant of the stage
   };
   const Stage stages[] = {
-      {"body.vert", shader_sources::body_vert, false},
-      {"body.frag", shader_sources::body_frag, true, shader_sources::lighting_glsl},
+      {"body.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl},
+      {"body.frag", shader_sources::body_frag, true},
+      {"body-textured.frag", shader_sources::body_frag, true, "", "#define LIGHTCONE_TEXTURED 1\n"},
+      {"body-lit.frag", shader_sources::body_frag, true, shader_sources::lighting_glsl,
+       "#define LIGHTCONE_LIT 1\n"},
       {"fullscreen.vert", shader_sources::fullscreen_vert, false},
       {"display.frag", shader_sources::display_frag, true},
-      {"sky.frag", shader_sources::sky_frag, true}};
+      {"sky.frag", shader_sources::sky_frag, true},
+      {"sky-image.frag", shader_sources::sky_frag, true, "", "#define LIGHTCONE_SKY_IMAGE 1\n"}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;
     test::write_text(file, std::string("#version 300 es\nprecision highp float;\nprecision highp "
@@ -601,6 +620,21 @@ TEST(RasterShaders, CompileAsGlslEs300) {
     const std::string command =
         "glslangValidator '" + file.string() + "' > '" + (dir / "log").string() + "' 2>&1";
     const int status = std::system(command.c_str());
+    std::ifstream log(dir / "log");
+    const std::string text((std::istreambuf_iterator<char>(log)), {});
+    EXPECT_EQ(status, 0) << stage.name << ": " << text;
+  }
+  // The tessellation stages are OpenGL 4 only (WebGL 2 has none): checked as GLSL 400.
+  const Stage tessellation_stages[] = {{"body.tesc", shader_sources::body_tesc, false},
+                                       {"body.tese", shader_sources::body_tese, false},
+                                       {"patch.vert", shader_sources::patch_vert, false}};
+  for (const Stage& stage : tessellation_stages) {
+    const fs::path file = dir / stage.name;
+    test::write_text(file, std::string("#version 400 core\n") + shader_sources::common_glsl +
+                               shader_sources::body_projection_glsl + stage.source);
+    const int status = std::system(
+        ("glslangValidator '" + file.string() + "' > '" + (dir / "log").string() + "' 2>&1")
+            .c_str());
     std::ifstream log(dir / "log");
     const std::string text((std::istreambuf_iterator<char>(log)), {});
     EXPECT_EQ(status, 0) << stage.name << ": " << text;

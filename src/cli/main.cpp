@@ -135,7 +135,7 @@ nlohmann::ordered_json to_json(const Vec3& v) {
 }
 
 struct RenderArgs {
-  std::string scene, output, renderer = "trace";
+  std::string scene, output, renderer = "trace", tessellation = "auto";
   std::optional<std::string> exr, crop, aov, map;
   std::optional<int> width, height, samples;
   int threads = 0;
@@ -176,6 +176,12 @@ bool same_file(const std::string& a, const std::string& b) {
   const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
   const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
   return pa == pb;
+}
+
+RasterTessellation tessellation_mode(const std::string& name) {
+  return name == "cpu"   ? RasterTessellation::kCpu
+         : name == "gpu" ? RasterTessellation::kGpu
+                         : RasterTessellation::kAuto;
 }
 
 int run_render(const RenderArgs& a) {
@@ -279,7 +285,7 @@ int run_render(const RenderArgs& a) {
                      a.scene.c_str(), difference.c_str());
       RasterStats raster_stats;
       try {
-        image = render_raster(scene, &raster_stats);
+        image = render_raster(scene, &raster_stats, {}, a.seed, tessellation_mode(a.tessellation));
       } catch (const GlUnavailable& e) {
         throw InputError(fmt::format(
             "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) through "
@@ -465,6 +471,7 @@ struct ViewArgs {
   std::optional<int> width, height, benchmark;
   bool split = false;
   double time_scale = 1;
+  std::string tessellation = "auto";
 };
 
 int run_view(const ViewArgs& a) {
@@ -481,12 +488,13 @@ int run_view(const ViewArgs& a) {
     if (a.benchmark) {
       if (*a.benchmark < 1)
         throw InputError("--benchmark: the number of frames must be at least 1");
-      return run_viewer_benchmark(scene, *a.benchmark);
+      return run_viewer_benchmark(scene, *a.benchmark, tessellation_mode(a.tessellation));
     }
     ViewerOptions options;
     options.scene_path = a.scene;
     options.split = a.split;
     options.time_scale = a.time_scale;
+    options.tessellation = tessellation_mode(a.tessellation);
     return run_viewer(scene, options);
   } catch (const GlUnavailable& e) {
     throw InputError(fmt::format(
@@ -517,6 +525,11 @@ int main(int argc, char** argv) {
                    "trace (the exact ray tracer, the default) or raster (the real-time polygon "
                    "renderer, through OpenGL)")
       ->check(CLI::IsMember({"trace", "raster"}));
+  render_cmd
+      ->add_option("--tessellation", render.tessellation,
+                   "raster: cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), "
+                   "or auto (the faster, the default)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   render_cmd->add_option("--width", render.width, "Override camera.width");
   render_cmd->add_option("--height", render.height, "Override camera.height");
   render_cmd->add_option("--samples", render.samples, "Override camera.samples");
@@ -575,6 +588,11 @@ int main(int argc, char** argv) {
   view_cmd->add_flag("--split", view.split, "Start with the classical | relativistic split");
   view_cmd->add_option("--time-scale", view.time_scale,
                        "Units of the camera's proper time per second (default 1)");
+  view_cmd
+      ->add_option("--tessellation", view.tessellation,
+                   "Cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), or auto "
+                   "(the faster after one frame of each, the default)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   view_cmd->add_option("--benchmark", view.benchmark,
                        "Render this many frames of a scripted flight offscreen and print one "
                        "JSON line (no window)");

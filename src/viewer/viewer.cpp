@@ -37,12 +37,13 @@ struct FrameDraw {
   double doppler_min = 1, doppler_max = 1;
 };
 
-FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target) {
+FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target,
+                     bool on_gpu) {
   const ResolvedScene resolved = resolve_scene(scene);
   const EmissionTable emission(resolved);
   target.bind();
   FrameDraw draw;
-  draw.triangles = renderer.prepare(resolved, emission).triangles;
+  draw.triangles = renderer.prepare(resolved, emission, {}, on_gpu).triangles;
   renderer.pass();
   const LogDopplerRange seen = visible_log_doppler(resolved, false);
   draw.doppler_min = std::exp(seen.lo);
@@ -57,6 +58,31 @@ std::filesystem::path next_screenshot() {
     if (!std::filesystem::exists(name)) return name;
   }
 }
+
+// Which tessellation path draws: as asked, or (auto) the one whose first frame took less
+// time, after one frame of each.
+class TessellationChoice {
+ public:
+  TessellationChoice(RasterTessellation mode, bool gpu_available) : mode_(mode) {
+    if (mode == RasterTessellation::kGpu && !gpu_available)
+      throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
+    if (mode == RasterTessellation::kAuto && !gpu_available) mode_ = RasterTessellation::kCpu;
+  }
+  bool on_gpu() const {
+    if (mode_ != RasterTessellation::kAuto) return mode_ == RasterTessellation::kGpu;
+    return frames_ < 2 ? frames_ == 1 : seconds_[1] < seconds_[0];
+  }
+  // Records how long the frame just drawn took.
+  void frame_took(double seconds) {
+    if (frames_ < 2) seconds_[frames_] = seconds;
+    ++frames_;
+  }
+
+ private:
+  RasterTessellation mode_;
+  int frames_ = 0;
+  double seconds_[2] = {0, 0};
+};
 
 struct GlfwSession {
   GlfwSession() {
@@ -119,6 +145,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
 
   {
     RasterRenderer renderer;
+    TessellationChoice choice(options.tessellation, renderer.gpu_tessellation_available());
     const DisplayPass display_pass;
     std::unique_ptr<FloatTarget> relativistic, classical;
     Flight flight(scene.camera);
@@ -180,12 +207,16 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
       frame.camera = flight.camera;
       frame.camera.width = width;
       frame.camera.height = height;
-      drawn = draw_scene(renderer, frame, *relativistic);
+      const auto drawing = std::chrono::steady_clock::now();
+      drawn = draw_scene(renderer, frame, *relativistic, choice.on_gpu());
       if (split) {
         Scene still = frame;
         still.render.relativity = false;
-        draw_scene(renderer, still, *classical);
+        draw_scene(renderer, still, *classical, choice.on_gpu());
       }
+      glFinish();
+      choice.frame_took(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count());
 
       // F12: the view as a PNG, as `lightcone render` would write it (no panel).
       if (screenshot) {
@@ -220,7 +251,8 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         const double gamma = lorentz_gamma(flight.camera.world_line.velocity);
         ImGui::Text("beta %.4f   gamma %.3f", flight.speed, gamma);
         ImGui::Text("Doppler on screen %.3g to %.3g", drawn.doppler_min, drawn.doppler_max);
-        ImGui::Text("%.1f fps, %zu triangles", fps, drawn.triangles);
+        ImGui::Text("%.1f fps, %zu triangles (%s)", fps, drawn.triangles,
+                    choice.on_gpu() ? "cut on the GPU" : "tessellated on the CPU");
         float speed = static_cast<float>(flight.speed);
         if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
         ImGui::Checkbox("relativity", &scene.render.relativity);
@@ -254,9 +286,10 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
   return 0;
 }
 
-int run_viewer_benchmark(Scene scene, int frames) {
+int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellation) {
   const HeadlessGlContext context;
   RasterRenderer renderer;
+  TessellationChoice choice(tessellation, renderer.gpu_tessellation_available());
   const FloatTarget target(scene.camera.width, scene.camera.height);
   // The scripted flight: from the scene's camera, up to 0.9c along the view within the first
   // third, turning a little each frame.
@@ -269,7 +302,11 @@ int run_viewer_benchmark(Scene scene, int frames) {
     flight.advance(1.0 / 30);
     Scene frame = scene;
     frame.camera = flight.camera;
-    triangles += draw_scene(renderer, frame, target).triangles;
+    const auto drawing = std::chrono::steady_clock::now();
+    triangles += draw_scene(renderer, frame, target, choice.on_gpu()).triangles;
+    glFinish();
+    choice.frame_took(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count());
   }
   glFinish();
   const double seconds =
@@ -281,6 +318,7 @@ int run_viewer_benchmark(Scene scene, int frames) {
       {"triangles", frames > 0 ? triangles / static_cast<std::size_t>(frames) : 0},
       {"width", scene.camera.width},
       {"height", scene.camera.height},
+      {"tessellation", choice.on_gpu() ? "gpu" : "cpu"},
       {"gl", context.description()}};
   std::printf("%s\n", line.dump().c_str());
   return 0;

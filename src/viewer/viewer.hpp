@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
@@ -13,6 +14,7 @@ struct ViewerOptions {
   bool split = false;      // start with the classical | relativistic split
   bool hud = true;
   double time_scale = 1;  // units of camera proper time per second of wall-clock time
+  RasterTessellation tessellation = RasterTessellation::kAuto;
 };
 
 // Opens the window and runs until it is closed (Esc). Throws InputError when there is no
@@ -21,7 +23,9 @@ int run_viewer(Scene scene, const ViewerOptions& options);
 
 // Renders `frames` frames of a scripted flight through the scene offscreen (EGL), at the
 // scene's image size, and prints one JSON line {"frames", "seconds", "fps", "triangles"}
-// (triangles: the average a frame after tessellation).
-int run_viewer_benchmark(Scene scene, int frames);
+// (triangles: the average a frame after tessellation on the CPU, before it on the GPU), and
+// which tessellation path drew them.
+int run_viewer_benchmark(Scene scene, int frames,
+                         RasterTessellation tessellation = RasterTessellation::kAuto);
 
 }  // namespace lightcone

@@ -22,6 +22,19 @@ std::string gl_description() {
 
 namespace {
 
+const char* stage_name(GLenum stage) {
+  switch (stage) {
+    case GL_VERTEX_SHADER:
+      return "vertex";
+    case GL_TESS_CONTROL_SHADER:
+      return "tessellation control";
+    case GL_TESS_EVALUATION_SHADER:
+      return "tessellation evaluation";
+    default:
+      return "fragment";
+  }
+}
+
 GLuint compile(GLenum stage, const std::string& source) {
   const GLuint shader = glCreateShader(stage);
   const char* text = source.c_str();
@@ -35,24 +48,26 @@ GLuint compile(GLenum stage, const std::string& source) {
     std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
     glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
     glDeleteShader(shader);
-    throw std::runtime_error(fmt::format("{} shader does not compile: {}",
-                                         stage == GL_VERTEX_SHADER ? "vertex" : "fragment",
-                                         log.data()));
+    throw std::runtime_error(
+        fmt::format("{} shader does not compile: {}", stage_name(stage), log.data()));
   }
   return shader;
 }
 
 }  // namespace
 
-GLuint link_program(const std::string& vertex, const std::string& fragment) {
-  const GLuint v = compile(GL_VERTEX_SHADER, vertex);
-  const GLuint f = compile(GL_FRAGMENT_SHADER, fragment);
+GLuint link_program(const std::string& vertex, const std::string& fragment,
+                    const std::string& control, const std::string& evaluation) {
+  std::vector<GLuint> shaders = {compile(GL_VERTEX_SHADER, vertex),
+                                 compile(GL_FRAGMENT_SHADER, fragment)};
+  if (!control.empty()) {
+    shaders.push_back(compile(GL_TESS_CONTROL_SHADER, control));
+    shaders.push_back(compile(GL_TESS_EVALUATION_SHADER, evaluation));
+  }
   const GLuint program = glCreateProgram();
-  glAttachShader(program, v);
-  glAttachShader(program, f);
+  for (GLuint shader : shaders) glAttachShader(program, shader);
   glLinkProgram(program);
-  glDeleteShader(v);
-  glDeleteShader(f);
+  for (GLuint shader : shaders) glDeleteShader(shader);
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
@@ -64,6 +79,12 @@ GLuint link_program(const std::string& vertex, const std::string& fragment) {
     throw std::runtime_error(fmt::format("shaders do not link: {}", log.data()));
   }
   return program;
+}
+
+bool gl_has_tessellation_shaders() {
+  GLint major = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  return major >= 4;
 }
 
 }  // namespace lightcone

@@ -19,7 +19,12 @@ void check_gl(const char* what);
 // The current context's version and renderer, for messages.
 std::string gl_description();
 
-// A program from vertex and fragment shader sources; throws with the compiler's log.
-GLuint link_program(const std::string& vertex, const std::string& fragment);
+// A program from vertex and fragment shader sources, and tessellation control and evaluation
+// sources when given; throws with the compiler's log.
+GLuint link_program(const std::string& vertex, const std::string& fragment,
+                    const std::string& control = "", const std::string& evaluation = "");
+
+// Whether the current context is OpenGL 4 or later (tessellation shaders).
+bool gl_has_tessellation_shaders();
 
 }  // namespace lightcone

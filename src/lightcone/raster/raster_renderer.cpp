@@ -64,11 +64,17 @@ constexpr int kMaxLights = 16;       // lighting.glsl's
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 
-std::string vertex_shader(const char* source) {
-  return std::string("#version 330 core\n") + shader_sources::common_glsl + source;
+// GLSL 330 for the CPU tessellation path, 400 for the GPU one (tessellation shaders).
+std::string version_line(bool tessellation) {
+  return tessellation ? "#version 400 core\n" : "#version 330 core\n";
 }
-std::string fragment_shader(const char* source, const char* extra = "", const char* defines = "") {
-  return std::string("#version 330 core\n#define LIGHTCONE_FRAGMENT_STAGE 1\n") + defines +
+std::string vertex_shader(const char* source, bool tessellation = false) {
+  return version_line(tessellation) + shader_sources::common_glsl +
+         shader_sources::body_projection_glsl + source;
+}
+std::string fragment_shader(const char* source, const char* extra = "", const char* defines = "",
+                            bool tessellation = false) {
+  return version_line(tessellation) + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + defines +
          shader_sources::common_glsl + extra + source;
 }
 
@@ -111,7 +117,12 @@ struct RasterRenderer::Impl {
   // image): small programs run faster than one with every branch.
   enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
   GLuint body_programs[3] = {0, 0, 0}, sky_programs[2] = {0, 0};
-  GLuint body_program = 0;  // the one in use
+  // The same with tessellation shaders (OpenGL 4), where the context has them.
+  GLuint patch_programs[3] = {0, 0, 0};
+  bool gpu_tessellation_available = false;
+  bool gpu_tessellation = false;  // which path the frame is prepared for
+  GLuint body_program = 0;        // the one in use
+  GLuint patch_buffer = 0;
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
 
@@ -123,6 +134,21 @@ struct RasterRenderer::Impl {
                           v == kLit        ? "#define LIGHTCONE_LIT 1\n"
                           : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
                                            : ""));
+    gpu_tessellation_available = gl_has_tessellation_shaders();
+    if (gpu_tessellation_available) {
+      const std::string common =
+          version_line(true) + shader_sources::common_glsl + shader_sources::body_projection_glsl;
+      for (int v = 0; v < 3; ++v)
+        patch_programs[v] =
+            link_program(common + shader_sources::patch_vert,
+                         fragment_shader(shader_sources::body_frag,
+                                         v == kLit ? shader_sources::lighting_glsl : "",
+                                         v == kLit        ? "#define LIGHTCONE_LIT 1\n"
+                                         : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
+                                                          : "",
+                                         true),
+                         common + shader_sources::body_tesc, common + shader_sources::body_tese);
+    }
     for (int v = 0; v < 2; ++v)
       sky_programs[v] =
           link_program(vertex_shader(shader_sources::fullscreen_vert),
@@ -130,6 +156,7 @@ struct RasterRenderer::Impl {
                                        v == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : ""));
     glGenVertexArrays(1, &vertex_array);
     glGenBuffers(1, &vertex_buffer);
+    glGenBuffers(1, &patch_buffer);
     glGenTextures(1, &rows_texture);
     glGenTextures(1, &offsets_texture);
     glGenTextures(1, &tables_texture);
@@ -151,6 +178,9 @@ struct RasterRenderer::Impl {
     glDeleteBuffers(1, &vertex_buffer);
     glDeleteVertexArrays(1, &vertex_array);
     for (GLuint program : body_programs) glDeleteProgram(program);
+    for (GLuint program : patch_programs)
+      if (program) glDeleteProgram(program);
+    glDeleteBuffers(1, &patch_buffer);
     for (GLuint program : sky_programs) glDeleteProgram(program);
   }
 
@@ -194,7 +224,9 @@ struct RasterRenderer::Impl {
     int first_row = 0, pattern = 0;
     bool lit = false;
     std::array<int, 2 * kMaxLights> reflection_row{}, reflection_moving{};
-    const RestMesh* mesh = nullptr;  // during prepare()
+    const RestMesh* mesh = nullptr;                              // during prepare()
+    std::size_t first_patch_vertex = 0, patch_vertex_count = 0;  // the GPU path's
+    double sphere_radius = 0;
   };
   struct LightDraw {
     int kind = 0, fixed_event = 0, row = 0;
@@ -236,8 +268,10 @@ struct RasterRenderer::Impl {
 
   // Tessellates every body and tabulates the colour rows for one frame.
   RasterFrameStats prepare(const ResolvedScene& resolved, const EmissionTable& emission,
-                           const TessellationLimits& limits) {
+                           const TessellationLimits& limits, bool on_gpu) {
     scene = &resolved;
+    gpu_tessellation = on_gpu && gpu_tessellation_available;
+    tessellation_limits = limits;
     const Scene& s = *resolved.scene;
     const RenderSettings& settings = s.render;
     const Lighting lighting(resolved, nullptr);
@@ -429,31 +463,62 @@ struct RasterRenderer::Impl {
       const Shape& shape = body.object->shape;
       const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
       auto it = meshes.find(shape_key);
-      if (it == meshes.end()) it = meshes.emplace(shape_key, rest_mesh(shape)).first;
+      if (it == meshes.end())
+        it = meshes.emplace(shape_key, rest_mesh(shape, gpu_tessellation ? 8 : 2)).first;
       draw.mesh = &it->second;
       draws.push_back(draw);
     }
-    // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
-    std::vector<std::vector<float>> parts(draws.size());
-    tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
-      tessellate(resolved, body_view(resolved.bodies[draws[d].body]), *draws[d].mesh, limits,
-                 parts[d]);
-    });
-    std::size_t total = 0;
-    for (std::size_t d = 0; d < draws.size(); ++d) {
-      draws[d].first_vertex = total;
-      draws[d].vertex_count = parts[d].size() / kFloatsPerVertex;
-      total += draws[d].vertex_count;
+    RasterFrameStats stats;
+    if (gpu_tessellation) {
+      // Each shape's untessellated triangles, once; the tessellation shaders cut them per body.
+      std::map<const RestMesh*, std::pair<std::size_t, std::size_t>> ranges;
+      std::vector<float> patches;
+      for (BodyDraw& draw : draws) {
+        auto [it, added] = ranges.emplace(draw.mesh, std::pair<std::size_t, std::size_t>{});
+        if (added) {
+          const std::size_t first = patches.size() / kFloatsPerVertex;
+          TessellationLimits none;
+          none.max_level = 0;
+          tessellate(resolved, body_view(resolved.bodies[draw.body]), *draw.mesh, none, patches);
+          it->second = {first, patches.size() / kFloatsPerVertex - first};
+        }
+        draw.first_patch_vertex = it->second.first;
+        draw.patch_vertex_count = it->second.second;
+        draw.sphere_radius = draw.mesh->sphere_radius;
+        stats.triangles += draw.patch_vertex_count / 3;
+      }
+      glBindBuffer(GL_ARRAY_BUFFER, patch_buffer);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(patches.size() * sizeof(float)),
+                   patches.data(), GL_STATIC_DRAW);
+      for (BodyDraw& draw : draws) {
+        draw.first_vertex = draw.first_patch_vertex;
+        draw.vertex_count = draw.patch_vertex_count;
+      }
+    } else {
+      // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
+      std::vector<std::vector<float>> parts(draws.size());
+      tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
+        tessellate(resolved, body_view(resolved.bodies[draws[d].body]), *draws[d].mesh, limits,
+                   parts[d]);
+      });
+      std::size_t total = 0;
+      for (std::size_t d = 0; d < draws.size(); ++d) {
+        draws[d].first_vertex = total;
+        draws[d].vertex_count = parts[d].size() / kFloatsPerVertex;
+        total += draws[d].vertex_count;
+      }
+      glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
+      glBufferData(GL_ARRAY_BUFFER,
+                   static_cast<GLsizeiptr>(total * kFloatsPerVertex * sizeof(float)), nullptr,
+                   GL_STATIC_DRAW);
+      for (std::size_t d = 0; d < draws.size(); ++d)
+        if (!parts[d].empty())
+          glBufferSubData(
+              GL_ARRAY_BUFFER,
+              static_cast<GLintptr>(draws[d].first_vertex * kFloatsPerVertex * sizeof(float)),
+              static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
+      stats.triangles = total / 3;
     }
-    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total * kFloatsPerVertex * sizeof(float)),
-                 nullptr, GL_STATIC_DRAW);
-    for (std::size_t d = 0; d < draws.size(); ++d)
-      if (!parts[d].empty())
-        glBufferSubData(
-            GL_ARRAY_BUFFER,
-            static_cast<GLintptr>(draws[d].first_vertex * kFloatsPerVertex * sizeof(float)),
-            static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
     if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image, true);
@@ -504,13 +569,13 @@ struct RasterRenderer::Impl {
     if (table_rows == 0) table_texels.assign(3 * 2 * table_camera_nodes, 0.0f);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, table_camera_nodes, std::max(table_rows, 2), 0,
                  GL_RGB, GL_FLOAT, table_texels.data());
+
     check_gl("uploading the frame");
-    RasterFrameStats stats;
-    stats.triangles = total / 3;
     return stats;
   }
 
   const std::vector<float>* shading_offsets = nullptr;
+  TessellationLimits tessellation_limits;
 
   // The lights and what lit bodies share (lighting.glsl's uniforms).
   void set_lights(const ResolvedScene& resolved) {
@@ -613,8 +678,13 @@ struct RasterRenderer::Impl {
 
     glDepthFunc(GL_LESS);
     glBindVertexArray(vertex_array);
+    glBindBuffer(GL_ARRAY_BUFFER, gpu_tessellation ? patch_buffer : vertex_buffer);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float), nullptr);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    if (gpu_tessellation) glPatchParameteri(GL_PATCH_VERTICES, 3);
     for (const Variant variant : {kEmitter, kTextured, kLit}) {
-      body_program = body_programs[variant];
+      body_program = gpu_tessellation ? patch_programs[variant] : body_programs[variant];
       glUseProgram(body_program);
       set_common(body_program, resolved, first_log_doppler, ox, oy);
       // Depth: the light travel distance on a log scale between these.
@@ -660,7 +730,17 @@ struct RasterRenderer::Impl {
         glUniform1f(uniform(body_program, "sphere_radius"),
                     sphere ? static_cast<float>(sphere->radius) : 0.0f);
         if (variant == kLit) set_lit_body(resolved, draw);
-        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
+        if (gpu_tessellation) {
+          glUniform1f(uniform(body_program, "sphere_radius_for_tessellation"),
+                      static_cast<float>(draw.sphere_radius));
+          glUniform1f(uniform(body_program, "max_error_pixels"),
+                      static_cast<float>(tessellation_limits.max_error_pixels));
+          // The GPU's levels go to 64 (every OpenGL 4 implementation's least maximum).
+          glUniform1f(uniform(body_program, "max_level"),
+                      static_cast<float>(1 << std::clamp(tessellation_limits.max_level, 0, 6)));
+        }
+        glDrawArrays(gpu_tessellation ? GL_PATCHES : GL_TRIANGLES,
+                     static_cast<GLint>(draw.first_vertex),
                      static_cast<GLsizei>(draw.vertex_count));
       }
     }
@@ -700,8 +780,12 @@ RasterRenderer::RasterRenderer() : impl_(std::make_unique<Impl>()) {}
 RasterRenderer::~RasterRenderer() = default;
 
 RasterFrameStats RasterRenderer::prepare(const ResolvedScene& scene, const EmissionTable& emission,
-                                         const TessellationLimits& limits) {
-  return impl_->prepare(scene, emission, limits);
+                                         const TessellationLimits& limits, bool on_gpu) {
+  return impl_->prepare(scene, emission, limits, on_gpu);
+}
+
+bool RasterRenderer::gpu_tessellation_available() const {
+  return impl_->gpu_tessellation_available;
 }
 
 void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
@@ -710,7 +794,7 @@ void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
 }
 
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
-                    std::uint64_t seed) {
+                    std::uint64_t seed, RasterTessellation mode) {
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;
   const ResolvedScene resolved = resolve_scene(scene);
@@ -724,7 +808,22 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<double> sum(3 * pixels, 0.0);
   std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
-  const std::size_t triangles = renderer.prepare(resolved, emission, limits).triangles;
+  // The tessellation path: as asked, or (auto) whichever draws the first pass faster.
+  bool on_gpu = mode == RasterTessellation::kGpu;
+  if (on_gpu && !renderer.gpu_tessellation_available())
+    throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
+  if (mode == RasterTessellation::kAuto && renderer.gpu_tessellation_available()) {
+    double seconds[2];
+    for (int gpu = 0; gpu < 2; ++gpu) {
+      const auto t0 = std::chrono::steady_clock::now();
+      renderer.prepare(resolved, emission, limits, gpu == 1);
+      renderer.pass(0.5, 0.5);
+      glFinish();
+      seconds[gpu] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    on_gpu = seconds[1] < seconds[0];
+  }
+  const std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int k = 0; k < n; ++k) {
     if (n == 1) {
@@ -756,6 +855,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   if (stats) {
     stats->exposure = ev;
     stats->triangles = triangles;
+    stats->gpu_tessellation = on_gpu;
     stats->gl = context.description();
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -22,8 +22,12 @@ namespace lightcone {
 std::vector<std::string> raster_differences(const Scene& scene);
 
 struct RasterFrameStats {
-  std::size_t triangles = 0;  // after tessellation
+  std::size_t triangles = 0;  // after tessellation on the CPU; before, on the GPU
 };
+
+// Where edges are cut: on the CPU (any OpenGL 3.3), by tessellation shaders on the GPU
+// (OpenGL 4), or whichever draws the first pass of the frame faster.
+enum class RasterTessellation { kCpu, kGpu, kAuto };
 
 // The GL programs and buffers of the renderer; needs a current OpenGL 3.3 core context.
 class RasterRenderer {
@@ -35,8 +39,11 @@ class RasterRenderer {
 
   // Tessellates the scene's bodies and tabulates their colours for one frame. The scene and the
   // emission table must outlive the passes drawn from it.
+  // `on_gpu` cuts the edges in tessellation shaders (where available), by the same measure
+  // with equal pieces (docs/design/raster.md).
   RasterFrameStats prepare(const ResolvedScene& scene, const EmissionTable& emission,
-                           const TessellationLimits& limits = {});
+                           const TessellationLimits& limits = {}, bool on_gpu = false);
+  bool gpu_tessellation_available() const;
   // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
   // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The
   // viewport must be the camera's image size.
@@ -54,7 +61,8 @@ struct RasterStats {
   double seconds = 0;
   double exposure = 0;  // EV applied
   std::size_t triangles = 0;
-  std::string gl;  // the OpenGL version and renderer used
+  bool gpu_tessellation = false;  // which path drew it
+  std::string gl;                 // the OpenGL version and renderer used
 };
 
 // The whole image, headless (EGL): camera.samples passes, averaged, and the scene's exposure
@@ -63,6 +71,7 @@ struct RasterStats {
 // so that away from outlines both renderers average the same directions. Throws GlUnavailable
 // without OpenGL 3.3.
 Image render_raster(const Scene& scene, RasterStats* stats = nullptr,
-                    const TessellationLimits& limits = {}, std::uint64_t seed = 0);
+                    const TessellationLimits& limits = {}, std::uint64_t seed = 0,
+                    RasterTessellation mode = RasterTessellation::kAuto);
 
 }  // namespace lightcone

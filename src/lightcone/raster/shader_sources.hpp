@@ -6,6 +6,10 @@ namespace lightcone::shader_sources {
 
 extern const char* const common_glsl;
 extern const char* const body_vert;
+extern const char* const body_projection_glsl;
+extern const char* const patch_vert;
+extern const char* const body_tesc;
+extern const char* const body_tese;
 extern const char* const body_frag;
 extern const char* const lighting_glsl;
 extern const char* const fullscreen_vert;

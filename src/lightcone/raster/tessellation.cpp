@@ -47,12 +47,11 @@ void add_grid(RestMesh& m, const Vec3& corner, const Vec3& along_u, const Vec3& 
     }
 }
 
-constexpr int kFaceGrid = 2;
-
 }  // namespace
 
-RestMesh rest_mesh(const Shape& shape) {
+RestMesh rest_mesh(const Shape& shape, int face_grid) {
   struct Visitor {
+    int kFaceGrid;
     RestMesh operator()(const Sphere& s) const { return sphere_mesh(s.radius); }
     RestMesh operator()(const Box& b) const {
       RestMesh m;
@@ -79,7 +78,7 @@ RestMesh rest_mesh(const Shape& shape) {
       return m;
     }
   };
-  return std::visit(Visitor{}, shape);
+  return std::visit(Visitor{face_grid}, shape);
 }
 
 namespace {

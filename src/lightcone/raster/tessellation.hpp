@@ -35,7 +35,10 @@ struct RestMesh {
   double sphere_radius = 0;  // > 0: a sphere about the origin
   Vec3 midpoint(const Vec3& a, const Vec3& b) const;
 };
-RestMesh rest_mesh(const Shape& shape);
+// Box faces start as face_grid x face_grid quads and planes as 4 face_grid x 4 face_grid, so
+// that no triangle is large against its body and long edges reach their curvature within the
+// maximum level (2 for the CPU path's 2^10 pieces an edge, 8 for the GPU's 64).
+RestMesh rest_mesh(const Shape& shape, int face_grid = 2);
 
 // Where a shape point is seen: its event on the camera's ray family and that event's image
 // point (pixels), for the tessellation's decisions.

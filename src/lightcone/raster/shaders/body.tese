@@ -1,0 +1,18 @@
+// The GPU tessellation path: each generated vertex is a point of the triangle (on the sphere
+// for a sphere) carried to its apparent event, as body.vert carries a vertex.
+layout(triangles, equal_spacing, ccw) in;
+
+in vec3 control_position[];
+in vec4 control_plane[];
+flat out vec4 plane;
+
+uniform float sphere_radius_for_tessellation;
+
+void main() {
+  vec3 p = gl_TessCoord.x * control_position[0] + gl_TessCoord.y * control_position[1] +
+           gl_TessCoord.z * control_position[2];
+  if (sphere_radius_for_tessellation > 0.0 && length(p) > 0.0)
+    p *= sphere_radius_for_tessellation / length(p);
+  gl_Position = apparent_clip(p);
+  plane = control_plane[0];
+}
