@@ -1,0 +1,209 @@
+#include "lightcone/physics/world_line.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/retarded_time.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The interval with PHYSICS.md's signature (- + + +).
+double interval(const Vec4& a, const Vec4& b) {
+  return -a.t * b.t + dot(a.x, b.x);
+}
+
+// How far past the light cone of `receiver` an event lies: positive inside its past (or
+// elsewhere before it), zero on the cone, negative after; it decreases along any timelike
+// world-line.
+double light_cone_gap(const Vec4& receiver, const Vec4& event) {
+  return receiver.t - event.t - length(receiver.x - event.x);
+}
+
+// The roots of a x^2 + b x + c = 0 without cancellation (either may be NaN when there are
+// none; a linear equation gives one).
+void quadratic_roots(double a, double b, double c, double& r1, double& r2) {
+  if (a == 0) {
+    r1 = r2 = b != 0 ? -c / b : std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const double d = b * b - 4 * a * c;
+  if (d < 0) {
+    r1 = r2 = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const double q = -0.5 * (b + std::copysign(std::sqrt(d), b));
+  r1 = q / a;
+  r2 = q != 0 ? c / q : 0.0;
+}
+
+}  // namespace
+
+AcceleratedWorldLine::AcceleratedWorldLine(double time, const Vec3& position, const Vec3& velocity,
+                                           const std::vector<AccelerationPhase>& phases) {
+  if (!(dot(velocity, velocity) < 1))
+    throw std::invalid_argument("a world-line's speed must be below 1");
+  const double gamma = lorentz_gamma(velocity);
+  Piece past;
+  past.start = {{time, position}, {gamma, velocity * gamma}, 0.0};
+  past.duration = kInfinity;  // runs back from its start
+  pieces_.push_back(past);
+  WorldLinePoint at = past.start;
+  for (const AccelerationPhase& phase : phases) {
+    if (!(phase.duration >= 0) || !std::isfinite(phase.duration))
+      throw std::invalid_argument("a phase's duration must be finite and >= 0");
+    const double a = length(phase.acceleration);
+    if (!std::isfinite(a)) throw std::invalid_argument("a phase's acceleration must be finite");
+    Piece piece;
+    piece.start = at;
+    piece.duration = phase.duration;
+    if (a > 0) {
+      piece.rho = 1 / a;
+      piece.u = at.four_velocity;
+      // The unit acceleration in the instantaneous rest frame, carried to W by the inverse of
+      // the pure boost to that frame.
+      const Vec3 beta = velocity_of(at.four_velocity);
+      piece.n = boost(beta * -1.0) * Vec4{0.0, phase.acceleration * (1 / a)};
+    }
+    pieces_.push_back(piece);
+    at = on_piece(piece, phase.duration);
+  }
+  Piece future;
+  future.start = at;
+  future.duration = kInfinity;
+  pieces_.push_back(future);
+}
+
+WorldLinePoint AcceleratedWorldLine::on_piece(const Piece& piece, double dtau) const {
+  WorldLinePoint p;
+  p.proper_time = piece.start.proper_time + dtau;
+  if (piece.rho == 0) {
+    p.event = piece.start.event + dtau * piece.start.four_velocity;
+    p.four_velocity = piece.start.four_velocity;
+    return p;
+  }
+  // X = X_start + rho (sinh(eta) U + (cosh(eta) - 1) N), with cosh - 1 = 2 sinh^2(eta / 2) so
+  // that small accelerations lose nothing.
+  const double eta = dtau / piece.rho;
+  const double s = std::sinh(eta), half = std::sinh(0.5 * eta);
+  p.event = piece.start.event + piece.rho * (s * piece.u + (2 * half * half) * piece.n);
+  p.four_velocity = std::cosh(eta) * piece.u + s * piece.n;
+  return p;
+}
+
+std::size_t AcceleratedWorldLine::piece_at_proper_time(double tau) const {
+  if (tau <= 0) return 0;
+  for (std::size_t i = 1; i + 1 < pieces_.size(); ++i)
+    if (tau < pieces_[i].start.proper_time + pieces_[i].duration) return i;
+  return pieces_.size() - 1;
+}
+
+WorldLinePoint AcceleratedWorldLine::at_proper_time(double tau) const {
+  const Piece& piece = pieces_[piece_at_proper_time(tau)];
+  return on_piece(piece, tau - piece.start.proper_time);
+}
+
+WorldLinePoint AcceleratedWorldLine::at_world_time(double t) const {
+  // The last piece that starts at or before t (the past piece for anything before the start).
+  std::size_t i = 0;
+  for (std::size_t k = 1; k < pieces_.size(); ++k)
+    if (pieces_[k].start.event.t <= t) i = k;
+  const Piece& piece = pieces_[i];
+  const double dt = t - piece.start.event.t;
+  if (piece.rho == 0) return on_piece(piece, dt / piece.start.four_velocity.t);
+  // rho (U.t sinh(eta) + N.t (cosh(eta) - 1)) = dt: with E = e^eta - 1 = x,
+  // (U.t + N.t) x^2 + 2 (U.t - dt / rho) x - 2 dt / rho = 0 ... solved for the root x > -1.
+  const double ut = piece.u.t, nt = piece.n.t, k = dt / piece.rho;
+  double x1, x2;
+  quadratic_roots(ut + nt, 2 * (ut - k), -2 * k, x1, x2);
+  const double x = (x1 >= 0 || !(x2 >= 0)) ? x1 : x2;
+  return on_piece(piece, piece.rho * std::log1p(x));
+}
+
+WorldLinePoint AcceleratedWorldLine::retarded(const Vec4& receiver) const {
+  // The piece where the light-cone gap changes sign: the last whose start is not after the
+  // receiver's past light cone.
+  std::size_t i = 0;
+  for (std::size_t k = 1; k < pieces_.size(); ++k)
+    if (light_cone_gap(receiver, pieces_[k].start.event) >= 0) i = k;
+  const Piece& piece = pieces_[i];
+  const WorldLinePoint& s = piece.start;
+  if (piece.rho == 0) {
+    // Inertial: PHYSICS.md's closed form, from where the piece's line is at t_R.
+    const Vec3 beta = velocity_of(s.four_velocity);
+    const Vec3 at_receiver_time = s.event.x + beta * (receiver.t - s.event.t);
+    const double delay = retarded_delay(at_receiver_time - receiver.x, beta);
+    return on_piece(piece, (receiver.t - delay - s.event.t) / s.four_velocity.t);
+  }
+  // Hyperbolic: with W = R - X_start, A = W.U, B = W.N + rho, q = W.W / rho, the light-cone
+  // condition A sinh(eta) + B (cosh(eta) - 1) = q / 2 becomes, with x = e^eta - 1,
+  // (A + B) x^2 + (2 A - q) x - q = 0 (PHYSICS.md's quadratic in e^eta, written about the
+  // phase's start so that it keeps its precision for small accelerations).
+  const Vec4 w = receiver - s.event;
+  const double a = interval(w, piece.u), b = interval(w, piece.n) + piece.rho;
+  const double q = interval(w, w) / piece.rho;
+  double x1, x2;
+  quadratic_roots(a + b, 2 * a - q, -q, x1, x2);
+  // Of the (up to) two meetings with the light cone of R, the one in R's past.
+  const double eta_end = piece.duration / piece.rho;
+  WorldLinePoint best{};
+  double best_gap = kInfinity;
+  for (const double x : {x1, x2}) {
+    if (!(x > -1)) continue;
+    const double eta = std::clamp(std::log1p(x), 0.0, eta_end);
+    const WorldLinePoint p = on_piece(piece, piece.rho * eta);
+    if (p.event.t > receiver.t) continue;
+    const double gap = std::abs(light_cone_gap(receiver, p.event));
+    if (gap < best_gap) best_gap = gap, best = p;
+  }
+  return best_gap < kInfinity ? best : s;
+}
+
+double retarded_world_time(const std::function<Vec3(double)>& position,
+                           const std::function<Vec3(double)>& velocity, const Vec4& receiver) {
+  const auto f = [&](double t) { return receiver.t - t - length(receiver.x - position(t)); };
+  double hi = receiver.t;
+  double f_hi = f(hi);
+  if (f_hi == 0) return hi;
+  // Widen the bracket back in time until the gap is positive: |X(t) - X(t_R)| < t_R - t, so
+  // f(t) >= (t_R - t)(1 - v_max) - d0 turns positive.
+  double step = std::max(-f_hi, 1e-300), lo = hi - step;
+  double f_lo = f(lo);
+  for (int k = 0; f_lo < 0; ++k) {
+    if (k > 2100 || !std::isfinite(lo))
+      throw std::runtime_error("no retarded event: the world-line is not timelike");
+    step *= 2;
+    lo = hi - step;
+    f_lo = f(lo);
+  }
+  // Newton's method, falling back to bisection whenever a step would leave the bracket.
+  double t = lo + (hi - lo) * f_lo / (f_lo - f_hi);
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    const double value = f(t);
+    if (value == 0) return t;
+    if (value > 0) {
+      lo = t;
+      f_lo = value;
+    } else {
+      hi = t;
+      f_hi = value;
+    }
+    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
+    const Vec3 to_receiver = receiver.x - position(t);
+    const double distance = length(to_receiver);
+    const double slope =
+        -1 + (distance > 0 ? dot(to_receiver, velocity(t)) / distance : 0.0);  // in (-2, 0)
+    double next = t - value / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == t) break;
+    t = next;
+  }
+  return t;
+}
+
+}  // namespace lightcone

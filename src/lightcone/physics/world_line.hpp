@@ -1,0 +1,68 @@
+// World-lines beyond inertial motion: phases of constant proper acceleration (hyperbolic
+// motion) in closed form, and the retarded event of any timelike world-line by a safeguarded
+// Newton iteration (docs/physics.md, "World-lines"; PHYSICS.md).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "lightcone/physics/vec.hpp"
+
+namespace lightcone {
+
+// Constant proper acceleration for a proper-time `duration`; `acceleration` is the proper
+// acceleration in the body's instantaneous rest frame at the start of the phase (axes: W's
+// carried by the pure boost), held fixed in the Fermi-Walker sense.
+struct AccelerationPhase {
+  double duration = 0;
+  Vec3 acceleration;
+};
+
+// A point of a world-line: its event in W, its 4-velocity (dX/dtau, so that u.t = gamma) and
+// its proper time.
+struct WorldLinePoint {
+  Vec4 event;
+  Vec4 four_velocity;
+  double proper_time = 0;
+};
+
+// A world-line through the event (time, position) with velocity `velocity` at proper time 0,
+// inertial before it, then each phase in turn, inertial after the last. Each phase is the
+// hyperbola X(eta) = C + rho (sinh(eta) U + cosh(eta) N) in the plane of the 4-velocity U and
+// the unit 4-acceleration N at its start, rho = 1 / |a|, eta = (tau - tau_start) / rho.
+class AcceleratedWorldLine {
+ public:
+  // Requires |velocity| < 1, durations >= 0 and finite accelerations (a zero one is an
+  // inertial phase).
+  AcceleratedWorldLine(double time, const Vec3& position, const Vec3& velocity,
+                       const std::vector<AccelerationPhase>& phases);
+
+  WorldLinePoint at_proper_time(double tau) const;
+  // The point at world time t (world time grows strictly along the world-line).
+  WorldLinePoint at_world_time(double t) const;
+  // The point on the past light cone of `receiver`: closed form on each piece (retarded_delay
+  // on an inertial one, a quadratic in e^eta on a hyperbola), the piece found by the sign of
+  // the light-cone function at the pieces' ends.
+  WorldLinePoint retarded(const Vec4& receiver) const;
+
+ private:
+  struct Piece {
+    WorldLinePoint start;  // at its first proper time
+    double duration = 0;   // infinite for the last piece; the first runs back from start
+    // Hyperbolic pieces: rho = 1/|a| > 0, U and N at the start, C = X(start) - rho N.
+    double rho = 0;
+    Vec4 u, n, centre;
+  };
+  WorldLinePoint on_piece(const Piece& piece, double tau_from_start) const;
+  std::size_t piece_at_proper_time(double tau) const;
+  std::vector<Piece> pieces_;  // the inertial past first, then the phases, then the future
+};
+
+// The world time t of the event of a timelike world-line X(t) (velocity V(t), |V| < 1) on the
+// past light cone of `receiver`: the root of f(t) = t_R - t - |x_R - X(t)|, which decreases
+// strictly, bracketed and solved by Newton's method safeguarded by bisection to the precision
+// of doubles.
+double retarded_world_time(const std::function<Vec3(double)>& position,
+                           const std::function<Vec3(double)>& velocity, const Vec4& receiver);
+
+}  // namespace lightcone
