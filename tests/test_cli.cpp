@@ -1,6 +1,7 @@
 // The `lightcone` command through the real binary: bad input (exit status 2, one message that
 // names the file, line and JSON path, nothing written), valid renders (sizes, options, the PNG
 // and EXR value contract, --stats, the progress bar), `locate` and --help.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/physics/aberration.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {
@@ -1416,6 +1418,51 @@ TEST_F(CliTest, AFullDiskLeavesThePreviousImagesAndExitsOne) {
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"image.exr", "image.png"})) << budget;
   }
+}
+
+TEST_F(CliTest, AnAcceleratingCameraSeesWithItsVelocityAtItsProperTime) {
+  // From rest, 0.5 along -z for 2 units of proper time, observed at proper time 1.5: the same
+  // pictures and located directions as a camera at that event with that velocity
+  // (tanh(0.75) = 0.63515) given directly.
+  const std::string tail = R"(
+  "objects": [{"name": "ball", "shape": {"sphere": {"radius": 1}}, "position": [2, 0, -8],
+               "velocity": [0.3, 0, 0],
+               "material": {"checker": {"size": 0.3, "colors": [[1, 0.5, 0], [0, 0.3, 1]]}}}],
+  "sky": {"grid": {"spacing": 15}}
+})";
+  const fs::path accelerated = write_scene(R"({
+  "camera": {"position": [0, 0, 0], "width": 96, "height": 64,
+             "motion": {"phases": [{"duration": 2, "acceleration": [0, 0, -0.5]}]},
+             "proper_time": 1.5},)" + tail,
+                                           "accelerated.json");
+  const double t = std::sinh(0.75) / 0.5, z = -(std::cosh(0.75) - 1) / 0.5;
+  const fs::path inertial = write_scene(fmt::format(R"({{
+  "camera": {{"position": [0, 0, {:.17g}], "time": {:.17g}, "velocity": [0, 0, {:.17g}],
+             "width": 96, "height": 64}},)",
+                                                    z, t, -std::tanh(0.75)) +
+                                            tail,
+                                        "inertial.json");
+  for (const char* query :
+       {"--direction 1,0.3,-1", "--direction -0.2,0.1,-1", "--object ball --point 0,1,0"}) {
+    const auto a = locate_output(locate(accelerated, query));
+    const auto b = locate_output(locate(inertial, query));
+    ASSERT_FALSE(a.empty()) << query;
+    for (const char* key : {"pixel", "direction"})
+      for (std::size_t k = 0; k < a[key].size(); ++k)
+        EXPECT_NEAR(a[key][k].get<double>(), b[key][k].get<double>(), 1e-9) << query << key;
+    EXPECT_NEAR(a["doppler"].get<double>(), b["doppler"].get<double>(), 1e-12) << query;
+  }
+  // And the sky's direction is where the aberration formula puts it for the 4-velocity at that
+  // proper time, (0, 0, -sinh(0.75)) / cosh(0.75).
+  const Vec3 sky = normalize(Vec3{1, 0.3, -1});
+  const Vec3 seen = aberrate_into_moving_frame(sky, {0, 0, -std::tanh(0.75)});
+  const auto located = locate_output(locate(accelerated, "--direction 1,0.3,-1"));
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(located["direction"][k].get<double>(), seen[k], 1e-12) << k;
+  const fs::path a_png = out_ / "a.exr", b_png = out_ / "b.exr";
+  ASSERT_EQ(run_lightcone("render " + quoted(accelerated) + " -o " + quoted(a_png)).status, 0);
+  ASSERT_EQ(run_lightcone("render " + quoted(inertial) + " -o " + quoted(b_png)).status, 0);
+  EXPECT_LT(test::fraction_differing(*load_image_file(a_png), *load_image_file(b_png)), 0.001);
 }
 
 TEST_F(CliTest, DevicesAndFifosAreNotReadAsInputs) {

@@ -176,6 +176,58 @@ TEST_F(SceneFileTest, FullSceneMapsOntoTheModel) {
   EXPECT_TRUE(report_.warnings.empty());
 }
 
+TEST_F(SceneFileTest, CameraMotionAndProperTimeSelectTheObservation) {
+  // From rest, proper acceleration 0.5 along -z for 2 units of proper time, observed at proper
+  // time 1.5: t = sinh(0.75) / 0.5, z = -(cosh(0.75) - 1) / 0.5, speed tanh(0.75).
+  const Scene accelerated = load(R"({
+  "camera": {"position": [1, 2, 3], "time": 4,
+             "motion": {"phases": [{"duration": 2, "acceleration": [0, 0, -0.5]}]},
+             "proper_time": 1.5},
+  "objects": []
+})");
+  const WorldLine& w = accelerated.camera.world_line;
+  EXPECT_NEAR(w.time, 4 + std::sinh(0.75) / 0.5, 1e-12);
+  EXPECT_NEAR(w.position.x, 1, 1e-12);
+  EXPECT_NEAR(w.position.z, 3 - (std::cosh(0.75) - 1) / 0.5, 1e-12);
+  EXPECT_NEAR(w.velocity.z, -std::tanh(0.75), 1e-14);
+  EXPECT_EQ(accelerated.camera.motion.phases.size(), 1u);
+  EXPECT_EQ(accelerated.camera.motion.proper_time, 1.5);
+  // Inertial, with a proper time: gamma tau later, gamma v tau further.
+  const Scene inertial = load(R"({
+  "camera": {"position": [0, 0, 0], "time": 1, "velocity": [0.6, 0, 0], "proper_time": 2},
+  "objects": []
+})");
+  EXPECT_NEAR(inertial.camera.world_line.time, 1 + 1.25 * 2, 1e-12);
+  EXPECT_NEAR(inertial.camera.world_line.position.x, 0.6 * 1.25 * 2, 1e-12);
+  EXPECT_NEAR(inertial.camera.world_line.velocity.x, 0.6, 1e-15);
+}
+
+TEST_F(SceneFileTest, BadCameraMotionIsLocated) {
+  const auto with_motion = [](const std::string& motion) {
+    return "{\n  \"camera\": {\"position\": [0, 0, 0],\n    \"motion\": " + motion +
+           "},\n  \"objects\": []\n}";
+  };
+  expect_error(with_motion(R"({"phases": [{"duration": 1, "acceleration": [0, 0, 0]}]})"), 3,
+               "camera.motion.phases[0].acceleration", "must not be zero");
+  expect_error(with_motion(R"({"phases": [{"duration": -1, "acceleration": [1, 0, 0]}]})"), 3,
+               "camera.motion.phases[0].duration", "greater than 0");
+  expect_error(with_motion(R"({"phases": [{"acceleration": [1, 0, 0]}]})"), 3,
+               "camera.motion.phases[0]", "needs \"duration\"");
+  expect_error(
+      with_motion(R"({"phases": [{"duration": 1, "acceleration": [1, 0, 0], "jerk": 1}]})"), 3,
+      "camera.motion.phases[0].jerk", "unknown key");
+  expect_error(with_motion(R"({"keyframes": []})"), 3, "camera.motion.keyframes", "unknown key");
+  expect_error(with_motion(R"({"phases": 3})"), 3, "camera.motion.phases", "must be an array");
+  // So fast by then that double precision cannot hold it: tanh(100) rounds to 1.
+  expect_error(with_motion(R"({"phases": [{"duration": 100, "acceleration": [1, 0, 0]}]},
+    "proper_time": 50)"),
+               3, "camera.motion", "too close to the speed of light");
+  expect_error(
+      "{\n  \"camera\": {\"position\": [0, 0, 0],\n    \"proper_time\": \"soon\"},\n"
+      "  \"objects\": []\n}",
+      3, "camera.proper_time", "must be a number");
+}
+
 TEST_F(SceneFileTest, DefaultsAreTheDocumentedOnes) {
   const Scene s = load(R"({"camera": {"position": [0, 0, 0]},
                            "objects": [{"name": "a", "shape": {"sphere": {"radius": 1}}}]})");

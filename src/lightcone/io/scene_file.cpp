@@ -301,12 +301,28 @@ class SceneReader {
   // --- Sections ---------------------------------------------------------------------------
 
   Camera camera(const Node& n) const {
-    object(n,
-           {"position", "time", "velocity", "forward", "up", "fov", "width", "height", "samples"});
+    object(n, {"position", "time", "velocity", "proper_time", "motion", "forward", "up", "fov",
+               "width", "height", "samples"});
     Camera c;
     c.world_line.position = vec3(member(n, "position"));
     if (Node t = member(n, "time"); t.value) c.world_line.time = number(t);
     if (Node v = member(n, "velocity"); v.value) c.world_line.velocity = velocity(v);
+    c.motion.start = c.world_line;
+    if (Node m = member(n, "motion"); m.value) c.motion.phases = phases(m);
+    if (Node tau = member(n, "proper_time"); tau.value) c.motion.proper_time = number(tau);
+    // The observation: the camera's event and velocity at its proper time.
+    c.world_line = camera_observation(c.motion);
+    {
+      const double speed = length(c.world_line.velocity);
+      const double gamma = 1 / std::sqrt((1 - speed) * (1 + speed));
+      if (!(gamma <= kMaxGamma)) {
+        const Node where =
+            member(n, "motion").value ? member(n, "motion") : member(n, "proper_time");
+        fail(where, fmt::format("at proper time {} the camera's speed {} is too close to the "
+                                "speed of light (gamma {:.3g}; at most {:g})",
+                                c.motion.proper_time, speed, gamma, kMaxGamma));
+      }
+    }
     if (Node f = member(n, "forward"); f.value) c.forward = direction(f);
     if (Node u = member(n, "up"); u.value) c.up = direction(u);
     if (length(cross(c.forward, c.up)) < 1e-9) {
@@ -328,6 +344,33 @@ class SceneReader {
                               c.height, kMaxPixels));
     if (Node s = member(n, "samples"); s.value) c.samples = integer(s, 1, kMaxSamples);
     return c;
+  }
+
+  // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]}.
+  std::vector<AccelerationPhase> phases(const Node& n) const {
+    object(n, {"phases"});
+    const Node list = member(n, "phases");
+    if (!list.value) fail(n, "needs \"phases\", an array of {duration, acceleration}");
+    if (!list.value->is_array())
+      fail(list, fmt::format("must be an array of phases, got {}", describe(*list.value)));
+    std::vector<AccelerationPhase> out;
+    for (std::size_t i = 0; i < list.value->size(); ++i) {
+      const Node phase = element(list, i);
+      object(phase, {"duration", "acceleration"});
+      const Node duration = member(phase, "duration"), acceleration = member(phase, "acceleration");
+      if (!duration.value) fail(phase, "needs \"duration\" (proper time, > 0)");
+      if (!acceleration.value) fail(phase, "needs \"acceleration\" [ax, ay, az] (not zero)");
+      AccelerationPhase p;
+      p.duration = positive(duration);
+      p.acceleration = vec3(acceleration);
+      if (length(p.acceleration) == 0)
+        fail(acceleration,
+             "must not be zero (a phase without acceleration is inertial: leave "
+             "it out)");
+      if (!std::isfinite(length(p.acceleration))) fail(acceleration, "is too large");
+      out.push_back(p);
+    }
+    return out;
   }
 
   void read_objects(const Node& n, Scene& scene) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lightcone/physics/vec.hpp"
+#include "lightcone/physics/world_line.hpp"
 
 namespace lightcone {
 
@@ -152,7 +153,18 @@ struct Light {
 };
 
 struct Camera {
-  WorldLine world_line;  // the observation event is (world_line.time, world_line.position)
+  // The observation event is (world_line.time, world_line.position), and world_line.velocity
+  // the camera's velocity there: what renderers read. A camera described by `motion` has them
+  // set from it (camera_observation).
+  WorldLine world_line;
+  // How the camera moves: at start.position at world time start.time with start.velocity (that
+  // event has proper time 0), then phases of constant proper acceleration, inertial after
+  // them; it observes at its own proper time `proper_time`.
+  struct Motion {
+    WorldLine start;
+    std::vector<AccelerationPhase> phases;
+    double proper_time = 0;
+  } motion;
   // In the camera's rest frame (axes: W's carried by the pure boost).
   Vec3 forward{0, 0, -1};
   Vec3 up{0, 1, 0};
@@ -219,5 +231,9 @@ struct Scene {
   Sky sky;
   RenderSettings render;
 };
+
+// The observation event and velocity of a camera moving as `motion` says: its point at
+// motion.proper_time (throws std::invalid_argument for a motion the world-line refuses).
+WorldLine camera_observation(const Camera::Motion& motion);
 
 }  // namespace lightcone
