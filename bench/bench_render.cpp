@@ -15,9 +15,9 @@
 #include <map>
 #include <random>
 
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/trace/renderer.hpp"
-#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 using namespace lightcone;

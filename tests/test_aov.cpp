@@ -7,10 +7,10 @@
 #include <limits>
 #include <string>
 
-#include "lightcone/trace/aov.hpp"
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/false_colour.hpp"
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/trace/aov.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 

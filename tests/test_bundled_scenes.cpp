@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/trace/renderer.hpp"
-#include "lightcone/frame/tone_map.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -13,14 +13,14 @@
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/colour_models.hpp"
 #include "lightcone/color/spectrum.hpp"
-#include "lightcone/physics/doppler.hpp"
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/locate.hpp"
-#include "lightcone/trace/renderer.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
-#include "lightcone/trace/tracer.hpp"
+#include "lightcone/physics/doppler.hpp"
 #include "lightcone/scene/reframe.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/frame/camera_model.hpp"
-#include "lightcone/trace/renderer.hpp"
-#include "lightcone/frame/resolved_scene.hpp"
-#include "lightcone/trace/tracer.hpp"
 #include "lightcone/scene/reframe.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/frame/locate.hpp"
-#include "lightcone/trace/renderer.hpp"
-#include "lightcone/frame/resolved_scene.hpp"
-#include "lightcone/trace/tracer.hpp"
 #include "lightcone/scene/reframe.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "lightcone/frame/received_colour.hpp"
-#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/frame/sampler.hpp"
+#include "lightcone/frame/tone_map.hpp"
 
 namespace lightcone {
 namespace {
