@@ -467,13 +467,12 @@ TEST_P(RasterModels, MatchTheRayTracer) {
     expect_agreement("street-lit.json", "--set render.shadows=false " + settings, 4);
 }
 
-INSTANTIATE_TEST_SUITE_P(ColourSearchlightAndDelay, RasterModels,
-                         testing::Values("--set render.doppler=rgb3", "--set render.doppler=off",
-                                         "--set render.doppler=hue",
-                                         "--set render.searchlight=chang1996",
-                                         "--set render.searchlight=off",
-                                         "--set render.light_source_delay=camera",
-                                         "--set render.light_delay=false"));
+INSTANTIATE_TEST_SUITE_P(
+    ColourSearchlightAndDelay, RasterModels,
+    testing::Values("--set render.doppler=rgb3", "--set render.doppler=off",
+                    "--set render.doppler=hue", "--set render.searchlight=chang1996",
+                    "--set render.searchlight=off", "--set render.light_source_delay=camera",
+                    "--set render.light_delay=false", "--set render.relativity=false"));
 
 // ---------------------------------------------------------------------------------------------
 // Tessellation: a straight pole beside a camera moving sideways is seen bent.

@@ -59,31 +59,6 @@ std::filesystem::path next_screenshot() {
   }
 }
 
-// Which tessellation path draws: as asked, or (auto) the one whose first frame took less
-// time, after one frame of each.
-class TessellationChoice {
- public:
-  TessellationChoice(RasterTessellation mode, bool gpu_available) : mode_(mode) {
-    if (mode == RasterTessellation::kGpu && !gpu_available)
-      throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
-    if (mode == RasterTessellation::kAuto && !gpu_available) mode_ = RasterTessellation::kCpu;
-  }
-  bool on_gpu() const {
-    if (mode_ != RasterTessellation::kAuto) return mode_ == RasterTessellation::kGpu;
-    return frames_ < 2 ? frames_ == 1 : seconds_[1] < seconds_[0];
-  }
-  // Records how long the frame just drawn took.
-  void frame_took(double seconds) {
-    if (frames_ < 2) seconds_[frames_] = seconds;
-    ++frames_;
-  }
-
- private:
-  RasterTessellation mode_;
-  int frames_ = 0;
-  double seconds_[2] = {0, 0};
-};
-
 struct GlfwSession {
   GlfwSession() {
     if (!glfwInit()) throw InputError("view: GLFW cannot open the display");

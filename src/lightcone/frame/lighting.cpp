@@ -100,23 +100,30 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
       r.spectrum = b;
     }
     const WorldLine& line = light.world_line;
-    const Vec3 at_observation = line.position_at(observation.t);
-    const double tau = retarded_delay(at_observation - observation.x, line.velocity);
-    r.camera_event = {observation.t - tau, at_observation - line.velocity * tau};
+    if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
+      const Vec3 at_observation = line.position_at(observation.t);
+      const double tau = retarded_delay(at_observation - observation.x, line.velocity);
+      r.fixed_event = Vec4{observation.t - tau, at_observation - line.velocity * tau};
+    } else if (!(settings.relativity &&
+                 settings.light_source_delay == LightSourceDelay::kSurface)) {
+      // Where it is at the observation time (the classical picture keeps lights still).
+      const Vec3 velocity = settings.relativity ? line.velocity : Vec3{};
+      r.fixed_event = Vec4{observation.t, line.position + velocity * (observation.t - line.time)};
+    }
     lights_.push_back(std::move(r));
   }
-  if (settings.doppler != DopplerModel::kSpectral) return;
-
-  // The factors a lit surface is seen with (by the camera, over its image) and can see a light
-  // with (any direction).
-  double light_reach = 0;
+  // The factors a lit surface can see a light with (any direction).
   if (settings.relativity)
     for (const ResolvedBody& body : scene.bodies) {
       if (body.object->material.unlit) continue;
       for (const Light& light : s.lights)
-        light_reach = std::max(light_reach, relative_rapidity(light.world_line.velocity,
-                                                              body.object->world_line.velocity));
+        light_rapidity_ = std::max(
+            light_rapidity_,
+            relative_rapidity(light.world_line.velocity, body.object->world_line.velocity));
     }
+  if (settings.doppler != DopplerModel::kSpectral) return;
+
+  const double light_reach = light_rapidity_;
   const LogDopplerRange seen = visible_log_doppler(scene, true);
   camera_grid_ = DopplerGrid::covering(seen.lo, seen.hi);
   light_grid_ = DopplerGrid::covering(light_reach);
@@ -215,18 +222,13 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     return light.world_line.position + light_velocity * (t - light.world_line.time) + offset_world;
   };
   Vec4 emission;
-  const bool exact =
-      settings.relativity && settings.light_source_delay == LightSourceDelay::kSurface;
-  if (exact) {
+  if (rl.fixed_event) {
+    emission = *rl.fixed_event;
+    emission.x += offset_world;
+  } else {
     const Vec3 at = position(surface_world.t);
     const double tau = retarded_delay(at - surface_world.x, light_velocity);
     emission = {surface_world.t - tau, at - light_velocity * tau};
-  } else if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
-    emission = rl.camera_event;
-    emission.x += offset_world;
-  } else {
-    const double t = scene_.observation_event.t;
-    emission = {t, position(t)};
   }
 
   const ReceivedLeg leg = receive_leg(emission, light_velocity, surface_world, surface_velocity);

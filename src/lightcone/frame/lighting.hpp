@@ -4,6 +4,7 @@
 
 #include <array>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "lightcone/color/doppler_table.hpp"
@@ -43,15 +44,23 @@ class Lighting {
   }
   // and light l's own colour seen with factor d (the glossy lobe's).
   Xyz light_seen(std::size_t l, double d) const { return lights_[l].seen(d); }
-  // The range of ln D on the light's legs that the tables cover (spectral model).
-  const DopplerGrid& light_grid() const { return light_grid_; }
+  // light l's emission event when it does not depend on the lit point (ResolvedLight's
+  // fixed_event), and the largest rapidity of a light relative to a lit body (0 for the
+  // classical picture): |ln D| on the lights' legs stays within it.
+  const std::optional<Vec4>& fixed_emission_event(std::size_t l) const {
+    return lights_[l].fixed_event;
+  }
+  double light_rapidity() const { return light_rapidity_; }
 
  private:
   struct ResolvedLight {
     const Light* light = nullptr;
     LinearRgb rgb;  // colour at rest, Y = 1 per unit intensity
     std::variant<RgbEmitterSpectrum, BlackbodySpectrum> spectrum;
-    Vec4 camera_event;     // its event on the camera's past light cone (W), for "camera" delay
+    // Where its light leaves when that does not depend on the lit point (W): its event on the
+    // camera's past light cone ("camera" delay), or where it is at the observation time ("none",
+    // and the classical picture); before a sphere light's offset. Unset for the exact delay.
+    std::optional<Vec4> fixed_event;
     DopplerXyzTable seen;  // spectral: its colour against the camera-to-light factor
     double spectral(double lambda_nm) const;
   };
@@ -73,6 +82,7 @@ class Lighting {
   const ShadowQuery* shadows_;
   std::vector<ResolvedLight> lights_;
   DopplerGrid camera_grid_, light_grid_;
+  double light_rapidity_ = 0;
   // The colour of one fixed albedo lit by one light, against the camera's factor (a light at
   // rest relative to the body) or against both factors.
   struct Reflection {

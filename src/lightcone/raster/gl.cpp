@@ -35,6 +35,16 @@ const char* stage_name(GLenum stage) {
   }
 }
 
+// A shader's or program's info log (glGetShaderiv / glGetShaderInfoLog or the program ones).
+template <class GetParameter, class GetLog>
+std::string info_log(GLuint object, GetParameter get_parameter, GetLog get_log) {
+  GLint length = 0;
+  get_parameter(object, GL_INFO_LOG_LENGTH, &length);
+  std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
+  get_log(object, static_cast<GLsizei>(log.size()), nullptr, log.data());
+  return log.data();
+}
+
 GLuint compile(GLenum stage, const std::string& source) {
   const GLuint shader = glCreateShader(stage);
   const char* text = source.c_str();
@@ -43,13 +53,9 @@ GLuint compile(GLenum stage, const std::string& source) {
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
-    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
     glDeleteShader(shader);
-    throw std::runtime_error(
-        fmt::format("{} shader does not compile: {}", stage_name(stage), log.data()));
+    throw std::runtime_error(fmt::format("{} shader does not compile: {}", stage_name(stage), log));
   }
   return shader;
 }
@@ -71,12 +77,9 @@ GLuint link_program(const std::string& vertex, const std::string& fragment,
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
-    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    const std::string log = info_log(program, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(program);
-    throw std::runtime_error(fmt::format("shaders do not link: {}", log.data()));
+    throw std::runtime_error(fmt::format("shaders do not link: {}", log));
   }
   return program;
 }

@@ -16,7 +16,6 @@
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/physics/retarded_time.hpp"
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
@@ -24,21 +23,20 @@
 
 namespace lightcone {
 
-constexpr std::size_t kMaxRasterLights = 16;  // lighting.glsl's kMaxLights
+namespace {
+constexpr int kMaxLights = 16;  // lighting.glsl's
+}  // namespace
 
 std::vector<std::string> raster_differences(const Scene& scene) {
   std::vector<std::string> differences;
-  bool lit = false, textured = false;
+  bool lit = false, textured = false, textured_mesh = false, lit_textured = false;
   for (const Object& o : scene.objects) {
+    const bool has_texture = std::holds_alternative<Texture>(o.material.pattern);
     lit = lit || !o.material.unlit;
-    textured = textured || std::holds_alternative<Texture>(o.material.pattern);
+    textured = textured || has_texture;
+    textured_mesh = textured_mesh || (has_texture && std::holds_alternative<MeshShape>(o.shape));
+    lit_textured = lit_textured || (has_texture && !o.material.unlit);
   }
-  bool textured_mesh = false, lit_textured = false;
-  for (const Object& o : scene.objects)
-    if (std::holds_alternative<Texture>(o.material.pattern)) {
-      textured_mesh = textured_mesh || std::holds_alternative<MeshShape>(o.shape);
-      lit_textured = lit_textured || !o.material.unlit;
-    }
   if (textured_mesh) differences.push_back("textured meshes are drawn black");
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
   const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
@@ -46,8 +44,8 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     differences.push_back("textures and sky images under the hue colour model are drawn black");
   if (lit && scene.render.doppler == DopplerModel::kHue)
     differences.push_back("lit materials under the hue colour model are drawn black");
-  if (lit && scene.lights.size() > kMaxRasterLights)
-    differences.push_back(fmt::format("only the first {} lights light surfaces", kMaxRasterLights));
+  if (lit && scene.lights.size() > static_cast<std::size_t>(kMaxLights))
+    differences.push_back(fmt::format("only the first {} lights light surfaces", kMaxLights));
   if (lit && scene.render.shadows && !scene.lights.empty())
     differences.push_back("no shadows are cast");
   return differences;
@@ -60,7 +58,6 @@ namespace {
 // what 8 bits show.
 constexpr double kLogDopplerStep = 1.0 / 512;
 constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
-constexpr int kMaxLights = 16;       // lighting.glsl's
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 
@@ -224,9 +221,8 @@ struct RasterRenderer::Impl {
     int first_row = 0, pattern = 0;
     bool lit = false;
     std::array<int, 2 * kMaxLights> reflection_row{}, reflection_moving{};
-    const RestMesh* mesh = nullptr;                              // during prepare()
-    std::size_t first_patch_vertex = 0, patch_vertex_count = 0;  // the GPU path's
-    double sphere_radius = 0;
+    const RestMesh* mesh = nullptr;  // during prepare()
+    double sphere_radius = 0;        // the GPU path's: its mesh's
   };
   struct LightDraw {
     int kind = 0, fixed_event = 0, row = 0;
@@ -246,21 +242,20 @@ struct RasterRenderer::Impl {
   int table_light_nodes = 2;
 
   // A texture or sky image as a float texture (once per image), with mip levels for the sky's
-  // filtered lookups (exact lookups read level 0 texel by texel).
-  GLuint upload(const Image& image, bool mip_mapped = false) {
+  // filtered lookups (exact lookups read level 0 texel by texel, whatever the filter).
+  GLuint upload(const Image& image) {
     auto [it, added] = images.emplace(&image, 0);
     if (added) {
       glGenTextures(1, &it->second);
       glBindTexture(GL_TEXTURE_2D, it->second);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                      mip_mapped ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mip_mapped ? GL_LINEAR : GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
       glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT,
                    image.rgb.data());
-      if (mip_mapped) glGenerateMipmap(GL_TEXTURE_2D);
+      glGenerateMipmap(GL_TEXTURE_2D);
       check_gl("uploading an image");
     }
     return it->second;
@@ -315,18 +310,10 @@ struct RasterRenderer::Impl {
         d.kind = 3;
         d.radius = sphere->radius;
       }
-      // frame/lighting.cpp: the emission event by the light-source delay mode.
-      const bool exact =
-          settings.relativity && settings.light_source_delay == LightSourceDelay::kSurface;
-      if (!exact) {
+      // The emission event, where it does not depend on the lit point (Lighting's own).
+      if (const auto& fixed = lighting.fixed_emission_event(l)) {
         d.fixed_event = 1;
-        if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
-          const Vec3 at = light.world_line.position_at(observation.t);
-          const double tau = retarded_delay(at - observation.x, light.world_line.velocity);
-          d.event = {-tau, at - light.world_line.velocity * tau - observation.x};
-        } else {
-          d.event = {0.0, light.world_line.position_at(observation.t) - observation.x};
-        }
+        d.event = *fixed - observation;
       }
       if (spectral) {
         d.row = add_row(
@@ -372,11 +359,7 @@ struct RasterRenderer::Impl {
     // Lit bodies' reflection rows (co-moving lights) and tables (moving lights).
     const LogDopplerRange unlit = visible_log_doppler(resolved, false);
     const LogDopplerRange lit_range = visible_log_doppler(resolved, true);
-    const DopplerGrid& light_grid = lighting.light_grid();
-    const double reach =
-        spectral && light_grid.size() > 1
-            ? std::max(-light_grid.log_d(0), light_grid.log_d(light_grid.size() - 1))
-            : 0.0;
+    const double reach = lighting.light_rapidity();
     table_camera_first = (lit_range.empty ? 0.0 : lit_range.lo) - 2 * kTableCameraStep;
     const double table_camera_last = (lit_range.empty ? 0.0 : lit_range.hi) + 2 * kTableCameraStep;
     const int table_camera_nodes = std::max(
@@ -401,6 +384,8 @@ struct RasterRenderer::Impl {
     std::map<const void*, RestMesh> meshes;  // per shape, for this frame
     for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
       const ResolvedBody& body = resolved.bodies[i];
+      // Bodies out of view need neither rows nor triangles.
+      if (!may_be_in_view(resolved.camera, body.trace_bounds)) continue;
       BodyDraw draw;
       draw.body = i;
       const Material& m = body.object->material;
@@ -459,7 +444,6 @@ struct RasterRenderer::Impl {
           }
         }
       }
-      if (!may_be_in_view(resolved.camera, body.trace_bounds)) continue;
       const Shape& shape = body.object->shape;
       const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
       auto it = meshes.find(shape_key);
@@ -482,18 +466,14 @@ struct RasterRenderer::Impl {
           tessellate(resolved, body_view(resolved.bodies[draw.body]), *draw.mesh, none, patches);
           it->second = {first, patches.size() / kFloatsPerVertex - first};
         }
-        draw.first_patch_vertex = it->second.first;
-        draw.patch_vertex_count = it->second.second;
+        draw.first_vertex = it->second.first;
+        draw.vertex_count = it->second.second;
         draw.sphere_radius = draw.mesh->sphere_radius;
-        stats.triangles += draw.patch_vertex_count / 3;
+        stats.triangles += draw.vertex_count / 3;
       }
       glBindBuffer(GL_ARRAY_BUFFER, patch_buffer);
       glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(patches.size() * sizeof(float)),
                    patches.data(), GL_STATIC_DRAW);
-      for (BodyDraw& draw : draws) {
-        draw.first_vertex = draw.first_patch_vertex;
-        draw.vertex_count = draw.patch_vertex_count;
-      }
     } else {
       // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
       std::vector<std::vector<float>> parts(draws.size());
@@ -521,7 +501,7 @@ struct RasterRenderer::Impl {
     }
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
-    if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image, true);
+    if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image);
     const PointEmission& sky0 = sky_image ? kBlack : emission.sky_colour(0);
     const PointEmission& sky1 = grid ? emission.sky_colour(1) : sky0;
     sky_first_row =
@@ -532,16 +512,9 @@ struct RasterRenderer::Impl {
     // sky and lit bodies, the lights' on their legs, and the glossy lobe's product of both.
     double lo = std::min(unlit.lo, lit_range.empty ? unlit.lo : lit_range.lo);
     double hi = std::max(unlit.hi, lit_range.empty ? unlit.hi : lit_range.hi);
-    if (!lights.empty() && settings.relativity) {
-      double light_rapidity = 0;
-      for (const ResolvedBody& b : resolved.bodies)
-        if (!b.object->material.unlit)
-          for (const Light& light : s.lights)
-            light_rapidity = std::max(
-                light_rapidity,
-                relative_rapidity(light.world_line.velocity, b.object->world_line.velocity));
-      lo = std::min(lo - light_rapidity, -light_rapidity);
-      hi = std::max(hi + light_rapidity, light_rapidity);
+    if (!lights.empty()) {
+      lo = std::min(lo - reach, -reach);
+      hi = std::max(hi + reach, reach);
     }
     lo -= 2 * kLogDopplerStep;
     hi += 2 * kLogDopplerStep;
@@ -809,20 +782,15 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   std::vector<double> sum(3 * pixels, 0.0);
   std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
   // The tessellation path: as asked, or (auto) whichever draws the first pass faster.
-  bool on_gpu = mode == RasterTessellation::kGpu;
-  if (on_gpu && !renderer.gpu_tessellation_available())
-    throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
-  if (mode == RasterTessellation::kAuto && renderer.gpu_tessellation_available()) {
-    double seconds[2];
-    for (int gpu = 0; gpu < 2; ++gpu) {
-      const auto t0 = std::chrono::steady_clock::now();
-      renderer.prepare(resolved, emission, limits, gpu == 1);
-      renderer.pass(0.5, 0.5);
-      glFinish();
-      seconds[gpu] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    }
-    on_gpu = seconds[1] < seconds[0];
+  TessellationChoice choice(mode, renderer.gpu_tessellation_available());
+  while (!choice.decided()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    renderer.prepare(resolved, emission, limits, choice.on_gpu());
+    renderer.pass(0.5, 0.5);
+    glFinish();
+    choice.frame_took(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
+  const bool on_gpu = choice.on_gpu();
   const std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int k = 0; k < n; ++k) {

@@ -12,6 +12,7 @@
 
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/tessellation.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -55,6 +56,33 @@ class RasterRenderer {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+// Which tessellation path draws: as asked, or (auto) the one whose first drawing took less
+// time, after one of each (CPU first). Throws GlUnavailable for the GPU path without OpenGL 4.
+class TessellationChoice {
+ public:
+  TessellationChoice(RasterTessellation mode, bool gpu_available) : mode_(mode) {
+    if (mode == RasterTessellation::kGpu && !gpu_available)
+      throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
+    if (mode == RasterTessellation::kAuto && !gpu_available) mode_ = RasterTessellation::kCpu;
+  }
+  bool on_gpu() const {
+    if (mode_ != RasterTessellation::kAuto) return mode_ == RasterTessellation::kGpu;
+    return frames_ < 2 ? frames_ == 1 : seconds_[1] < seconds_[0];
+  }
+  // Whether the path is settled (auto: once both were timed).
+  bool decided() const { return mode_ != RasterTessellation::kAuto || frames_ >= 2; }
+  // Records how long the frame just drawn took.
+  void frame_took(double seconds) {
+    if (frames_ < 2) seconds_[frames_] = seconds;
+    ++frames_;
+  }
+
+ private:
+  RasterTessellation mode_;
+  int frames_ = 0;
+  double seconds_[2] = {0, 0};
 };
 
 struct RasterStats {

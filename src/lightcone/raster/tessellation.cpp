@@ -112,13 +112,6 @@ ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
   return {event.position, project_direction(scene.camera, event.position)};
 }
 
-double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
-                         const Vec3& a, const Vec3& b) {
-  return edge_error_pixels(scene.camera, apparent_point(scene, view, a),
-                           apparent_point(scene, view, b),
-                           apparent_point(scene, view, mesh.midpoint(a, b)));
-}
-
 double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& pa,
                          const ApparentPoint& pb, const ApparentPoint& pm) {
   // An edge seen wholly beyond one side of the view (its ends and midpoint) needs no accuracy.

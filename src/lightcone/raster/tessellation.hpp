@@ -49,13 +49,10 @@ struct ApparentPoint {
 ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                              const Vec3& shape_point);
 
-// How far, in pixels, the apparent midpoint of the edge (a, b) lies from where the rasteriser
-// draws it: the projection of the midpoint of the chord between the apparent ends (clip space is
-// linear in the apparent positions, so that is where the midpoint's attributes land, not at the
-// midpoint of the projected ends); the same from both ends.
-double edge_error_pixels(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
-                         const Vec3& a, const Vec3& b);
-// The same from where the ends and the midpoint are seen.
+// How far, in pixels, the apparent midpoint of an edge (seen at `midpoint`, its ends at a and b)
+// lies from where the rasteriser draws it: the projection of the midpoint of the chord between the
+// apparent ends (clip space is linear in the apparent positions, so that is where the midpoint's
+// attributes land, not at the midpoint of the projected ends); the same from both ends.
 double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& a, const ApparentPoint& b,
                          const ApparentPoint& midpoint);
 
