@@ -1046,7 +1046,7 @@ nlohmann::ordered_json locate_output(const CommandResult& r) {
   for (const auto& item : out.items()) keys.push_back(item.key());
   EXPECT_EQ(keys,
             (std::vector<std::string>{"pixel", "direction", "emission_time", "emission_position",
-                                      "distance", "in_view", "doppler"}));
+                                      "emission_proper_time", "distance", "in_view", "doppler"}));
   // A pixel where the point is in view, null where it is behind the camera or off the image.
   if (out["in_view"].get<bool>())
     EXPECT_TRUE(out["pixel"].is_array() && out["pixel"].size() == 2) << r.out;

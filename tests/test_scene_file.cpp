@@ -719,8 +719,8 @@ TEST_F(SceneFileTest, SyntaxErrors) {
 
 TEST_F(SceneFileTest, UnknownKeys) {
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"light\": []\n}", 3, "light",
-               "unknown key \"light\" (expected one of: $schema, camera, objects, lights, sky, "
-               "render)");
+               "unknown key \"light\" (expected one of: $schema, speed_of_light, camera, objects, "
+               "lights, sky, render)");
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n    \"fovy\": 60}\n}", 3, "camera.fovy",
                "expected one of: position, time");
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
@@ -908,8 +908,8 @@ TEST_F(SceneFileTest, BadBlackbodies) {
                "must be an object");
   expect_error(with_material(R"({"color": [1, 1, 1], "blackbody": {"temperature": 5000}})"), 4,
                "objects[0].material",
-               "exactly one of: color, checker, texture, blackbody, spectrum (found color, "
-               "blackbody)");
+               "exactly one of: color, checker, texture, blackbody, spectrum, blink, clock "
+               "(found color, blackbody)");
 }
 
 TEST_F(SceneFileTest, BadSpectra) {
@@ -1085,7 +1085,7 @@ TEST_F(SceneFileTest, BadLightTypesNamesAndKeys) {
     "radius": 1})"),
                4, "lights[0].radius",
                "unknown key \"radius\" for a point light (expected one of: name, type, position, "
-               "time, velocity, color, blackbody, intensity)");
+               "time, velocity, motion, color, blackbody, intensity)");
   expect_error(with_light(R"({"name": "a", "type": "directional", "intensity": 1})"), 3,
                "lights[0].intensity", "unknown key \"intensity\" for a directional light");
   expect_error(with_light(R"({"name": "a", "type": "spot", "irradiance": 1})"), 3,

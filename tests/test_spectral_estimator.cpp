@@ -51,7 +51,7 @@ Scene wall_scene(Material material, double speed, int size = 5) {
   return s;
 }
 
-Material unlit(std::variant<SolidColor, Checker, Texture, Blackbody, EmissionSpectrum> pattern) {
+Material unlit(Pattern pattern) {
   Material m;
   m.pattern = std::move(pattern);
   return m;

@@ -3,6 +3,7 @@
 // condition.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -158,6 +159,45 @@ TEST(RetardedWorldTime, NewtonMatchesTheClosedFormsOfInertialAndHyperbolicLines)
     const double expected = line.retarded(receiver).event.t;
     EXPECT_NEAR(th, expected, 1e-9 * (1 + std::abs(expected))) << trial;
   }
+}
+
+TEST(AcceleratedWorldLine, CarriedAxesAreTheCompositionOfTheRestFrameBoosts) {
+  // Independently: constant proper acceleration a for proper time tau takes the rest frame at
+  // the phase's start (pure-boost axes P, in which a is given) to the pure boost of it to
+  // velocity tanh(|a| tau) a / |a|; the gyroscope frame G, turned from P by a rotation
+  // Q = G P^-1, follows with Q held. Its axes, written in the pure-boost rest frame at the end,
+  // turn by the Thomas-Wigner rotation.
+  std::mt19937 rng(7);
+  double largest_turn = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<AccelerationPhase> phases;
+    const AcceleratedWorldLine line = random_line(rng, &phases);
+    const Vec3 v0 = velocity_of(line.at_proper_time(-1).four_velocity);
+    Mat4 carried = boost(v0);  // W -> the gyroscope frame
+    double tau = 0;
+    for (const AccelerationPhase& p : phases) {
+      const Mat4 pure = boost(velocity_of(line.at_proper_time(tau).four_velocity));
+      const Mat4 turn = carried * lorentz_inverse(pure);
+      const double a = length(p.acceleration);
+      carried = turn * boost(p.acceleration * (std::tanh(a * p.duration) / a)) * pure;
+      tau += p.duration;
+    }
+    const Vec3 v_end = velocity_of(line.at_proper_time(tau).four_velocity);
+    const Mat3 expected = (boost(v_end) * lorentz_inverse(carried)).spatial();
+    const Mat3 r = line.carried_rotation(tau + 0.5);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.m[i][k], expected.m[i][k], 1e-7) << trial;
+    largest_turn =
+        std::max(largest_turn,
+                 std::acos(std::clamp(0.5 * (r.m[0][0] + r.m[1][1] + r.m[2][2] - 1), -1.0, 1.0)));
+  }
+  // The rotation is real: random turning paths precess by tens of degrees.
+  EXPECT_GT(largest_turn, 0.3);
+  // A path that does not turn (acceleration along the velocity) does not precess.
+  const AcceleratedWorldLine straight(0, {}, {0.3, 0, 0}, {{2, {0.7, 0, 0}}, {1, {-0.2, 0, 0}}});
+  const Mat3 r = straight.carried_rotation(3);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.m[i][k], i == k ? 1.0 : 0.0, 1e-12);
 }
 
 TEST(AcceleratedWorldLine, RefusesSpeedsOfLightAndBadPhases) {

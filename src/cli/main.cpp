@@ -18,6 +18,7 @@
 
 #include "lightcone/frame/false_colour.hpp"
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
@@ -78,6 +79,7 @@ void print_error(const std::string& message) {
 Scene load(const std::string& file, const std::vector<std::string>& overrides) {
   SceneLoadReport report;
   Scene scene = load_scene_file(file, overrides, report);
+  for (const std::string& w : tangent_warnings(scene)) report.warnings.push_back(w);
   for (const std::string& w : report.warnings)
     std::fprintf(stderr, "lightcone: warning: %s\n", w.c_str());
   return scene;
@@ -445,6 +447,7 @@ int run_locate(const LocateArgs& a) {
   if (!finite(r.direction) || !std::isfinite(r.doppler) ||
       (r.in_view && !(std::isfinite(r.pixel_x) && std::isfinite(r.pixel_y))) ||
       (r.emission_time && !std::isfinite(*r.emission_time)) ||
+      (r.emission_proper_time && !std::isfinite(*r.emission_proper_time)) ||
       (r.emission_position && !finite(*r.emission_position)) ||
       (r.distance && !std::isfinite(*r.distance)))
     throw InputError(fmt::format(
@@ -454,11 +457,15 @@ int run_locate(const LocateArgs& a) {
                                 {"direction", to_json(r.direction)},
                                 {"emission_time", nullptr},
                                 {"emission_position", nullptr},
+                                {"emission_proper_time", nullptr},
                                 {"distance", nullptr},
                                 {"in_view", r.in_view},
                                 {"doppler", r.doppler}};
   if (!r.in_view) out["pixel"] = nullptr;  // behind the camera or outside the image
-  if (r.emission_time) out["emission_time"] = *r.emission_time;
+  // Times in the scene's units (the model's are c t).
+  const double c = scene.speed_of_light;
+  if (r.emission_time) out["emission_time"] = *r.emission_time / c;
+  if (r.emission_proper_time) out["emission_proper_time"] = *r.emission_proper_time / c;
   if (r.emission_position) out["emission_position"] = to_json(*r.emission_position);
   if (r.distance) out["distance"] = *r.distance;
   std::printf("%s\n", out.dump().c_str());

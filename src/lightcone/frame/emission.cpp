@@ -180,12 +180,11 @@ PointEmission EmissionTable::per_lookup_rgb(const Rgb& rgb) const {
 
 EmissionTable::Fixed EmissionTable::prepare(const Material& m) {
   Fixed f;
-  if (const auto* c = std::get_if<SolidColor>(&m.pattern)) {
-    f.colours[0] = m.unlit ? fixed_rgb(c->color) : lit_colour(c->color, 0);
-  } else if (const auto* ch = std::get_if<Checker>(&m.pattern)) {
-    for (int k = 0; k < 2; ++k)
-      f.colours[k] = m.unlit ? fixed_rgb(ch->colors[k]) : lit_colour(ch->colors[k], k);
-  } else if (const auto* b = std::get_if<Blackbody>(&m.pattern)) {
+  Rgb colours[2];
+  const int count = pattern_colours(m, colours);
+  for (int k = 0; k < count; ++k)
+    f.colours[k] = m.unlit ? fixed_rgb(colours[k]) : lit_colour(colours[k], k);
+  if (const auto* b = std::get_if<Blackbody>(&m.pattern)) {
     f.colours[0] =
         fixed_spectrum(BlackbodySpectrum::with_luminance(b->temperature_k, b->luminance));
   } else if (const auto* s = std::get_if<EmissionSpectrum>(&m.pattern)) {
@@ -199,6 +198,10 @@ PointEmission EmissionTable::surface(std::size_t object_index, const Hit& hit) c
   const Fixed& f = objects_[object_index];
   if (const auto* ch = std::get_if<Checker>(&m.pattern))
     return f.colours[checker_index(*ch, hit.shape_point)];
+  if (const auto* b = std::get_if<Blink>(&m.pattern))
+    return f.colours[blink_index(*b, hit.proper_time)];
+  if (const auto* c = std::get_if<Clock>(&m.pattern))
+    return f.colours[clock_index(*c, hit.uv, hit.proper_time)];
   if (const auto* t = std::get_if<Texture>(&m.pattern)) {
     const Rgb c = texture_colour(*t, hit);
     return m.unlit ? per_lookup_rgb(c) : PointEmission{linear(c)};

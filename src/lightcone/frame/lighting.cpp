@@ -6,6 +6,7 @@
 
 #include "lightcone/color/colour_models.hpp"
 #include "lightcone/frame/received_colour.hpp"
+#include "lightcone/frame/shading.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -163,15 +164,7 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
     const Material& m = s.objects[o].material;
     if (m.unlit) continue;
     Rgb colours[2];
-    int count = 0;
-    if (const auto* c = std::get_if<SolidColor>(&m.pattern)) {
-      colours[0] = c->color;
-      count = 1;
-    } else if (const auto* ch = std::get_if<Checker>(&m.pattern)) {
-      colours[0] = ch->colors[0];
-      colours[1] = ch->colors[1];
-      count = 2;
-    }
+    const int count = pattern_colours(m, colours);
     for (std::size_t l = 0; l < lights_.size(); ++l) {
       const bool co_moving =
           !settings.relativity || relative_rapidity(lights_[l].light->world_line.velocity,

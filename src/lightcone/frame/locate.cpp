@@ -42,15 +42,17 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
 
   AffineMap4 world_to_rest;
   Vec3 rest_point;
+  double object_proper_time = 0;
   if (query.kind == LocateQuery::Kind::WorldPoint) {
     world_to_rest = body_frame_map(scene.render, WorldLine{});
     rest_point = query.value;
   } else {
     const Object* object = nullptr;
-    for (const Object& o : scene.objects)
+    for (const Object& o : r.scene->objects)
       if (o.name == query.object) object = &o;
     if (!object) throw std::invalid_argument("no object named '" + query.object + "'");
     world_to_rest = body_frame_map(scene.render, object->world_line);
+    object_proper_time = object->world_line.proper_time;
     rest_point = object->rotation * component_mul(object->scale, query.value);
   }
   const AffineMap4 trace_to_rest{
@@ -61,8 +63,11 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
   result.direction = normalize(event.position);
   result.doppler = r.doppler(result.direction, line.velocity);
   result.distance = event.s;
-  const Vec4 world = r.trace_to_world(Vec4{r.ray_time * event.s, event.position});
+  const Vec4 emission{r.ray_time * event.s, event.position};
+  const Vec4 world = r.trace_to_world(emission);
   result.emission_time = world.t;
+  if (query.kind == LocateQuery::Kind::ObjectPoint)
+    result.emission_proper_time = trace_to_rest(emission).t + object_proper_time;
   result.emission_position = world.x;
   set_pixel(r.camera, result);
   return result;

@@ -23,6 +23,8 @@ struct LocateResult {
   std::optional<double> emission_time;
   std::optional<Vec3> emission_position;
   std::optional<double> distance;  // light travel distance in the camera frame
+  // The object's own clock when it emitted the light (for an object's point).
+  std::optional<double> emission_proper_time;
   bool in_view = false;
   double doppler = 1;  // D = nu_camera / nu_emitter for light from the located point
 };

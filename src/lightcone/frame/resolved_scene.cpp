@@ -1,5 +1,7 @@
 #include "lightcone/frame/resolved_scene.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -130,8 +132,80 @@ Bounds3 shape_bounds(const Shape& shape) {
   return std::visit(Visitor{}, shape);
 }
 
-ResolvedScene resolve_scene(const Scene& scene) {
+WorldLinePoint observed_point(const Scene& scene, const TimelikeWorldLine& line) {
+  const RenderSettings& settings = scene.render;
+  const WorldLine& cam = scene.camera.world_line;
+  const Vec4 observation{cam.time, cam.position};
+  if (settings.relativity && settings.light_delay) return line.retarded(observation);
+  return simultaneous_point(line, observation, settings.relativity ? cam.velocity : Vec3{});
+}
+
+std::shared_ptr<const Scene> tangent_scene(const Scene& scene) {
+  const auto moves = [](const auto& body) { return !body.motion.inertial(); };
+  if (std::none_of(scene.objects.begin(), scene.objects.end(), moves) &&
+      std::none_of(scene.lights.begin(), scene.lights.end(), moves))
+    return nullptr;
+  auto out = std::make_shared<Scene>(scene);
+  // The body's orientation at that event: its rotation in the axes its world-line carries.
+  for (Object& o : out->objects)
+    if (const auto line = body_world_line(o.world_line, o.motion)) {
+      const WorldLinePoint seen = observed_point(scene, *line);
+      o.rotation = line->carried_rotation(seen.proper_time) * o.rotation;
+      o.world_line = tangent_line(seen);
+      o.motion = {};
+    }
+  for (Light& l : out->lights)
+    if (const auto line = body_world_line(l.world_line, l.motion)) {
+      const WorldLinePoint seen = observed_point(scene, *line);
+      if (auto* spot = std::get_if<SpotLight>(&l.kind))
+        spot->direction = line->carried_rotation(seen.proper_time) * spot->direction;
+      l.world_line = tangent_line(seen);
+      l.motion = {};
+    }
+  return out;
+}
+
+std::vector<std::string> tangent_warnings(const Scene& scene) {
+  std::vector<std::string> warnings;
+  const std::shared_ptr<const Scene> tangent = tangent_scene(scene);
+  if (!tangent) return warnings;
+  const auto warn = [&](const std::string& what, double a, double r, const char* size) {
+    if (a * r > kTangentErrorLimit)
+      warnings.push_back(fmt::format(
+          "{} accelerates at up to {:.3g} with {} {:.3g}: the tangent approximation's error "
+          "(a R = {:.3g}) exceeds {} (docs/design/accelerated-bodies.md)",
+          what, a, size, r, a * r, kTangentErrorLimit));
+  };
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& o = scene.objects[i];
+    const auto line = body_world_line(o.world_line, o.motion);
+    if (!line) continue;
+    const Bounds3 local = shape_bounds(o.shape);
+    const Vec3 centre = (local.lower + local.upper) * 0.5;
+    const double radius =
+        scaled_radius(o.shape, o.scale, centre) + length(component_mul(o.scale, centre));
+    warn(fmt::format("object \"{}\"", o.name), line->max_proper_acceleration(), radius, "radius R");
+  }
+  // A light lights surfaces from events up to its distance from them away from the one the
+  // camera sees.
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const auto line = body_world_line(l.world_line, l.motion);
+    if (!line) continue;
+    const Vec3 at = tangent->lights[i].world_line.position;
+    double reach = 0;
+    for (const Object& o : tangent->objects)
+      if (!o.material.unlit) reach = std::max(reach, length(o.world_line.position - at));
+    warn(fmt::format("light \"{}\"", l.name), line->max_proper_acceleration(), reach,
+         "lit bodies at distance R up to");
+  }
+  return warnings;
+}
+
+ResolvedScene resolve_scene(const Scene& true_scene) {
   ResolvedScene r;
+  r.tangent_scene = tangent_scene(true_scene);
+  const Scene& scene = r.tangent_scene ? *r.tangent_scene : true_scene;
   r.scene = &scene;
   r.camera = camera_basis(scene.camera);
   const RenderSettings& settings = scene.render;
@@ -171,6 +245,10 @@ ResolvedScene resolve_scene(const Scene& scene) {
     const Vec3 rest_centre = object.rotation * component_mul(object.scale, centre);
     body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
     body.velocity = trace_world_line(trace_to_body, rest_centre).velocity;
+    body.proper_time_origin = object.world_line.proper_time + trace_to_body.offset.t;
+    body.proper_time_row = {
+        trace_to_body.linear.m[0][0],
+        {trace_to_body.linear.m[0][1], trace_to_body.linear.m[0][2], trace_to_body.linear.m[0][3]}};
     r.bodies.push_back(body);
     world_centres.emplace_back(trace_world_line(world_to_body, rest_centre), radius);
   }

@@ -12,6 +12,8 @@
 // spatial * u)). The parameter s is common to all bodies, so hits are ordered by it.
 #pragma once
 
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
@@ -44,6 +46,10 @@ struct ResolvedBody {
   Mat3 shadow_spatial;
   Bounds3 shadow_bounds;
   Vec3 velocity;  // in F, for the Doppler factor
+  // The body's own clock at the F event (t, x): proper_time_origin + proper_time_row . (t, x)
+  // (its rest-frame time; every point of a rigid body keeps the clock of its origin).
+  double proper_time_origin = 0;
+  Vec4 proper_time_row;
 
   Vec3 shape_direction(const Vec3& u) const { return ray_offset + spatial * u; }
   Vec3 shape_point(const Vec4& event) const {
@@ -51,6 +57,9 @@ struct ResolvedBody {
   }
   Vec3 shape_vector(const Vec4& direction) const {
     return time_column * direction.t + spatial * direction.x;
+  }
+  double proper_time(const Vec4& event) const {
+    return proper_time_origin + proper_time_row.t * event.t + dot(proper_time_row.x, event.x);
   }
   Vec3 shadow_shape_point(const Vec4& world_event) const {
     return shadow_origin + shadow_time_column * world_event.t + shadow_spatial * world_event.x;
@@ -68,7 +77,11 @@ struct TraceWorldLine {
 };
 
 struct ResolvedScene {
+  // The scene the renderers read: the true-state scene, or, when bodies or lights move
+  // non-inertially, tangent_scene (owned here): the same scene with each of them on the
+  // inertial world-line tangent to its own where the observation sees it (tangent_scene()).
   const Scene* scene = nullptr;
+  std::shared_ptr<const Scene> tangent_scene;
   CameraBasis camera;
   double ray_time = -1;
   Vec4 observation_event;  // in W
@@ -94,6 +107,22 @@ struct ResolvedScene {
 };
 
 ResolvedScene resolve_scene(const Scene& scene);
+
+// The event of a world-line the observation sees, as the tracer's rays meet it: on the
+// camera's past light cone (light delay on), else simultaneous with the observation in the
+// camera's rest frame, or at its world time in the classical picture.
+WorldLinePoint observed_point(const Scene& scene, const TimelikeWorldLine& line);
+
+// The scene with every object and light that moves non-inertially put on the inertial
+// world-line tangent to its origin's at observed_point (docs/design/accelerated-bodies.md);
+// null when all move inertially.
+std::shared_ptr<const Scene> tangent_scene(const Scene& scene);
+
+// One warning per body whose tangent approximation errs by more than kTangentErrorLimit: its
+// largest proper acceleration a times its bounding radius R bounds the relative error of the
+// Doppler factor (a R) and twice that of the position in units of R (a R^2 / 2).
+constexpr double kTangentErrorLimit = 0.01;
+std::vector<std::string> tangent_warnings(const Scene& scene);
 
 // The map from W events to the rest frame of a body with world-line `line` (origin at the
 // event (line.time, line.position)), Lorentz or Galilean as the settings say.

@@ -51,6 +51,44 @@ int checker_index(const Checker& c, const Vec3& p) {
   return static_cast<int>(std::fmod(parity(p.x) + parity(p.y) + parity(p.z), 2.0));
 }
 
+namespace {
+// The fraction of the current period elapsed at proper time tau, in [0, 1).
+double period_phase(double proper_time, double period) {
+  const double cycles = proper_time / period;
+  return std::clamp(cycles - std::floor(cycles), 0.0, std::nextafter(1.0, 0.0));
+}
+}  // namespace
+
+int pattern_colours(const Material& m, Rgb colours[2]) {
+  const auto two = [&](const Rgb(&c)[2]) {
+    colours[0] = c[0];
+    colours[1] = c[1];
+    return 2;
+  };
+  if (const auto* c = std::get_if<SolidColor>(&m.pattern)) return colours[0] = c->color, 1;
+  if (const auto* ch = std::get_if<Checker>(&m.pattern)) return two(ch->colors);
+  if (const auto* b = std::get_if<Blink>(&m.pattern)) return two(b->colors);
+  if (const auto* c = std::get_if<Clock>(&m.pattern)) return two(c->colors);
+  return 0;
+}
+
+int blink_index(const Blink& b, double proper_time) {
+  return period_phase(proper_time, b.period) < b.duty ? 1 : 0;
+}
+
+int clock_index(const Clock& c, const std::array<double, 2>& uv, double proper_time) {
+  // The dial in the texture square, y up: a rim from 0.45 to 0.5 and a hand of length 0.4
+  // and half-width 0.025, turned clockwise from 12 o'clock.
+  const double x = uv[0] - 0.5, y = 0.5 - uv[1];
+  const double r = std::hypot(x, y);
+  if (r > 0.5) return 0;
+  if (r >= 0.45) return 1;
+  const double angle = 2 * std::numbers::pi * period_phase(proper_time, c.period);
+  const double hx = std::sin(angle), hy = std::cos(angle);
+  const double along = x * hx + y * hy, across = std::abs(x * hy - y * hx);
+  return (along >= 0 && along <= 0.4 && across <= 0.025) || r <= 0.04 ? 1 : 0;
+}
+
 Rgb texture_colour(const Texture& t, const Hit& hit) {
   return sample_bilinear(*t.image, hit.uv[0], hit.uv[1], true);
 }

@@ -14,6 +14,16 @@ Rgb sample_bilinear(const Image& image, double u, double v, bool wrap_v);
 // Colour index (floor(x/s) + floor(y/s) + floor(z/s)) mod 2, non-negative.
 int checker_index(const Checker& checker, const Vec3& shape_point);
 
+// The fixed colours of a material's pattern, its count as the return value: 1 for a solid
+// colour; 2 for a checker, blink or clock (indexed by checker_index, blink_index, clock_index);
+// 0 for textures and emission spectra.
+int pattern_colours(const Material& material, Rgb colours[2]);
+
+// Which colour of a pattern on the body's clock a point shows at the body's proper time tau:
+// a blink is on (1) for the first `duty` of each period; a clock's hand and rim are 1.
+int blink_index(const Blink& blink, double proper_time);
+int clock_index(const Clock& clock, const std::array<double, 2>& uv, double proper_time);
+
 Rgb texture_colour(const Texture& texture, const Hit& hit);
 
 // The equirectangular sky image in pattern direction d: u = 0.5 + atan2(d.x, -d.z)/(2 pi),

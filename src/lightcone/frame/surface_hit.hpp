@@ -14,6 +14,7 @@ struct Hit {
   Vec3 shape_point;                // the point met, in the shape's own coordinates
   std::array<double, 2> uv{0, 0};  // texture coordinates (v from the top of the image)
   Vec3 shape_normal;               // unit, in shape coordinates, facing the incoming ray
+  double proper_time = 0;          // the body's own clock at the event met
 };
 
 }  // namespace lightcone

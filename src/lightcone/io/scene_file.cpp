@@ -74,9 +74,16 @@ class SceneReader {
 
   Scene read(const json& document) {
     const Node root{&document, ""};
-    object(root, {"$schema", "camera", "objects", "lights", "sky", "render"});
+    object(root, {"$schema", "speed_of_light", "camera", "objects", "lights", "sky", "render"});
     if (Node schema = member(root, "$schema"); schema.value) string(schema);
+    // Every speed, time and acceleration in the file is in the scene's units; the engine's are
+    // those where c = 1: times become c t, speeds v / c, accelerations a / c^2.
+    if (Node c = member(root, "speed_of_light"); c.value) {
+      c_ = positive(c);
+      if (!std::isfinite(c_)) fail(c, "must be finite");
+    }
     Scene scene;
+    scene.speed_of_light = c_;
     scene.camera = camera(member(root, "camera"));
     camera_velocity_ = scene.camera.world_line.velocity;
     if (Node objects = member(root, "objects"); objects.value) read_objects(objects, scene);
@@ -90,6 +97,7 @@ class SceneReader {
 
  private:
   static constexpr double kMaxGamma = 1e6;
+  double c_ = 1;          // the scene's speed of light, in its units
   Vec3 camera_velocity_;  // set once the camera is read; relative speeds are checked against it
 
   // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
@@ -231,16 +239,17 @@ class SceneReader {
   // Below the speed of light, and not so close to it, for the body or relative to the camera,
   // that double precision cannot hold the physics: gamma at most kMaxGamma.
   Vec3 velocity(const Node& n) const {
-    const Vec3 beta = vec3(n);
+    const Vec3 v = vec3(n);
+    const Vec3 beta = v / c_;
     if (!(dot(beta, beta) < 1))
-      fail(n, fmt::format("speed {} must be below the speed of light (1)", length(beta)));
+      fail(n, fmt::format("speed {} must be below the speed of light ({})", length(v), c_));
     const double speed = length(beta);
     // (1 - v)(1 + v), not 1 - v^2: no cancellation near v = 1.
     const double gamma = 1 / std::sqrt((1 - speed) * (1 + speed));
     if (!(gamma <= kMaxGamma))
       fail(n,
            fmt::format("speed {} is too close to the speed of light (gamma {:.3g}; at most {:g})",
-                       speed, gamma, kMaxGamma));
+                       length(v), gamma, kMaxGamma));
     const double relative =
         gamma * lorentz_gamma(camera_velocity_) * (1 - dot(beta, camera_velocity_));
     if (!(relative <= kMaxGamma))
@@ -305,11 +314,11 @@ class SceneReader {
                "width", "height", "samples"});
     Camera c;
     c.world_line.position = vec3(member(n, "position"));
-    if (Node t = member(n, "time"); t.value) c.world_line.time = number(t);
+    if (Node t = member(n, "time"); t.value) c.world_line.time = time(t);
     if (Node v = member(n, "velocity"); v.value) c.world_line.velocity = velocity(v);
     c.motion.start = c.world_line;
-    if (Node m = member(n, "motion"); m.value) c.motion.phases = phases(m);
-    if (Node tau = member(n, "proper_time"); tau.value) c.motion.proper_time = number(tau);
+    if (Node m = member(n, "motion"); m.value) c.motion.phases = motion(m, false).phases;
+    if (Node tau = member(n, "proper_time"); tau.value) c.motion.proper_time = time(tau);
     // The observation: the camera's event and velocity at its proper time.
     c.world_line = camera_observation(c.motion);
     {
@@ -320,7 +329,7 @@ class SceneReader {
             member(n, "motion").value ? member(n, "motion") : member(n, "proper_time");
         fail(where, fmt::format("at proper time {} the camera's speed {} is too close to the "
                                 "speed of light (gamma {:.3g}; at most {:g})",
-                                c.motion.proper_time, speed, gamma, kMaxGamma));
+                                c.motion.proper_time / c_, speed * c_, gamma, kMaxGamma));
       }
     }
     if (Node f = member(n, "forward"); f.value) c.forward = direction(f);
@@ -346,9 +355,46 @@ class SceneReader {
     return c;
   }
 
-  // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]}.
+  // A time in the scene's units, in the engine's.
+  double time(const Node& n) const { return number(n) * c_; }
+
+  // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]} or (for
+  // bodies) {"keyframes": [{"time": t, "position": [x, y, z]}, ...]}.
+  BodyMotion motion(const Node& n, bool keyframes_allowed) const {
+    BodyMotion m;
+    if (!keyframes_allowed) {
+      object(n, {"phases"}, " for the camera");
+      m.phases = phases(n);
+    } else if (one_of(n, {"phases", "keyframes"}) == "phases") {
+      m.phases = phases(n);
+    } else {
+      m.keyframes = keyframes(member(n, "keyframes"));
+    }
+    return m;
+  }
+
+  std::vector<Keyframe> keyframes(const Node& list) const {
+    if (!list.value->is_array() || list.value->empty())
+      fail(list, fmt::format("must be a non-empty array of {{time, position}}, got {}",
+                             describe(*list.value)));
+    std::vector<Keyframe> out;
+    for (std::size_t i = 0; i < list.value->size(); ++i) {
+      const Node key = element(list, i);
+      object(key, {"time", "position"});
+      const Node t = member(key, "time"), p = member(key, "position");
+      if (!t.value) fail(key, "needs \"time\"");
+      if (!p.value) fail(key, "needs \"position\" [x, y, z]");
+      out.push_back({time(t), vec3(p)});
+    }
+    try {
+      const KeyframeWorldLine line(out);
+    } catch (const KeyframeError& e) {
+      fail(element(list, e.second), e.what());
+    }
+    return out;
+  }
+
   std::vector<AccelerationPhase> phases(const Node& n) const {
-    object(n, {"phases"});
     const Node list = member(n, "phases");
     if (!list.value) fail(n, "needs \"phases\", an array of {duration, acceleration}");
     if (!list.value->is_array())
@@ -361,8 +407,8 @@ class SceneReader {
       if (!duration.value) fail(phase, "needs \"duration\" (proper time, > 0)");
       if (!acceleration.value) fail(phase, "needs \"acceleration\" [ax, ay, az] (not zero)");
       AccelerationPhase p;
-      p.duration = positive(duration);
-      p.acceleration = vec3(acceleration);
+      p.duration = positive(duration) * c_;
+      p.acceleration = vec3(acceleration) / (c_ * c_);
       if (length(p.acceleration) == 0)
         fail(acceleration,
              "must not be zero (a phase without acceleration is inertial: leave "
@@ -371,6 +417,31 @@ class SceneReader {
       out.push_back(p);
     }
     return out;
+  }
+
+  // The motion of the body `n` whose world-line so far is `start`. Keyframes replace the
+  // world-line; phases start from its event and must not end too close to the speed of light.
+  BodyMotion body_motion(const Node& n, const Node& m, WorldLine& start) const {
+    BodyMotion motion = this->motion(m, true);
+    if (!motion.keyframes.empty()) {
+      for (const char* key : {"position", "time", "velocity"})
+        if (member(n, key).value)
+          fail(member(n, key),
+               "must not be given with motion.keyframes (the keyframes are "
+               "where and when the body is)");
+      start = {motion.keyframes.front().time, motion.keyframes.front().position, {}, 0};
+      return motion;
+    }
+    const AcceleratedWorldLine line(start.time, start.position, start.velocity, motion.phases);
+    double end = 0;
+    for (const AccelerationPhase& p : motion.phases) end += p.duration;
+    const WorldLinePoint last = line.at_proper_time(end);
+    if (!(last.four_velocity.t <= kMaxGamma))
+      fail(member(m, "phases"),
+           fmt::format("after its phases the speed is too close to the speed of light (gamma "
+                       "{:.3g}; at most {:g})",
+                       last.four_velocity.t, kMaxGamma));
+    return motion;
   }
 
   void read_objects(const Node& n, Scene& scene) {
@@ -388,15 +459,17 @@ class SceneReader {
   }
 
   Object read_object(const Node& n, std::size_t index) {
-    object(n, {"name", "shape", "position", "time", "velocity", "rotation", "scale", "material"});
+    object(n, {"name", "shape", "position", "time", "velocity", "motion", "rotation", "scale",
+               "material"});
     Object o;
     const Node name = member(n, "name");
     o.name = string(name);
     if (o.name.empty()) fail(name, "must not be empty");
     o.shape = shape(member(n, "shape"), index);
     if (Node p = member(n, "position"); p.value) o.world_line.position = vec3(p);
-    if (Node t = member(n, "time"); t.value) o.world_line.time = number(t);
+    if (Node t = member(n, "time"); t.value) o.world_line.time = time(t);
     if (Node v = member(n, "velocity"); v.value) o.world_line.velocity = velocity(v);
+    if (Node m = member(n, "motion"); m.value) o.motion = body_motion(n, m, o.world_line);
     if (Node r = member(n, "rotation"); r.value) o.rotation = rotation(r);
     if (Node s = member(n, "scale"); s.value) {
       if (s.value->is_number()) {
@@ -435,7 +508,8 @@ class SceneReader {
 
   Material material(const Node& n, std::size_t index) {
     const std::string kind =
-        one_of(n, {"color", "checker", "texture", "blackbody", "spectrum"}, {"unlit", "glossy"});
+        one_of(n, {"color", "checker", "texture", "blackbody", "spectrum", "blink", "clock"},
+               {"unlit", "glossy"});
     Material m;
     const Node unlit = member(n, "unlit");
     if (unlit.value) m.unlit = boolean(unlit);
@@ -462,6 +536,34 @@ class SceneReader {
       checker.colors[0] = surface_color(element(colors, 0));
       checker.colors[1] = surface_color(element(colors, 1));
       m.pattern = checker;
+    } else if (kind == "blink" || kind == "clock") {
+      // Patterns on the body's own clock: a period of its proper time, two colours.
+      const bool blink = kind == "blink";
+      object(body, blink ? std::vector<std::string>{"period", "duty", "colors"}
+                         : std::vector<std::string>{"period", "colors"});
+      const Node period = member(body, "period");
+      const double p = positive(period) * c_;
+      if (!std::isfinite(p)) fail(period, "must be finite");
+      Rgb colors[2];
+      const Node colors_node = member(body, "colors");
+      if (colors_node.value) {
+        if (!colors_node.value->is_array() || colors_node.value->size() != 2)
+          fail(colors_node,
+               fmt::format("must be an array of 2 colours, got {}", describe(*colors_node.value)));
+        for (int k = 0; k < 2; ++k) colors[k] = surface_color(element(colors_node, k));
+      }
+      if (blink) {
+        Blink b;
+        b.period = p;
+        if (Node duty = member(body, "duty"); duty.value) b.duty = in_range(duty, 0, 1);
+        if (colors_node.value) std::copy(colors, colors + 2, b.colors);
+        m.pattern = b;
+      } else {
+        Clock c;
+        c.period = p;
+        if (colors_node.value) std::copy(colors, colors + 2, c.colors);
+        m.pattern = c;
+      }
     } else if (kind == "blackbody") {
       object(body, {"temperature", "luminance"});
       Blackbody b;
@@ -506,8 +608,8 @@ class SceneReader {
     if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
     const Node type = member(n, "type");
     const std::string kind = string(type);
-    std::vector<std::string> allowed = {"name",     "type",  "position", "time",
-                                        "velocity", "color", "blackbody"};
+    std::vector<std::string> allowed = {"name",     "type",   "position", "time",
+                                        "velocity", "motion", "color",    "blackbody"};
     if (kind == "point") {
       allowed.insert(allowed.end(), {"intensity"});
     } else if (kind == "spot") {
@@ -528,8 +630,13 @@ class SceneReader {
     l.name = string(name);
     if (l.name.empty()) fail(name, "must not be empty");
     if (Node p = member(n, "position"); p.value) l.world_line.position = vec3(p);
-    if (Node t = member(n, "time"); t.value) l.world_line.time = number(t);
+    if (Node t = member(n, "time"); t.value) l.world_line.time = time(t);
     if (Node vel = member(n, "velocity"); vel.value) l.world_line.velocity = velocity(vel);
+    if (Node m = member(n, "motion"); m.value) {
+      if (kind == "directional")
+        fail(m, "a directional light is at infinity: it has a velocity but no motion");
+      l.motion = body_motion(n, m, l.world_line);
+    }
 
     const Node color_node = member(n, "color"), blackbody = member(n, "blackbody");
     if (color_node.value && blackbody.value)

@@ -164,6 +164,100 @@ WorldLinePoint AcceleratedWorldLine::retarded(const Vec4& receiver) const {
   return best_gap < kInfinity ? best : s;
 }
 
+double AcceleratedWorldLine::max_proper_acceleration() const {
+  double a = 0;
+  for (const Piece& piece : pieces_)
+    if (piece.rho > 0 && piece.duration > 0) a = std::max(a, 1 / piece.rho);
+  return a;
+}
+
+Mat3 AcceleratedWorldLine::carried_rotation(double tau) const {
+  const Vec3 start_velocity = velocity_of(pieces_.front().start.four_velocity);
+  Vec4 axes[3];
+  for (int i = 0; i < 3; ++i) {
+    Vec3 axis;
+    axis[i] = 1;
+    axes[i] = boost(start_velocity * -1.0) * Vec4{0.0, axis};
+  }
+  // Fermi-Walker transport on a hyperbola: e = e_perp + (e.N) N goes to e_perp + (e.N) N(eta)
+  // with N(eta) = sinh(eta) U + cosh(eta) N.
+  for (std::size_t i = 1; i + 1 < pieces_.size() && tau > pieces_[i].start.proper_time; ++i) {
+    const Piece& piece = pieces_[i];
+    if (piece.rho == 0) continue;
+    const double eta = std::min(tau - piece.start.proper_time, piece.duration) / piece.rho;
+    const Vec4 n_eta = std::sinh(eta) * piece.u + std::cosh(eta) * piece.n;
+    for (Vec4& e : axes) e = e + interval(e, piece.n) * (n_eta - piece.n);
+  }
+  const Vec3 velocity = velocity_of(at_proper_time(tau).four_velocity);
+  Mat3 r;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 column = (boost(velocity) * axes[i]).x;
+    for (int k = 0; k < 3; ++k) r.m[k][i] = column[k];
+  }
+  return r;
+}
+
+AcceleratedWorldLine::Description AcceleratedWorldLine::described_in(const Mat4& lorentz) const {
+  Description d;
+  const WorldLinePoint& start = pieces_.front().start;
+  const Vec4 event = lorentz * start.event;
+  d.time = event.t;
+  d.position = event.x;
+  d.velocity = velocity_of(lorentz * start.four_velocity);
+  for (std::size_t i = 1; i + 1 < pieces_.size(); ++i) {
+    const Piece& piece = pieces_[i];
+    AccelerationPhase phase{piece.duration, {}};
+    if (piece.rho > 0) {
+      // The unit 4-acceleration in the new frame, seen in the rest frame of the 4-velocity
+      // there (the pure boost), is (0, direction).
+      const Vec3 beta = velocity_of(lorentz * piece.u);
+      phase.acceleration = (boost(beta) * (lorentz * piece.n)).x / piece.rho;
+    }
+    d.phases.push_back(phase);
+  }
+  return d;
+}
+
+WorldLinePoint simultaneous_point(const TimelikeWorldLine& line, const Vec4& event,
+                                  const Vec3& frame_velocity) {
+  // g(t) = (t - t_e) - beta.(X(t) - x_e) is the frame's time difference over gamma; its slope
+  // 1 - beta.V(t) lies in (0, 2).
+  const auto g = [&](const WorldLinePoint& p) {
+    return (p.event.t - event.t) - dot(frame_velocity, p.event.x - event.x);
+  };
+  double lo = event.t, hi = event.t;
+  WorldLinePoint p = line.at_world_time(event.t);
+  double value = g(p);
+  if (value == 0) return p;
+  // |g(t) - g(t_e)| >= (1 - |beta|) |t - t_e|: doubling steps bracket the root.
+  double step = std::max(std::abs(value), 1e-300);
+  for (int k = 0;; ++k) {
+    if (k > 2100) throw std::runtime_error("no simultaneous event: the world-line is not timelike");
+    const double t = value < 0 ? event.t + step : event.t - step;
+    const double v = g(line.at_world_time(t));
+    if ((v < 0) == (value < 0)) {
+      step *= 2;
+      continue;
+    }
+    (value < 0 ? hi : lo) = t;
+    break;
+  }
+  double t = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    p = line.at_world_time(t);
+    value = g(p);
+    if (value == 0) return p;
+    (value < 0 ? lo : hi) = t;
+    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
+    const double slope = 1 - dot(frame_velocity, velocity_of(p.four_velocity));
+    double next = t - value / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == t) break;
+    t = next;
+  }
+  return p;
+}
+
 double retarded_world_time(const std::function<Vec3(double)>& position,
                            const std::function<Vec3(double)>& velocity, const Vec4& receiver) {
   const auto f = [&](double t) { return receiver.t - t - length(receiver.x - position(t)); };

@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/vec.hpp"
 
 namespace lightcone {
@@ -26,11 +27,36 @@ struct WorldLinePoint {
   double proper_time = 0;
 };
 
+// A timelike world-line in W, as the renderers read it: its point at a world time, on the past
+// light cone of an event, and a bound on its proper acceleration (for the error of rigid-body
+// approximations).
+class TimelikeWorldLine {
+ public:
+  virtual ~TimelikeWorldLine() = default;
+  // The point at world time t (world time grows strictly along the world-line).
+  virtual WorldLinePoint at_world_time(double t) const = 0;
+  // The point on the past light cone of `receiver` (exactly one: the world-line is timelike).
+  virtual WorldLinePoint retarded(const Vec4& receiver) const = 0;
+  // The largest magnitude of the proper acceleration anywhere on the world-line.
+  virtual double max_proper_acceleration() const = 0;
+  // How a body on this world-line is turned at proper time tau: axes that were its rest
+  // frame's at proper time 0 (W's carried by the pure boost), carried along as the world-line
+  // says, written in the rest frame at tau whose axes are W's carried by the pure boost. The
+  // identity by default: the body keeps its orientation in those axes.
+  virtual Mat3 carried_rotation(double proper_time) const { return {}; }
+};
+
+// The point of `line` simultaneous with `event` in the frame moving with `frame_velocity`
+// (|frame_velocity| < 1): the root of the frame's time difference, which grows strictly along
+// a timelike world-line, bracketed and solved by Newton's method safeguarded by bisection.
+WorldLinePoint simultaneous_point(const TimelikeWorldLine& line, const Vec4& event,
+                                  const Vec3& frame_velocity);
+
 // A world-line through the event (time, position) with velocity `velocity` at proper time 0,
 // inertial before it, then each phase in turn, inertial after the last. Each phase is the
 // hyperbola X(eta) = C + rho (sinh(eta) U + cosh(eta) N) in the plane of the 4-velocity U and
 // the unit 4-acceleration N at its start, rho = 1 / |a|, eta = (tau - tau_start) / rho.
-class AcceleratedWorldLine {
+class AcceleratedWorldLine final : public TimelikeWorldLine {
  public:
   // Requires |velocity| < 1, durations >= 0 and finite accelerations (a zero one is an
   // inertial phase).
@@ -38,12 +64,27 @@ class AcceleratedWorldLine {
                        const std::vector<AccelerationPhase>& phases);
 
   WorldLinePoint at_proper_time(double tau) const;
-  // The point at world time t (world time grows strictly along the world-line).
-  WorldLinePoint at_world_time(double t) const;
+  WorldLinePoint at_world_time(double t) const override;
   // The point on the past light cone of `receiver`: closed form on each piece (retarded_delay
   // on an inertial one, a quadratic in e^eta on a hyperbola), the piece found by the sign of
   // the light-cone function at the pieces' ends.
-  WorldLinePoint retarded(const Vec4& receiver) const;
+  WorldLinePoint retarded(const Vec4& receiver) const override;
+  double max_proper_acceleration() const override;
+  // A body that does not spin keeps gyroscope axes: Fermi-Walker transported, which on each
+  // hyperbola is the boost in the plane of U and N. So a path that turns (acceleration not
+  // along the velocity) turns the body relative to the pure-boost axes: Thomas precession.
+  Mat3 carried_rotation(double proper_time) const override;
+
+  // The same world-line written in the frame whose coordinates are `lorentz` (a proper
+  // orthochronous Lorentz matrix) times W's: its start event and velocity there, and each
+  // phase's acceleration in the rest frame whose axes are the new frame's carried by the pure
+  // boost (they differ from W's by a Wigner rotation, one per phase).
+  struct Description {
+    double time = 0;
+    Vec3 position, velocity;
+    std::vector<AccelerationPhase> phases;
+  };
+  Description described_in(const Mat4& lorentz) const;
 
  private:
   struct Piece {

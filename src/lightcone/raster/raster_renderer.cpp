@@ -14,6 +14,7 @@
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/sampler.hpp"
+#include "lightcone/frame/shading.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/frame_target.hpp"
@@ -29,15 +30,19 @@ constexpr int kMaxLights = 16;  // lighting.glsl's
 
 std::vector<std::string> raster_differences(const Scene& scene) {
   std::vector<std::string> differences;
-  bool lit = false, textured = false, textured_mesh = false, lit_textured = false;
+  bool lit = false, textured = false, textured_mesh = false, lit_textured = false,
+       clock_mesh = false;
   for (const Object& o : scene.objects) {
     const bool has_texture = std::holds_alternative<Texture>(o.material.pattern);
     lit = lit || !o.material.unlit;
     textured = textured || has_texture;
     textured_mesh = textured_mesh || (has_texture && std::holds_alternative<MeshShape>(o.shape));
     lit_textured = lit_textured || (has_texture && !o.material.unlit);
+    clock_mesh = clock_mesh || (std::holds_alternative<Clock>(o.material.pattern) &&
+                                std::holds_alternative<MeshShape>(o.shape));
   }
   if (textured_mesh) differences.push_back("textured meshes are drawn black");
+  if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
   const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
   if ((textured || sky_image) && scene.render.doppler == DopplerModel::kHue)
@@ -389,9 +394,13 @@ struct RasterRenderer::Impl {
       BodyDraw draw;
       draw.body = i;
       const Material& m = body.object->material;
-      const bool checker = std::holds_alternative<Checker>(m.pattern);
+      Rgb colours[2];
+      const bool two_colours = pattern_colours(m, colours) == 2;
       const bool textured = std::holds_alternative<Texture>(m.pattern);
-      draw.pattern = checker ? 1 : 0;
+      draw.pattern = std::holds_alternative<Checker>(m.pattern) ? 1
+                     : std::holds_alternative<Blink>(m.pattern) ? 3
+                     : std::holds_alternative<Clock>(m.pattern) ? 4
+                                                                : 0;
       if (textured) {
         draw.first_row = emission_row(kBlack);
         const bool drawable = m.unlit && !std::holds_alternative<MeshShape>(body.object->shape) &&
@@ -399,8 +408,8 @@ struct RasterRenderer::Impl {
         draw.pattern = drawable ? 2 : 0;
         if (drawable) upload(*std::get<Texture>(m.pattern).image);
       } else if (m.unlit) {
-        if (checker) {
-          // A checker's two colours take consecutive rows of their own.
+        if (two_colours) {
+          // A checker's (blink's, clock's) two colours take consecutive rows of their own.
           const PointEmission& a = emission.object_colour(i, 0);
           const PointEmission& b = emission.object_colour(i, 1);
           draw.first_row =
@@ -412,9 +421,8 @@ struct RasterRenderer::Impl {
       } else {
         draw.lit = true;
         const std::size_t object = static_cast<std::size_t>(body.object - s.objects.data());
-        for (int k = 0; k < (checker ? 2 : 1) && spectral; ++k) {
-          const Rgb albedo = checker ? std::get<Checker>(m.pattern).colors[k]
-                                     : std::get<SolidColor>(m.pattern).color;
+        for (int k = 0; k < (two_colours ? 2 : 1) && spectral; ++k) {
+          const Rgb albedo = colours[k];
           for (std::size_t l = 0; l < lights.size(); ++l) {
             const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
             const std::size_t slot = kMaxLights * static_cast<std::size_t>(k) + l;
@@ -604,11 +612,7 @@ struct RasterRenderer::Impl {
     const Object& object = *resolved.bodies[draw.body].object;
     const Material& m = object.material;
     Rgb albedo[2];
-    if (const auto* c = std::get_if<SolidColor>(&m.pattern)) albedo[0] = albedo[1] = c->color;
-    if (const auto* ch = std::get_if<Checker>(&m.pattern)) {
-      albedo[0] = ch->colors[0];
-      albedo[1] = ch->colors[1];
-    }
+    if (pattern_colours(m, albedo) == 1) albedo[1] = albedo[0];
     const float albedos[6] = {albedo[0].r, albedo[0].g, albedo[0].b,
                               albedo[1].r, albedo[1].g, albedo[1].b};
     glUniform3fv(uniform(p, "albedo"), 2, albedos);
@@ -682,6 +686,21 @@ struct RasterRenderer::Impl {
         const auto* checker = std::get_if<Checker>(&body.object->material.pattern);
         glUniform1f(uniform(body_program, "checker_size"),
                     checker ? static_cast<float>(checker->size) : 1.0f);
+        // The body's clock along the sample's ray, s (ray_time row.t + row.x . u), and the
+        // patterns that read it.
+        glUniform1f(uniform(body_program, "proper_time_origin"),
+                    static_cast<float>(body.proper_time_origin));
+        set_vec3(body_program, "proper_time_row", body.proper_time_row.x);
+        glUniform1f(uniform(body_program, "proper_time_ray"),
+                    static_cast<float>(body.proper_time_row.t * resolved.ray_time));
+        const auto* blink = std::get_if<Blink>(&body.object->material.pattern);
+        const auto* clock = std::get_if<Clock>(&body.object->material.pattern);
+        glUniform1f(uniform(body_program, "pattern_period"),
+                    static_cast<float>(blink   ? blink->period
+                                       : clock ? clock->period
+                                               : 1.0));
+        glUniform1f(uniform(body_program, "blink_duty"),
+                    blink ? static_cast<float>(blink->duty) : 0.0f);
         const auto* box = std::get_if<Box>(&shape);
         const auto* sphere = std::get_if<Sphere>(&shape);
         glUniform1i(uniform(body_program, "shape_kind"), box                                    ? 1

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/physics/world_line.hpp"
 
@@ -24,6 +25,7 @@ struct WorldLine {
   double time = 0;
   Vec3 position;
   Vec3 velocity;
+  double proper_time = 0;  // the body's own clock at the event (time, position)
 
   Vec3 position_at(double t) const { return position + velocity * (t - time); }
 };
@@ -97,14 +99,31 @@ struct EmissionSpectrum {
   std::vector<double> wavelengths_nm;  // strictly increasing, > 0
   std::vector<double> values;          // >= 0
 };
+// Patterns that change with the body's own clock (its proper time at emission), so that a
+// moving one is seen running at the rate the Doppler factor says. Both are drawn in the
+// shape's texture coordinates: colors[0] is the background, colors[1] the mark.
+// Lit for a fraction `duty` of every `period` (from proper time 0 on), dark otherwise.
+struct Blink {
+  double period = 1;
+  double duty = 0.5;
+  Rgb colors[2] = {{0, 0, 0}, {1, 1, 1}};  // off, on
+};
+// A dial filling the texture square, with a hand from its centre that starts at 12 o'clock
+// (toward v = 0) and turns clockwise once every `period`.
+struct Clock {
+  double period = 1;
+  Rgb colors[2] = {{1, 1, 1}, {0, 0, 0}};  // face, hand
+};
+
 // A glossy layer over the diffuse base: GGX microfacets with Schlick's Fresnel.
 struct Glossy {
   double roughness = 0.3;  // GGX alpha = roughness^2, in (0, 1]
   double specular = 0.04;  // reflectance at normal incidence, in [0, 1]
 };
+using Pattern =
+    std::variant<SolidColor, Checker, Texture, Blackbody, EmissionSpectrum, Blink, Clock>;
 struct Material {
-  std::variant<SolidColor, Checker, Texture, Blackbody, EmissionSpectrum> pattern =
-      SolidColor{{1, 1, 1}};
+  Pattern pattern = SolidColor{{1, 1, 1}};
   // Unlit: the pattern is the radiance the surface emits in its rest frame. Lit: the pattern
   // (an RGB one) is the Lambertian albedo in [0, 1], lit by the scene's lights in the surface's
   // rest frame, with an optional glossy layer.
@@ -112,10 +131,22 @@ struct Material {
   std::optional<Glossy> glossy;
 };
 
+// Motion beyond the inertial world-line of a body's origin (docs/design/accelerated-bodies.md):
+// either phases of constant proper acceleration from the world-line's event (proper time 0)
+// on, or keyframes, world positions at world times that replace the world-line (proper time 0
+// at the first). Neither: inertial.
+struct BodyMotion {
+  std::vector<AccelerationPhase> phases;
+  std::vector<Keyframe> keyframes;
+
+  bool inertial() const { return phases.empty() && keyframes.empty(); }
+};
+
 struct Object {
   std::string name;
   Shape shape;
   WorldLine world_line;  // of the object's origin
+  BodyMotion motion;
   // In the object's rest frame (axes: W's carried by the pure boost): offset = R (S p).
   Mat3 rotation;
   Vec3 scale{1, 1, 1};
@@ -148,6 +179,7 @@ struct Light {
   std::string name;
   std::variant<PointLight, SpotLight, DirectionalLight, SphereLight> kind;
   WorldLine world_line;  // ignored for directional lights except for their velocity
+  BodyMotion motion;     // not for directional lights
   LightSpectrum spectrum;
   double intensity = 1;  // point, spot, sphere; rest frame
 };
@@ -225,6 +257,9 @@ struct RenderSettings {
 };
 
 struct Scene {
+  // The speed of light in the scene file's units (length per unit of time). The model is in
+  // units where c = 1: its times are the file's times c t, its speeds v / c.
+  double speed_of_light = 1;
   Camera camera;
   std::vector<Object> objects;
   std::vector<Light> lights;
@@ -235,5 +270,13 @@ struct Scene {
 // The observation event and velocity of a camera moving as `motion` says: its point at
 // motion.proper_time (throws std::invalid_argument for a motion the world-line refuses).
 WorldLine camera_observation(const Camera::Motion& motion);
+
+// The world-line of a body whose origin starts on `start` and moves as `motion` says; null for
+// an inertial one (then `start` is its world-line). Throws what the world-lines throw.
+std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
+                                                   const BodyMotion& motion);
+
+// The inertial world-line tangent to `line` at `point` (its event, velocity and proper time).
+WorldLine tangent_line(const WorldLinePoint& point);
 
 }  // namespace lightcone

@@ -63,7 +63,8 @@ void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
       return;
     case Aov::kEmissionTime:
       out[0] =
-          static_cast<float>(scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s}).t);
+          static_cast<float>(scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s}).t /
+                             scene.scene->speed_of_light);
       return;
     case Aov::kDistance:
       out[0] = static_cast<float>(hit->s);

@@ -27,15 +27,18 @@ SceneInfo scene_info(const Scene& scene) {
   info.width = scene.camera.width;
   info.height = scene.camera.height;
   info.samples = scene.camera.samples;
-  info.observation_time = scene.camera.world_line.time;
+  // Times in the scene's units; velocities (as seen: accelerating bodies where the camera sees
+  // them) in units of c.
+  const double c = scene.speed_of_light;
+  info.observation_time = scene.camera.world_line.time / c;
+  const ResolvedScene resolved = resolve_scene(scene);
   info.bodies.push_back(body("camera", "camera", scene.camera.world_line.velocity));
-  for (const Object& o : scene.objects)
+  for (const Object& o : resolved.scene->objects)
     info.bodies.push_back(body(o.name, "object", o.world_line.velocity));
-  for (const Light& l : scene.lights)
+  for (const Light& l : resolved.scene->lights)
     info.bodies.push_back(body(l.name, "light", l.world_line.velocity));
   info.bodies.push_back(body("sky", "sky", scene.sky.velocity));
 
-  const ResolvedScene resolved = resolve_scene(scene);
   bool first = true;
   for (const bool lit : {false, true}) {
     const LogDopplerRange r = visible_log_doppler(resolved, lit);
@@ -54,7 +57,7 @@ SceneInfo scene_info(const Scene& scene) {
                                     (j + 0.5) * info.height / kRays);
       const auto hit = tracer.trace(u);
       if (!hit) continue;
-      const double t = resolved.trace_to_world(Vec4{resolved.ray_time * hit->s, u * hit->s}).t;
+      const double t = resolved.trace_to_world(Vec4{resolved.ray_time * hit->s, u * hit->s}).t / c;
       info.emission_time_min = std::min(info.emission_time_min.value_or(t), t);
       info.emission_time_max = std::max(info.emission_time_max.value_or(t), t);
     }

@@ -352,6 +352,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
       hit.shape_normal = {0, 1, 0};
     }
   }
+  hit.proper_time = body.proper_time(Vec4{impl_->scene.ray_time * hit.s, u * hit.s});
   // Facing the ray: surfaces are two-sided.
   hit.shape_normal = normalize(hit.shape_normal);
   if (dot(hit.shape_normal, ray.direction) > 0) hit.shape_normal = -hit.shape_normal;

@@ -13,9 +13,16 @@ uniform vec2 depth_range;
 uniform vec3 doppler_velocity;  // the body's velocity in F (0 for the classical picture)
 uniform float doppler_gamma;
 uniform int colour_row;  // the row of the pattern's first colour
-uniform int pattern;     // 0: one colour; 1: checker; 2: texture
+uniform int pattern;     // 0: one colour; 1: checker; 2: texture; 3: blink; 4: clock
 uniform sampler2D texture_image;
 uniform float checker_size;
+// The body's own clock at the ray's event s: proper_time_origin + s (proper_time_ray +
+// proper_time_row . u) (ResolvedBody::proper_time).
+uniform float proper_time_origin;
+uniform float proper_time_ray;
+uniform vec3 proper_time_row;
+uniform float pattern_period;  // blink, clock
+uniform float blink_duty;
 uniform int shape_kind;  // 0: mesh; 1: box; 2: plane; 3: sphere
 uniform vec3 box_size;
 uniform float sphere_radius;
@@ -26,6 +33,27 @@ layout(location = 0) out vec4 colour;
 int checker_index(vec3 p, float size) {
   vec3 cell = floor(p / size);
   return int(mod(cell.x + cell.y + cell.z, 2.0));
+}
+
+// frame/shading.cpp's period_phase, blink_index and clock_index.
+float period_phase(float proper_time) {
+  float cycles = proper_time / pattern_period;
+  return clamp(cycles - floor(cycles), 0.0, 0.99999994);
+}
+
+int blink_index(float proper_time) {
+  return period_phase(proper_time) < blink_duty ? 1 : 0;
+}
+
+int clock_index(vec2 uv, float proper_time) {
+  vec2 p = vec2(uv.x - 0.5, 0.5 - uv.y);
+  float r = length(p);
+  if (r > 0.5) return 0;
+  if (r >= 0.45) return 1;
+  float angle = 6.283185307179586 * period_phase(proper_time);
+  vec2 hand = vec2(sin(angle), cos(angle));
+  float along = dot(p, hand), across = abs(p.x * hand.y - p.y * hand.x);
+  return (along >= 0.0 && along <= 0.4 && across <= 0.025) || r <= 0.04 ? 1 : 0;
 }
 
 // The ray parameter where the sample's ray meets the surface: trace/tracer.cpp's sphere and
@@ -103,7 +131,11 @@ void main() {
   gl_FragDepth = clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x),
                        0.0, 1.0);
   float d = doppler_factor(u, doppler_velocity, doppler_gamma);
-  int k = pattern == 1 ? checker_index(p, checker_size) : 0;
+  float proper_time = proper_time_origin + s * (proper_time_ray + dot(proper_time_row, u));
+  int k = pattern == 1                     ? checker_index(p, checker_size)
+          : pattern == 3                   ? blink_index(proper_time)
+          : pattern == 4 && shape_kind > 0 ? clock_index(surface_uv(p), proper_time)
+                                           : 0;
   // One program per kind of material (the program defines which), so that each stays small.
 #if defined(LIGHTCONE_LIT)
   vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
