@@ -37,17 +37,20 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
   if (!scene.scene->render.relativity) return range;
   // D depends on the look direction u only through dot(u, velocity), and falls as it grows: its
   // extremes over the image are at the directions where that product is extreme.
-  const auto add = [&](const Vec3& v) {
+  // A spinning body's points move relative to it with rapidity up to that of its rim, which
+  // moves their ln D by as much at most.
+  const auto add = [&](const Vec3& v, double spread = 0) {
     const ViewExtremes e = view_extremes_along(scene.camera, v);
-    const double hi = std::log(scene.doppler(e.smallest, v));
-    const double lo = std::log(scene.doppler(e.largest, v));
+    const double hi = std::log(scene.doppler(e.smallest, v)) + spread;
+    const double lo = std::log(scene.doppler(e.largest, v)) - spread;
     range.lo = range.empty ? lo : std::min(range.lo, lo);
     range.hi = range.empty ? hi : std::max(range.hi, hi);
     range.empty = false;
   };
   if (!lit) add(scene.sky_velocity);
   for (const ResolvedBody& b : scene.bodies)
-    if (b.object->material.unlit != lit) add(b.velocity);
+    if (b.object->material.unlit != lit)
+      add(b.velocity, b.spin >= 0 ? spin_rapidity(scene.spins[b.spin]) : 0.0);
   return range;
 }
 

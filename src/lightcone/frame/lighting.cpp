@@ -117,10 +117,11 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
   if (settings.relativity)
     for (const ResolvedBody& body : scene.bodies) {
       if (body.object->material.unlit) continue;
+      const double spin = body.spin >= 0 ? spin_rapidity(scene.spins[body.spin]) : 0.0;
       for (const Light& light : s.lights)
         light_rapidity_ = std::max(
             light_rapidity_,
-            relative_rapidity(light.world_line.velocity, body.object->world_line.velocity));
+            relative_rapidity(light.world_line.velocity, body.object->world_line.velocity) + spin);
     }
   if (settings.doppler != DopplerModel::kSpectral) return;
 
@@ -166,9 +167,11 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
     Rgb colours[2];
     const int count = pattern_colours(m, colours);
     for (std::size_t l = 0; l < lights_.size(); ++l) {
+      // (A spinning body's points move relative to its centre.)
       const bool co_moving =
-          !settings.relativity || relative_rapidity(lights_[l].light->world_line.velocity,
-                                                    s.objects[o].world_line.velocity) == 0;
+          !settings.relativity ||
+          (scene.bodies[o].spin < 0 && relative_rapidity(lights_[l].light->world_line.velocity,
+                                                         s.objects[o].world_line.velocity) == 0);
       for (int k = 0; k < count; ++k)
         object_reflections_[o][k].push_back(table_for(colours[k], l, co_moving));
     }
@@ -279,8 +282,16 @@ LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
   // The surface event and velocity, and its rest-frame normal and direction to the camera.
   const Vec4 surface_trace{scene_.ray_time * hit.s, u * hit.s};
   const Vec4 surface_world = scene_.trace_to_world(surface_trace);
-  const Vec3 surface_velocity = settings.relativity ? object.world_line.velocity : Vec3{};
-  const Vec3 normal = normalize(object.rotation * component_div(hit.shape_normal, object.scale));
+  // A spinning body's point moves and is turned with its spin; the normal is taken in the
+  // body's rest frame (docs/design/spinning-bodies.md).
+  const ResolvedBody& body = scene_.bodies[hit.body];
+  const Vec3 surface_velocity =
+      !settings.relativity ? Vec3{}
+      : body.spin >= 0     ? velocity_of(scene_.trace_to_world.linear * Vec4{1, hit.velocity})
+                           : object.world_line.velocity;
+  Vec3 normal = normalize(object.rotation * component_div(hit.shape_normal, object.scale));
+  if (body.spin >= 0)
+    normal = Mat3::rotation(scene_.spins[body.spin].axis, hit.spin_angle) * normal;
   const Vec3 camera_velocity =
       settings.relativity ? scene_.scene->camera.world_line.velocity : Vec3{};
   const ReceivedLeg view =

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/physics/world_line.hpp"
 
 namespace lightcone {
 namespace {
@@ -43,6 +44,7 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
   AffineMap4 world_to_rest;
   Vec3 rest_point;
   double object_proper_time = 0;
+  const Spin* spin = nullptr;
   if (query.kind == LocateQuery::Kind::WorldPoint) {
     world_to_rest = body_frame_map(scene.render, WorldLine{});
     rest_point = query.value;
@@ -53,11 +55,37 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
     if (!object) throw std::invalid_argument("no object named '" + query.object + "'");
     world_to_rest = body_frame_map(scene.render, object->world_line);
     object_proper_time = object->world_line.proper_time;
+    if (object->spin) spin = &*object->spin;
     rest_point = object->rotation * component_mul(object->scale, query.value);
   }
   const AffineMap4 trace_to_rest{
       world_to_rest.linear * r.trace_to_world.linear,
       world_to_rest.linear * r.trace_to_world.offset + world_to_rest.offset};
+  if (spin) {
+    // The point's own world-line in the rest frame of the body's centre: turning, its angle at
+    // the centre's time t' is rate (tau + t').
+    const RotatingPointWorldLine point(
+        spin->axis, spin->rate,
+        Mat3::rotation(spin->axis, spin->rate * object_proper_time) * rest_point);
+    const Vec4 observation = trace_to_rest.offset;  // the F origin in the rest frame
+    const Mat4 to_trace = inverse(trace_to_rest.linear);
+    const AffineMap4 rest_to_trace{to_trace, -1.0 * (to_trace * observation)};
+    const Vec3 f_velocity =
+        scene.render.relativity ? velocity_of(trace_to_rest.linear * Vec4{1, {}}) : Vec3{};
+    const WorldLinePoint p = r.ray_time == -1 ? point.retarded(observation)
+                                              : simultaneous_point(point, observation, f_velocity);
+    const Vec4 emission = rest_to_trace(p.event);
+    result.direction = normalize(emission.x);
+    result.doppler =
+        r.doppler(result.direction, velocity_of(rest_to_trace.linear * p.four_velocity));
+    result.distance = length(emission.x);
+    const Vec4 world = r.trace_to_world(emission);
+    result.emission_time = world.t;
+    result.emission_position = world.x;
+    result.emission_proper_time = p.event.t + object_proper_time;
+    set_pixel(r.camera, result);
+    return result;
+  }
   const TraceWorldLine line = trace_world_line(trace_to_rest, rest_point);
   const RayEvent event = meet_world_line(r.ray_time, line);
   result.direction = normalize(event.position);

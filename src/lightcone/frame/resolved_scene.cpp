@@ -150,7 +150,9 @@ std::shared_ptr<const Scene> tangent_scene(const Scene& scene) {
   for (Object& o : out->objects)
     if (const auto line = body_world_line(o.world_line, o.motion)) {
       const WorldLinePoint seen = observed_point(scene, *line);
-      o.rotation = line->carried_rotation(seen.proper_time) * o.rotation;
+      const Mat3 carried = line->carried_rotation(seen.proper_time);
+      o.rotation = carried * o.rotation;
+      if (o.spin) o.spin->axis = carried * o.spin->axis;
       o.world_line = tangent_line(seen);
       o.motion = {};
     }
@@ -225,11 +227,34 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
   for (const Object& object : scene.objects) {
     const AffineMap4 world_to_body = body_frame_map(settings, object.world_line);
     const AffineMap4 trace_to_body = compose(world_to_body, r.trace_to_world);
-    // shape coordinates p = S^-1 R^-1 x_rest
-    const Mat3 to_shape =
+    // shape coordinates p = S^-1 R^-1 x_rest; a spinning body's at the angle its origin shows
+    Mat3 to_shape =
         Mat3::diagonal(component_div({1, 1, 1}, object.scale)) * object.rotation.transposed();
     ResolvedBody body;
     body.object = &object;
+    if (object.spin) {
+      ResolvedSpin spin;
+      spin.rest_of_shape = object.rotation * Mat3::diagonal(object.scale);
+      spin.shape_of_rest = to_shape;
+      spin.axis = object.spin->axis;
+      spin.rate = object.spin->rate;
+      spin.radius = origin_radius(object.shape, object.scale) * (1 + 1e-9);
+      const RayEvent origin_seen = meet_world_line(r.ray_time, trace_world_line(trace_to_body, {}));
+      const double seen_time =
+          trace_to_body(Vec4{r.ray_time * origin_seen.s, origin_seen.position}).t +
+          object.world_line.proper_time;
+      spin.frozen_angle = spin.rate * seen_time;
+      const Mat3 frozen = Mat3::rotation(spin.axis, spin.frozen_angle);
+      spin.rest_from_shape = frozen * spin.rest_of_shape;
+      to_shape = to_shape * frozen.transposed();
+      spin.shadow_proper_time_origin = object.world_line.proper_time + world_to_body.offset.t;
+      spin.shadow_proper_time_row = {world_to_body.linear.m[0][0],
+                                     {world_to_body.linear.m[0][1], world_to_body.linear.m[0][2],
+                                      world_to_body.linear.m[0][3]}};
+      spin.trace_from_rest = inverse(trace_to_body.linear);
+      body.spin = static_cast<int>(r.spins.size());
+      r.spins.push_back(spin);
+    }
     body.shape_origin = to_shape * trace_to_body.offset.x;
     body.time_column = to_shape * time_column(trace_to_body.linear);
     body.ray_offset = body.time_column * r.ray_time;
@@ -240,9 +265,13 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
 
     const Bounds3 local = shape_bounds(object.shape);
     const Vec3 centre = (local.lower + local.upper) * 0.5;
-    // Slightly enlarged so that rounding in the maps cannot cut off a grazing hit.
-    const double radius = scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
-    const Vec3 rest_centre = object.rotation * component_mul(object.scale, centre);
+    // Slightly enlarged so that rounding in the maps cannot cut off a grazing hit; a spinning
+    // body sweeps the ball about its origin.
+    const double radius = body.spin >= 0
+                              ? r.spins[body.spin].radius
+                              : scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
+    const Vec3 rest_centre =
+        body.spin >= 0 ? Vec3{} : object.rotation * component_mul(object.scale, centre);
     body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
     body.velocity = trace_world_line(trace_to_body, rest_centre).velocity;
     body.proper_time_origin = object.world_line.proper_time + trace_to_body.offset.t;

@@ -12,6 +12,8 @@
 // spatial * u)). The parameter s is common to all bodies, so hits are ordered by it.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,8 +28,33 @@ struct Bounds3 {
   Vec3 lower, upper;
 };
 
+// A spinning body's rotation, for the exact intersection of rays with it: the ray is carried
+// into its rest frame (rest_from_shape of its shape coordinates, which are those of the shape
+// frozen at the angle `frozen_angle` its origin shows the camera), where at proper time tau
+// the shape is turned by rate tau about axis: a shape point p sits at R(rate tau) rest_of_shape p.
+struct ResolvedSpin {
+  Mat3 rest_from_shape;  // R(frozen_angle) rotation scale
+  Mat3 rest_of_shape;    // rotation scale
+  Mat3 shape_of_rest;    // its inverse
+  Vec3 axis;
+  double rate = 0;          // radians per unit of proper time
+  double frozen_angle = 0;  // rate times the proper time at which the camera sees the origin
+  double radius = 0;        // of the ball about the origin that holds the shape
+  // The proper time at the W event (t, x): shadow_proper_time_origin + row . (t, x).
+  double shadow_proper_time_origin = 0;
+  Vec4 shadow_proper_time_row;
+  Mat4 trace_from_rest;  // the linear part: velocities of points from the rest frame to F
+};
+
+// The rapidity of a spinning body's rim relative to its centre: the most any of its points'
+// Doppler factors differ from its centre's, in ln D.
+inline double spin_rapidity(const ResolvedSpin& spin) {
+  return std::atanh(std::min(std::abs(spin.rate) * spin.radius, 1.0));
+}
+
 struct ResolvedBody {
   const Object* object = nullptr;
+  int spin = -1;  // index into ResolvedScene::spins, or -1
   // Shape coordinates of the F event (t, x): shape_origin + time_column t + spatial x. A camera
   // ray s (ray_time, u) maps to shape_origin + s (ray_offset + spatial u).
   Vec3 shape_origin;
@@ -88,6 +115,7 @@ struct ResolvedScene {
   AffineMap4 world_to_trace;
   AffineMap4 trace_to_world;
   std::vector<ResolvedBody> bodies;
+  std::vector<ResolvedSpin> spins;
   // Look direction in the sky's pattern coordinates of the ray event (ray_time, u):
   // normalize(sky_time_column * ray_time + sky_spatial * u).
   Vec3 sky_time_column;

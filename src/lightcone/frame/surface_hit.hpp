@@ -15,6 +15,8 @@ struct Hit {
   std::array<double, 2> uv{0, 0};  // texture coordinates (v from the top of the image)
   Vec3 shape_normal;               // unit, in shape coordinates, facing the incoming ray
   double proper_time = 0;          // the body's own clock at the event met
+  Vec3 velocity;                   // of the point met, in F (its body's, turned by any spin)
+  double spin_angle = 0;           // a spinning body's turn at the event met (radians)
 };
 
 }  // namespace lightcone

@@ -92,12 +92,14 @@ class SceneReader {
     if (Node render_node = member(root, "render"); render_node.value)
       scene.render = render(render_node);
     load_assets(scene);
+    check_spins(scene);
     return scene;
   }
 
  private:
   static constexpr double kMaxGamma = 1e6;
-  double c_ = 1;          // the scene's speed of light, in its units
+  double c_ = 1;  // the scene's speed of light, in its units
+  std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
   Vec3 camera_velocity_;  // set once the camera is read; relative speeds are checked against it
 
   // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
@@ -459,8 +461,8 @@ class SceneReader {
   }
 
   Object read_object(const Node& n, std::size_t index) {
-    object(n, {"name", "shape", "position", "time", "velocity", "motion", "rotation", "scale",
-               "material"});
+    object(n, {"name", "shape", "position", "time", "velocity", "motion", "spin", "rotation",
+               "scale", "material"});
     Object o;
     const Node name = member(n, "name");
     o.name = string(name);
@@ -480,6 +482,15 @@ class SceneReader {
       }
     }
     if (Node m = member(n, "material"); m.value) o.material = material(m, index);
+    if (Node sp = member(n, "spin"); sp.value) {
+      object(sp, {"axis", "rate"});
+      const Node axis = member(sp, "axis"), rate = member(sp, "rate");
+      if (!axis.value) fail(sp, "needs \"axis\" [x, y, z]");
+      if (!rate.value) fail(sp, "needs \"rate\" (degrees per unit of the body's proper time)");
+      // Degrees per unit of the scene's time, in radians per unit of the engine's (c t).
+      o.spin = Spin{direction(axis), number(rate) * std::numbers::pi / 180 / c_};
+      spins_.push_back({index, rate.path});
+    }
     return o;
   }
 
@@ -842,6 +853,20 @@ class SceneReader {
       } else {
         std::get<SkyImage>(scene.sky.pattern).image = image;
       }
+    }
+  }
+
+  // A spinning body's rim moves at rate times its radius about the origin, which needs the
+  // meshes loaded.
+  void check_spins(const Scene& scene) const {
+    for (const auto& [index, path] : spins_) {
+      const Object& o = scene.objects[index];
+      const double r = origin_radius(o.shape, o.scale), rim = std::abs(o.spin->rate) * r;
+      if (!(rim < 1))
+        fail_at(path, lines_.value_line(path),
+                fmt::format("the rim speed {:.4g} (rate times the shape's radius {:.4g} about "
+                            "the origin) must be below the speed of light ({})",
+                            rim * c_, r, c_));
     }
   }
 

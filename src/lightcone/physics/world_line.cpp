@@ -258,6 +258,35 @@ WorldLinePoint simultaneous_point(const TimelikeWorldLine& line, const Vec4& eve
   return p;
 }
 
+RotatingPointWorldLine::RotatingPointWorldLine(const Vec3& axis, double rate, const Vec3& offset)
+    : axis_(axis), offset_(offset), rate_(rate) {
+  speed_ = std::abs(rate) * length(offset - axis * dot(axis, offset));
+  if (!(speed_ < 1)) throw std::invalid_argument("a turning point's speed must be below 1");
+}
+
+WorldLinePoint RotatingPointWorldLine::at_world_time(double t) const {
+  const double angle = rate_ * t, c = std::cos(angle), s = std::sin(angle);
+  const Vec3 x = offset_ * c + cross(axis_, offset_) * s + axis_ * (dot(axis_, offset_) * (1 - c));
+  const Vec3 v = cross(axis_, x) * rate_;
+  const double gamma = 1 / std::sqrt((1 - speed_) * (1 + speed_));
+  return {{t, x}, {gamma, v * gamma}, t / gamma};
+}
+
+WorldLinePoint RotatingPointWorldLine::retarded(const Vec4& receiver) const {
+  const double t = retarded_world_time([&](double s) { return at_world_time(s).event.x; },
+                                       [&](double s) {
+                                         const WorldLinePoint p = at_world_time(s);
+                                         return velocity_of(p.four_velocity);
+                                       },
+                                       receiver);
+  return at_world_time(t);
+}
+
+double RotatingPointWorldLine::max_proper_acceleration() const {
+  const double r = length(offset_ - axis_ * dot(axis_, offset_));
+  return r > 0 ? speed_ * speed_ / ((1 - speed_) * (1 + speed_) * r) : 0.0;
+}
+
 double retarded_world_time(const std::function<Vec3(double)>& position,
                            const std::function<Vec3(double)>& velocity, const Vec4& receiver) {
   const auto f = [&](double t) { return receiver.t - t - length(receiver.x - position(t)); };

@@ -99,6 +99,26 @@ class AcceleratedWorldLine final : public TimelikeWorldLine {
   std::vector<Piece> pieces_;  // the inertial past first, then the phases, then the future
 };
 
+// A point turning rigidly about the origin of an inertial frame, X(t) = R(axis, rate t) offset
+// (R right-handed, `axis` unit, `rate` in radians per unit time): a point of a spinning body in
+// the rest frame of its centre. Requires |rate| times the distance from the axis below 1. Its
+// proper time is t sqrt(1 - v^2) (the centre's clock is t).
+class RotatingPointWorldLine final : public TimelikeWorldLine {
+ public:
+  RotatingPointWorldLine(const Vec3& axis, double rate, const Vec3& offset);
+
+  WorldLinePoint at_world_time(double t) const override;
+  // By retarded_world_time (no closed form for a helix).
+  WorldLinePoint retarded(const Vec4& receiver) const override;
+  // Centripetal: gamma^2 v^2 / r.
+  double max_proper_acceleration() const override;
+
+ private:
+  Vec3 axis_, offset_;
+  double rate_;
+  double speed_;  // |rate| times the distance from the axis
+};
+
 // The world time t of the event of a timelike world-line X(t) (velocity V(t), |V| < 1) on the
 // past light cone of `receiver`: the root of f(t) = t_R - t - |x_R - X(t)|, which decreases
 // strictly, bracketed and solved by Newton's method safeguarded by bisection to the precision

@@ -43,6 +43,11 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   }
   if (textured_mesh) differences.push_back("textured meshes are drawn black");
   if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
+  if (std::any_of(scene.objects.begin(), scene.objects.end(),
+                  [](const Object& o) { return o.spin.has_value(); }))
+    differences.push_back(
+        "spinning bodies are drawn still, at the angle their centre shows, without the Doppler "
+        "shift of their spin");
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
   const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
   if ((textured || sky_image) && scene.render.doppler == DopplerModel::kHue)

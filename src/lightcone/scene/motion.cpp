@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <cmath>
+
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -7,6 +10,26 @@ WorldLine camera_observation(const Camera::Motion& motion) {
   const AcceleratedWorldLine line(motion.start.time, motion.start.position, motion.start.velocity,
                                   motion.phases);
   return tangent_line(line.at_proper_time(motion.proper_time));
+}
+
+double origin_radius(const Shape& shape, const Vec3& scale) {
+  struct Visitor {
+    const Vec3& k;
+    double operator()(const Sphere& s) const {
+      return s.radius * std::max({std::abs(k.x), std::abs(k.y), std::abs(k.z)});
+    }
+    double operator()(const Box& b) const { return length(component_mul(k, b.size * 0.5)); }
+    double operator()(const Plane& p) const {
+      return length(component_mul(k, Vec3{p.size_x / 2, 0, p.size_z / 2}));
+    }
+    double operator()(const MeshShape& m) const {
+      double r = 0;
+      if (m.mesh)
+        for (const Vec3& p : m.mesh->positions) r = std::max(r, length(component_mul(k, p)));
+      return r;
+    }
+  };
+  return std::visit(Visitor{scale}, shape);
 }
 
 WorldLine tangent_line(const WorldLinePoint& point) {

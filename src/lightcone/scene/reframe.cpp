@@ -41,7 +41,9 @@ Scene describe_in_frame(const Scene& scene, const Vec3& beta) {
   Scene out = scene;
   for (Object& o : out.objects) {
     reframe_motion(o, beta);
-    o.rotation = wigner_rotation(o.world_line.velocity, beta).transposed() * o.rotation;
+    const Mat3 turn = wigner_rotation(o.world_line.velocity, beta).transposed();
+    o.rotation = turn * o.rotation;
+    if (o.spin) o.spin->axis = turn * o.spin->axis;
     o.world_line = reframe_line(o.world_line, beta);
   }
   for (Light& light : out.lights) {

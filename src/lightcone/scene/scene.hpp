@@ -142,13 +142,22 @@ struct BodyMotion {
   bool inertial() const { return phases.empty() && keyframes.empty(); }
 };
 
+// Rigid rotation about the object's origin in its rest frame: at the body's proper time tau its
+// shape is turned by rate * tau about `axis` (unit) on top of its `rotation`. Every point has
+// its own world-line; the fastest moves at rate times the shape's radius about the origin (< 1).
+struct Spin {
+  Vec3 axis{0, 0, 1};
+  double rate = 0;  // radians per unit of the body's proper time
+};
+
 struct Object {
   std::string name;
   Shape shape;
   WorldLine world_line;  // of the object's origin
   BodyMotion motion;
+  std::optional<Spin> spin;
   // In the object's rest frame (axes: W's carried by the pure boost): offset = R (S p).
-  Mat3 rotation;
+  Mat3 rotation;  // spin turns the shape further, R(rate tau) rotation (scale p)
   Vec3 scale{1, 1, 1};
   Material material;
 };
@@ -275,6 +284,9 @@ WorldLine camera_observation(const Camera::Motion& motion);
 // an inertial one (then `start` is its world-line). Throws what the world-lines throw.
 std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
                                                    const BodyMotion& motion);
+
+// The largest distance from an object's origin of a point of its (scaled) shape.
+double origin_radius(const Shape& shape, const Vec3& scale);
 
 // The inertial world-line tangent to `line` at `point` (its event, velocity and proper time).
 WorldLine tangent_line(const WorldLinePoint& point);

@@ -59,7 +59,7 @@ void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
   const ResolvedBody& body = scene.bodies[hit->body];
   switch (aov) {
     case Aov::kDoppler:
-      out[0] = static_cast<float>(scene.doppler(u, body.velocity));
+      out[0] = static_cast<float>(scene.doppler(u, hit->velocity));
       return;
     case Aov::kEmissionTime:
       out[0] =

@@ -25,7 +25,7 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
                          const std::array<double, 2>& light_sample) {
   const RenderSettings& settings = scene.scene->render;
   if (const auto hit = tracer.trace(u)) {
-    const double d = scene.doppler(u, scene.bodies[hit->body].velocity);
+    const double d = scene.doppler(u, hit->velocity);
     const PointEmission surface = emission.surface(hit->body, *hit);
     if (!scene.bodies[hit->body].object->material.unlit) {
       if (!lighting) return {0, 0, 0};

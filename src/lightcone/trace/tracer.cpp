@@ -34,7 +34,62 @@ struct ShapeHit {
   double s = kInfinity;
   unsigned prim = 0;
   float bary_u = 0, bary_v = 0;
+  // On a spinning body: the point met in shape coordinates and in the rest frame, and the
+  // body's clock there.
+  Vec3 shape_point, rest_point;
+  double proper_time = 0;
 };
+
+// A spinning body's turn is sampled along each ray so that the chords between samples stay
+// within R (1 - cos(angle / 2)) ~ 1.1e-4 R of the true path through the shape's coordinates
+// (docs/design/spinning-bodies.md); the hit is then solved on the true path exactly.
+constexpr double kSpinChordAngle = 0.03;
+
+// The surface a chord crossed, by which side of it a point is: positive on the side the chord
+// came from. A sphere |p|^2 = offset, or a plane normal . p = offset.
+struct CrossedSurface {
+  bool sphere = false;
+  Vec3 normal;
+  double offset = 0;
+  double side(const Vec3& p) const { return (sphere ? dot(p, p) : dot(normal, p)) - offset; }
+};
+
+// v turned by `angle` about the unit `axis` (Rodrigues).
+Vec3 turned(const Vec3& axis, double angle, const Vec3& v) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1 - c));
+}
+
+// The entry and exit parameters of a ray through a sphere or a box (false if it misses).
+bool sphere_span(const Sphere& sphere, const ShapeRay& ray, double& in, double& out) {
+  const double a = dot(ray.direction, ray.direction), b = dot(ray.origin, ray.direction);
+  const double c = dot(ray.origin, ray.origin) - sphere.radius * sphere.radius;
+  const double disc = b * b - a * c;
+  if (disc < 0 || a == 0) return false;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  in = q / a;
+  out = c / q;
+  if (in > out) std::swap(in, out);
+  return true;
+}
+
+bool box_span(const Box& box, const ShapeRay& ray, double& in, double& out) {
+  in = -kInfinity;
+  out = kInfinity;
+  for (int i = 0; i < 3; ++i) {
+    const double h = box.size[i] * 0.5;
+    if (ray.direction[i] == 0) {
+      if (std::abs(ray.origin[i]) > h) return false;
+      continue;
+    }
+    const double inv = 1.0 / ray.direction[i];
+    double t0 = (-h - ray.origin[i]) * inv, t1 = (h - ray.origin[i]) * inv;
+    if (t0 > t1) std::swap(t0, t1);
+    in = std::max(in, t0);
+    out = std::min(out, t1);
+  }
+  return in <= out;
+}
 
 bool closest_root(double a, double b, double c, double tnear, double tfar, double& s) {
   // a s^2 + 2 b s + c = 0, stable roots
@@ -216,6 +271,8 @@ struct Tracer::Impl {
   ShapeHit intersect(unsigned index, bool shadow, const Vec4& origin, const Vec4& direction,
                      double tnear, double tfar, RTCIntersectContext* context) const {
     const ResolvedBody& body = scene.bodies[index];
+    if (body.spin >= 0)
+      return intersect_spinning(index, shadow, origin, direction, tnear, tfar, context);
     const ShapeRay ray =
         shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
                : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
@@ -251,6 +308,134 @@ struct Tracer::Impl {
       }
     } else if (std::visit(Visitor{ray, tnear, tfar, s}, body.object->shape)) {
       hit.s = s;
+    }
+    return hit;
+  }
+
+  // A spinning body: the straight ray in its rest frame is a curve in its shape's coordinates,
+  // followed in chords (kSpinChordAngle); the first chord that meets the shape brackets the
+  // hit, which is then found on the curve by bisection of the surface met (a face's plane, a
+  // triangle's plane, the sphere).
+  ShapeHit intersect_spinning(unsigned index, bool shadow, const Vec4& origin,
+                              const Vec4& direction, double tnear, double tfar,
+                              RTCIntersectContext* context) const {
+    const ResolvedBody& body = scene.bodies[index];
+    const ResolvedSpin& spin = scene.spins[body.spin];
+    const ShapeRay frozen =
+        shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
+               : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
+    const Vec3 o = spin.rest_from_shape * frozen.origin;
+    const Vec3 d = spin.rest_from_shape * frozen.direction;
+    const Vec4& row = shadow ? spin.shadow_proper_time_row : body.proper_time_row;
+    const double tau0 =
+        shadow ? spin.shadow_proper_time_origin + row.t * origin.t + dot(row.x, origin.x)
+               : body.proper_time(origin);
+    const double tau1 = row.t * direction.t + dot(row.x, direction.x);
+    ShapeHit hit;
+    // The part of the ray inside the ball that holds the shape at every angle.
+    double in, out;
+    if (!sphere_span(Sphere{spin.radius}, ShapeRay{o, d}, in, out)) return hit;
+    const double lo = std::max(in, tnear), hi = std::min(out, tfar);
+    if (!(lo < hi)) return hit;
+    const auto shape_at = [&](double s) {
+      return spin.shape_of_rest * turned(spin.axis, -spin.rate * (tau0 + s * tau1), o + d * s);
+    };
+    const double sweep = std::abs(spin.rate * tau1) * (hi - lo);
+    const int chunks = std::max(1, static_cast<int>(std::ceil(sweep / kSpinChordAngle)));
+    const Shape& shape = body.object->shape;
+    RTCScene mesh = body_mesh_scene[index];
+    Vec3 pa = shape_at(lo);
+    for (int k = 0; k < chunks; ++k) {
+      const double sa = lo + (hi - lo) * k / chunks, sb = lo + (hi - lo) * (k + 1) / chunks;
+      const Vec3 pb = shape_at(sb);
+      const ShapeRay chord{pa, pb - pa};
+      // The surface the chord meets, as a function that changes sign across it, and a chord
+      // parameter on its far side.
+      double far = 1;
+      unsigned prim = 0;
+      CrossedSurface surface;
+      bool met = false;
+      if (const auto* sphere = std::get_if<Sphere>(&shape)) {
+        double a, b;
+        if (sphere_span(*sphere, chord, a, b) && a >= 0 && a < 1) {
+          met = true;
+          far = std::min(1.0, 0.5 * (a + b));
+          surface = {true, {}, sphere->radius * sphere->radius};
+        }
+      } else if (const auto* box = std::get_if<Box>(&shape)) {
+        double a, b;
+        if (box_span(*box, chord, a, b) && a >= 0 && a < 1) {
+          met = true;
+          far = std::min(1.0, 0.5 * (a + b));
+          const Vec3 entry = chord.origin + chord.direction * a;
+          const int axis = box_face_axis(*box, entry);
+          const double face = std::copysign(box->size[axis] * 0.5, entry[axis]);
+          Vec3 normal;
+          normal[axis] = std::copysign(1.0, face);
+          surface = {false, normal, std::abs(face)};
+        }
+      } else if (const auto* plane = std::get_if<Plane>(&shape)) {
+        double a;
+        if (intersect_plane(*plane, chord, 0, 1, a)) {
+          met = true;
+          surface = {false, {0, pa.y >= 0 ? 1.0 : -1.0, 0}, 0};
+        }
+      } else if (mesh) {
+        RTCRayHit rh{};
+        rh.ray.org_x = static_cast<float>(chord.origin.x);
+        rh.ray.org_y = static_cast<float>(chord.origin.y);
+        rh.ray.org_z = static_cast<float>(chord.origin.z);
+        rh.ray.dir_x = static_cast<float>(chord.direction.x);
+        rh.ray.dir_y = static_cast<float>(chord.direction.y);
+        rh.ray.dir_z = static_cast<float>(chord.direction.z);
+        rh.ray.tnear = 0;
+        rh.ray.tfar = 1;
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(mesh, context, &rh);
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+          met = true;
+          prim = rh.hit.primID;
+          const Mesh& m = *std::get<MeshShape>(shape).mesh;
+          const auto& tri = m.triangles[prim];
+          const Vec3 v0 = m.positions[tri[0]];
+          const Vec3 n = cross(m.positions[tri[1]] - v0, m.positions[tri[2]] - v0);
+          const Vec3 outward = dot(n, pa - v0) >= 0 ? n : -n;
+          surface = {false, outward, dot(outward, v0)};
+        }
+      }
+      if (met) {
+        // Bisection on the curve between the chunk's start (outside) and the far point.
+        double s_out = sa, s_in = sa + far * (sb - sa);
+        if (surface.side(shape_at(s_in)) <= 0) {
+          for (int i = 0; i < 200; ++i) {
+            const double mid = 0.5 * (s_out + s_in);
+            if (mid == s_out || mid == s_in) break;
+            (surface.side(shape_at(mid)) > 0 ? s_out : s_in) = mid;
+          }
+          hit.s = s_in;
+        } else {
+          hit.s = sa + far * (sb - sa);  // the curve grazes the surface: the chord's point
+        }
+        hit.prim = prim;
+        hit.rest_point = o + d * hit.s;
+        hit.proper_time = tau0 + hit.s * tau1;
+        hit.shape_point = shape_at(hit.s);
+        if (mesh) {
+          // Barycentric coordinates of the point in its triangle's plane.
+          const Mesh& m = *std::get<MeshShape>(shape).mesh;
+          const auto& tri = m.triangles[prim];
+          const Vec3 e1 = m.positions[tri[1]] - m.positions[tri[0]];
+          const Vec3 e2 = m.positions[tri[2]] - m.positions[tri[0]];
+          const Vec3 q = hit.shape_point - m.positions[tri[0]];
+          const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+          const double q1 = dot(q, e1), q2 = dot(q, e2), det = d11 * d22 - d12 * d12;
+          hit.bary_u = static_cast<float>((d22 * q1 - d12 * q2) / det);
+          hit.bary_v = static_cast<float>((d11 * q2 - d12 * q1) / det);
+        }
+        return hit;
+      }
+      pa = pb;
     }
     return hit;
   }
@@ -316,26 +501,37 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   // Embree chose the body; the hit itself is recomputed in double precision.
   const unsigned index = rh.hit.geomID;
   const ResolvedBody& body = impl_->scene.bodies[index];
+  const bool spinning = body.spin >= 0;
   Hit hit;
   hit.body = static_cast<int>(index);
   const ShapeRay ray{body.shape_origin, body.shape_direction(u)};
+  ShapeHit exact;
+  if (spinning) {
+    exact = impl_->intersect(index, false, context.origin, context.direction, 0, kInfinity,
+                             &context.embree);
+    if (!std::isfinite(exact.s)) return std::nullopt;
+  }
   if (const auto* m = std::get_if<MeshShape>(&body.object->shape)) {
     const Mesh& mesh = *m->mesh;
-    const auto& tri = mesh.triangles[rh.hit.primID];
-    const double bu = rh.hit.u, bv = rh.hit.v, bw = 1.0 - bu - bv;
-    hit.shape_point =
-        mesh.positions[tri[0]] * bw + mesh.positions[tri[1]] * bu + mesh.positions[tri[2]] * bv;
-    hit.s = rh.ray.tfar;
+    const unsigned prim = spinning ? exact.prim : rh.hit.primID;
+    const auto& tri = mesh.triangles[prim];
+    const double bu = spinning ? exact.bary_u : rh.hit.u, bv = spinning ? exact.bary_v : rh.hit.v;
+    const double bw = 1.0 - bu - bv;
+    hit.shape_point = spinning ? exact.shape_point
+                               : mesh.positions[tri[0]] * bw + mesh.positions[tri[1]] * bu +
+                                     mesh.positions[tri[2]] * bv;
+    hit.s = spinning ? exact.s : rh.ray.tfar;
     if (!mesh.uvs.empty())
       for (int k = 0; k < 2; ++k)
         hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
     hit.shape_normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
                              mesh.positions[tri[2]] - mesh.positions[tri[0]]);
   } else {
-    const ShapeHit exact = impl_->intersect(index, false, context.origin, context.direction, 0,
-                                            kInfinity, &context.embree);
+    if (!spinning)
+      exact = impl_->intersect(index, false, context.origin, context.direction, 0, kInfinity,
+                               &context.embree);
     hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
-    hit.shape_point = ray.origin + ray.direction * hit.s;
+    hit.shape_point = spinning ? exact.shape_point : ray.origin + ray.direction * hit.s;
     // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
     // boundary at the face) do not flip with rounding.
     if (std::holds_alternative<Sphere>(body.object->shape)) {
@@ -352,10 +548,23 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
       hit.shape_normal = {0, 1, 0};
     }
   }
-  hit.proper_time = body.proper_time(Vec4{impl_->scene.ray_time * hit.s, u * hit.s});
+  Vec3 incoming = ray.direction;
+  if (spinning) {
+    // The point's own motion: rate axis x r in the rest frame, carried to F.
+    const ResolvedSpin& spin = impl_->scene.spins[body.spin];
+    hit.proper_time = exact.proper_time;
+    hit.spin_angle = spin.rate * exact.proper_time;
+    const Vec3 rest_velocity = cross(spin.axis, exact.rest_point) * spin.rate;
+    hit.velocity = velocity_of(spin.trace_from_rest * Vec4{1, rest_velocity});
+    incoming = spin.shape_of_rest *
+               turned(spin.axis, -hit.spin_angle, spin.rest_from_shape * ray.direction);
+  } else {
+    hit.proper_time = body.proper_time(Vec4{impl_->scene.ray_time * hit.s, u * hit.s});
+    hit.velocity = body.velocity;
+  }
   // Facing the ray: surfaces are two-sided.
   hit.shape_normal = normalize(hit.shape_normal);
-  if (dot(hit.shape_normal, ray.direction) > 0) hit.shape_normal = -hit.shape_normal;
+  if (dot(hit.shape_normal, incoming) > 0) hit.shape_normal = -hit.shape_normal;
   return hit;
 }
 
