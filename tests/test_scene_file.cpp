@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -216,16 +217,123 @@ TEST_F(SceneFileTest, BadCameraMotionIsLocated) {
   expect_error(
       with_motion(R"({"phases": [{"duration": 1, "acceleration": [1, 0, 0], "jerk": 1}]})"), 3,
       "camera.motion.phases[0].jerk", "unknown key");
-  expect_error(with_motion(R"({"keyframes": []})"), 3, "camera.motion.keyframes", "unknown key");
+  expect_error(with_motion(R"({"keyframes": []})"), 3, "camera.motion.keyframes",
+               "must be a non-empty array");
   expect_error(with_motion(R"({"phases": 3})"), 3, "camera.motion.phases", "must be an array");
   // So fast by then that double precision cannot hold it: tanh(100) rounds to 1.
   expect_error(with_motion(R"({"phases": [{"duration": 100, "acceleration": [1, 0, 0]}]},
     "proper_time": 50)"),
-               3, "camera.motion", "too close to the speed of light");
+               3, "camera.motion.phases", "too close to the speed of light");
   expect_error(
       "{\n  \"camera\": {\"position\": [0, 0, 0],\n    \"proper_time\": \"soon\"},\n"
       "  \"objects\": []\n}",
       3, "camera.proper_time", "must be a number");
+}
+
+TEST_F(SceneFileTest, KeyframedCameraObservesAtItsProperTime) {
+  // Two keys make uniform motion at 0.6: proper time 2 is world time 2.5, at x = 1.5.
+  const Scene s = load(R"({
+  "camera": {"motion": {"keyframes": [{"time": 1, "position": [0, 0, 0]},
+                                      {"time": 6, "position": [3, 0, 0]}]},
+             "proper_time": 2},
+  "objects": []
+})");
+  EXPECT_NEAR(s.camera.world_line.time, 1 + 2.5, 1e-12);
+  EXPECT_NEAR(s.camera.world_line.position.x, 1.5, 1e-12);
+  EXPECT_NEAR(s.camera.world_line.velocity.x, 0.6, 1e-12);
+  expect_error(R"({
+  "camera": {"position": [0, 0, 0],
+    "motion": {"keyframes": [{"time": 1, "position": [0, 0, 0]}]}},
+  "objects": []
+})",
+               2, "camera.position", "must not be given with motion.keyframes");
+}
+
+TEST_F(SceneFileTest, BodyMotionAndSpinAreReadAndBadOnesLocated) {
+  const Scene s = load(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    "position": [1, 0, 0], "velocity": [0.5, 0, 0],
+    "motion": {"phases": [{"duration": 2, "acceleration": [0, 0.1, 0]}]},
+    "spin": {"axis": [0, 2, 0], "rate": 18}})"));
+  ASSERT_EQ(s.objects[0].motion.phases.size(), 1u);
+  expect_vec(s.objects[0].motion.phases[0].acceleration, 0, 0.1, 0);
+  ASSERT_TRUE(s.objects[0].spin);
+  expect_vec(s.objects[0].spin->axis, 0, 1, 0);
+  EXPECT_NEAR(s.objects[0].spin->rate, std::numbers::pi / 10, 1e-15);
+
+  const auto object = [](const std::string& extra) {
+    return with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
+    )" + extra + "}");
+  };
+  expect_error(object(R"("motion": {"phases": [{"duration": 1, "acceleration": [0, 0, 0]}]})"), 4,
+               "objects[0].motion.phases[0].acceleration", "must not be zero");
+  expect_error(object(R"("motion": {"phases": [{"duration": -2, "acceleration": [1, 0, 0]}]})"), 4,
+               "objects[0].motion.phases[0].duration", "greater than 0");
+  expect_error(object(R"("motion": {})"), 4, "objects[0].motion",
+               "exactly one of: phases, keyframes");
+  expect_error(object(R"("motion": {"keyframes": [{"time": 2, "position": [0, 0, 0]},
+      {"time": 1, "position": [1, 0, 0]}]})"),
+               5, "objects[0].motion.keyframes[1]", "keyframe times must increase");
+  expect_error(object(R"("motion": {"keyframes": [{"time": 0, "position": [0, 0, 0]},
+      {"time": 1, "position": [0.3, 0, 0]},
+      {"time": 2, "position": [1.6, 0, 0]}]})"),
+               6, "objects[0].motion.keyframes[2]", "between keyframes 1 and 2 reaches speed");
+  expect_error(object(R"("position": [1, 0, 0],
+      "motion": {"keyframes": [{"time": 0, "position": [0, 0, 0]}]})"),
+               4, "objects[0].position", "must not be given with motion.keyframes");
+  expect_error(object(R"("motion": {"keyframes": [{"time": 0}]})"), 4,
+               "objects[0].motion.keyframes[0]", "needs \"position\"");
+  // A rim at the speed of light, or past it: rate 90 degrees = pi/2 per unit time, radius 1.
+  expect_error(object(R"("spin": {"axis": [0, 1, 0], "rate": 60})"), 4, "objects[0].spin.rate",
+               "the rim speed 1.047 (rate times the shape's radius 1 about the origin) must be "
+               "below the speed of light (1)");
+  expect_error(object(R"("spin": {"axis": [0, 0, 0], "rate": 10})"), 4, "objects[0].spin.axis",
+               "must not be the zero vector");
+  expect_error(object(R"("spin": {"axis": [0, 1, 0]})"), 4, "objects[0].spin", "needs \"rate\"");
+  expect_error(object(R"("material": {"blink": {"period": 0}})"), 4,
+               "objects[0].material.blink.period", "greater than 0");
+  expect_error(object(R"("material": {"blink": {"period": 1, "duty": 1.5}})"), 4,
+               "objects[0].material.blink.duty", "at most 1");
+  expect_error(object(R"("material": {"clock": {"period": 1, "duty": 0.5}})"), 4,
+               "objects[0].material.clock.duty", "unknown key");
+  expect_error(R"({
+  "camera": {"position": [0, 0, 5]},
+  "lights": [{"name": "sun", "type": "directional",
+    "motion": {"phases": [{"duration": 1, "acceleration": [1, 0, 0]}]}}]
+})",
+               4, "lights[0].motion", "a directional light is at infinity");
+}
+
+TEST_F(SceneFileTest, SpeedOfLightConvertsAtTheEdgeAndBoundsSpeeds) {
+  // c = 10: speeds are in units of c / 10, times tenfold in the engine's units, accelerations a
+  // hundredth.
+  const Scene s = load(R"({
+  "speed_of_light": 10,
+  "camera": {"position": [0, 0, 5], "time": 2, "velocity": [3, 0, 0]},
+  "objects": [{"name": "a", "shape": {"sphere": {"radius": 1}}, "time": 1, "velocity": [0, 6, 0],
+               "motion": {"phases": [{"duration": 0.5, "acceleration": [20, 0, 0]}]},
+               "spin": {"axis": [0, 0, 1], "rate": 180},
+               "material": {"blink": {"period": 0.25}}}]
+})");
+  EXPECT_EQ(s.speed_of_light, 10);
+  EXPECT_NEAR(s.camera.world_line.time, 20, 1e-12);
+  expect_vec(s.camera.world_line.velocity, 0.3, 0, 0);
+  EXPECT_NEAR(s.objects[0].world_line.time, 10, 1e-12);
+  expect_vec(s.objects[0].world_line.velocity, 0, 0.6, 0);
+  EXPECT_NEAR(s.objects[0].motion.phases[0].duration, 5, 1e-12);
+  expect_vec(s.objects[0].motion.phases[0].acceleration, 0.2, 0, 0);
+  EXPECT_NEAR(s.objects[0].spin->rate, std::numbers::pi / 10, 1e-15);
+  EXPECT_NEAR(std::get<Blink>(s.objects[0].material.pattern).period, 2.5, 1e-12);
+
+  expect_error(R"({
+  "speed_of_light": 10,
+  "camera": {"position": [0, 0, 5], "velocity": [0, 0, 12]},
+  "objects": []
+})",
+               3, "camera.velocity", "speed 12 must be below the speed of light (10)");
+  expect_error("{\n  \"speed_of_light\": 0,\n  \"camera\": {\"position\": [0, 0, 5]}\n}", 2,
+               "speed_of_light", "greater than 0");
+  expect_error("{\n  \"speed_of_light\": -3,\n  \"camera\": {\"position\": [0, 0, 5]}\n}", 2,
+               "speed_of_light", "greater than 0");
 }
 
 TEST_F(SceneFileTest, DefaultsAreTheDocumentedOnes) {
@@ -1336,14 +1444,14 @@ TEST(SceneSchema, ListsTheColourKeysAndModels) {
   EXPECT_NE(render.at("exposure").dump().find(R"({"const":"auto"})"), std::string::npos);
 
   const auto& material = defs.at("unlitMaterial").at("properties");
-  EXPECT_EQ(keys_of(material), (std::vector<std::string>{"blackbody", "checker", "color",
-                                                         "spectrum", "texture", "unlit"}));
+  EXPECT_EQ(keys_of(material), (std::vector<std::string>{"blackbody", "blink", "checker", "clock",
+                                                         "color", "spectrum", "texture", "unlit"}));
   EXPECT_EQ(keys_of(material.at("blackbody").at("properties")),
             (std::vector<std::string>{"luminance", "temperature"}));
   EXPECT_EQ(material.at("blackbody").at("required"), nlohmann::json::parse(R"(["temperature"])"));
   EXPECT_EQ(keys_of(material.at("spectrum").at("properties")),
             (std::vector<std::string>{"values", "wavelengths"}));
-  EXPECT_EQ(defs.at("unlitMaterial").at("oneOf").size(), 5u);
+  EXPECT_EQ(defs.at("unlitMaterial").at("oneOf").size(), 7u);
 
   // And the format reference documents every one of them.
   const std::string doc = read_source_file("docs/scene-format.md");
@@ -1367,10 +1475,10 @@ TEST(SceneSchema, ListsTheLightKeysAndModes) {
     return extra;
   };
   const std::pair<const char*, std::vector<std::string>> types[] = {
-      {"point", with({"intensity"})},
-      {"spot", with({"intensity", "direction", "cone", "falloff"})},
+      {"point", with({"intensity", "motion"})},
+      {"spot", with({"intensity", "direction", "cone", "falloff", "motion"})},
       {"directional", with({"irradiance", "direction"})},
-      {"sphere", with({"intensity", "radius"})}};
+      {"sphere", with({"intensity", "radius", "motion"})}};
   const auto& one_of = defs.at("light").at("oneOf");
   ASSERT_EQ(one_of.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
@@ -1385,8 +1493,8 @@ TEST(SceneSchema, ListsTheLightKeysAndModes) {
             nlohmann::json::parse(R"(["name", "type", "radius"])"));
 
   const auto& lit = defs.at("litMaterial").at("properties");
-  EXPECT_EQ(keys_of(lit),
-            (std::vector<std::string>{"checker", "color", "glossy", "texture", "unlit"}));
+  EXPECT_EQ(keys_of(lit), (std::vector<std::string>{"blink", "checker", "clock", "color", "glossy",
+                                                    "texture", "unlit"}));
   EXPECT_EQ(keys_of(lit.at("glossy").at("properties")),
             (std::vector<std::string>{"roughness", "specular"}));
   EXPECT_EQ(defs.at("material").at("oneOf").size(), 2u);
@@ -1403,6 +1511,24 @@ TEST(SceneSchema, ListsTheLightKeysAndModes) {
         "`irradiance`", "`cone`", "`falloff`", "`radius`", "`glossy`", "`roughness`", "`specular`",
         "`light_source_delay`", "`shadows`", "`surface`", "`camera`", "`none`",
         "design/light-transport.md"})
+    EXPECT_NE(doc.find(word), std::string::npos) << word;
+}
+
+// The schema names the motion keys the loader accepts, and the reference documents them.
+TEST(SceneSchema, ListsTheMotionKeys) {
+  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  const auto& defs = schema.at("$defs");
+  EXPECT_TRUE(schema.at("properties").contains("speed_of_light"));
+  EXPECT_EQ(keys_of(defs.at("motion").at("properties")),
+            (std::vector<std::string>{"keyframes", "phases"}));
+  for (const char* owner : {"camera", "object", "pointLight", "spotLight", "sphereLight"})
+    EXPECT_EQ(defs.at(owner).at("properties").at("motion").at("$ref"), "#/$defs/motion") << owner;
+  EXPECT_EQ(keys_of(defs.at("object").at("properties").at("spin").at("properties")),
+            (std::vector<std::string>{"axis", "rate"}));
+  const std::string doc = read_source_file("docs/scene-format.md");
+  for (const char* word :
+       {"`speed_of_light`", "`phases`", "`keyframes`", "`spin`", "`blink`", "`clock`", "`duty`",
+        "`period`", "design/accelerated-bodies.md", "design/spinning-bodies.md"})
     EXPECT_NE(doc.find(word), std::string::npos) << word;
 }
 

@@ -315,11 +315,20 @@ class SceneReader {
     object(n, {"position", "time", "velocity", "proper_time", "motion", "forward", "up", "fov",
                "width", "height", "samples"});
     Camera c;
-    c.world_line.position = vec3(member(n, "position"));
+    // Keyframes say where the camera is; otherwise its position is required.
+    const Node motion_node = member(n, "motion");
+    const bool keyframed = motion_node.value && motion_node.value->is_object() &&
+                           motion_node.value->contains("keyframes");
+    if (!keyframed || member(n, "position").value)
+      c.world_line.position = vec3(member(n, "position"));
     if (Node t = member(n, "time"); t.value) c.world_line.time = time(t);
     if (Node v = member(n, "velocity"); v.value) c.world_line.velocity = velocity(v);
     c.motion.start = c.world_line;
-    if (Node m = member(n, "motion"); m.value) c.motion.phases = motion(m, false).phases;
+    if (Node m = member(n, "motion"); m.value) {
+      const BodyMotion moves = body_motion(n, m, c.motion.start);
+      c.motion.phases = moves.phases;
+      c.motion.keyframes = moves.keyframes;
+    }
     if (Node tau = member(n, "proper_time"); tau.value) c.motion.proper_time = time(tau);
     // The observation: the camera's event and velocity at its proper time.
     c.world_line = camera_observation(c.motion);
@@ -360,14 +369,11 @@ class SceneReader {
   // A time in the scene's units, in the engine's.
   double time(const Node& n) const { return number(n) * c_; }
 
-  // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]} or (for
-  // bodies) {"keyframes": [{"time": t, "position": [x, y, z]}, ...]}.
-  BodyMotion motion(const Node& n, bool keyframes_allowed) const {
+  // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]} or
+  // {"keyframes": [{"time": t, "position": [x, y, z]}, ...]}.
+  BodyMotion motion(const Node& n) const {
     BodyMotion m;
-    if (!keyframes_allowed) {
-      object(n, {"phases"}, " for the camera");
-      m.phases = phases(n);
-    } else if (one_of(n, {"phases", "keyframes"}) == "phases") {
+    if (one_of(n, {"phases", "keyframes"}) == "phases") {
       m.phases = phases(n);
     } else {
       m.keyframes = keyframes(member(n, "keyframes"));
@@ -424,7 +430,7 @@ class SceneReader {
   // The motion of the body `n` whose world-line so far is `start`. Keyframes replace the
   // world-line; phases start from its event and must not end too close to the speed of light.
   BodyMotion body_motion(const Node& n, const Node& m, WorldLine& start) const {
-    BodyMotion motion = this->motion(m, true);
+    BodyMotion motion = this->motion(m);
     if (!motion.keyframes.empty()) {
       for (const char* key : {"position", "time", "velocity"})
         if (member(n, key).value)

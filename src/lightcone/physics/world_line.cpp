@@ -218,6 +218,39 @@ AcceleratedWorldLine::Description AcceleratedWorldLine::described_in(const Mat4&
   return d;
 }
 
+WorldLinePoint point_at_proper_time(const TimelikeWorldLine& line, double tau) {
+  // h(t) = tau(t) - tau grows with slope 1 / gamma in (0, 1]: |h(t)| <= |t - t0| brackets
+  // nothing, so steps double from |h(t0)| until the sign changes.
+  double t = 0;
+  WorldLinePoint p = line.at_world_time(t);
+  double value = p.proper_time - tau;
+  if (value == 0) return p;
+  double lo = t, hi = t, step = std::max(std::abs(value), 1e-300);
+  for (int k = 0;; ++k) {
+    if (k > 2100) throw std::runtime_error("no event at that proper time");
+    const double s = value < 0 ? t + step : t - step;
+    if ((line.at_world_time(s).proper_time - tau < 0) == (value < 0)) {
+      step *= 2;
+      continue;
+    }
+    (value < 0 ? hi : lo) = s;
+    break;
+  }
+  t = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    p = line.at_world_time(t);
+    value = p.proper_time - tau;
+    if (value == 0) return p;
+    (value < 0 ? lo : hi) = t;
+    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
+    double next = t - value * p.four_velocity.t;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == t) break;
+    t = next;
+  }
+  return p;
+}
+
 WorldLinePoint simultaneous_point(const TimelikeWorldLine& line, const Vec4& event,
                                   const Vec3& frame_velocity) {
   // g(t) = (t - t_e) - beta.(X(t) - x_e) is the frame's time difference over gamma; its slope

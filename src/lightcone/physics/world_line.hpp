@@ -46,6 +46,10 @@ class TimelikeWorldLine {
   virtual Mat3 carried_rotation(double proper_time) const { return {}; }
 };
 
+// The point of `line` where its proper time is tau (proper time grows along it at the rate
+// 1 / gamma of world time): bracketed and solved by Newton's method safeguarded by bisection.
+WorldLinePoint point_at_proper_time(const TimelikeWorldLine& line, double proper_time);
+
 // The point of `line` simultaneous with `event` in the frame moving with `frame_velocity`
 // (|frame_velocity| < 1): the root of the frame's time difference, which grows strictly along
 // a timelike world-line, bracketed and solved by Newton's method safeguarded by bisection.

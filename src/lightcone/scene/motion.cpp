@@ -7,6 +7,9 @@
 namespace lightcone {
 
 WorldLine camera_observation(const Camera::Motion& motion) {
+  if (!motion.keyframes.empty())
+    return tangent_line(
+        point_at_proper_time(KeyframeWorldLine(motion.keyframes), motion.proper_time));
   const AcceleratedWorldLine line(motion.start.time, motion.start.position, motion.start.velocity,
                                   motion.phases);
   return tangent_line(line.at_proper_time(motion.proper_time));

@@ -59,6 +59,8 @@ Scene describe_in_frame(const Scene& scene, const Vec3& beta) {
   cam.forward = camera_turn * cam.forward;
   cam.up = camera_turn * cam.up;
   cam.world_line = reframe_line(cam.world_line, beta);
+  if (!cam.motion.keyframes.empty())
+    throw std::invalid_argument("a keyframed world-line cannot be described in another frame");
   if (!cam.motion.phases.empty()) {
     const AcceleratedWorldLine line(cam.motion.start.time, cam.motion.start.position,
                                     cam.motion.start.velocity, cam.motion.phases);

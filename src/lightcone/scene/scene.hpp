@@ -204,6 +204,7 @@ struct Camera {
   struct Motion {
     WorldLine start;
     std::vector<AccelerationPhase> phases;
+    std::vector<Keyframe> keyframes;  // instead of start and phases (proper time 0 at the first)
     double proper_time = 0;
   } motion;
   // In the camera's rest frame (axes: W's carried by the pure boost).
