@@ -37,6 +37,18 @@ render street-hue street.json --set render.searchlight=off --set render.doppler=
 render doppler-swatches doppler-swatches.json
 render terrell-doppler terrell.json --map doppler
 render street-raster street.json --renderer raster
+for tau in 0 1.5 3; do
+  render "rocket-$tau" rocket.json --set camera.proper_time=$tau --width 480 --height 270
+done
+render wheel wheel.json
+render wheel-later wheel.json --set camera.time=2.5
+for tau in 1 3 5 7; do
+  render "twin-$tau" twin-paradox.json --set camera.proper_time=$tau \
+    --set render.doppler=off --set render.searchlight=off --width 360 --height 202
+done
+for t in 3.0 3.1 3.2; do
+  render "slow-light-$t" slow-light.json --set camera.time=$t --width 480 --height 270
+done
 # The viewer's split view, as F12 saves it (under a virtual X server when there is no display):
 #   lightcone view scenes/street.json --split --time-scale 0, then F12.
 view_screenshot() {

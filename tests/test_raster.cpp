@@ -354,6 +354,13 @@ TEST(RasterAgreement, BundledScenesMatchTheRayTracerOffTheSilhouettes) {
     expect_agreement(scene, "--tessellation cpu");
 }
 
+// Accelerated and keyframed bodies and cameras, blinking lamps and clocks (their patterns run on
+// each body's proper time, per fragment), a slow speed of light.
+TEST(RasterAgreement, MovingClocksMatchTheRayTracer) {
+  for (const char* scene : {"rocket.json", "twin-paradox.json", "slow-light.json"})
+    expect_agreement(scene, "--tessellation cpu");
+}
+
 // The same with the edges cut by tessellation shaders (OpenGL 4; llvmpipe has them).
 TEST(RasterAgreement, TessellatedOnTheGpuTooTheyMatch) {
   for (const char* scene : {"terrell.json", "cubes.json", "street.json"})

@@ -340,9 +340,24 @@ struct Tracer::Impl {
     const auto shape_at = [&](double s) {
       return spin.shape_of_rest * turned(spin.axis, -spin.rate * (tau0 + s * tau1), o + d * s);
     };
+    const Shape& shape = body.object->shape;
+    const auto* ball = std::get_if<Sphere>(&shape);
+    const Vec3& k = body.object->scale;
+    if (ball && k.x == k.y && k.y == k.z) {
+      // A round ball turning about its centre is the same ball at every angle: the straight
+      // ray meets it where the curve does.
+      double a, b;
+      if (!sphere_span(Sphere{ball->radius * std::abs(k.x)}, ShapeRay{o, d}, a, b)) return hit;
+      const double s = a >= tnear && a < tfar ? a : b >= tnear && b < tfar ? b : kInfinity;
+      if (!std::isfinite(s)) return hit;
+      hit.s = s;
+      hit.rest_point = o + d * s;
+      hit.proper_time = tau0 + s * tau1;
+      hit.shape_point = shape_at(s);
+      return hit;
+    }
     const double sweep = std::abs(spin.rate * tau1) * (hi - lo);
     const int chunks = std::max(1, static_cast<int>(std::ceil(sweep / kSpinChordAngle)));
-    const Shape& shape = body.object->shape;
     RTCScene mesh = body_mesh_scene[index];
     Vec3 pa = shape_at(lo);
     for (int k = 0; k < chunks; ++k) {
