@@ -361,6 +361,38 @@ TEST(RasterAgreement, MovingClocksMatchTheRayTracer) {
     expect_agreement(scene, "--tessellation cpu");
 }
 
+// Objects on accelerated and keyframed world-lines (both renderers draw each on its tangent
+// world-line), their clocks and blinks per fragment, lit and unlit.
+TEST(RasterAgreement, AcceleratedAndKeyframedBodiesWithClocksMatchTheRayTracer) {
+  const fs::path dir = test::fresh_temp_dir("raster-motion");
+  test::write_text(dir / "scene.json", R"({
+  "camera": {"position": [0, 1, 2.5], "time": 6, "velocity": [0.2, 0, -0.3], "fov": 70},
+  "objects": [
+    {"name": "rocket", "shape": {"box": {"size": [1.6, 1.2, 0.2]}}, "position": [-2.5, 1, -1],
+     "velocity": [0.3, 0, 0], "motion": {"phases": [{"duration": 3, "acceleration": [0.004, 0.003, 0]},
+                                                     {"duration": 4, "acceleration": [-0.002, 0, 0.003]}]},
+     "material": {"clock": {"period": 3, "colors": [[0.9, 0.9, 0.8], [0.1, 0.1, 0.2]]}}},
+    {"name": "drone", "shape": {"sphere": {"radius": 0.15}},
+     "motion": {"keyframes": [{"time": 0, "position": [2, 0.5, -3]}, {"time": 3, "position": [2.3, 0.8, -2.8]},
+                              {"time": 6, "position": [2.4, 1.0, -3]}]},
+     "material": {"blink": {"period": 1, "duty": 0.4, "colors": [[0.2, 0.3, 0.8], [1, 0.8, 0.2]]}}},
+    {"name": "lamp", "shape": {"box": {"size": [1, 1, 1]}}, "position": [0, 0.5, -3],
+     "velocity": [0, 0, 0.4], "material": {"blink": {"period": 0.7, "colors": [[0.1, 0.1, 0.1], [0.9, 0.9, 0.9]]}, "unlit": false}},
+    {"name": "floor", "shape": {"plane": {"size": [30, 30]}}, "position": [0, -0.5, -4],
+     "material": {"checker": {"size": 1, "colors": [[0.4, 0.4, 0.45], [0.6, 0.6, 0.65]]}}}
+  ],
+  "lights": [{"name": "sun", "type": "directional", "direction": [0.3, -1, -0.4], "irradiance": 2}],
+  "sky": {"grid": {}},
+  "render": {"searchlight": "off"}
+})");
+  const Agreement a = agreement((dir / "scene.json").string(), 4, "--set render.shadows=false");
+  EXPECT_GE(a.within, 0.99) << a.compared << " pixels compared";
+  EXPECT_GT(a.compared, 640u * 360u / 2);
+  EXPECT_EQ(a.raster_err, "");
+  std::printf("moving clocks: %.4f of %zu pixels within 4/255\n", a.within, a.compared);
+  fs::remove_all(dir);
+}
+
 // The same with the edges cut by tessellation shaders (OpenGL 4; llvmpipe has them).
 TEST(RasterAgreement, TessellatedOnTheGpuTooTheyMatch) {
   for (const char* scene : {"terrell.json", "cubes.json", "street.json"})

@@ -44,6 +44,7 @@ struct ShapeHit {
 // within R (1 - cos(angle / 2)) ~ 1.1e-4 R of the true path through the shape's coordinates
 // (docs/design/spinning-bodies.md); the hit is then solved on the true path exactly.
 constexpr double kSpinChordAngle = 0.03;
+constexpr int kMaxSpinChords = 4096;
 
 // The surface a chord crossed, by which side of it a point is: positive on the side the chord
 // came from. A sphere |p|^2 = offset, or a plane normal . p = offset.
@@ -357,7 +358,12 @@ struct Tracer::Impl {
       return hit;
     }
     const double sweep = std::abs(spin.rate * tau1) * (hi - lo);
-    const int chunks = std::max(1, static_cast<int>(std::ceil(sweep / kSpinChordAngle)));
+    // A light ray crosses the ball in rest-frame time 2R, so the sweep is below twice the rim
+    // speed; only the simultaneous picture (spacelike rays) can sweep more.
+    const int chunks = std::isfinite(sweep)
+                           ? static_cast<int>(std::clamp(std::ceil(sweep / kSpinChordAngle), 1.0,
+                                                         static_cast<double>(kMaxSpinChords)))
+                           : kMaxSpinChords;
     RTCScene mesh = body_mesh_scene[index];
     Vec3 pa = shape_at(lo);
     for (int k = 0; k < chunks; ++k) {
