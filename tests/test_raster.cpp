@@ -355,15 +355,17 @@ TEST(RasterAgreement, BundledScenesMatchTheRayTracerOffTheSilhouettes) {
 }
 
 // Accelerated and keyframed bodies and cameras, blinking lamps and clocks (their patterns run on
-// each body's proper time, per fragment), a slow speed of light.
-TEST(RasterAgreement, MovingClocksMatchTheRayTracer) {
-  for (const char* scene : {"rocket.json", "twin-paradox.json", "slow-light.json"})
+// each body's proper time, per fragment), a slow speed of light, a spinning wheel (each vertex
+// on its own turning world-line, each fragment on the ray's curved path through the shape).
+TEST(RasterAgreement, MovingClocksAndASpinningWheelMatchTheRayTracer) {
+  for (const char* scene : {"rocket.json", "twin-paradox.json", "slow-light.json", "wheel.json"})
     expect_agreement(scene, "--tessellation cpu");
 }
 
 // Objects on accelerated and keyframed world-lines (both renderers draw each on its tangent
-// world-line), their clocks and blinks per fragment, lit and unlit.
-TEST(RasterAgreement, AcceleratedAndKeyframedBodiesWithClocksMatchTheRayTracer) {
+// world-line), their clocks and blinks per fragment, lit and unlit; spinning bodies, lit and
+// unlit, a box, a round ball and a flattened one.
+TEST(RasterAgreement, AcceleratedKeyframedAndSpinningBodiesMatchTheRayTracer) {
   const fs::path dir = test::fresh_temp_dir("raster-motion");
   test::write_text(dir / "scene.json", R"({
   "camera": {"position": [0, 1, 2.5], "time": 6, "velocity": [0.2, 0, -0.3], "fov": 70},
@@ -379,7 +381,16 @@ TEST(RasterAgreement, AcceleratedAndKeyframedBodiesWithClocksMatchTheRayTracer) 
     {"name": "lamp", "shape": {"box": {"size": [1, 1, 1]}}, "position": [0, 0.5, -3],
      "velocity": [0, 0, 0.4], "material": {"blink": {"period": 0.7, "colors": [[0.1, 0.1, 0.1], [0.9, 0.9, 0.9]]}, "unlit": false}},
     {"name": "floor", "shape": {"plane": {"size": [30, 30]}}, "position": [0, -0.5, -4],
-     "material": {"checker": {"size": 1, "colors": [[0.4, 0.4, 0.45], [0.6, 0.6, 0.65]]}}}
+     "material": {"checker": {"size": 1, "colors": [[0.4, 0.4, 0.45], [0.6, 0.6, 0.65]]}}},
+    {"name": "top", "shape": {"box": {"size": [1.2, 0.8, 0.8]}}, "position": [1.6, 2.2, -2],
+     "velocity": [-0.3, 0, 0], "spin": {"axis": [0.2, 1, 0.3], "rate": -30},
+     "material": {"checker": {"size": 0.3, "colors": [[0.9, 0.5, 0.2], [0.9, 0.9, 0.9]]}, "unlit": false}},
+    {"name": "ball", "shape": {"sphere": {"radius": 0.6}}, "position": [-1.2, 2.3, -2.5],
+     "spin": {"axis": [0, 1, 0], "rate": 50},
+     "material": {"checker": {"size": 0.25, "colors": [[0.2, 0.8, 0.4], [0.95, 0.95, 0.95]]}}},
+    {"name": "lens", "shape": {"sphere": {"radius": 0.5}}, "scale": [1, 0.5, 1], "position": [0, 2.6, -3],
+     "spin": {"axis": [1, 0, 0], "rate": 40},
+     "material": {"checker": {"size": 0.2, "colors": [[0.8, 0.2, 0.6], [0.95, 0.95, 0.95]]}}}
   ],
   "lights": [{"name": "sun", "type": "directional", "direction": [0.3, -1, -0.4], "irradiance": 2}],
   "sky": {"grid": {}},

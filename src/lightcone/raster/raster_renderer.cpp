@@ -43,11 +43,7 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   }
   if (textured_mesh) differences.push_back("textured meshes are drawn black");
   if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
-  if (std::any_of(scene.objects.begin(), scene.objects.end(),
-                  [](const Object& o) { return o.spin.has_value(); }))
-    differences.push_back(
-        "spinning bodies are drawn still, at the angle their centre shows, without the Doppler "
-        "shift of their spin");
+
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
   const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
   if ((textured || sky_image) && scene.render.doppler == DopplerModel::kHue)
@@ -99,6 +95,13 @@ void set_mat3(GLuint program, const char* name, const Mat3& m) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) values[3 * r + c] = static_cast<float>(m.m[r][c]);
   glUniformMatrix3fv(uniform(program, name), 1, GL_TRUE, values);  // row-major
+}
+
+void set_mat4(GLuint program, const char* name, const Mat4& m) {
+  float values[16];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) values[4 * r + c] = static_cast<float>(m.m[r][c]);
+  glUniformMatrix4fv(uniform(program, name), 1, GL_TRUE, values);  // row-major
 }
 
 // Same emission, same row.
@@ -275,7 +278,8 @@ struct RasterRenderer::Impl {
   RasterFrameStats prepare(const ResolvedScene& resolved, const EmissionTable& emission,
                            const TessellationLimits& limits, bool on_gpu) {
     scene = &resolved;
-    gpu_tessellation = on_gpu && gpu_tessellation_available;
+    // Spinning bodies' points each turn on their own world-line, which only the CPU path solves.
+    gpu_tessellation = on_gpu && gpu_tessellation_available && resolved.spins.empty();
     tessellation_limits = limits;
     const Scene& s = *resolved.scene;
     const RenderSettings& settings = s.render;
@@ -476,7 +480,8 @@ struct RasterRenderer::Impl {
           const std::size_t first = patches.size() / kFloatsPerVertex;
           TessellationLimits none;
           none.max_level = 0;
-          tessellate(resolved, body_view(resolved.bodies[draw.body]), *draw.mesh, none, patches);
+          tessellate(resolved, body_view(resolved, resolved.bodies[draw.body]), *draw.mesh, none,
+                     patches);
           it->second = {first, patches.size() / kFloatsPerVertex - first};
         }
         draw.first_vertex = it->second.first;
@@ -491,8 +496,8 @@ struct RasterRenderer::Impl {
       // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
       std::vector<std::vector<float>> parts(draws.size());
       tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
-        tessellate(resolved, body_view(resolved.bodies[draws[d].body]), *draws[d].mesh, limits,
-                   parts[d]);
+        tessellate(resolved, body_view(resolved, resolved.bodies[draws[d].body]), *draws[d].mesh,
+                   limits, parts[d]);
       });
       std::size_t total = 0;
       for (std::size_t d = 0; d < draws.size(); ++d) {
@@ -590,11 +595,7 @@ struct RasterRenderer::Impl {
       glUniform1i(uniform(p, name("light_row").c_str()), d.row);
     }
     // The linear part of the map from F to W: events relative to the observation event.
-    float to_world[16];
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c)
-        to_world[4 * r + c] = static_cast<float>(resolved.trace_to_world.linear.m[r][c]);
-    glUniformMatrix4fv(uniform(p, "trace_to_world"), 1, GL_TRUE, to_world);
+    set_mat4(p, "trace_to_world", resolved.trace_to_world.linear);
     set_vec3(p, "camera_velocity",
              settings.relativity ? resolved.scene->camera.world_line.velocity : Vec3{});
     glUniform1i(uniform(p, "searchlight_model"),
@@ -623,7 +624,8 @@ struct RasterRenderer::Impl {
     glUniform3fv(uniform(p, "albedo"), 2, albedos);
     const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
     set_mat3(p, "normal_to_rest", object.rotation * Mat3::diagonal(inverse_scale));
-    set_vec3(p, "surface_velocity",
+    glUniform1i(uniform(p, "relativity"), resolved.scene->render.relativity ? 1 : 0);
+    set_vec3(p, "surface_velocity_of_body",
              resolved.scene->render.relativity ? object.world_line.velocity : Vec3{});
     glUniform1f(uniform(p, "diffuse"),
                 m.glossy ? static_cast<float>(1 - m.glossy->specular) : 1.0f);
@@ -676,7 +678,7 @@ struct RasterRenderer::Impl {
         if (draw.lit != (variant == kLit) || (draw.pattern == 2) != (variant == kTextured))
           continue;
         const ResolvedBody& body = resolved.bodies[draw.body];
-        const BodyView view = body_view(body);
+        const BodyView view = body_view(resolved, body);
         set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
         set_vec3(body_program, "shape_origin", view.shape_origin);
         set_vec3(body_program, "world_line_velocity", view.velocity);
@@ -698,6 +700,19 @@ struct RasterRenderer::Impl {
         set_vec3(body_program, "proper_time_row", body.proper_time_row.x);
         glUniform1f(uniform(body_program, "proper_time_ray"),
                     static_cast<float>(body.proper_time_row.t * resolved.ray_time));
+        // A spinning body: its points' turn and motion, per fragment.
+        glUniform1i(uniform(body_program, "spinning"), body.spin >= 0 ? 1 : 0);
+        if (body.spin >= 0) {
+          const ResolvedSpin& spin = resolved.spins[body.spin];
+          const Vec3& k = body.object->scale;
+          glUniform1i(uniform(body_program, "spin_round"),
+                      std::holds_alternative<Sphere>(shape) && k.x == k.y && k.y == k.z ? 1 : 0);
+          set_vec3(body_program, "spin_axis", spin.axis);
+          glUniform1f(uniform(body_program, "spin_rate"), static_cast<float>(spin.rate));
+          set_mat3(body_program, "rest_from_shape", spin.rest_from_shape);
+          set_mat3(body_program, "shape_of_rest", spin.shape_of_rest);
+          set_mat4(body_program, "trace_from_rest", spin.trace_from_rest);
+        }
         const auto* blink = std::get_if<Blink>(&body.object->material.pattern);
         const auto* clock = std::get_if<Clock>(&body.object->material.pattern);
         glUniform1f(uniform(body_program, "pattern_period"),

@@ -3,13 +3,33 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/world_line.hpp"
+
 namespace lightcone {
 
-BodyView body_view(const ResolvedBody& body) {
+BodyView body_view(const ResolvedScene& scene, const ResolvedBody& body) {
   // shape = shape_origin + time_column t + spatial x, so x = spatial^-1 (shape - shape_origin)
   // - spatial^-1 time_column t.
-  const Mat3 inverse = body.spatial.inverse();
-  return {inverse, body.shape_origin, (inverse * body.time_column) * -1.0};
+  const Mat3 spatial_inverse = body.spatial.inverse();
+  BodyView view{spatial_inverse, body.shape_origin, (spatial_inverse * body.time_column) * -1.0};
+  if (body.spin < 0) return view;
+  const ResolvedSpin& spin = scene.spins[body.spin];
+  view.spin = &spin;
+  Mat4 linear;
+  linear.m[0] = {body.proper_time_row.t, body.proper_time_row.x.x, body.proper_time_row.x.y,
+                 body.proper_time_row.x.z};
+  const Vec3 time = spin.rest_from_shape * body.time_column;
+  const Mat3 space = spin.rest_from_shape * body.spatial;
+  for (int i = 0; i < 3; ++i)
+    linear.m[i + 1] = {time[i], space.m[i][0], space.m[i][1], space.m[i][2]};
+  view.rest_of_trace = {linear,
+                        {body.proper_time_origin, spin.rest_from_shape * body.shape_origin}};
+  const Mat4 back = inverse(linear);
+  view.trace_of_rest = {back, -1.0 * (back * view.rest_of_trace.offset)};
+  if (scene.scene->render.relativity)
+    view.trace_velocity_at_rest = velocity_of(linear * Vec4{1, {}});
+  return view;
 }
 
 Vec3 RestMesh::midpoint(const Vec3& a, const Vec3& b) const {
@@ -108,8 +128,20 @@ bool may_be_in_view(const CameraBasis& camera, const Bounds3& b) {
 
 ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                              const Vec3& shape_point) {
+  if (view.spin) {
+    // The point's own turning world-line, met as the ray tracer's rays meet it (locate).
+    const ResolvedSpin& spin = *view.spin;
+    const RotatingPointWorldLine line(spin.axis, spin.rate, spin.rest_of_shape * shape_point);
+    const Vec4 camera = view.rest_of_trace.offset;
+    const WorldLinePoint seen = scene.ray_time == -1
+                                    ? line.retarded(camera)
+                                    : simultaneous_point(line, camera, view.trace_velocity_at_rest);
+    const Vec3 position = view.trace_of_rest(seen.event).x;
+    return {position, project_direction(scene.camera, position),
+            spin.rest_from_shape.inverse() * seen.event.x};
+  }
   const RayEvent event = meet_world_line(scene.ray_time, view.world_line(shape_point));
-  return {event.position, project_direction(scene.camera, event.position)};
+  return {event.position, project_direction(scene.camera, event.position), shape_point};
 }
 
 double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& pa,
@@ -167,8 +199,9 @@ struct Tessellator {
 
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
     for (const Corner* k : {&a, &b, &c})
-      out.insert(out.end(), {static_cast<float>(k->p.x), static_cast<float>(k->p.y),
-                             static_cast<float>(k->p.z), plane[0], plane[1], plane[2], plane[3]});
+      out.insert(out.end(),
+                 {static_cast<float>(k->seen.drawn.x), static_cast<float>(k->seen.drawn.y),
+                  static_cast<float>(k->seen.drawn.z), plane[0], plane[1], plane[2], plane[3]});
   }
 
   // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.

@@ -23,8 +23,14 @@ struct BodyView {
   TraceWorldLine world_line(const Vec3& shape_point) const {
     return {shape_to_trace * (shape_point - shape_origin), velocity};
   }
+  // A spinning body: each shape point turns on its own world-line in the rest frame of the
+  // body's centre, with coordinates (its proper time, rest_from_shape of the frozen shape
+  // coordinates) = rest_of_trace(F event).
+  const ResolvedSpin* spin = nullptr;
+  AffineMap4 rest_of_trace, trace_of_rest;
+  Vec3 trace_velocity_at_rest;  // F's velocity in those coordinates (0: classical picture)
 };
-BodyView body_view(const ResolvedBody& body);
+BodyView body_view(const ResolvedScene& scene, const ResolvedBody& body);
 
 // The shape's triangles in shape coordinates before tessellation, and how an edge's midpoint
 // is found: the chord's for flat faces, the great circle's for a sphere (so that tessellation
@@ -45,6 +51,9 @@ RestMesh rest_mesh(const Shape& shape, int face_grid = 2);
 struct ApparentPoint {
   Vec3 position;  // in F, relative to the camera
   ImagePoint image;
+  // The shape point whose inertial world-line (frozen shape coordinates) passes through that
+  // event: the point itself, or for a spinning body where it was when it was seen.
+  Vec3 drawn;
 };
 ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                              const Vec3& shape_point);

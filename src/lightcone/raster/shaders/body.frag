@@ -3,6 +3,7 @@
 // tracer's does; that surface point's rest-frame pattern colour is received with the Doppler
 // factor of the exact look direction, and its light travel distance is the fragment's depth.
 flat in vec4 plane;
+in float vertex_distance;  // the light travel distance at the vertices, interpolated
 
 // The body's map from a ray of look direction u to shape coordinates (frame/resolved_scene.hpp):
 // shape_origin + s (ray_offset + shape_spatial u).
@@ -23,6 +24,16 @@ uniform float proper_time_ray;
 uniform vec3 proper_time_row;
 uniform float pattern_period;  // blink, clock
 uniform float blink_duty;
+// A spinning body (ResolvedSpin): its shape coordinates above are those of the shape frozen at
+// the angle its origin shows; the rest frame of its centre is rest_from_shape of them, where
+// at proper time tau a point p of the shape sits at R(spin_rate tau) rest_of_shape p.
+uniform int spinning;
+uniform int spin_round;  // a ball of one radius: the same at every angle
+uniform vec3 spin_axis;
+uniform float spin_rate;
+uniform mat3 rest_from_shape;
+uniform mat3 shape_of_rest;
+uniform mat4 trace_from_rest;  // the linear part: 4-velocities from the rest frame to F
 uniform int shape_kind;  // 0: mesh; 1: box; 2: plane; 3: sphere
 uniform vec3 box_size;
 uniform float sphere_radius;
@@ -83,6 +94,44 @@ vec3 surface_point(vec3 p) {
   return p;
 }
 
+// v turned by `angle` about the unit `axis` (trace/tracer.cpp, turned).
+vec3 turned(vec3 axis, float angle, vec3 v) {
+  float c = cos(angle), s = sin(angle);
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
+}
+
+// A spinning body's point met by the ray (origin + s direction in frozen shape coordinates,
+// its clock tau0 + s tau1): the ray is a curve in the shape's own coordinates. A round ball is
+// met where the straight ray meets it; other shapes by Newton's method on the fragment's face
+// plane along that curve, from the interpolated distance (trace/tracer.cpp bisects instead).
+struct SpinHit {
+  float s;
+  vec3 shape_point, rest_point;
+  float angle;
+};
+SpinHit spinning_hit(vec3 origin, vec3 direction, float tau0, float tau1, bool round) {
+  vec3 o = rest_from_shape * origin, d = rest_from_shape * direction;
+  float s = round ? max(surface_parameter(origin, direction), 0.0) : vertex_distance;
+  for (int i = 0; i < 8 && !round; ++i) {
+    float angle = -spin_rate * (tau0 + s * tau1);
+    vec3 x = o + d * s;
+    vec3 p = shape_of_rest * turned(spin_axis, angle, x);
+    vec3 dp = shape_of_rest * (turned(spin_axis, angle, d) -
+                               spin_rate * tau1 * cross(spin_axis, turned(spin_axis, angle, x)));
+    float slope = dot(plane.xyz, dp);
+    if (slope == 0.0) break;
+    float step = (dot(plane.xyz, p) - plane.w) / slope;
+    s -= step;
+    if (abs(step) <= 1e-6 * s) break;
+  }
+  SpinHit hit;
+  hit.s = s;
+  hit.rest_point = o + d * s;
+  hit.angle = spin_rate * (tau0 + s * tau1);
+  hit.shape_point = shape_of_rest * turned(spin_axis, -hit.angle, hit.rest_point);
+  return hit;
+}
+
 #if defined(LIGHTCONE_LIT)
 // trace/tracer.cpp: the normal at a surface point, in shape coordinates, facing the ray.
 vec3 shape_normal(vec3 p, vec3 direction) {
@@ -103,6 +152,8 @@ vec3 shape_normal(vec3 p, vec3 direction) {
 
 
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
+uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
+uniform int relativity;
 #endif
 
 const float kTwoPi = 6.283185307179586;
@@ -126,19 +177,44 @@ vec2 surface_uv(vec3 p) {
 void main() {
   vec3 u = fragment_look_direction();
   vec3 direction = ray_offset + shape_spatial * u;
-  float s = max(surface_parameter(shape_origin, direction), 0.0);
-  vec3 p = surface_point(shape_origin + direction * s);
+  float tau1 = proper_time_ray + dot(proper_time_row, u);
+  float s;
+  vec3 p;
+  vec3 velocity = doppler_velocity;
+  float gamma = doppler_gamma;
+  float spin_angle = 0.0;
+  if (spinning == 1) {
+    // The point's own velocity, rate axis x r in the rest frame, carried to F.
+    SpinHit hit = spinning_hit(shape_origin, direction, proper_time_origin, tau1, spin_round == 1);
+    s = hit.s;
+    p = surface_point(hit.shape_point);
+    spin_angle = hit.angle;
+    direction = shape_of_rest * turned(spin_axis, -hit.angle, rest_from_shape * direction);
+    vec4 moving = trace_from_rest * vec4(1.0, spin_rate * cross(spin_axis, hit.rest_point));
+    velocity = moving.yzw / moving.x;
+    gamma = inversesqrt(max(1.0 - dot(velocity, velocity), 1e-12));
+  } else {
+    s = max(surface_parameter(shape_origin, direction), 0.0);
+    p = surface_point(shape_origin + direction * s);
+  }
   gl_FragDepth = clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x),
                        0.0, 1.0);
-  float d = doppler_factor(u, doppler_velocity, doppler_gamma);
-  float proper_time = proper_time_origin + s * (proper_time_ray + dot(proper_time_row, u));
+  float d = doppler_factor(u, velocity, gamma);
+  float proper_time = proper_time_origin + s * tau1;
   int k = pattern == 1                     ? checker_index(p, checker_size)
           : pattern == 3                   ? blink_index(proper_time)
           : pattern == 4 && shape_kind > 0 ? clock_index(surface_uv(p), proper_time)
                                            : 0;
   // One program per kind of material (the program defines which), so that each stays small.
 #if defined(LIGHTCONE_LIT)
-  vec3 c = lit_colour(albedo[k], k, u, s, d, shape_normal(p, direction), fragment_light_sample());
+  vec3 normal = normalize(normal_to_rest * shape_normal(p, direction));
+  vec3 surface_velocity = surface_velocity_of_body;
+  if (spinning == 1) {
+    normal = turned(spin_axis, spin_angle, normal);
+    vec4 moving = trace_to_world * vec4(1.0, velocity);
+    surface_velocity = relativity == 1 ? moving.yzw / moving.x : vec3(0.0);
+  }
+  vec3 c = lit_colour(albedo[k], k, u, s, d, surface_velocity, normal, fragment_light_sample());
   colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, 1.0);
 #elif defined(LIGHTCONE_TEXTURED)
   colour = vec4(received_rgb(sample_bilinear(texture_image, surface_uv(p), true), d), 1.0);

@@ -5,6 +5,7 @@ layout(triangles, equal_spacing, ccw) in;
 in vec3 control_position[];
 in vec4 control_plane[];
 flat out vec4 plane;
+out float vertex_distance;  // its light travel distance, for the fragments of spinning bodies
 
 uniform float sphere_radius_for_tessellation;
 
@@ -13,6 +14,8 @@ void main() {
            gl_TessCoord.z * control_position[2];
   if (sphere_radius_for_tessellation > 0.0 && length(p) > 0.0)
     p *= sphere_radius_for_tessellation / length(p);
-  gl_Position = apparent_clip(p);
+  vec4 event = apparent_event(p);
+  gl_Position = clip_of(event);
+  vertex_distance = event.w;
   plane = control_plane[0];
 }

@@ -8,8 +8,11 @@ layout(location = 0) in vec3 shape_position;
 layout(location = 1) in vec4 face_plane;
 
 flat out vec4 plane;
+out float vertex_distance;  // its light travel distance, for the fragments of spinning bodies
 
 void main() {
-  gl_Position = apparent_clip(shape_position);
+  vec4 event = apparent_event(shape_position);
+  gl_Position = clip_of(event);
+  vertex_distance = event.w;
   plane = face_plane;
 }

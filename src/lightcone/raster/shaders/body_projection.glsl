@@ -21,10 +21,10 @@ vec4 apparent_event(vec3 shape_position) {
   return meet_world_line(ray_time, at_zero, world_line_velocity, one_minus_beta2);
 }
 
-// Its clip-space position; the sample offset shifts the image by a fraction of a pixel (the
-// fragment at a pixel's centre shows the image point at pixel_offset within it).
-vec4 apparent_clip(vec3 shape_position) {
-  vec4 event = apparent_event(shape_position);
+// The clip-space position of an apparent event; the sample offset shifts the image by a
+// fraction of a pixel (the fragment at a pixel's centre shows the image point at pixel_offset
+// within it).
+vec4 clip_of(vec4 event) {
   vec3 e = event.xyz;
   float forward = dot(e, camera_forward);
   vec2 ndc_shift = vec2(1.0 - 2.0 * pixel_offset.x, 2.0 * pixel_offset.y - 1.0) / image_size;

@@ -21,7 +21,6 @@ uniform int light_row[kMaxLights];  // its colour row: against ln D (others), or
 
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
-uniform vec3 surface_velocity;  // in W (0 for the classical picture)
 uniform vec3 camera_velocity;   // in W (0 for the classical picture)
 uniform int searchlight_model;  // 0 physical, 1 chang1996, 2 off
 uniform float diffuse;  // 1 - glossy specular, or 1
@@ -117,7 +116,8 @@ void set_irradiance(inout Incoming in_light, float geometric, float physical,
 }
 
 // frame/lighting.cpp, Lighting::incoming (without shadows).
-bool incoming(int l, vec4 surface, vec3 normal, vec2 light_sample, out Incoming result) {
+bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 light_sample,
+              out Incoming result) {
   result = Incoming(vec3(0.0), 1.0, 0.0, 0.0);
   vec3 beta_l = light_velocity[l];
   if (light_kind[l] == 2) {
@@ -186,18 +186,18 @@ vec3 reflection_table(int first_row, float log_camera, float log_light) {
 
 // frame/lighting.cpp, Lighting::received: the light a lit surface point of albedo `albedo`
 // (fixed colour `k`) sends to the camera, seen along u with factor d_camera; s is the ray
-// parameter of the surface point and shape_normal its normal in shape coordinates.
-vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 shape_normal,
-                vec2 light_sample) {
+// parameter of the surface point, surface_velocity its velocity in W (0 for the classical
+// picture) and normal its normal in its body's rest frame.
+vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surface_velocity,
+                vec3 normal, vec2 light_sample) {
   vec4 surface = trace_to_world * vec4(ray_time * s, u * s);
-  vec3 normal = normalize(normal_to_rest * shape_normal);
   Leg view = receive_leg(surface, surface_velocity, vec4(0.0), camera_velocity);
   vec3 to_camera = view.emitted_direction;
   vec3 seen = vec3(0.0), outgoing = vec3(0.0);
   for (int l = 0; l < kMaxLights; ++l) {
     if (l >= light_count) break;
     Incoming in_light;
-    if (!incoming(l, surface, normal, light_sample, in_light)) continue;
+    if (!incoming(l, surface, surface_velocity, normal, light_sample, in_light)) continue;
     float gloss =
         glossy == 1 ? glossy_reflectance(normal, in_light.direction_to_light, to_camera) : 0.0;
     if (spectral == 1) {
