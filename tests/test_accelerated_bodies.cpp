@@ -148,6 +148,38 @@ TEST(KeyframedBody, RendererDrawsItWhereTheRetardedEventIs) {
   EXPECT_NEAR(y, r.pixel_y, 0.3);
 }
 
+TEST(AcceleratedBody, LightsAndObjectsArePutOnTheirTangentWhereTheCameraSeesThem) {
+  // A point light and a keyframed object: the tangent world-lines pass through the events on
+  // the camera's past light cone, with the 4-velocities there, and carry the proper time.
+  Scene s = accelerating_body_scene();
+  Light lamp;
+  lamp.name = "lamp";
+  lamp.world_line = {0, {3, 2, -8}, {0, 0.2, 0}};
+  lamp.motion.phases = {{5, {0.1, 0, 0.05}}};
+  s.lights.push_back(lamp);
+  const std::shared_ptr<const Scene> tangent = tangent_scene(s);
+  ASSERT_TRUE(tangent);
+  const WorldLine& cam = s.camera.world_line;
+  const Vec4 observation{cam.time, cam.position};
+  const auto expect_tangent = [&](const WorldLine& start, const BodyMotion& motion,
+                                  const WorldLine& line) {
+    const AcceleratedWorldLine exact(start.time, start.position, start.velocity, motion.phases);
+    const WorldLinePoint seen = bisect_retarded(exact, observation);
+    EXPECT_NEAR(line.time, seen.event.t, 1e-9);
+    EXPECT_NEAR(length(line.position - seen.event.x), 0, 1e-9);
+    EXPECT_NEAR(length(line.velocity - velocity_of(seen.four_velocity)), 0, 1e-12);
+    EXPECT_NEAR(line.proper_time, seen.proper_time, 1e-9);
+  };
+  expect_tangent(s.objects[0].world_line, s.objects[0].motion, tangent->objects[0].world_line);
+  expect_tangent(s.lights[0].world_line, s.lights[0].motion, tangent->lights[0].world_line);
+  EXPECT_TRUE(tangent->lights[0].motion.inertial());
+  // Nothing to do for a scene that moves inertially.
+  Scene still = s;
+  still.objects[0].motion = {};
+  still.lights[0].motion = {};
+  EXPECT_FALSE(tangent_scene(still));
+}
+
 TEST(AcceleratedBody, LargeBodiesAreWarnedAbout) {
   Scene s = accelerating_body_scene();
   EXPECT_TRUE(tangent_warnings(s).empty());  // a R = 0.085 * 0.05
