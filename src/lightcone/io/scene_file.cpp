@@ -312,8 +312,8 @@ class SceneReader {
   // --- Sections ---------------------------------------------------------------------------
 
   Camera camera(const Node& n) const {
-    object(n, {"position", "time", "velocity", "proper_time", "motion", "forward", "up", "fov",
-               "width", "height", "samples"});
+    object(n, {"position", "time", "velocity", "proper_time", "motion", "shutter", "forward", "up",
+               "fov", "width", "height", "samples"});
     Camera c;
     // Keyframes say where the camera is; otherwise its position is required.
     const Node motion_node = member(n, "motion");
@@ -363,6 +363,15 @@ class SceneReader {
       fail(width, fmt::format("{} x {} pixels is more than the limit of {} (2^27)", c.width,
                               c.height, kMaxPixels));
     if (Node s = member(n, "samples"); s.value) c.samples = integer(s, 1, kMaxSamples);
+    if (Node sh = member(n, "shutter"); sh.value) {
+      c.shutter = non_negative(sh) * c_;
+      if (!std::isfinite(c.shutter)) fail(sh, "must be finite");
+      // The observation at the shutter's close must be one double precision can hold.
+      const WorldLine closing = observation_after(c, c.shutter);
+      const double speed = length(closing.velocity);
+      if (!(1 / std::sqrt((1 - speed) * (1 + speed)) <= kMaxGamma))
+        fail(sh, "at the shutter's close the camera is too close to the speed of light");
+    }
     return c;
   }
 

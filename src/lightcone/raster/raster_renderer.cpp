@@ -805,6 +805,29 @@ void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
   impl_->pass(pixel_offset_x, pixel_offset_y, shading_offsets);
 }
 
+namespace {
+
+// Pass k of n: the pixels covered at one point of a multi-jittered pattern, each shaded at the
+// ray tracer's own sample k for it (one sample: the centres).
+void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int width, int height,
+                 std::vector<float>& offsets) {
+  if (n == 1) return renderer.pass(0.5, 0.5);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const PixelSample p = pixel_sample(x, y, k, n, seed);
+      float* o = &offsets[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
+      o[0] = static_cast<float>(p.x);
+      o[1] = static_cast<float>(p.y);
+      o[2] = static_cast<float>(p.light[0]);
+      o[3] = static_cast<float>(p.light[1]);
+    }
+  const std::array<double, 2> cover =
+      multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);
+  renderer.pass(cover[0], cover[1], &offsets);
+}
+
+}  // namespace
+
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
                     std::uint64_t seed, RasterTessellation mode) {
   const auto start = std::chrono::steady_clock::now();
@@ -830,25 +853,24 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
     choice.frame_took(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   const bool on_gpu = choice.on_gpu();
-  const std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
+  std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int k = 0; k < n; ++k) {
-    if (n == 1) {
-      renderer.pass(0.5, 0.5);
-    } else {
-      for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-          const PixelSample p = pixel_sample(x, y, k, n, seed);
-          float* o = &offsets[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
-          o[0] = static_cast<float>(p.x);
-          o[1] = static_cast<float>(p.y);
-          o[2] = static_cast<float>(p.light[0]);
-          o[3] = static_cast<float>(p.light[1]);
-        }
-      const std::array<double, 2> cover =
-          multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);
-      renderer.pass(cover[0], cover[1], &offsets);
+    if (scene.camera.shutter > 0) {
+      // Motion blur: pass k is seen from the middle of the k-th of n parts of the shutter, as
+      // the ray tracer's sample k is.
+      Scene moved = scene;
+      moved.camera.world_line =
+          observation_after(scene.camera, scene.camera.shutter * (k + 0.5) / n);
+      const ResolvedScene seen = resolve_scene(moved);
+      const EmissionTable seen_emission(seen);
+      triangles =
+          std::max(triangles, renderer.prepare(seen, seen_emission, limits, on_gpu).triangles);
+      pass_sample(renderer, k, n, seed, width, height, offsets);
+      target.add_to(sum);
+      continue;
     }
+    pass_sample(renderer, k, n, seed, width, height, offsets);
     target.add_to(sum);
   }
   Image image;

@@ -35,6 +35,19 @@ double origin_radius(const Shape& shape, const Vec3& scale) {
   return std::visit(Visitor{scale}, shape);
 }
 
+WorldLine observation_after(const Camera& camera, double later) {
+  if (later == 0) return camera.world_line;
+  if (!camera.motion.phases.empty() || !camera.motion.keyframes.empty()) {
+    Camera::Motion motion = camera.motion;
+    motion.proper_time += later;
+    return camera_observation(motion);
+  }
+  const WorldLine& w = camera.world_line;
+  const double gamma = lorentz_gamma(w.velocity);
+  return {w.time + gamma * later, w.position + w.velocity * (gamma * later), w.velocity,
+          w.proper_time + later};
+}
+
 WorldLine tangent_line(const WorldLinePoint& point) {
   return {point.event.t, point.event.x, velocity_of(point.four_velocity), point.proper_time};
 }

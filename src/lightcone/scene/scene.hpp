@@ -213,6 +213,9 @@ struct Camera {
   double fov_degrees = 60;  // vertical
   int width = 640, height = 360;
   int samples = 1;
+  // Motion blur: the samples of each pixel are spread over the observation events from
+  // proper time motion.proper_time to motion.proper_time + shutter (0: one event).
+  double shutter = 0;
 };
 
 // Procedural celestial grid: lines of constant longitude and latitude in the sky's rest frame.
@@ -285,6 +288,10 @@ WorldLine camera_observation(const Camera::Motion& motion);
 // an inertial one (then `start` is its world-line). Throws what the world-lines throw.
 std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
                                                    const BodyMotion& motion);
+
+// The camera's observation event and velocity `later` units of its proper time after the one
+// its world_line holds: along its motion (phases or keyframes), or inertially without one.
+WorldLine observation_after(const Camera& camera, double later);
 
 // The largest distance from an object's origin of a point of its (scaled) shape.
 double origin_radius(const Shape& shape, const Vec3& scale);

@@ -37,83 +37,119 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
   return received_colour(emission.sky(scene.sky_direction(u)), d, settings);
 }
 
+namespace {
+
+// Everything one observation event needs: the scene seen from it and its tables.
+struct Observation {
+  explicit Observation(const Scene& scene)
+      : resolved(resolve_scene(scene)),
+        tracer(resolved),
+        emission(resolved),
+        lighting(resolved, &tracer) {}
+  ResolvedScene resolved;
+  Tracer tracer;
+  EmissionTable emission;
+  Lighting lighting;
+};
+
+}  // namespace
+
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<tbb::global_control> limit;
   if (options.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   options.threads);
-  const ResolvedScene resolved = resolve_scene(scene);
-  const Tracer tracer(resolved);
-  const EmissionTable emission(resolved);
-  const Lighting lighting(resolved, &tracer);
-
   const Camera& cam = scene.camera;
+  const int n = cam.samples;
+  // With a shutter, sample k of every pixel is seen from the observation event at the middle
+  // of the k-th of n equal parts of the shutter (docs/design/motion-blur.md); each has its own
+  // resolved scene, so they are rendered one after the other and summed.
+  const int observations = cam.shutter > 0 ? n : 1;
   const PixelWindow window = options.crop.value_or(PixelWindow{0, 0, cam.width, cam.height});
   const int width = window.x1 - window.x0, height = window.y1 - window.y0;
   Image image;
   image.width = width;
   image.height = height;
-  image.rgb.assign(static_cast<std::size_t>(width) * height * 3, 0.0f);
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  image.rgb.assign(pixels * 3, 0.0f);
+  std::vector<double> sum(observations > 1 ? pixels * 3 : 0, 0.0);
   const int tiles_x = (width + kTileSize - 1) / kTileSize;
   const int tiles_y = (height + kTileSize - 1) / kTileSize;
-  const std::size_t total = static_cast<std::size_t>(tiles_x) * tiles_y;
+  const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
+  const std::size_t total = tiles * observations;
   // The output variables' channels, and where each AOV's first channel is among them.
   std::vector<std::size_t> aov_first, aov_count;
   for (const Aov aov : options.aovs) {
     aov_first.push_back(image.channels.size());
     aov_count.push_back(aov_channel_names(aov).size());
     for (const std::string& name : aov_channel_names(aov))
-      image.channels.push_back(
-          {name, std::vector<float>(static_cast<std::size_t>(width) * height)});
+      image.channels.push_back({name, std::vector<float>(pixels)});
   }
   std::atomic<std::size_t> done{0};
   std::atomic<bool> skipped{false};
-  const int n = cam.samples;
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 1), [&](const auto& range) {
-    for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
-      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-        skipped = true;
-        continue;
-      }
-      // Pixel (i, j) of the camera's image; its samples depend on (i, j) alone, so a crop
-      // renders exactly the pixels of the whole image.
-      const int x0 = window.x0 + static_cast<int>(tile % tiles_x) * kTileSize;
-      const int y0 = window.y0 + static_cast<int>(tile / tiles_x) * kTileSize;
-      for (int j = y0; j < std::min(y0 + kTileSize, window.y1); ++j)
-        for (int i = x0; i < std::min(x0 + kTileSize, window.x1); ++i) {
-          double r = 0, g = 0, b = 0;
-          for (int k = 0; k < n; ++k) {
-            const PixelSample o = pixel_sample(i, j, k, n, options.seed);
-            const LinearRgb c = radiance_along(resolved, emission, tracer,
-                                               look_direction(resolved.camera, i + o.x, j + o.y),
-                                               &lighting, o.light);
-            r += c.r;
-            g += c.g;
-            b += c.b;
-          }
-          float* px =
-              &image.rgb[3 * (static_cast<std::size_t>(j - window.y0) * width + (i - window.x0))];
-          px[0] = static_cast<float>(r / n);
-          px[1] = static_cast<float>(g / n);
-          px[2] = static_cast<float>(b / n);
-          if (!options.aovs.empty()) {
+  for (int o = 0; o < observations; ++o) {
+    Scene moved;
+    if (observations > 1) {
+      moved = scene;
+      moved.camera.world_line = observation_after(cam, cam.shutter * (o + 0.5) / n);
+    }
+    const Observation seen(observations > 1 ? moved : scene);
+    const ResolvedScene& resolved = seen.resolved;
+    const int first = observations > 1 ? o : 0, count = observations > 1 ? 1 : n;
+    // The output variables come from the first observation's ray through each pixel's centre.
+    const bool with_aovs = o == 0 && !options.aovs.empty();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles, 1), [&](const auto& range) {
+      for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+          skipped = true;
+          continue;
+        }
+        // Pixel (i, j) of the camera's image; its samples depend on (i, j) alone, so a crop
+        // renders exactly the pixels of the whole image.
+        const int x0 = window.x0 + static_cast<int>(tile % tiles_x) * kTileSize;
+        const int y0 = window.y0 + static_cast<int>(tile / tiles_x) * kTileSize;
+        for (int j = y0; j < std::min(y0 + kTileSize, window.y1); ++j)
+          for (int i = x0; i < std::min(x0 + kTileSize, window.x1); ++i) {
+            double r = 0, g = 0, b = 0;
+            for (int k = first; k < first + count; ++k) {
+              const PixelSample ps = pixel_sample(i, j, k, n, options.seed);
+              const LinearRgb c = radiance_along(
+                  resolved, seen.emission, seen.tracer,
+                  look_direction(resolved.camera, i + ps.x, j + ps.y), &seen.lighting, ps.light);
+              r += c.r;
+              g += c.g;
+              b += c.b;
+            }
             const std::size_t at =
                 static_cast<std::size_t>(j - window.y0) * width + (i - window.x0);
-            const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
-            for (std::size_t a = 0; a < options.aovs.size(); ++a) {
-              float values[3];
-              aov_values(resolved, tracer, centre, options.aovs[a], values);
-              for (std::size_t c = 0; c < aov_count[a]; ++c)
-                image.channels[aov_first[a] + c].values[at] = values[c];
+            if (observations > 1) {
+              sum[3 * at] += r;
+              sum[3 * at + 1] += g;
+              sum[3 * at + 2] += b;
+            } else {
+              image.rgb[3 * at] = static_cast<float>(r / n);
+              image.rgb[3 * at + 1] = static_cast<float>(g / n);
+              image.rgb[3 * at + 2] = static_cast<float>(b / n);
+            }
+            if (with_aovs) {
+              const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
+              for (std::size_t a = 0; a < options.aovs.size(); ++a) {
+                float values[3];
+                aov_values(resolved, seen.tracer, centre, options.aovs[a], values);
+                for (std::size_t c = 0; c < aov_count[a]; ++c)
+                  image.channels[aov_first[a] + c].values[at] = values[c];
+              }
             }
           }
-        }
-      const std::size_t now = ++done;
-      if (options.progress) options.progress(now, total);
-    }
-  });
+        const std::size_t now = ++done;
+        if (options.progress) options.progress(now, total);
+      }
+    });
+  }
+  if (observations > 1)
+    for (std::size_t v = 0; v < sum.size(); ++v) image.rgb[v] = static_cast<float>(sum[v] / n);
 
   const double ev = scene.render.auto_exposure ? auto_exposure(image) : scene.render.exposure;
   const auto scale = static_cast<float>(std::exp2(ev));
