@@ -9,7 +9,7 @@ packages=(
   libembree-dev libtbb-dev nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev
   libstb-dev libspng-dev libturbojpeg0-dev libopenexr-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools libglfw3-dev libimgui-dev
-  xvfb xdotool x11-apps
+  xvfb xdotool x11-apps ffmpeg slurm-wlm munge
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()

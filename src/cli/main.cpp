@@ -16,6 +16,8 @@
 #include <tuple>
 #include <vector>
 
+#include "animate.hpp"
+#include "cli_common.hpp"
 #include "lightcone/frame/false_colour.hpp"
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
@@ -35,14 +37,6 @@ namespace fs = std::filesystem;
 using namespace lightcone;
 
 namespace {
-
-constexpr int kBadInput = 2;
-constexpr int kInterrupted = 130;  // 128 + SIGINT, as shells report it
-
-std::atomic<bool> interrupted{false};
-extern "C" void on_interrupt(int) {
-  interrupted = true;
-}
 
 // A message fit for a terminal: control characters (a NUL, escape sequences) shown as \xNN, and
 // any run of more than 160 characters without a space (a 10 MB key echoed back) cut to its
@@ -74,34 +68,6 @@ std::string printable(const std::string& message) {
 void print_error(const std::string& message) {
   const std::string line = "lightcone: " + printable(message) + "\n";
   std::fwrite(line.data(), 1, line.size(), stderr);
-}
-
-Scene load(const std::string& file, const std::vector<std::string>& overrides) {
-  SceneLoadReport report;
-  Scene scene = load_scene_file(file, overrides, report);
-  for (const std::string& w : tangent_warnings(scene)) report.warnings.push_back(w);
-  for (const std::string& w : report.warnings)
-    std::fprintf(stderr, "lightcone: warning: %s\n", w.c_str());
-  return scene;
-}
-
-// Checked before rendering: the target is a regular file or absent (a symbolic link counts as
-// the file it points to, which is then written and the link kept), and its folder exists and
-// is writable, so that nothing but a regular file is ever replaced and a render is never lost
-// to a bad output name.
-void require_writable_target(const std::string& option, const std::string& path) {
-  std::error_code ec;
-  const fs::path target = fs::weakly_canonical(fs::absolute(path), ec);
-  const fs::file_status status = fs::status(ec ? fs::path(path) : target, ec);
-  if (fs::is_directory(status)) throw InputError(option + " " + path + ": is a folder, not a file");
-  if (fs::exists(status) && !fs::is_regular_file(status))
-    throw InputError(option + " " + path +
-                     ": is not a regular file (a device, a FIFO or a socket); it is not replaced");
-  const fs::path parent = (ec ? fs::absolute(path) : target).parent_path();
-  if (!fs::is_directory(parent))
-    throw InputError(option + " " + path + ": folder " + parent.string() + " does not exist");
-  if (::access(parent.c_str(), W_OK) != 0)
-    throw InputError(option + " " + path + ": folder " + parent.string() + " is not writable");
 }
 
 // `count` comma-separated finite numbers (integers if `integers`), or an error that says so:
@@ -171,19 +137,6 @@ std::vector<Aov> parse_aovs(const std::string& text) {
   }
   if (aovs.empty()) throw InputError("--aov: give one or more of " + std::string(kAovNames));
   return aovs;
-}
-
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
-  const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
-  return pa == pb;
-}
-
-RasterTessellation tessellation_mode(const std::string& name) {
-  return name == "cpu"   ? RasterTessellation::kCpu
-         : name == "gpu" ? RasterTessellation::kGpu
-                         : RasterTessellation::kAuto;
 }
 
 int run_render(const RenderArgs& a) {
@@ -604,13 +557,61 @@ int main(int argc, char** argv) {
                        "Render this many frames of a scripted flight offscreen and print one "
                        "JSON line (no window)");
 
+  AnimateArgs animate;
+  CLI::App* animate_cmd = app.add_subcommand(
+      "animate", "Render frames at successive moments of the camera's clock, and a video");
+  animate_cmd->add_option("scene", animate.scene, "Scene file (JSON)")->required();
+  animate_cmd->add_option("-o,--output", animate.output,
+                          "Frame files: a pattern with one %d, like frames/shot-%04d.png (.png, "
+                          ".jpg or .exr)");
+  animate_cmd->add_option("--exr", animate.exr, "Also linear radiance: a pattern ending in .exr");
+  animate_cmd->add_option("--video", animate.video,
+                          "A video of the frames through ffmpeg: .mp4 (H.264), .webm (VP9) or "
+                          ".gif");
+  animate_cmd->add_option("--fps", animate.fps, "Frames per unit of the clock (default 30)");
+  animate_cmd->add_option("--frames", animate.frames, "Frames A-B (inclusive) only");
+  animate_cmd->add_option("--duration", animate.duration,
+                          "Frames 0 to duration * fps - 1 (instead of --frames)");
+  animate_cmd
+      ->add_option("--clock", animate.clock,
+                   "proper (the camera's own time, the default) or world (world time)")
+      ->check(CLI::IsMember({"proper", "world"}));
+  animate_cmd->add_option("--crf", animate.crf,
+                          "Video quality, lower is better (default 18; 0 to 63)");
+  animate_cmd->add_flag("--resume", animate.resume, "Keep frames whose files exist");
+  animate_cmd->add_option("--renderer", animate.renderer, "trace (the default) or raster")
+      ->check(CLI::IsMember({"trace", "raster"}));
+  animate_cmd->add_option("--tessellation", animate.tessellation, "raster: cpu, gpu or auto")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
+  animate_cmd->add_option("--width", animate.width, "Override camera.width");
+  animate_cmd->add_option("--height", animate.height, "Override camera.height");
+  animate_cmd->add_option("--samples", animate.samples, "Override camera.samples");
+  animate_cmd->add_option("--threads", animate.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(0, 4096));
+  animate_cmd->add_option("--seed", animate.seed, "Seed of the sample pattern");
+  animate_cmd->add_option("--set", animate.overrides, "Override a scene value: key.path=value");
+  animate_cmd->add_flag("--quiet", animate.quiet, "No progress bar and no summary line");
+
+  EncodeArgs encode;
+  CLI::App* encode_cmd =
+      app.add_subcommand("encode", "Encode frame files (a %d pattern) into a video with ffmpeg");
+  encode_cmd->add_option("pattern", encode.pattern, "Frame files, like frames/shot-%04d.png")
+      ->required();
+  encode_cmd->add_option("-o,--output", encode.output, "The video: .mp4, .webm or .gif")
+      ->required();
+  encode_cmd->add_option("--fps", encode.fps, "Frames per second (default 30)");
+  encode_cmd->add_option("--frames", encode.frames,
+                         "Frames A-B (default: from 0 while the files exist)");
+  encode_cmd->add_option("--crf", encode.crf, "Quality, lower is better (default 18)");
+  encode_cmd->add_flag("--quiet", encode.quiet, "No progress bar and no summary line");
+
   if (argc > 1 && argv[1][0] != '-') {
     const std::string command = argv[1];
     if (command != "render" && command != "locate" && command != "check" && command != "info" &&
-        command != "view") {
+        command != "view" && command != "animate" && command != "encode") {
       std::fprintf(stderr,
-                   "lightcone: unknown command '%s' (use render, view, locate, check or info; "
-                   "see --help)\n",
+                   "lightcone: unknown command '%s' (use render, animate, encode, view, locate, "
+                   "check or info; see --help)\n",
                    argv[1]);
       return kBadInput;
     }
@@ -627,6 +628,8 @@ int main(int argc, char** argv) {
     if (*check_cmd) return run_check(check_scene, check_overrides);
     if (*info_cmd) return run_info(info_scene, info_overrides, info_json);
     if (*view_cmd) return run_view(view);
+    if (*animate_cmd) return run_animate(animate);
+    if (*encode_cmd) return run_encode(encode);
     return run_locate(loc);
   } catch (const InputError& e) {
     print_error(e.what());

@@ -92,11 +92,10 @@ static std::string read_all(const fs::path& file) {
   return s.str();
 }
 
-CommandResult run_lightcone(const std::string& arguments, const std::string& environment) {
+CommandResult run_command(const std::string& command_line) {
   const fs::path dir = fresh_temp_dir("cmd");
-  const std::string command = environment + " '" + LIGHTCONE_BINARY + "' " + arguments + " >'" +
-                              (dir / "out").string() + "' 2>'" + (dir / "err").string() +
-                              "' </dev/null";
+  const std::string command = command_line + " >'" + (dir / "out").string() + "' 2>'" +
+                              (dir / "err").string() + "' </dev/null";
   const int raw = std::system(command.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -104,6 +103,10 @@ CommandResult run_lightcone(const std::string& arguments, const std::string& env
   r.err = read_all(dir / "err");
   fs::remove_all(dir);
   return r;
+}
+
+CommandResult run_lightcone(const std::string& arguments, const std::string& environment) {
+  return run_command(environment + " '" + LIGHTCONE_BINARY + "' " + arguments);
 }
 
 CommandResult run_lightcone_on_terminal(const std::string& arguments) {

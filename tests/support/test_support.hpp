@@ -44,6 +44,8 @@ struct CommandResult {
   int status = -1;
   std::string out, err;
 };
+// Runs a shell command line (quoted by the caller), its output and errors collected.
+CommandResult run_command(const std::string& command_line);
 // Runs the built `lightcone` binary with the given arguments (shell-quoted by the caller), with
 // `environment` ("NAME=value ...", shell-quoted) added to its environment.
 CommandResult run_lightcone(const std::string& arguments, const std::string& environment = "");

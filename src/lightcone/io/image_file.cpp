@@ -233,7 +233,9 @@ std::shared_ptr<Image> load_jpeg(const fs::path& file, const std::vector<unsigne
   throw std::runtime_error(fmt::format("{}: {}", target.string(), what));
 }
 
-std::vector<unsigned char> display_bytes(const Image& image) {
+}  // namespace
+
+std::vector<unsigned char> display_rgb8(const Image& image) {
   std::vector<unsigned char> pixels(image.rgb.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const float v = image.rgb[i];
@@ -242,6 +244,8 @@ std::vector<unsigned char> display_bytes(const Image& image) {
   }
   return pixels;
 }
+
+namespace {
 
 void write_bytes(const std::vector<unsigned char>& encoded, const char* kind, const fs::path& temp,
                  const fs::path& target) {
@@ -273,7 +277,7 @@ struct MallocFree {
 
 // PNG encoded into memory by libspng, so that every write error is then checked in one place.
 std::vector<unsigned char> png_bytes(const Image& image) {
-  const std::vector<unsigned char> pixels = display_bytes(image);
+  const std::vector<unsigned char> pixels = display_rgb8(image);
   const SpngContext ctx(spng_ctx_new(SPNG_CTX_ENCODER));
   if (!ctx) throw std::bad_alloc();
   const auto check = [](int error) {
@@ -299,7 +303,7 @@ std::vector<unsigned char> png_bytes(const Image& image) {
 }
 
 void write_jpeg(const Image& image, const fs::path& temp, const fs::path& target) {
-  const std::vector<unsigned char> pixels = display_bytes(image);
+  const std::vector<unsigned char> pixels = display_rgb8(image);
   const TurboJpegHandle handle(tjInitCompress());
   if (!handle) throw std::bad_alloc();
   unsigned char* buffer = nullptr;

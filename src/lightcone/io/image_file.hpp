@@ -38,6 +38,9 @@ struct ImageOutput {
 void write_images(const Image& display, const Image& linear,
                   const std::vector<ImageOutput>& outputs);
 
+// The 8-bit sRGB pixels (row-major, RGB) a PNG of the display image holds.
+std::vector<unsigned char> display_rgb8(const Image& display);
+
 // The PNG file's bytes for a display image (for writing to standard output).
 std::vector<unsigned char> encode_png(const Image& display);
 

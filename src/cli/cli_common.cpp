@@ -1,0 +1,63 @@
+#include "cli_common.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/io/input_error.hpp"
+#include "lightcone/io/scene_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace lightcone {
+
+std::atomic<bool> interrupted{false};
+extern "C" void on_interrupt(int) {
+  interrupted = true;
+}
+
+Scene load(const std::string& file, const std::vector<std::string>& overrides) {
+  SceneLoadReport report;
+  Scene scene = load_scene_file(file, overrides, report);
+  for (const std::string& w : tangent_warnings(scene)) report.warnings.push_back(w);
+  for (const std::string& w : report.warnings)
+    std::fprintf(stderr, "lightcone: warning: %s\n", w.c_str());
+  return scene;
+}
+
+// Checked before rendering: the target is a regular file or absent (a symbolic link counts as
+// the file it points to, which is then written and the link kept), and its folder exists and
+// is writable, so that nothing but a regular file is ever replaced and a render is never lost
+// to a bad output name.
+void require_writable_target(const std::string& option, const std::string& path) {
+  std::error_code ec;
+  const fs::path target = fs::weakly_canonical(fs::absolute(path), ec);
+  const fs::file_status status = fs::status(ec ? fs::path(path) : target, ec);
+  if (fs::is_directory(status)) throw InputError(option + " " + path + ": is a folder, not a file");
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw InputError(option + " " + path +
+                     ": is not a regular file (a device, a FIFO or a socket); it is not replaced");
+  const fs::path parent = (ec ? fs::absolute(path) : target).parent_path();
+  if (!fs::is_directory(parent))
+    throw InputError(option + " " + path + ": folder " + parent.string() + " does not exist");
+  if (::access(parent.c_str(), W_OK) != 0)
+    throw InputError(option + " " + path + ": folder " + parent.string() + " is not writable");
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
+  const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
+  return pa == pb;
+}
+
+RasterTessellation tessellation_mode(const std::string& name) {
+  return name == "cpu"   ? RasterTessellation::kCpu
+         : name == "gpu" ? RasterTessellation::kGpu
+                         : RasterTessellation::kAuto;
+}
+
+}  // namespace lightcone
