@@ -9,6 +9,8 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <functional>
+#include <future>
 #include <memory>
 
 #include "cli_common.hpp"
@@ -185,6 +187,21 @@ int run_animate(const AnimateArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
   constexpr std::size_t kSteps = 1000;  // progress units a frame
+  // Frame i is tone-mapped, encoded and written while frame i + 1 renders: one writer, so
+  // files and video frames go out in order; its failure stops the run at the next frame.
+  std::future<void> writing;
+  const auto wait_for_writer = [&] {
+    if (writing.valid()) writing.get();
+  };
+  const auto in_frame = [](long long i, const std::function<void()>& work) {
+    try {
+      work();
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("frame {}: {}", i, e.what()));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(fmt::format("frame {}: {}", i, e.what()));
+    }
+  };
   std::signal(SIGINT, on_interrupt);
   for (long long i = first; i <= last; ++i) {
     const std::size_t frames_done = static_cast<std::size_t>(i - first);
@@ -195,24 +212,31 @@ int run_animate(const AnimateArgs& a) {
                          std::all_of(outputs.begin(), outputs.end(), [](const ImageOutput& o) {
                            return fs::is_regular_file(o.path);
                          });
-    try {
-      if (present) {
-        ++skipped;
-        if (video) {
+    if (present) {
+      ++skipped;
+      wait_for_writer();
+      if (video)
+        in_frame(i, [&] {
           // The video gets the frame as its file holds it.
           const std::shared_ptr<Image> saved = load_image_file(outputs.front().path);
           video->add(outputs.front().format == ImageFormat::kExr
                          ? tone_map(*saved, scene.render.tonemap)
                          : *saved);
-        }
-        bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
-        continue;
-      }
-      const Scene s = frame_scene(i);
-      Image image;
+        });
+      bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
+      continue;
+    }
+    bool cancelled = false;
+    auto image = std::make_shared<Image>();
+    const Scene s = [&] {
+      Scene moment;
+      in_frame(i, [&] { moment = frame_scene(i); });
+      return moment;
+    }();
+    in_frame(i, [&] {
       if (raster) {
         try {
-          image = render_raster(s, nullptr, {}, a.seed, tessellation_mode(a.tessellation));
+          *image = render_raster(s, nullptr, {}, a.seed, tessellation_mode(a.tessellation));
         } catch (const GlUnavailable& e) {
           throw InputError(fmt::format(
               "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) "
@@ -229,24 +253,28 @@ int run_animate(const AnimateArgs& a) {
                      static_cast<std::size_t>(count) * kSteps);
         };
         RenderStats stats;
-        image = render_image(s, options, &stats);
-        if (stats.cancelled) break;
+        *image = render_image(s, options, &stats);
+        cancelled = stats.cancelled;
       }
-      if (std::any_of(image.rgb.begin(), image.rgb.end(),
+      if (std::any_of(image->rgb.begin(), image->rgb.end(),
                       [](float v) { return !std::isfinite(v); }))
         throw std::runtime_error("the render has non-finite values (NaN or infinity)");
-      const Image display = tone_map(image, s.render.tonemap);
-      if (!outputs.empty()) write_images(display, image, outputs);
-      if (video) video->add(display);
-      ++rendered;
-      bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("frame {}: {}", i, e.what()));
-    } catch (const std::exception& e) {
-      throw std::runtime_error(fmt::format("frame {}: {}", i, e.what()));
-    }
+    });
+    if (cancelled) break;
+    wait_for_writer();
+    const ToneMap curve = s.render.tonemap;
+    writing = std::async(std::launch::async, [=, &video] {
+      in_frame(i, [&] {
+        const Image display = tone_map(*image, curve);
+        if (!outputs.empty()) write_images(display, *image, outputs);
+        if (video) video->add(display);
+      });
+    });
+    ++rendered;
+    bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
   }
   std::signal(SIGINT, SIG_DFL);
+  wait_for_writer();
   if (interrupted) {
     std::fprintf(stderr, "lightcone: interrupted after %lld of %lld frames%s\n", rendered + skipped,
                  count, video ? "; no video written" : "");
