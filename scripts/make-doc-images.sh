@@ -46,6 +46,10 @@ for tau in 1 3 5 7; do
   render "twin-$tau" twin-paradox.json --set camera.proper_time=$tau \
     --set render.doppler=off --set render.searchlight=off --width 360 --height 202
 done
+render terrell-blur terrell.json --set camera.shutter=2 --samples 64
+echo "lightcone animate scenes/rocket.json --fps 10 --frames 0-40 --video rocket.gif ..." >&2
+"$lc" animate scenes/rocket.json --fps 10 --frames 0-40 --set camera.proper_time=0 \
+  --width 256 --height 144 --samples 2 --video "$out/rocket.gif" --quiet
 for t in 3.0 3.1 3.2; do
   render "slow-light-$t" slow-light.json --set camera.time=$t --width 480 --height 270
 done
