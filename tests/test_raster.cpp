@@ -404,6 +404,11 @@ TEST(RasterAgreement, AcceleratedKeyframedAndSpinningBodiesMatchTheRayTracer) {
   fs::remove_all(dir);
 }
 
+// Motion blur: pass k is seen from the observation event of the ray tracer's sample k.
+TEST(RasterAgreement, MotionBlurMatchesTheRayTracer) {
+  expect_agreement("terrell.json", "--tessellation cpu --set camera.shutter=1.5");
+}
+
 // The same with the edges cut by tessellation shaders (OpenGL 4; llvmpipe has them).
 TEST(RasterAgreement, TessellatedOnTheGpuTooTheyMatch) {
   for (const char* scene : {"terrell.json", "cubes.json", "street.json"})
