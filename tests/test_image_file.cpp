@@ -64,6 +64,48 @@ TEST(Srgb, KnownValues) {
   }
 }
 
+// display_rgb8 is round(255 srgb_encode(clamp(v, 0, 1))) exactly: at every code boundary (each
+// side of it, to the float), at a million random values, and at the odd ones.
+TEST(Srgb, EightBitCodesAreTheRoundedEncodingExactly) {
+  const auto expected = [](float v) {
+    const double clamped = std::isnan(v) ? 0.0 : std::min(1.0, std::max(0.0, double(v)));
+    return static_cast<unsigned char>(std::lround(255 * srgb_encode(clamped)));
+  };
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               -1.0f,
+                               1.0f,
+                               2.0f,
+                               std::numeric_limits<float>::denorm_min(),
+                               std::numeric_limits<float>::infinity(),
+                               -std::numeric_limits<float>::infinity(),
+                               std::numeric_limits<float>::quiet_NaN()};
+  for (int k = 0; k < 256; ++k) {
+    // Near the value whose encoding is (k + 1/2) / 255: where the code changes.
+    const float edge = static_cast<float>(srgb_decode((k + 0.5) / 255));
+    float below = edge, above = edge;
+    for (int step = 0; step < 4; ++step) {
+      values.insert(values.end(), {below, above});
+      below = std::nextafter(below, 0.0f);
+      above = std::nextafter(above, 2.0f);
+    }
+  }
+  std::uint32_t state = 12345;
+  for (int i = 0; i < 1000000; ++i) {
+    state = state * 1664525u + 1013904223u;
+    values.push_back(static_cast<float>(state) / 4294967296.0f * 1.1f - 0.05f);
+  }
+  Image image;
+  image.width = static_cast<int>(values.size());
+  image.height = 1;
+  image.rgb.resize(3 * values.size());
+  for (std::size_t i = 0; i < values.size(); ++i)
+    image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = values[i];
+  const std::vector<unsigned char> codes = display_rgb8(image);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    ASSERT_EQ(codes[3 * i], expected(values[i])) << values[i];
+}
+
 TEST_F(ImageFileTest, PngRoundTrip) {
   // Exact 8-bit levels come back exactly; other values within one level after encoding.
   std::vector<float> rgb;

@@ -235,12 +235,81 @@ std::shared_ptr<Image> load_jpeg(const fs::path& file, const std::vector<unsigne
 
 }  // namespace
 
+namespace {
+
+// The 8-bit code of a display value: round(255 srgb_encode(clamp(v, 0, 1))), NaN as 0.
+unsigned char encoded_8bit(float v) {
+  const double clamped = std::isnan(v) ? 0.0 : std::clamp<double>(v, 0.0, 1.0);
+  return static_cast<unsigned char>(std::lround(255 * srgb_encode(clamped)));
+}
+
+// For each code k = 1..255, the smallest float in [0, 1] whose code is at least k, found by
+// bisection over the ordered bit patterns of non-negative floats with encoded_8bit itself: the
+// code of any value is then the number of thresholds at or below it, exactly encoded_8bit's
+// (which is monotonic), without a pow per value.
+const std::array<float, 255>& code_thresholds() {
+  static const std::array<float, 255> thresholds = [] {
+    std::array<float, 255> t{};
+    const auto bits = [](float f) {
+      std::uint32_t b;
+      std::memcpy(&b, &f, sizeof b);
+      return b;
+    };
+    const auto value = [](std::uint32_t b) {
+      float f;
+      std::memcpy(&f, &b, sizeof f);
+      return f;
+    };
+    for (int k = 1; k <= 255; ++k) {
+      std::uint32_t lo = bits(0.0f), hi = bits(1.0f);  // code(lo) < k <= code(hi)
+      while (hi - lo > 1) {
+        const std::uint32_t mid = lo + (hi - lo) / 2;
+        (encoded_8bit(value(mid)) >= k ? hi : lo) = mid;
+      }
+      t[static_cast<std::size_t>(k - 1)] = value(hi);
+    }
+    return t;
+  }();
+  return thresholds;
+}
+
+// The code at the start of each run of 2^16 float bit patterns in [0, 1], from which the code
+// of any value in the run is a step or two up the thresholds.
+const std::array<unsigned char, 0x3F81>& run_codes() {
+  static const std::array<unsigned char, 0x3F81> codes = [] {
+    const std::array<float, 255>& thresholds = code_thresholds();
+    std::array<unsigned char, 0x3F81> c{};
+    for (std::uint32_t run = 0; run < c.size(); ++run) {
+      float first;
+      const std::uint32_t bits = run << 16;
+      std::memcpy(&first, &bits, sizeof first);
+      c[run] = static_cast<unsigned char>(
+          std::upper_bound(thresholds.begin(), thresholds.end(), first) - thresholds.begin());
+    }
+    return c;
+  }();
+  return codes;
+}
+
+}  // namespace
+
 std::vector<unsigned char> display_rgb8(const Image& image) {
+  const std::array<float, 255>& thresholds = code_thresholds();
+  const std::array<unsigned char, 0x3F81>& runs = run_codes();
   std::vector<unsigned char> pixels(image.rgb.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const float v = image.rgb[i];
-    const double clamped = std::isnan(v) ? 0.0 : std::clamp<double>(v, 0.0, 1.0);
-    pixels[i] = static_cast<unsigned char>(std::lround(255 * srgb_encode(clamped)));
+    if (!(v > 0)) {  // NaN too
+      pixels[i] = 0;
+    } else if (v >= 1) {
+      pixels[i] = 255;
+    } else {
+      std::uint32_t bits;
+      std::memcpy(&bits, &v, sizeof bits);
+      unsigned code = runs[bits >> 16];
+      while (code < 255 && v >= thresholds[code]) ++code;
+      pixels[i] = static_cast<unsigned char>(code);
+    }
   }
   return pixels;
 }
@@ -285,6 +354,11 @@ std::vector<unsigned char> png_bytes(const Image& image) {
       throw std::runtime_error(fmt::format("cannot encode PNG image ({})", spng_strerror(error)));
   };
   check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1));
+  // zlib level 4 with the Paeth filter on every row, chosen by measurement against libspng's
+  // default (level 6, each row's best filter): 2.3x to 2.9x faster to encode for files 1.15x
+  // to 1.2x larger (street.json at 1920x1080: 69 against 201 ms; terrell.json: 9 against 21).
+  check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, 4));
+  check(spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_PAETH));
   spng_ihdr header{};
   header.width = static_cast<std::uint32_t>(image.width);
   header.height = static_cast<std::uint32_t>(image.height);
