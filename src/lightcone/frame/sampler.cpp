@@ -73,7 +73,7 @@ std::array<double, 2> multi_jittered(std::uint32_t index, std::uint32_t count, s
   return {(column + (sub_x + jx) / rows) / columns, (row + (sub_y + jy) / columns) / rows};
 }
 
-PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed) {
+PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed, bool with_light) {
   const std::uint64_t pixel = mix(mix(seed) ^ (static_cast<std::uint64_t>(j) << 32) ^
                                   static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)));
   const auto position_seed = static_cast<std::uint32_t>(mix(pixel ^ 0x1));
@@ -86,7 +86,7 @@ PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed) {
     s.x = p[0];
     s.y = p[1];
   }
-  s.light = multi_jittered(index, count, light_seed);
+  if (with_light) s.light = multi_jittered(index, count, light_seed);
   return s;
 }
 

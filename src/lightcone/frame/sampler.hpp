@@ -25,7 +25,8 @@ struct PixelSample {
   std::array<double, 2> light{};  // point on sphere lights
 };
 
-// Sample k of n of pixel (i, j), for the render seed `seed`.
-PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed);
+// Sample k of n of pixel (i, j), for the render seed `seed`; its point on sphere lights only
+// `with_light` (a scene without sphere lights needs none).
+PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed, bool with_light = true);
 
 }  // namespace lightcone

@@ -88,6 +88,9 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   }
   std::atomic<std::size_t> done{0};
   std::atomic<bool> skipped{false};
+  const bool light_samples =
+      std::any_of(scene.lights.begin(), scene.lights.end(),
+                  [](const Light& l) { return std::holds_alternative<SphereLight>(l.kind); });
 
   for (int o = 0; o < observations; ++o) {
     Scene moved;
@@ -114,7 +117,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
           for (int i = x0; i < std::min(x0 + kTileSize, window.x1); ++i) {
             double r = 0, g = 0, b = 0;
             for (int k = first; k < first + count; ++k) {
-              const PixelSample ps = pixel_sample(i, j, k, n, options.seed);
+              const PixelSample ps = pixel_sample(i, j, k, n, options.seed, light_samples);
               const LinearRgb c = radiance_along(
                   resolved, seen.emission, seen.tracer,
                   look_direction(resolved.camera, i + ps.x, j + ps.y), &seen.lighting, ps.light);
