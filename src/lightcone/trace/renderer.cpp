@@ -24,16 +24,19 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
                          const Tracer& tracer, const Vec3& u, const Lighting* lighting,
                          const std::array<double, 2>& light_sample) {
   const RenderSettings& settings = scene.scene->render;
+  // An emitter's colour does not depend on D when neither its colour nor its brightness does.
+  const bool emitters_see_d =
+      settings.doppler != DopplerModel::kOff || settings.searchlight != SearchlightModel::kOff;
   if (const auto hit = tracer.trace(u)) {
-    const double d = scene.doppler(u, hit->velocity);
     const PointEmission surface = emission.surface(hit->body, *hit);
     if (!scene.bodies[hit->body].object->material.unlit) {
       if (!lighting) return {0, 0, 0};
-      return lighting->received(*hit, u, d, surface, light_sample);
+      return lighting->received(*hit, u, scene.doppler(u, hit->velocity), surface, light_sample);
     }
-    return received_colour(surface, d, settings);
+    return received_colour(surface, emitters_see_d ? scene.doppler(u, hit->velocity) : 1.0,
+                           settings);
   }
-  const double d = scene.doppler(u, scene.sky_velocity);
+  const double d = emitters_see_d ? scene.doppler(u, scene.sky_velocity) : 1.0;
   return received_colour(emission.sky(scene.sky_direction(u)), d, settings);
 }
 
