@@ -4,7 +4,6 @@
 #include <cstdlib>
 #include <iterator>
 #include <nlohmann/json.hpp>
-#include <unordered_set>
 
 namespace lightcone {
 
@@ -33,11 +32,16 @@ std::string json_element_path(const std::string& parent, std::size_t index) {
 // nothing and only keeps track of lines and paths.
 class JsonScanner {
  public:
-  JsonScanner(std::string_view text, JsonLineMap& map) : s_(text), map_(map) {}
+  // Records lines into `lines` and `runs`, or (when they are null) only finds repeated keys
+  // into `duplicates`.
+  JsonScanner(std::string_view text, std::unordered_map<std::string, JsonLineMap::Lines>* lines,
+              std::unordered_map<std::string, std::vector<JsonLineMap::ElementRun>>* runs,
+              std::vector<JsonLineMap::DuplicateKey>* duplicates)
+      : s_(text), lines_(lines), runs_(runs), duplicates_(duplicates) {}
 
   void run() {
     if (s_.substr(0, 3) == "\xEF\xBB\xBF") i_ = 3;  // nlohmann skips a UTF-8 byte order mark
-    value("", 0, 0, true);
+    value(Path{}, 0, 0, true);
   }
 
  private:
@@ -93,22 +97,47 @@ class JsonScanner {
     return std::string(token.size() >= 2 ? token.substr(1, token.size() - 2) : token);
   }
 
+  // Where a value is: its parent's place and its key (a member's raw token) or index. Spelled
+  // out only when a path is wanted, so that finding repeated keys builds no strings.
+  struct Path {
+    const Path* parent = nullptr;
+    std::string_view key;  // the raw token, quotes included; empty for an element or the root
+    std::size_t index = 0;
+    bool element = false;
+
+    std::string spelled() const {
+      if (!parent) return "";
+      const std::string up = parent->spelled();
+      return element ? json_element_path(up, index) : json_member_path(up, decode_key(key));
+    }
+  };
+
+  // Two raw key tokens that name the same key.
+  static bool same_key(std::string_view a, std::string_view b) {
+    if (a.find('\\') == std::string_view::npos && b.find('\\') == std::string_view::npos)
+      return a == b;
+    return decode_key(a) == decode_key(b);
+  }
+
   // Scans the value at `path`; `record` says whether it is an object member or the root (an
   // array element's line is kept in its array's runs instead, so that memory grows with the keys
   // and the lines of the text, not with the elements).
-  void value(const std::string& path, int key_line, int depth, bool record) {
+  void value(const Path& path, int key_line, int depth, bool record) {
     skip_space();
-    if (record) map_.lines_[path] = {key_line > 0 ? key_line : line_, line_};
+    if (record && lines_) (*lines_)[path.spelled()] = {key_line > 0 ? key_line : line_, line_};
     const char c = peek();
     if (depth >= kMaxDepth && (c == '{' || c == '[')) return skip_values(0);
     if (c == '{') {
       advance();
-      std::unordered_set<std::string> seen;
+      std::vector<std::string_view> seen;  // the members' raw keys (objects are small)
       for (skip_space(); peek() == '"'; skip_space()) {
         const int line = line_;
-        const std::string key = decode_key(string_token());
-        const std::string member = json_member_path(path, key);
-        if (!seen.insert(key).second) map_.duplicates_.push_back({member, line});
+        const std::string_view token = string_token();
+        const Path member{&path, token};
+        if (duplicates_ && std::any_of(seen.begin(), seen.end(),
+                                       [&](std::string_view k) { return same_key(k, token); }))
+          duplicates_->push_back({member.spelled(), line});
+        seen.push_back(token);
         skip_space();
         advance();  // ':'
         value(member, line, depth + 1, true);
@@ -123,9 +152,9 @@ class JsonScanner {
       std::vector<JsonLineMap::ElementRun> runs;
       for (std::size_t index = 0; peek() != ']' && i_ < s_.size(); ++index) {
         const std::size_t before = i_;
-        if (runs.empty() ? line_ != array_line : line_ != runs.back().line)
+        if (runs_ && (runs.empty() ? line_ != array_line : line_ != runs.back().line))
           runs.push_back({index, line_});
-        value(json_element_path(path, index), 0, depth + 1, false);
+        value(Path{&path, {}, index, true}, 0, depth + 1, false);
         skip_space();
         if (peek() == ',') advance();
         skip_space();
@@ -141,7 +170,7 @@ class JsonScanner {
       if (!runs.empty()) {
         if (runs.front().first_index != 0) runs.insert(runs.begin(), {0, array_line});
         runs.shrink_to_fit();
-        map_.element_runs_[path] = std::move(runs);
+        (*runs_)[path.spelled()] = std::move(runs);
       }
     } else if (c == '"') {
       string_token();
@@ -170,16 +199,25 @@ class JsonScanner {
   }
 
   std::string_view s_;
-  JsonLineMap& map_;
+  std::unordered_map<std::string, JsonLineMap::Lines>* lines_;
+  std::unordered_map<std::string, std::vector<JsonLineMap::ElementRun>>* runs_;
+  std::vector<JsonLineMap::DuplicateKey>* duplicates_;
   std::size_t i_ = 0;
   int line_ = 1;
 };
 
-JsonLineMap::JsonLineMap(std::string_view text) {
-  JsonScanner(text, *this).run();
+JsonLineMap::JsonLineMap(std::string_view text) : text_(text) {
+  JsonScanner(text_, nullptr, nullptr, &duplicates_).run();
+}
+
+void JsonLineMap::build() const {
+  if (built_) return;
+  JsonScanner(text_, &lines_, &element_runs_, nullptr).run();
+  built_ = true;
 }
 
 JsonLineMap::Lines JsonLineMap::find(std::string path) const {
+  build();
   for (;;) {
     if (auto it = lines_.find(path); it != lines_.end()) return it->second;
     if (path.empty()) return {};
@@ -203,6 +241,7 @@ JsonLineMap::Lines JsonLineMap::find(std::string path) const {
 }
 
 std::size_t JsonLineMap::recorded_runs() const {
+  build();
   std::size_t runs = 0;
   for (const auto& [path, array_runs] : element_runs_) runs += array_runs.size();
   return runs;
@@ -215,6 +254,7 @@ int JsonLineMap::value_line(const std::string& path) const {
 int JsonLineMap::key_line(const std::string& path) const {
   // A key that is not in the text has no key line of its own; its parent's value line is nearer
   // than the parent's key.
+  build();
   if (auto it = lines_.find(path); it != lines_.end()) return it->second.key;
   return find(path).value;
 }

@@ -1,8 +1,10 @@
 // Line numbers for the values of a JSON text. nlohmann::json keeps no source positions, so after
-// a successful parse the text is scanned once more and, for every object member, the line where
-// its key and its value start is remembered under its readable path: `camera.velocity`,
-// `objects[2].shape.sphere.radius`; the root is "". Array elements are kept as runs of elements
-// per line of their array, so that memory follows the keys and lines, not the elements.
+// a successful parse the text is scanned once more for repeated keys; the lines themselves are
+// wanted only for messages, so they are found on the first question: for every object member,
+// the line where its key and its value start is remembered under its readable path:
+// `camera.velocity`, `objects[2].shape.sphere.radius`; the root is "". Array elements are kept
+// as runs of elements per line of their array, so that memory follows the keys and lines, not
+// the elements.
 #pragma once
 
 #include <cstddef>
@@ -25,7 +27,7 @@ class JsonLineMap {
     int line = 0;
   };
 
-  // `text` must be a JSON document that nlohmann::json accepted (comments allowed).
+  // `text` must be a JSON document that nlohmann::json accepted (comments allowed); it is kept.
   explicit JsonLineMap(std::string_view text);
 
   // 1-based line where the value at `path` starts. A path that is not in the text (a missing
@@ -39,11 +41,16 @@ class JsonLineMap {
 
   // What the map holds: one path per object member (and the root), one run per line of an array
   // that spans lines.
-  std::size_t recorded_paths() const { return lines_.size(); }
+  std::size_t recorded_paths() const {
+    build();
+    return lines_.size();
+  }
   std::size_t recorded_runs() const;
 
  private:
   friend class JsonScanner;
+
+ public:
   struct Lines {
     int key = 1, value = 1;
   };
@@ -52,12 +59,18 @@ class JsonLineMap {
     std::size_t first_index = 0;
     int line = 1;
   };
-  Lines find(std::string path) const;
 
+ private:
+  Lines find(std::string path) const;
+  // Scans the text for the lines, once (a cache filled by the first question; not thread-safe).
+  void build() const;
+
+  std::string text_;
+  mutable bool built_ = false;
   // Lines of the root and of every object member, by path.
-  std::unordered_map<std::string, Lines> lines_;
+  mutable std::unordered_map<std::string, Lines> lines_;
   // Lines of the elements of every array that spans lines, by the array's path.
-  std::unordered_map<std::string, std::vector<ElementRun>> element_runs_;
+  mutable std::unordered_map<std::string, std::vector<ElementRun>> element_runs_;
   std::vector<DuplicateKey> duplicates_;
 };
 
