@@ -172,13 +172,19 @@ struct Tracer::Impl {
   RTCScene shadows = nullptr;  // shadow rays: bodies within their shadow bounds
   std::unordered_map<const Mesh*, RTCScene> mesh_scenes;
   std::vector<RTCScene> body_mesh_scene;  // per body, null for analytic shapes
-  // Every body is one primitive (its index) of one user geometry per scene, so that Embree
-  // keeps no geometry object per body.
+  // Every body is one primitive of one user geometry per scene, so that Embree keeps no
+  // geometry object per body; except, for camera rays, a mesh body whose shape coordinates are
+  // an affine map of F's (at rest in F, or any body in the simultaneous picture: its rays carry
+  // no time term), which is a native Embree instance of its mesh.
   struct BodiesRef {
     const Impl* impl;
-    bool shadow;  // which bounds
+    bool shadow;                           // which bounds
+    const std::vector<unsigned>* indices;  // primitive -> body (null: the same)
+    unsigned body(unsigned primitive) const { return indices ? (*indices)[primitive] : primitive; }
   };
-  BodiesRef trace_bodies{this, false}, shadow_bodies{this, true};  // Embree's user data
+  std::vector<unsigned> user_trace_bodies;  // the bodies camera rays meet through callbacks
+  std::vector<unsigned> instance_body;      // geometry ID in `top` -> body, for instances
+  BodiesRef trace_bodies{this, false, &user_trace_bodies}, shadow_bodies{this, true, nullptr};
   std::atomic<long long> embree_bytes{0};
 
   explicit Impl(const ResolvedScene& s) : scene(s) {
@@ -197,10 +203,18 @@ struct Tracer::Impl {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i)
       if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape))
         body_mesh_scene[i] = mesh_scene(*m->mesh);
-    if (!scene.bodies.empty()) {
-      attach_bodies(top, trace_bodies);
-      attach_bodies(shadows, shadow_bodies);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const ResolvedBody& body = scene.bodies[i];
+      const Vec3& o = body.ray_offset;
+      if (body_mesh_scene[i] && body.spin < 0 && o.x == 0 && o.y == 0 && o.z == 0)
+        attach_instance(static_cast<unsigned>(i));
+      else
+        user_trace_bodies.push_back(static_cast<unsigned>(i));
     }
+    if (!user_trace_bodies.empty())
+      attach_bodies(top, trace_bodies, static_cast<unsigned>(user_trace_bodies.size()));
+    if (!scene.bodies.empty())
+      attach_bodies(shadows, shadow_bodies, static_cast<unsigned>(scene.bodies.size()));
     rtcCommitScene(top);
     rtcCommitScene(shadows);
     check("building the scene");
@@ -243,9 +257,29 @@ struct Tracer::Impl {
     return s;
   }
 
-  void attach_bodies(RTCScene target, BodiesRef& ref) {
+  // Camera rays meet shape coordinates shape_origin + s spatial u: the instance's transform,
+  // from shape coordinates to F, is the inverse of that affine map.
+  void attach_instance(unsigned index) {
+    const ResolvedBody& body = scene.bodies[index];
+    const Mat3 to_trace = body.spatial.inverse();
+    const Vec3 offset = (to_trace * body.shape_origin) * -1.0;
+    float transform[12];  // column-major 3x4
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) transform[3 * c + r] = static_cast<float>(to_trace.m[r][c]);
+    for (int r = 0; r < 3; ++r) transform[9 + r] = static_cast<float>(offset[r]);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, body_mesh_scene[index]);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform);
+    rtcCommitGeometry(g);
+    const unsigned id = rtcAttachGeometry(top, g);
+    rtcReleaseGeometry(g);
+    if (instance_body.size() <= id) instance_body.resize(id + 1, 0);
+    instance_body[id] = index;
+  }
+
+  void attach_bodies(RTCScene target, BodiesRef& ref, unsigned count) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(scene.bodies.size()));
+    rtcSetGeometryUserPrimitiveCount(g, count);
     rtcSetGeometryUserData(g, &ref);
     rtcSetGeometryBoundsFunction(g, &Impl::bounds_callback, nullptr);
     rtcSetGeometryIntersectFunction(g, &Impl::intersect_callback);
@@ -257,7 +291,7 @@ struct Tracer::Impl {
 
   static void bounds_callback(const RTCBoundsFunctionArguments* args) {
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
-    const ResolvedBody& body = ref->impl->scene.bodies[args->primID];
+    const ResolvedBody& body = ref->impl->scene.bodies[ref->body(args->primID)];
     const Bounds3& b = ref->shadow ? body.shadow_bounds : body.trace_bounds;
     // Round outwards so that float bounds still contain the double ones.
     args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
@@ -466,14 +500,15 @@ struct Tracer::Impl {
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
+    const unsigned body = ref->body(args->primID);
     const ShapeHit hit =
-        ref->impl->intersect(args->primID, ref->shadow, context->origin, context->direction,
-                             rh->ray.tnear, rh->ray.tfar, args->context);
+        ref->impl->intersect(body, ref->shadow, context->origin, context->direction, rh->ray.tnear,
+                             rh->ray.tfar, args->context);
     if (!(hit.s < rh->ray.tfar)) return;
     rh->ray.tfar = static_cast<float>(hit.s);
     // The hit is this code's own record, which Embree passes through: geomID holds the body,
     // primID the triangle of a mesh body.
-    rh->hit.geomID = args->primID;
+    rh->hit.geomID = body;
     rh->hit.primID = hit.prim;
     rh->hit.u = hit.bary_u;
     rh->hit.v = hit.bary_v;
@@ -486,8 +521,8 @@ struct Tracer::Impl {
     auto* ray = reinterpret_cast<RTCRay*>(args->ray);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
     const ShapeHit hit =
-        ref->impl->intersect(args->primID, ref->shadow, context->origin, context->direction,
-                             ray->tnear, ray->tfar, args->context);
+        ref->impl->intersect(ref->body(args->primID), ref->shadow, context->origin,
+                             context->direction, ray->tnear, ray->tfar, args->context);
     if (hit.s < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
   }
 };
@@ -516,11 +551,15 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   rh.ray.tfar = INFINITY;
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->top, &context.embree, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
-  // Embree chose the body; the hit itself is recomputed in double precision.
-  const unsigned index = rh.hit.geomID;
+  // Embree chose the body (an instance's, or the one our callback recorded); an analytic hit is
+  // recomputed in double precision.
+  const unsigned index = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID
+                             ? impl_->instance_body[rh.hit.instID[0]]
+                             : rh.hit.geomID;
   const ResolvedBody& body = impl_->scene.bodies[index];
   const bool spinning = body.spin >= 0;
   Hit hit;
