@@ -22,16 +22,8 @@ namespace lightcone {
 namespace {
 
 using test::make_object;
-
-double minkowski(const Vec4& a, const Vec4& b) {
-  return -a.t * b.t + dot(a.x, b.x);
-}
-
-Material solid(Rgb c) {
-  Material m;
-  m.pattern = SolidColor{c};
-  return m;
-}
+using test::minkowski;
+using test::solid;
 
 // The point of `line` on the past light cone of `receiver`, by plain bisection over proper
 // time: independent of the closed forms the renderers use.
@@ -40,14 +32,9 @@ WorldLinePoint bisect_retarded(const AcceleratedWorldLine& line, const Vec4& rec
     const WorldLinePoint p = line.at_proper_time(tau);
     return receiver.t - p.event.t - length(receiver.x - p.event.x);
   };
-  double lo = -1e3, hi = 1e3;
-  EXPECT_GT(gap(lo), 0);
-  EXPECT_LT(gap(hi), 0);
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gap(mid) > 0 ? lo : hi) = mid;
-  }
-  return line.at_proper_time(0.5 * (lo + hi));
+  EXPECT_GT(gap(-1e3), 0);
+  EXPECT_LT(gap(1e3), 0);
+  return line.at_proper_time(test::bisect_decreasing(gap, -1e3, 1e3));
 }
 
 // A small body accelerating through two phases that turn its path, seen by a moving camera.

@@ -12,6 +12,7 @@
 
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -247,11 +248,7 @@ double retarded_by_bisection(const KeyframeWorldLine& line, const Vec4& receiver
   };
   double lo = receiver.t - 1, hi = receiver.t;
   while (gap(lo) < 0) lo = receiver.t - 2 * (receiver.t - lo);
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gap(mid) > 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return test::bisect_decreasing(gap, lo, hi);
 }
 
 TEST(KeyframeWorldLine, RetardedEventIsOnThePastLightConeOf1000Receivers) {

@@ -12,12 +12,7 @@ namespace lightcone {
 namespace {
 
 using test::make_object;
-
-Material solid(Rgb c) {
-  Material m;
-  m.pattern = SolidColor{c};
-  return m;
-}
+using test::solid;
 
 // The first and last columns of the pixels of row `y` brighter than `threshold` (-1, -1 if
 // none).

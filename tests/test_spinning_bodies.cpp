@@ -20,16 +20,8 @@ namespace lightcone {
 namespace {
 
 using test::make_object;
-
-double minkowski(const Vec4& a, const Vec4& b) {
-  return -a.t * b.t + dot(a.x, b.x);
-}
-
-Material solid(Rgb c) {
-  Material m;
-  m.pattern = SolidColor{c};
-  return m;
-}
+using test::minkowski;
+using test::solid;
 
 TEST(SpinningSphere, TheLimbTurningTowardTheCameraIsBlueshifted) {
   // A sphere at rest at the origin, turning about +y at rim speed 0.6, seen from +z: its -x
@@ -97,12 +89,7 @@ double bisect_body_time(const Object& o, const Vec3& p, const Vec4& receiver) {
     const Vec4 e = point_at(o, p, t).event;
     return receiver.t - e.t - length(receiver.x - e.x);
   };
-  double lo = -1e3, hi = 1e3;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gap(mid) > 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return test::bisect_decreasing(gap, -1e3, 1e3);
 }
 
 // A mesh tetrahedron with one face toward +z.

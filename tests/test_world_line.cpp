@@ -11,6 +11,7 @@
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
 #include "lightcone/physics/world_line.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -112,11 +113,7 @@ double retarded_by_bisection(const AcceleratedWorldLine& line, const Vec4& recei
   double lo = -1, hi = 1;
   while (gap(lo) < 0) lo *= 2;
   while (gap(hi) > 0) hi *= 2;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gap(mid) > 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return test::bisect_decreasing(gap, lo, hi);
 }
 
 TEST(HyperbolicMotion, RetardedEventMatchesBisectionOfTheLightConeOn1000Cases) {

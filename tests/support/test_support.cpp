@@ -32,6 +32,24 @@ Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 vel
   return o;
 }
 
+Material solid(Rgb colour) {
+  Material m;
+  m.pattern = SolidColor{colour};
+  return m;
+}
+
+double minkowski(const Vec4& a, const Vec4& b) {
+  return -a.t * b.t + dot(a.x, b.x);
+}
+
+double bisect_decreasing(const std::function<double(double)>& f, double lo, double hi) {
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) > 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 double fraction_differing(const Image& a, const Image& b) {
   std::size_t bad = 0;
   for (std::size_t p = 0; p < a.rgb.size(); p += 3) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "lightcone/scene/scene.hpp"
@@ -13,6 +14,16 @@ namespace lightcone::test {
 // An object with a shape, a world-line through `position` at t = 0, and a material.
 Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 velocity,
                    Material material);
+
+// An unlit material of one colour.
+Material solid(Rgb colour);
+
+// The interval a.b with signature (- + + +).
+double minkowski(const Vec4& a, const Vec4& b);
+
+// The root of a decreasing function in [lo, hi] (f(lo) > 0 > f(hi)) by plain bisection, 200
+// halvings: the independent check of the solvers the renderers use.
+double bisect_decreasing(const std::function<double(double)>& f, double lo, double hi);
 
 // Fraction of pixels whose colour differs by more than 1e-4 (relative above 1) in some channel:
 // the comparison of the renders of one physical scene described in two frames.

@@ -182,11 +182,8 @@ std::vector<std::string> tangent_warnings(const Scene& scene) {
     const Object& o = scene.objects[i];
     const auto line = body_world_line(o.world_line, o.motion);
     if (!line) continue;
-    const Bounds3 local = shape_bounds(o.shape);
-    const Vec3 centre = (local.lower + local.upper) * 0.5;
-    const double radius =
-        scaled_radius(o.shape, o.scale, centre) + length(component_mul(o.scale, centre));
-    warn(fmt::format("object \"{}\"", o.name), line->max_proper_acceleration(), radius, "radius R");
+    warn(fmt::format("object \"{}\"", o.name), line->max_proper_acceleration(),
+         origin_radius(o.shape, o.scale), "radius R");
   }
   // A light lights surfaces from events up to its distance from them away from the one the
   // camera sees.

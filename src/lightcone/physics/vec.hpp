@@ -69,6 +69,13 @@ inline Vec3 component_div(const Vec3& a, const Vec3& b) {
   return {a.x / b.x, a.y / b.y, a.z / b.z};
 }
 
+// v turned by `radians` about the unit `axis`, right-handed (Rodrigues; the same as
+// Mat3::rotation(axis, radians) * v without building the matrix).
+inline Vec3 rotated(const Vec3& axis, double radians, const Vec3& v) {
+  const double c = std::cos(radians), s = std::sin(radians);
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1 - c));
+}
+
 // Row-major 3x3 matrix.
 struct Mat3 {
   std::array<std::array<double, 3>, 3> m{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};

@@ -42,6 +42,39 @@ void quadratic_roots(double a, double b, double c, double& r1, double& r2) {
   r2 = q != 0 ? c / q : 0.0;
 }
 
+// The root of g, a function of world time that grows strictly (evaluate(t, slope) returns g(t)
+// and sets g'(t) > 0), near t0: bracketed by steps doubling from |g(t0)| (g moves at least in
+// proportion to t), then found by Newton's method safeguarded by bisection to the precision of
+// doubles. Never a capped fixed point: the bracket only shrinks.
+template <class Evaluate>
+double increasing_root(const Evaluate& evaluate, double t0, const char* failure) {
+  double slope = 0;
+  const double start = evaluate(t0, slope);
+  if (start == 0) return t0;
+  double lo = t0, hi = t0;
+  double step = std::max(std::abs(start), 1e-300);
+  for (int doublings = 0;; ++doublings, step *= 2) {
+    const double t = start < 0 ? t0 + step : t0 - step;
+    if (doublings > 2100 || !std::isfinite(t)) throw std::runtime_error(failure);
+    if ((evaluate(t, slope) < 0) != (start < 0)) {
+      (start < 0 ? hi : lo) = t;
+      break;
+    }
+  }
+  double t = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    const double value = evaluate(t, slope);
+    if (value == 0) return t;
+    (value < 0 ? lo : hi) = t;
+    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
+    double next = t - value / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == t) break;
+    t = next;
+  }
+  return t;
+}
+
 }  // namespace
 
 AcceleratedWorldLine::AcceleratedWorldLine(double time, const Vec3& position, const Vec3& velocity,
@@ -219,76 +252,29 @@ AcceleratedWorldLine::Description AcceleratedWorldLine::described_in(const Mat4&
 }
 
 WorldLinePoint point_at_proper_time(const TimelikeWorldLine& line, double tau) {
-  // h(t) = tau(t) - tau grows with slope 1 / gamma in (0, 1]: |h(t)| <= |t - t0| brackets
-  // nothing, so steps double from |h(t0)| until the sign changes.
-  double t = 0;
-  WorldLinePoint p = line.at_world_time(t);
-  double value = p.proper_time - tau;
-  if (value == 0) return p;
-  double lo = t, hi = t, step = std::max(std::abs(value), 1e-300);
-  for (int k = 0;; ++k) {
-    if (k > 2100) throw std::runtime_error("no event at that proper time");
-    const double s = value < 0 ? t + step : t - step;
-    if ((line.at_world_time(s).proper_time - tau < 0) == (value < 0)) {
-      step *= 2;
-      continue;
-    }
-    (value < 0 ? hi : lo) = s;
-    break;
-  }
-  t = 0.5 * (lo + hi);
-  for (int iteration = 0; iteration < 400; ++iteration) {
-    p = line.at_world_time(t);
-    value = p.proper_time - tau;
-    if (value == 0) return p;
-    (value < 0 ? lo : hi) = t;
-    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
-    double next = t - value * p.four_velocity.t;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (next == t) break;
-    t = next;
-  }
-  return p;
+  // tau(t) - tau grows with slope 1 / gamma in (0, 1].
+  const double t = increasing_root(
+      [&](double s, double& slope) {
+        const WorldLinePoint p = line.at_world_time(s);
+        slope = 1 / p.four_velocity.t;
+        return p.proper_time - tau;
+      },
+      0.0, "no event at that proper time");
+  return line.at_world_time(t);
 }
 
 WorldLinePoint simultaneous_point(const TimelikeWorldLine& line, const Vec4& event,
                                   const Vec3& frame_velocity) {
-  // g(t) = (t - t_e) - beta.(X(t) - x_e) is the frame's time difference over gamma; its slope
+  // (t - t_e) - beta.(X(t) - x_e) is the frame's time difference over gamma; its slope
   // 1 - beta.V(t) lies in (0, 2).
-  const auto g = [&](const WorldLinePoint& p) {
-    return (p.event.t - event.t) - dot(frame_velocity, p.event.x - event.x);
-  };
-  double lo = event.t, hi = event.t;
-  WorldLinePoint p = line.at_world_time(event.t);
-  double value = g(p);
-  if (value == 0) return p;
-  // |g(t) - g(t_e)| >= (1 - |beta|) |t - t_e|: doubling steps bracket the root.
-  double step = std::max(std::abs(value), 1e-300);
-  for (int k = 0;; ++k) {
-    if (k > 2100) throw std::runtime_error("no simultaneous event: the world-line is not timelike");
-    const double t = value < 0 ? event.t + step : event.t - step;
-    const double v = g(line.at_world_time(t));
-    if ((v < 0) == (value < 0)) {
-      step *= 2;
-      continue;
-    }
-    (value < 0 ? hi : lo) = t;
-    break;
-  }
-  double t = 0.5 * (lo + hi);
-  for (int iteration = 0; iteration < 400; ++iteration) {
-    p = line.at_world_time(t);
-    value = g(p);
-    if (value == 0) return p;
-    (value < 0 ? lo : hi) = t;
-    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
-    const double slope = 1 - dot(frame_velocity, velocity_of(p.four_velocity));
-    double next = t - value / slope;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (next == t) break;
-    t = next;
-  }
-  return p;
+  const double t = increasing_root(
+      [&](double s, double& slope) {
+        const WorldLinePoint p = line.at_world_time(s);
+        slope = 1 - dot(frame_velocity, velocity_of(p.four_velocity));
+        return (p.event.t - event.t) - dot(frame_velocity, p.event.x - event.x);
+      },
+      event.t, "no simultaneous event: the world-line is not timelike");
+  return line.at_world_time(t);
 }
 
 RotatingPointWorldLine::RotatingPointWorldLine(const Vec3& axis, double rate, const Vec3& offset)
@@ -298,8 +284,7 @@ RotatingPointWorldLine::RotatingPointWorldLine(const Vec3& axis, double rate, co
 }
 
 WorldLinePoint RotatingPointWorldLine::at_world_time(double t) const {
-  const double angle = rate_ * t, c = std::cos(angle), s = std::sin(angle);
-  const Vec3 x = offset_ * c + cross(axis_, offset_) * s + axis_ * (dot(axis_, offset_) * (1 - c));
+  const Vec3 x = rotated(axis_, rate_ * t, offset_);
   const Vec3 v = cross(axis_, x) * rate_;
   const double gamma = 1 / std::sqrt((1 - speed_) * (1 + speed_));
   return {{t, x}, {gamma, v * gamma}, t / gamma};
@@ -322,44 +307,14 @@ double RotatingPointWorldLine::max_proper_acceleration() const {
 
 double retarded_world_time(const std::function<Vec3(double)>& position,
                            const std::function<Vec3(double)>& velocity, const Vec4& receiver) {
-  const auto f = [&](double t) { return receiver.t - t - length(receiver.x - position(t)); };
-  double hi = receiver.t;
-  double f_hi = f(hi);
-  if (f_hi == 0) return hi;
-  // Widen the bracket back in time until the gap is positive: |X(t) - X(t_R)| < t_R - t, so
-  // f(t) >= (t_R - t)(1 - v_max) - d0 turns positive.
-  double step = std::max(-f_hi, 1e-300), lo = hi - step;
-  double f_lo = f(lo);
-  for (int k = 0; f_lo < 0; ++k) {
-    if (k > 2100 || !std::isfinite(lo))
-      throw std::runtime_error("no retarded event: the world-line is not timelike");
-    step *= 2;
-    lo = hi - step;
-    f_lo = f(lo);
-  }
-  // Newton's method, falling back to bisection whenever a step would leave the bracket.
-  double t = lo + (hi - lo) * f_lo / (f_lo - f_hi);
-  for (int iteration = 0; iteration < 400; ++iteration) {
-    const double value = f(t);
-    if (value == 0) return t;
-    if (value > 0) {
-      lo = t;
-      f_lo = value;
-    } else {
-      hi = t;
-      f_hi = value;
-    }
-    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t))) break;
-    const Vec3 to_receiver = receiver.x - position(t);
-    const double distance = length(to_receiver);
-    const double slope =
-        -1 + (distance > 0 ? dot(to_receiver, velocity(t)) / distance : 0.0);  // in (-2, 0)
-    double next = t - value / slope;
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (next == t) break;
-    t = next;
-  }
-  return t;
+  // |x_R - X(t)| - (t_R - t), minus the light-cone gap, grows with slope in (0, 2).
+  return increasing_root(
+      [&](double t, double& slope) {
+        const Vec3 to_receiver = receiver.x - position(t);
+        const double distance = length(to_receiver);
+        slope = 1 - (distance > 0 ? dot(to_receiver, velocity(t)) / distance : 0.0);
+        return distance - (receiver.t - t);
+      },
+      receiver.t, "no retarded event: the world-line is not timelike");
 }
-
 }  // namespace lightcone

@@ -55,12 +55,6 @@ struct CrossedSurface {
   double side(const Vec3& p) const { return (sphere ? dot(p, p) : dot(normal, p)) - offset; }
 };
 
-// v turned by `angle` about the unit `axis` (Rodrigues).
-Vec3 turned(const Vec3& axis, double angle, const Vec3& v) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1 - c));
-}
-
 // The entry and exit parameters of a ray through a sphere or a box (false if it misses).
 bool sphere_span(const Sphere& sphere, const ShapeRay& ray, double& in, double& out) {
   const double a = dot(ray.direction, ray.direction), b = dot(ray.origin, ray.direction);
@@ -92,42 +86,22 @@ bool box_span(const Box& box, const ShapeRay& ray, double& in, double& out) {
   return in <= out;
 }
 
-bool closest_root(double a, double b, double c, double tnear, double tfar, double& s) {
-  // a s^2 + 2 b s + c = 0, stable roots
-  const double disc = b * b - a * c;
-  if (disc < 0 || a == 0) return false;
-  const double q = -(b + std::copysign(std::sqrt(disc), b));
-  double r0 = q / a, r1 = c / q;
-  if (r0 > r1) std::swap(r0, r1);
-  if (r0 >= tnear && r0 < tfar) return s = r0, true;
-  if (r1 >= tnear && r1 < tfar) return s = r1, true;
+// The first end of a span [in, out] that lies in [tnear, tfar).
+bool first_in(double in, double out, double tnear, double tfar, double& s) {
+  if (in >= tnear && in < tfar) return s = in, true;
+  if (out >= tnear && out < tfar) return s = out, true;
   return false;
 }
 
 bool intersect_sphere(const Sphere& sphere, const ShapeRay& ray, double tnear, double tfar,
                       double& s) {
-  return closest_root(dot(ray.direction, ray.direction), dot(ray.origin, ray.direction),
-                      dot(ray.origin, ray.origin) - sphere.radius * sphere.radius, tnear, tfar, s);
+  double in, out;
+  return sphere_span(sphere, ray, in, out) && first_in(in, out, tnear, tfar, s);
 }
 
 bool intersect_box(const Box& box, const ShapeRay& ray, double tnear, double tfar, double& s) {
-  double lo = -kInfinity, hi = kInfinity;
-  for (int i = 0; i < 3; ++i) {
-    const double h = box.size[i] * 0.5;
-    if (ray.direction[i] == 0) {
-      if (std::abs(ray.origin[i]) > h) return false;
-      continue;
-    }
-    const double inv = 1.0 / ray.direction[i];
-    double t0 = (-h - ray.origin[i]) * inv, t1 = (h - ray.origin[i]) * inv;
-    if (t0 > t1) std::swap(t0, t1);
-    lo = std::max(lo, t0);
-    hi = std::min(hi, t1);
-  }
-  if (lo > hi) return false;
-  if (lo >= tnear && lo < tfar) return s = lo, true;
-  if (hi >= tnear && hi < tfar) return s = hi, true;
-  return false;
+  double in, out;
+  return box_span(box, ray, in, out) && first_in(in, out, tnear, tfar, s);
 }
 
 bool intersect_plane(const Plane& plane, const ShapeRay& ray, double tnear, double tfar,
@@ -373,7 +347,7 @@ struct Tracer::Impl {
     const double lo = std::max(in, tnear), hi = std::min(out, tfar);
     if (!(lo < hi)) return hit;
     const auto shape_at = [&](double s) {
-      return spin.shape_of_rest * turned(spin.axis, -spin.rate * (tau0 + s * tau1), o + d * s);
+      return spin.shape_of_rest * rotated(spin.axis, -spin.rate * (tau0 + s * tau1), o + d * s);
     };
     const Shape& shape = body.object->shape;
     const auto* ball = std::get_if<Sphere>(&shape);
@@ -381,10 +355,9 @@ struct Tracer::Impl {
     if (ball && k.x == k.y && k.y == k.z) {
       // A round ball turning about its centre is the same ball at every angle: the straight
       // ray meets it where the curve does.
-      double a, b;
-      if (!sphere_span(Sphere{ball->radius * std::abs(k.x)}, ShapeRay{o, d}, a, b)) return hit;
-      const double s = a >= tnear && a < tfar ? a : b >= tnear && b < tfar ? b : kInfinity;
-      if (!std::isfinite(s)) return hit;
+      double s;
+      if (!intersect_sphere(Sphere{ball->radius * std::abs(k.x)}, ShapeRay{o, d}, tnear, tfar, s))
+        return hit;
       hit.s = s;
       hit.rest_point = o + d * s;
       hit.proper_time = tau0 + s * tau1;
@@ -617,7 +590,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
     const Vec3 rest_velocity = cross(spin.axis, exact.rest_point) * spin.rate;
     hit.velocity = velocity_of(spin.trace_from_rest * Vec4{1, rest_velocity});
     incoming = spin.shape_of_rest *
-               turned(spin.axis, -hit.spin_angle, spin.rest_from_shape * ray.direction);
+               rotated(spin.axis, -hit.spin_angle, spin.rest_from_shape * ray.direction);
   } else {
     hit.proper_time = body.proper_time(Vec4{impl_->scene.ray_time * hit.s, u * hit.s});
     hit.velocity = body.velocity;

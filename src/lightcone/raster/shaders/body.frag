@@ -94,7 +94,7 @@ vec3 surface_point(vec3 p) {
   return p;
 }
 
-// v turned by `angle` about the unit `axis` (trace/tracer.cpp, turned).
+// v turned by `angle` about the unit `axis` (physics/vec.hpp, rotated).
 vec3 turned(vec3 axis, float angle, vec3 v) {
   float c = cos(angle), s = sin(angle);
   return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
