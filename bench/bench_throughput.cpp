@@ -1,24 +1,45 @@
-// lightcone's throughput against raw Embree on the same triangles (issue 13), one run:
-//   Throughput/raw_embree/threads:T      rtcIntersect1 per pixel through the same 100 instances
-//                                        of one mesh, nothing else (what a user could write)
-//   Throughput/lightcone_static/threads:T   lightcone's render of the same scene, bodies at rest,
-//                                        unlit, doppler off, 1 sample
-//   Throughput/lightcone_moving/threads:T   the same bodies moving at 0.9c
-// The scene: a 10 x 10 grid of unit UV spheres (100 x 10,082 triangles, one shared mesh) at
-// distance 20, camera at rest, fov 70, 1920 x 1080. The figures are rays_per_s; the targets are
-// ratios to raw_embree at the same thread count: >= 0.70 at rest, >= 0.60 in motion.
+// lightcone's throughput against raw Embree on the same triangles, and its per-ray cost as a
+// swarm of fast bodies gets denser (issue 13), each comparison within one run:
+//   Throughput/raw_embree/case:C/threads:T        rtcIntersect1 per pixel (pixel centres)
+//                                                 through the scene's triangles at rest, one
+//                                                 instance per body, nothing else: what a user
+//                                                 could write by hand
+//   Throughput/lightcone_static/case:C/threads:T  lightcone's render of the same scene at rest
+//                                                 (unlit, doppler and searchlight off, 1 sample)
+//   Throughput/lightcone_moving/case:C/threads:T  the same scene in motion
+// The cases, all at 1920 x 1080:
+//   0 grid: a 10 x 10 grid of unit UV spheres (100 x 10,082 triangles, one shared mesh) at
+//     distance 20, fov 70; in motion the spheres move at 0.9c along x. Targets: rays_per_s at
+//     least 0.70 of raw_embree's at the same thread count at rest, 0.60 in motion.
+//   1 street: scenes/street.json (boxes and planes; raw Embree traces their 12 and 2 triangles
+//     each); at rest the camera stands still, in motion it flies at 0.8c as in the file.
+//   2 swarm: 1,000 instances of one 1,280-triangle icosphere; in motion they move in random
+//     directions at up to 0.9c.
+//   DenseSwarm/bodies:N/lit:L   N icospheres in a slab before the camera, moving in random
+//     directions at speeds up to 0.99c, their radius chosen so that every N covers the same
+//     30 % of the image (radius, hit_fraction); lit: every body lit by one point light, so each
+//     hit casts a shadow ray through the swarm. s_per_ray is the time per camera ray (nearest hit
+//     and shading, one thread, 960 x 540), apart from the setup (setup_s). The issue's figure is
+//     the s_per_ray of 10,000 bodies against 100 (target <= 2x).
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <numbers>
+#include <random>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/lighting.hpp"
+#include "lightcone/io/scene_file.hpp"
 #include "lightcone/trace/renderer.hpp"
+#include "lightcone/trace/tracer.hpp"
 
 using namespace lightcone;
 
@@ -47,8 +68,55 @@ std::shared_ptr<const Mesh> uv_sphere(int stacks, int slices) {
   return mesh;
 }
 
-const std::shared_ptr<const Mesh>& sphere_mesh() {
-  static const std::shared_ptr<const Mesh> mesh = uv_sphere(71, 72);
+// An icosahedron subdivided `levels` times, on the unit sphere: 20 * 4^levels triangles.
+std::shared_ptr<const Mesh> icosphere(int levels) {
+  auto mesh = std::make_shared<Mesh>();
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  for (const Vec3& p : {Vec3{-1, t, 0}, Vec3{1, t, 0}, Vec3{-1, -t, 0}, Vec3{1, -t, 0},
+                        Vec3{0, -1, t}, Vec3{0, 1, t}, Vec3{0, -1, -t}, Vec3{0, 1, -t},
+                        Vec3{t, 0, -1}, Vec3{t, 0, 1}, Vec3{-t, 0, -1}, Vec3{-t, 0, 1}})
+    mesh->positions.push_back(normalize(p));
+  mesh->triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+    const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::minmax(a, b);
+      if (auto it = midpoints.find(key); it != midpoints.end()) return it->second;
+      mesh->positions.push_back(normalize(mesh->positions[a] + mesh->positions[b]));
+      return midpoints[key] = static_cast<std::uint32_t>(mesh->positions.size() - 1);
+    };
+    std::vector<std::array<std::uint32_t, 3>> finer;
+    for (const auto& [a, b, c] : mesh->triangles) {
+      const auto ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      finer.insert(finer.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
+    }
+    mesh->triangles = std::move(finer);
+  }
+  return mesh;
+}
+
+const std::shared_ptr<const Mesh>& small_sphere() {
+  static const std::shared_ptr<const Mesh> mesh = icosphere(3);
+  return mesh;
+}
+
+// The triangles raw Embree traces for analytic shapes: a UV sphere, a box's 12, a plane's 2.
+std::shared_ptr<const Mesh> unit_box() {
+  auto mesh = std::make_shared<Mesh>();
+  for (int i = 0; i < 8; ++i)
+    mesh->positions.push_back({(i & 1) - 0.5, (i >> 1 & 1) - 0.5, (i >> 2 & 1) - 0.5});
+  mesh->triangles = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
+                     {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+  return mesh;
+}
+
+std::shared_ptr<const Mesh> unit_plane() {
+  auto mesh = std::make_shared<Mesh>();
+  mesh->positions = {{-0.5, 0, -0.5}, {0.5, 0, -0.5}, {0.5, 0, 0.5}, {-0.5, 0, 0.5}};
+  mesh->triangles = {{0, 1, 2}, {0, 2, 3}};
   return mesh;
 }
 
@@ -56,63 +124,158 @@ Vec3 grid_position(int i) {
   return {2.5 * (i % 10) - 11.25, 2.5 * (i / 10) - 11.25, -20.0};
 }
 
-Scene grid(bool moving) {
+Scene camera_scene() {
   Scene s;
   s.camera.width = kWidth;
   s.camera.height = kHeight;
   s.camera.fov_degrees = 70;
   s.render.doppler = DopplerModel::kOff;
   s.render.searchlight = SearchlightModel::kOff;
+  return s;
+}
+
+// Placed so that the camera, at rest at the origin, sees a body moving with `velocity` about
+// where `position` is.
+WorldLine seen_at(const Vec3& position, const Vec3& velocity) {
+  WorldLine line;
+  line.position = position;
+  line.velocity = velocity;
+  line.time = -length(position);
+  return line;
+}
+
+Scene grid(bool moving) {
+  static const std::shared_ptr<const Mesh> mesh = uv_sphere(71, 72);
+  Scene s = camera_scene();
   for (int i = 0; i < 100; ++i) {
     Object o;
     o.name = "sphere" + std::to_string(i);
-    o.shape = MeshShape{sphere_mesh()};
-    o.world_line.position = grid_position(i);
-    if (moving) {
-      // Moving at 0.9c along x, placed where the camera sees them where they stand at rest.
-      o.world_line.velocity = {0.9, 0, 0};
-      o.world_line.time = -length(grid_position(i));
-    }
+    o.shape = MeshShape{mesh};
+    o.world_line = seen_at(grid_position(i), moving ? Vec3{0.9, 0, 0} : Vec3{});
     s.objects.push_back(std::move(o));
   }
   return s;
 }
 
+Scene street(bool moving) {
+  SceneLoadReport report;
+  Scene s =
+      load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/street.json",
+                      {"camera.width=1920", "camera.height=1080", "camera.samples=1"}, report);
+  s.render.doppler = DopplerModel::kOff;
+  s.render.searchlight = SearchlightModel::kOff;
+  s.lights.clear();
+  for (Object& o : s.objects) o.material.unlit = true;
+  if (!moving) s.camera.world_line.velocity = {};
+  return s;
+}
+
+// `count` icospheres of radius `radius` in a slab in front of the camera, moving in random
+// directions at speeds uniform in [0, max_speed].
+Scene swarm(int count, double radius, double max_speed) {
+  Scene s = camera_scene();
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < count; ++i) {
+    Object o;
+    o.name = "body-" + std::to_string(i);
+    o.shape = MeshShape{small_sphere()};
+    const Vec3 position{u(rng) * 40, u(rng) * 22, -30 + u(rng) * 25};
+    const Vec3 direction = normalize(Vec3{u(rng), u(rng), u(rng)});
+    o.world_line = seen_at(position, direction * (max_speed * std::abs(u(rng))));
+    o.scale = {radius, radius, radius};
+    s.objects.push_back(std::move(o));
+  }
+  return s;
+}
+
+enum Case { kGrid, kStreet, kSwarm };
+
+Scene test_case(int which, bool moving) {
+  if (which == kGrid) return grid(moving);
+  if (which == kStreet) return street(moving);
+  Scene s = swarm(1000, 1.2, 0.9);
+  if (!moving)
+    for (Object& o : s.objects) o.world_line.velocity = {};
+  return s;
+}
+
+// Raw Embree over a scene at rest: one instance per object of its triangles.
+struct RawEmbree {
+  RTCDevice device = rtcNewDevice(nullptr);
+  RTCScene top = rtcNewScene(device);
+  std::map<const Mesh*, RTCScene> meshes;
+  std::vector<std::shared_ptr<const Mesh>> kept;
+
+  RTCScene mesh_scene(const std::shared_ptr<const Mesh>& mesh) {
+    if (auto it = meshes.find(mesh.get()); it != meshes.end()) return it->second;
+    kept.push_back(mesh);
+    RTCScene object = rtcNewScene(device);
+    rtcSetSceneBuildQuality(object, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v =
+        static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                    3 * sizeof(float), mesh->positions.size()));
+    for (std::size_t i = 0; i < mesh->positions.size(); ++i)
+      for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(mesh->positions[i][k]);
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                mesh->triangles.size()));
+    for (std::size_t i = 0; i < mesh->triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh->triangles[i][k];
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(object, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(object);
+    return meshes[mesh.get()] = object;
+  }
+
+  explicit RawEmbree(const Scene& scene) {
+    static const std::shared_ptr<const Mesh> sphere = uv_sphere(71, 72), box = unit_box(),
+                                             plane = unit_plane();
+    for (const Object& o : scene.objects) {
+      Vec3 size{1, 1, 1};
+      std::shared_ptr<const Mesh> mesh;
+      if (const auto* m = std::get_if<MeshShape>(&o.shape)) mesh = m->mesh;
+      if (const auto* x = std::get_if<Sphere>(&o.shape))
+        mesh = sphere, size = {x->radius, x->radius, x->radius};
+      if (const auto* x = std::get_if<Box>(&o.shape)) mesh = box, size = x->size;
+      if (const auto* x = std::get_if<Plane>(&o.shape))
+        mesh = plane, size = {x->size_x, 1, x->size_z};
+      // World point = position + rotation (scale (size p)).
+      const Mat3 linear = o.rotation * Mat3::diagonal(component_mul(o.scale, size));
+      float transform[12];
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) transform[3 * c + r] = static_cast<float>(linear.m[r][c]);
+      for (int r = 0; r < 3; ++r) transform[9 + r] = static_cast<float>(o.world_line.position[r]);
+      RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(instance, mesh_scene(mesh));
+      rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform);
+      rtcCommitGeometry(instance);
+      rtcAttachGeometry(top, instance);
+      rtcReleaseGeometry(instance);
+    }
+    rtcCommitScene(top);
+  }
+  ~RawEmbree() {
+    rtcReleaseScene(top);
+    for (auto& [mesh, s] : meshes) rtcReleaseScene(s);
+    rtcReleaseDevice(device);
+  }
+};
+
+void set_rates(benchmark::State& state, double rays_per_iteration) {
+  state.counters["rays_per_s"] =
+      benchmark::Counter(rays_per_iteration, benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void Throughput_raw_embree(benchmark::State& state) {
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
-                                    static_cast<std::size_t>(state.range(0)));
-  const Mesh& mesh = *sphere_mesh();
-  RTCDevice device = rtcNewDevice(nullptr);
-  RTCScene object = rtcNewScene(device);
-  rtcSetSceneBuildQuality(object, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry triangles = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(triangles, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                        mesh.positions.size()));
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = static_cast<float>(mesh.positions[i][k]);
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(triangles, RTC_BUFFER_TYPE_INDEX, 0,
-                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                             mesh.triangles.size()));
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.triangles[i][k];
-  rtcCommitGeometry(triangles);
-  rtcAttachGeometry(object, triangles);
-  rtcReleaseGeometry(triangles);
-  rtcCommitScene(object);
-  RTCScene top = rtcNewScene(device);
-  for (int i = 0; i < 100; ++i) {
-    RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(instance, object);
-    const Vec3 p = grid_position(i);
-    const float transform[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, float(p.x), float(p.y), float(p.z)};
-    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform);
-    rtcCommitGeometry(instance);
-    rtcAttachGeometry(top, instance);
-    rtcReleaseGeometry(instance);
-  }
-  rtcCommitScene(top);
-  const CameraBasis camera = camera_basis(grid(false).camera);
+                                    static_cast<std::size_t>(state.range(1)));
+  const Scene scene = test_case(static_cast<int>(state.range(0)), false);
+  const RawEmbree raw(scene);
+  const CameraBasis camera = camera_basis(scene.camera);
+  const Vec3 eye = scene.camera.world_line.position;
   std::atomic<long long> hits{0};
   for (auto _ : state) {
     tbb::parallel_for(0, kHeight, [&](int y) {
@@ -122,51 +285,106 @@ void Throughput_raw_embree(benchmark::State& state) {
       for (int x = 0; x < kWidth; ++x) {
         const Vec3 u = look_direction(camera, x + 0.5, y + 0.5);
         RTCRayHit rh{};
+        rh.ray.org_x = float(eye.x);
+        rh.ray.org_y = float(eye.y);
+        rh.ray.org_z = float(eye.z);
         rh.ray.dir_x = float(u.x);
         rh.ray.dir_y = float(u.y);
         rh.ray.dir_z = float(u.z);
         rh.ray.tfar = INFINITY;
         rh.ray.mask = ~0u;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(top, &context, &rh);
+        rtcIntersect1(raw.top, &context, &rh);
         row_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
       }
       hits += row_hits;
     });
   }
-  state.counters["rays_per_s"] =
-      benchmark::Counter(double(kWidth) * kHeight, benchmark::Counter::kIsIterationInvariantRate);
+  set_rates(state, double(kWidth) * kHeight);
   state.counters["hit_fraction"] = double(hits) / (double(kWidth) * kHeight * state.iterations());
-  rtcReleaseScene(top);
-  rtcReleaseScene(object);
-  rtcReleaseDevice(device);
 }
 
 void Throughput_lightcone(benchmark::State& state, bool moving) {
-  const Scene scene = grid(moving);
+  const Scene scene = test_case(static_cast<int>(state.range(0)), moving);
   RenderOptions options;
-  options.threads = static_cast<int>(state.range(0));
+  options.threads = static_cast<int>(state.range(1));
   for (auto _ : state) benchmark::DoNotOptimize(render_image(scene, options));
-  state.counters["rays_per_s"] =
-      benchmark::Counter(double(kWidth) * kHeight, benchmark::Counter::kIsIterationInvariantRate);
+  set_rates(state, double(kWidth) * kHeight);
 }
 
-BENCHMARK(Throughput_raw_embree)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(Throughput_lightcone, static, false)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(Throughput_lightcone, moving, true)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
+// The swarm's radius for which camera rays through pixel centres hit a body in `coverage` of a
+// 240 x 135 image (bisection: the coverage grows with the radius).
+double radius_covering(int count, double coverage) {
+  double lo = 0.01 * std::sqrt(100.0 / count), hi = 5 * std::sqrt(100.0 / count);
+  for (int i = 0; i < 12; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    Scene scene = swarm(count, mid, 0.99);
+    scene.camera.width = 240;
+    scene.camera.height = 135;
+    const ResolvedScene resolved = resolve_scene(scene);
+    const Tracer tracer(resolved);
+    int hits = 0;
+    for (int y = 0; y < scene.camera.height; ++y)
+      for (int x = 0; x < scene.camera.width; ++x)
+        hits += tracer.trace(look_direction(resolved.camera, x + 0.5, y + 0.5)).has_value();
+    (hits < coverage * scene.camera.width * scene.camera.height ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+void DenseSwarm(benchmark::State& state) {
+  const int count = static_cast<int>(state.range(0));
+  const bool lit = state.range(1) != 0;
+  Scene scene = swarm(count, radius_covering(count, 0.3), 0.99);
+  scene.camera.width = 960;
+  scene.camera.height = 540;
+  if (lit) {
+    for (Object& o : scene.objects) o.material.unlit = false;
+    Light light;
+    light.kind = PointLight{};
+    light.world_line.position = {10, 20, 0};
+    light.intensity = 500;
+    scene.lights.push_back(light);
+  }
+  // What render_image sets up per observation, timed apart from the rays.
+  const auto setup_start = std::chrono::steady_clock::now();
+  const ResolvedScene resolved = resolve_scene(scene);
+  const Tracer tracer(resolved);
+  const EmissionTable emission(resolved);
+  const Lighting lighting(resolved, &tracer);
+  const double setup_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
+  for (auto _ : state)
+    for (int y = 0; y < scene.camera.height; ++y)
+      for (int x = 0; x < scene.camera.width; ++x)
+        benchmark::DoNotOptimize(radiance_along(resolved, emission, tracer,
+                                                look_direction(resolved.camera, x + 0.5, y + 0.5),
+                                                lit ? &lighting : nullptr, {0.5, 0.5}));
+  std::size_t hits = 0;
+  for (int y = 0; y < scene.camera.height; ++y)
+    for (int x = 0; x < scene.camera.width; ++x)
+      hits += tracer.trace(look_direction(resolved.camera, x + 0.5, y + 0.5)).has_value();
+  const double rays = double(scene.camera.width) * scene.camera.height;
+  state.counters["radius"] = scene.objects[0].scale.x;
+  state.counters["hit_fraction"] = hits / rays;
+  state.counters["setup_s"] = setup_s;
+  state.counters["s_per_ray"] = benchmark::Counter(
+      rays, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void cases_and_threads(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"case", "threads"});
+  for (int c : {kGrid, kStreet, kSwarm})
+    for (int t : {1, 2}) b->Args({c, t});
+  b->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+BENCHMARK(Throughput_raw_embree)->Apply(cases_and_threads);
+BENCHMARK_CAPTURE(Throughput_lightcone, static, false)->Apply(cases_and_threads);
+BENCHMARK_CAPTURE(Throughput_lightcone, moving, true)->Apply(cases_and_threads);
+BENCHMARK(DenseSwarm)
+    ->ArgNames({"bodies", "lit"})
+    ->ArgsProduct({{100, 1000, 10000}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

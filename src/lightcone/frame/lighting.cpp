@@ -105,8 +105,7 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
       const Vec3 at_observation = line.position_at(observation.t);
       const double tau = retarded_delay(at_observation - observation.x, line.velocity);
       r.fixed_event = Vec4{observation.t - tau, at_observation - line.velocity * tau};
-    } else if (!(settings.relativity &&
-                 settings.light_source_delay == LightSourceDelay::kSurface)) {
+    } else if (!lit_from_retarded_event(settings)) {
       // Where it is at the observation time (the classical picture keeps lights still).
       const Vec3 velocity = settings.relativity ? line.velocity : Vec3{};
       r.fixed_event = Vec4{observation.t, line.position + velocity * (observation.t - line.time)};
@@ -178,6 +177,14 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
   }
 }
 
+ShadowRay Lighting::shadow_ray(const ResolvedLight& rl, const Vec4& surface_world,
+                               const Vec4& direction, double t_far, const Vec4& light_end) const {
+  const auto l = static_cast<std::size_t>(&rl - lights_.data());
+  const ShadowLight& shadow = scene_.shadow_lights[l];
+  return {surface_world, direction,           kShadowEpsilon,
+          t_far,         static_cast<int>(l), shadow.label(light_end)};
+}
+
 bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
                         const Vec3& surface_velocity, const Vec3& normal,
                         const std::array<double, 2>& light_sample, Incoming& out) const {
@@ -201,7 +208,9 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
       // Backward along the light's direction, as far as shadow rays are bounded.
       const Vec4 back = (-1.0 / k_world.t) * k_world;
       const double reach = surface_world.t - scene_.shadow_time_min;
-      if (reach > 0 && shadows_->occluded(surface_world, back, kShadowEpsilon, reach)) return false;
+      if (reach > 0 &&
+          shadows_->occluded(shadow_ray(rl, surface_world, back, reach, surface_world)))
+        return false;
     }
     return true;
   }
@@ -251,8 +260,8 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
                  intensity * point_source_spectral_factor(leg, cos_i));
 
   if (settings.shadows && shadows_ &&
-      shadows_->occluded(surface_world, emission - surface_world, kShadowEpsilon,
-                         1 - kShadowEpsilon))
+      shadows_->occluded(
+          shadow_ray(rl, surface_world, emission - surface_world, 1 - kShadowEpsilon, emission)))
     return false;
   return true;
 }

@@ -75,6 +75,10 @@ class Lighting {
     double spectral_factor = 0;
   };
 
+  // A shadow ray of `light` from a surface event, with its label from its event at the light's
+  // end.
+  ShadowRay shadow_ray(const ResolvedLight& light, const Vec4& surface_world, const Vec4& direction,
+                       double t_far, const Vec4& light_end) const;
   bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec3& surface_velocity,
                 const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out) const;
 

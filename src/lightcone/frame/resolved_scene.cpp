@@ -38,39 +38,31 @@ Vec3 corner(const Bounds3& b, int i) {
           (i & 4) ? b.upper.z : b.lower.z};
 }
 
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
 Bounds3 empty_bounds() {
-  const double inf = std::numeric_limits<double>::infinity();
-  return {{inf, inf, inf}, {-inf, -inf, -inf}};
+  return {{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
 }
 
 // Conservative bounds in F of the events where a ray can meet a body that lies within the ball
-// (rest_centre, radius) of its rest frame. On the backward null ray the event has body time
-// t_b = T - |x_b - o_b| (T, o_b: the observation event in the body frame), so t_b - T lies in
-// [-D - radius, -D + radius] with D = |rest_centre - o_b|. The F position is affine in
-// (t_b, x_b): a segment along the time column plus the image of the ball; the box bounds both.
-// On the simultaneity hyperplane the body is the (contracted) ball around its centre.
+// (rest_centre, radius) of its rest frame. In F the body lies within the ball of that radius
+// about its centre c(t) (contracted, in any frame). On the backward null ray an event at F-time
+// t is at distance -t from the camera, so the body is met at times t with t + |c(t)| in
+// [-radius, radius]: from where the centre crosses the past light cone of the event
+// (-radius, 0) to where it crosses that of (radius, 0) (retarded_delay, closed form). On the
+// simultaneity hyperplane the body is the (contracted) ball around its centre.
 Bounds3 trace_bounds(double ray_time, const AffineMap4& trace_to_body, const Vec3& rest_centre,
                      double radius) {
   Bounds3 b = empty_bounds();
+  const TraceWorldLine centre = trace_world_line(trace_to_body, rest_centre);
   if (ray_time == 0) {
-    expand(b, trace_world_line(trace_to_body, rest_centre).position_at_zero, radius);
+    expand(b, centre.position_at_zero, radius);
     return b;
   }
-  const Mat4 to_trace = inverse(trace_to_body.linear);
-  const Vec4 observation = trace_to_body.offset;  // the F origin in body coordinates
-  const Mat3 spatial = to_trace.spatial();
-  const Vec3 along_time = time_column(to_trace);
-  const double d = length(rest_centre - observation.x);
-  const Vec3 centre = spatial * (rest_centre - observation.x);
-  Vec3 half;
-  for (int i = 0; i < 3; ++i)
-    half[i] = radius * length(Vec3{spatial.m[i][0], spatial.m[i][1], spatial.m[i][2]});
-  for (double dt : {-d - radius, -d + radius}) {
-    const Vec3 p = centre + along_time * dt;
-    for (int i = 0; i < 3; ++i) {
-      b.lower[i] = std::min(b.lower[i], p[i] - half[i]);
-      b.upper[i] = std::max(b.upper[i], p[i] + half[i]);
-    }
+  for (const double apex : {-radius, radius}) {
+    const Vec3 at_apex = centre.position_at_zero + centre.velocity * apex;
+    const double t = apex - retarded_delay(at_apex, centre.velocity);
+    expand(b, centre.position_at_zero + centre.velocity * t, radius);
   }
   return b;
 }
@@ -275,6 +267,8 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
     body.proper_time_row = {
         trace_to_body.linear.m[0][0],
         {trace_to_body.linear.m[0][1], trace_to_body.linear.m[0][2], trace_to_body.linear.m[0][3]}};
+    body.rest_centre = rest_centre;
+    body.radius = radius;
     r.bodies.push_back(body);
     world_centres.emplace_back(trace_world_line(world_to_body, rest_centre), radius);
   }
@@ -348,7 +342,128 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
     for (double t : {r.shadow_time_min, r.shadow_time_max})
       expand(bounds, centre.position_at_zero + centre.velocity * t, radius);
   }
+
+  // Each light's shadow rays and the range of their labels: the emission events lie within the
+  // shadow window; a directional light's label is that of the surface event, which lies on a
+  // camera ray within the visible box, at an F-time in [ray_time s_far, 0].
+  const double label_slack = 1e-9 * (1 + r.shadow_time_max - r.shadow_time_min);
+  for (const Light& light : scene.lights) {
+    ShadowLight shadow;
+    const Vec3 velocity = settings.relativity ? light.world_line.velocity : Vec3{};
+    if (const auto* sun = std::get_if<DirectionalLight>(&light.kind)) {
+      const Vec4 k = boost(-velocity) * Vec4{1.0, normalize(sun->direction)};
+      shadow.labelled = true;
+      shadow.direction = k.x * (1 / k.t);
+      shadow.label_min = kInfinity;
+      shadow.label_max = -kInfinity;
+      for (int i = 0; i < 16 && !r.bodies.empty(); ++i) {
+        const double label = shadow.label(
+            r.trace_to_world(Vec4{i < 8 ? r.ray_time * s_far : 0, corner(visible, i % 8)}));
+        shadow.label_min = std::min(shadow.label_min, label);
+        shadow.label_max = std::max(shadow.label_max, label);
+      }
+    } else {
+      shadow.labelled = lit_from_retarded_event(settings);
+      shadow.line = trace_world_line(body_frame_map(settings, light.world_line), {});
+      if (const auto* sphere = std::get_if<SphereLight>(&light.kind))
+        shadow.extent = sphere->radius;
+      shadow.label_min = r.shadow_time_min;
+      shadow.label_max = r.shadow_time_max;
+    }
+    shadow.label_min -= label_slack;
+    shadow.label_max += label_slack;
+    r.shadow_lights.push_back(shadow);
+  }
   return r;
+}
+
+bool lit_from_retarded_event(const RenderSettings& settings) {
+  return settings.relativity && settings.light_source_delay == LightSourceDelay::kSurface;
+}
+
+// In W the body lies within the ball of radius R about its centre c(t) (contracted, in any
+// frame), and a light's emission points within its radius e of its centre P(sigma). Light from
+// the emission event at label sigma reaches a point x at t = sigma + |x - e|, so it meets the
+// body at times t with t - sigma - |c(t) - P(sigma)| in [-K, K], K = R + e: from where the centre
+// crosses the future light cone of the event (sigma - K, P(sigma)) to where it crosses that of
+// (sigma + K, P(sigma)). In the body's rest frame, where the centre C is still, that crossing of
+// the cone of an event (T, Q) is at T + |C - Q|: affine in sigma plus the norm of an affine
+// function. A directional light's wave of phase sigma meets the body at times t with
+// t - n.c(t) in [sigma - R, sigma + R], affine in sigma.
+LabelledBounds labelled_bounds(const ResolvedScene& scene, const ResolvedBody& body,
+                               const ShadowLight& light) {
+  const AffineMap4 world_to_body = body_frame_map(scene.scene->render, body.object->world_line);
+  LabelledBounds b;
+  b.half = body.radius;
+  if (light.directional()) {
+    const TraceWorldLine centre = trace_world_line(world_to_body, body.rest_centre);
+    const double rate = 1 / (1 - dot(light.direction, centre.velocity));
+    const double phase = dot(light.direction, centre.position_at_zero);
+    b.early_t0 = (phase - body.radius) * rate;
+    b.late_t0 = (phase + body.radius) * rate;
+    b.t1 = rate;
+    b.x0 = centre.position_at_zero;
+    b.v = centre.velocity;
+    return b;
+  }
+  const double reach = body.radius + light.extent;
+  const Vec4 e0 = world_to_body(Vec4{0, light.line.position_at_zero});
+  const Vec4 e1 = world_to_body.linear * Vec4{1, light.line.velocity};
+  const Vec4 later = world_to_body.linear * Vec4{reach, {}};  // (reach, 0) in body coordinates
+  b.early_t0 = e0.t - later.t;
+  b.late_t0 = e0.t + later.t;
+  b.t1 = e1.t;
+  b.early_a = body.rest_centre - e0.x + later.x;
+  b.late_a = body.rest_centre - e0.x - later.x;
+  b.b = -1.0 * e1.x;
+  const AffineMap4 body_to_world = invert(world_to_body);
+  b.x0 = body_to_world(Vec4{0, body.rest_centre}).x;
+  b.v = time_column(body_to_world.linear);
+  return b;
+}
+
+Bounds3 LabelledBounds::at(double label, double early, double late) const {
+  const double first = early_t0 + t1 * label + length(early_a + b * label) - early;
+  const double last = late_t0 + t1 * label + length(late_a + b * label) + late;
+  Bounds3 box = empty_bounds();
+  for (const double t : {first, last}) expand(box, x0 + v * t, half);
+  return box;
+}
+
+namespace {
+
+// The most the chord of D(sigma) = |a + b sigma| between lo and hi lies above it. D is a
+// hyperbola, sqrt(p^2 + |b|^2 (sigma - c)^2) with p its least value (at sigma = c); the chord of
+// slope m lies farthest above it where D' = m, at sigma - c = m p / (|b| sqrt(|b|^2 - m^2)). The
+// result is enlarged by rounding's reach (1e-9 of D).
+double norm_chord_gap(const Vec3& a, const Vec3& b, double lo, double hi) {
+  const double speed2 = dot(b, b);
+  if (speed2 == 0 || !(hi > lo)) return 0;
+  const double at_lo = length(a + b * lo), at_hi = length(a + b * hi);
+  const double slope = (at_hi - at_lo) / (hi - lo);
+  const double room = speed2 - slope * slope;
+  const double rounding = 1e-9 * (at_lo + at_hi);
+  if (!(room > 0)) return rounding;
+  const double vertex = -dot(a, b) / speed2, least = length(a + b * vertex);
+  const double s =
+      std::clamp(vertex + slope * least / (std::sqrt(speed2) * std::sqrt(room)), lo, hi);
+  return std::max(0.0, at_lo + slope * (s - lo) - length(a + b * s)) + rounding;
+}
+
+}  // namespace
+
+double LabelledBounds::chord_gap(double lo, double hi) const {
+  return std::max(norm_chord_gap(early_a, b, lo, hi), norm_chord_gap(late_a, b, lo, hi));
+}
+
+Bounds3 label_step_bounds(const LabelledBounds& bounds, const ShadowLight& light, unsigned steps,
+                          unsigned step) {
+  const double width = (light.label_max - light.label_min) / (steps - 1);
+  const double label = light.label_min + step * width;
+  double gap = 0;
+  if (step > 0) gap = bounds.chord_gap(label - width, label);
+  if (step + 1 < steps) gap = std::max(gap, bounds.chord_gap(label, label + width));
+  return bounds.at(label, gap, 0);
 }
 
 double ResolvedScene::doppler(const Vec3& u, const Vec3& velocity) const {

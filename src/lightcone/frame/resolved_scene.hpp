@@ -77,6 +77,9 @@ struct ResolvedBody {
   // (its rest-frame time; every point of a rigid body keeps the clock of its origin).
   double proper_time_origin = 0;
   Vec4 proper_time_row;
+  // The ball that holds the body in its rest frame (about its origin for a spinning body).
+  Vec3 rest_centre;
+  double radius = 0;
 
   Vec3 shape_direction(const Vec3& u) const { return ray_offset + spatial * u; }
   Vec3 shape_point(const Vec4& event) const {
@@ -103,6 +106,55 @@ struct TraceWorldLine {
   Vec3 velocity;
 };
 
+// How the tracer bounds one light's shadow rays (docs/design/tracer.md). A shadow ray that runs
+// along a light cone keeps one number all along it, its label: the W-time of its emission event
+// for a point, spot or sphere light seen from the surface's own past light cone
+// (LightSourceDelay::kSurface), or its wave's phase t - n.x for a directional light (n its
+// direction of propagation in W). The events where rays with labels in an interval can meet a
+// body are compact (LabelledBounds), so these rays need no bounds swept over the whole shadow
+// window.
+struct ShadowLight {
+  bool labelled = false;  // false: emission from a fixed event, not along a light cone
+  Vec3 direction;         // directional: n (unit); zero for the others
+  TraceWorldLine line;    // point, spot, sphere: the centre's world-line in W
+  double extent = 0;      // the radius of a sphere light
+  double label_min = 0, label_max = 0;  // every shadow ray's label lies within
+
+  bool directional() const { return direction.x != 0 || direction.y != 0 || direction.z != 0; }
+  // The label of a shadow ray from its event at the light's end (any of its events for a
+  // directional light).
+  double label(const Vec4& light_end) const { return light_end.t - dot(direction, light_end.x); }
+};
+
+// Bounds of the events where a light's labelled shadow rays with label sigma can meet a body:
+// the box around the body's centre x0 + v t, widened by `half`, at its times t (rest-frame
+// time; W-time for a directional light) from early(sigma) to late(sigma), each of the form
+// t0 + t1 sigma + |a + b sigma|.
+struct LabelledBounds {
+  double early_t0 = 0, late_t0 = 0, t1 = 0;
+  Vec3 early_a, late_a, b;
+  Vec3 x0, v;
+  double half = 0;
+
+  // The box for label sigma, its time interval widened by `early` and `late` at its two ends.
+  Bounds3 at(double label, double early, double late) const;
+  // The most the chords of the two norms between labels lo and hi lie above them (norms of
+  // affine functions are convex): the margin that keeps boxes interpolated linearly between the
+  // two labels conservative.
+  double chord_gap(double lo, double hi) const;
+};
+
+// Body bounds for `steps` evenly spaced labels from light.label_min to light.label_max, for a
+// structure that interpolates boxes linearly between them: the box at step `step` (its label's
+// events, lowered at their early end by the chord gaps of the intervals on either side) and the
+// one at the next step, interpolated, hold the events of every label between.
+Bounds3 label_step_bounds(const LabelledBounds& bounds, const ShadowLight& light, unsigned steps,
+                          unsigned step);
+
+// Whether lit surfaces see a light at the event on their own past light cone (else at a fixed
+// event: the camera's light cone, or its time).
+bool lit_from_retarded_event(const RenderSettings& settings);
+
 struct ResolvedScene {
   // The scene the renderers read: the true-state scene, or, when bodies or lights move
   // non-inertially, tangent_scene (owned here): the same scene with each of them on the
@@ -124,6 +176,7 @@ struct ResolvedScene {
   // Shadow rays (segments between surface events and light events, in W) stay within W-times
   // [shadow_time_min, shadow_time_max]; see resolve_scene.
   double shadow_time_min = 0, shadow_time_max = 0;
+  std::vector<ShadowLight> shadow_lights;  // one per light of the scene
 
   // Doppler factor nu_camera / nu_emitter for light arriving along look direction u from an
   // emitter moving with `velocity` in F (1 for the classical picture).
@@ -168,6 +221,10 @@ struct RayEvent {
   Vec3 position;
 };
 RayEvent meet_world_line(double ray_time, const TraceWorldLine& line);
+
+// The bounds of the events where `light`'s labelled shadow rays can meet `body`.
+LabelledBounds labelled_bounds(const ResolvedScene& scene, const ResolvedBody& body,
+                               const ShadowLight& light);
 
 // Half extents of a shape's axis-aligned bounds and their centre, in shape coordinates.
 Bounds3 shape_bounds(const Shape& shape);

@@ -5,15 +5,22 @@
 
 namespace lightcone {
 
+// The spacetime segment origin + sigma direction, sigma in (t_near, t_far), with events and
+// direction in the world frame W: its events lie within W-times
+// [ResolvedScene::shadow_time_min, shadow_time_max]. A ray of light `light` whose ShadowLight is
+// labelled carries its label (ShadowLight::label); light -1 names none.
+struct ShadowRay {
+  Vec4 origin, direction;
+  double t_near = 0, t_far = 0;
+  int light = -1;
+  double label = 0;
+};
+
 class ShadowQuery {
  public:
   virtual ~ShadowQuery() = default;
-  // Whether a body blocks the spacetime segment origin + sigma direction, sigma in
-  // (t_near, t_far), with events and direction in the world frame W (a shadow ray: its events
-  // must lie within W-times [ResolvedScene::shadow_time_min, shadow_time_max]). Bodies are met
-  // where they are at each event.
-  virtual bool occluded(const Vec4& origin, const Vec4& direction, double t_near,
-                        double t_far) const = 0;
+  // Whether a body blocks the ray; bodies are met where they are at each event.
+  virtual bool occluded(const ShadowRay& ray) const = 0;
 };
 
 }  // namespace lightcone

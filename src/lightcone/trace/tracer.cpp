@@ -1,10 +1,12 @@
 #include "lightcone/trace/tracer.hpp"
 
 #include <embree3/rtcore.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -45,6 +47,9 @@ struct ShapeHit {
 // (docs/design/spinning-bodies.md); the hit is then solved on the true path exactly.
 constexpr double kSpinChordAngle = 0.03;
 constexpr int kMaxSpinChords = 4096;
+
+// Time steps of a point, spot or sphere light's labelled shadow bounds (ShadowLight).
+constexpr unsigned kPointLightLabelSteps = 9;
 
 // The surface a chord crossed, by which side of it a point is: positive on the side the chord
 // came from. A sphere |p|^2 = offset, or a plane normal . p = offset.
@@ -146,22 +151,42 @@ struct Tracer::Impl {
   RTCScene shadows = nullptr;  // shadow rays: bodies within their shadow bounds
   std::unordered_map<const Mesh*, RTCScene> mesh_scenes;
   std::vector<RTCScene> body_mesh_scene;  // per body, null for analytic shapes
+  // The ball about a mesh's bounds centre that holds it, in shape coordinates: a ray that misses
+  // it (most of those a fast body's loose box lets through) skips the mesh's BVH.
+  struct Ball {
+    Vec3 centre;
+    double radius = 0;
+  };
+  std::unordered_map<const Mesh*, Ball> mesh_balls;
+  std::vector<const Ball*> body_mesh_ball;
   // Every body is one primitive of one user geometry per scene, so that Embree keeps no
   // geometry object per body; except, for camera rays, a mesh body whose shape coordinates are
   // an affine map of F's (at rest in F, or any body in the simultaneous picture: its rays carry
   // no time term), which is a native Embree instance of its mesh.
+  // A light's labelled shadow bounds, while its scene is built: body b's box at time step j
+  // (boxes[b steps + j], at label label_min + j label_step) holds its events for that label,
+  // lowered at their early end by the chord gaps of the steps on either side, so that the boxes
+  // Embree interpolates between steps hold them at every label between. Computed once: Embree's
+  // multi-segment builder asks for each box many times.
+  struct LabelSteps {
+    std::vector<RTCBounds> boxes;
+    unsigned steps = 0;
+  };
   struct BodiesRef {
     const Impl* impl;
     bool shadow;                           // which bounds
     const std::vector<unsigned>* indices;  // primitive -> body (null: the same)
+    const LabelSteps* labels = nullptr;    // shadow bounds by label, while building
     unsigned body(unsigned primitive) const { return indices ? (*indices)[primitive] : primitive; }
   };
   std::vector<unsigned> user_trace_bodies;  // the bodies camera rays meet through callbacks
   std::vector<unsigned> instance_body;      // geometry ID in `top` -> body, for instances
   BodiesRef trace_bodies{this, false, &user_trace_bodies}, shadow_bodies{this, true, nullptr};
+  std::vector<RTCScene> labelled_shadows;  // per light: its labelled scene, or null
+  std::deque<BodiesRef> labelled_bodies;   // their user data
   std::atomic<long long> embree_bytes{0};
 
-  explicit Impl(const ResolvedScene& s) : scene(s) {
+  Impl(const ResolvedScene& s, ShadowBounds shadow_bounds) : scene(s) {
     device = rtcNewDevice(nullptr);
     if (!device) throw std::runtime_error("cannot create the Embree device");
     rtcSetDeviceMemoryMonitorFunction(
@@ -172,11 +197,13 @@ struct Tracer::Impl {
         },
         this);
     top = rtcNewScene(device);
-    shadows = rtcNewScene(device);
     body_mesh_scene.resize(scene.bodies.size(), nullptr);
+    body_mesh_ball.resize(scene.bodies.size(), nullptr);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-      if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape))
+      if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape)) {
         body_mesh_scene[i] = mesh_scene(*m->mesh);
+        body_mesh_ball[i] = &mesh_balls.at(m->mesh.get());
+      }
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const ResolvedBody& body = scene.bodies[i];
       const Vec3& o = body.ray_offset;
@@ -187,15 +214,51 @@ struct Tracer::Impl {
     }
     if (!user_trace_bodies.empty())
       attach_bodies(top, trace_bodies, static_cast<unsigned>(user_trace_bodies.size()));
-    if (!scene.bodies.empty())
-      attach_bodies(shadows, shadow_bodies, static_cast<unsigned>(scene.bodies.size()));
     rtcCommitScene(top);
-    rtcCommitScene(shadows);
+    // Labels matter only where a body moves in W: bodies at rest there have the same bounds at
+    // every label.
+    const bool moving = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const auto& b) {
+      const Vec3& v = b.object->world_line.velocity;
+      return v.x != 0 || v.y != 0 || v.z != 0;
+    });
+    const auto count = static_cast<unsigned>(scene.bodies.size());
+    bool swept = false;
+    labelled_shadows.assign(scene.shadow_lights.size(), nullptr);
+    for (std::size_t l = 0; l < scene.shadow_lights.size(); ++l) {
+      const ShadowLight& light = scene.shadow_lights[l];
+      if (count == 0 || !scene.scene->render.shadows) continue;
+      if (!light.labelled || !moving || shadow_bounds == ShadowBounds::kSwept) {
+        swept = true;
+        continue;
+      }
+      // A directional light's bounds move linearly with its label: two steps hold them exactly.
+      LabelSteps labels;
+      labels.steps = light.directional() ? 2 : kPointLightLabelSteps;
+      labels.boxes.resize(std::size_t{count} * labels.steps);
+      tbb::parallel_for(0u, count, [&](unsigned b) {
+        const LabelledBounds bounds = labelled_bounds(scene, scene.bodies[b], light);
+        for (unsigned j = 0; j < labels.steps; ++j)
+          labels.boxes[std::size_t{b} * labels.steps + j] =
+              float_bounds(padded_step_bounds(bounds, light, labels.steps, j));
+      });
+      BodiesRef& ref = labelled_bodies.emplace_back(BodiesRef{this, true, nullptr, &labels});
+      labelled_shadows[l] = rtcNewScene(device);
+      attach_bodies(labelled_shadows[l], ref, count, labels.steps);
+      rtcCommitScene(labelled_shadows[l]);
+      ref.labels = nullptr;
+    }
+    if (swept) {
+      shadows = rtcNewScene(device);
+      attach_bodies(shadows, shadow_bodies, count);
+      rtcCommitScene(shadows);
+    }
     check("building the scene");
   }
 
   ~Impl() {
     for (auto& [mesh, s] : mesh_scenes) rtcReleaseScene(s);
+    for (RTCScene s : labelled_shadows)
+      if (s) rtcReleaseScene(s);
     if (top) rtcReleaseScene(top);
     if (shadows) rtcReleaseScene(shadows);
     if (device) rtcReleaseDevice(device);
@@ -228,6 +291,17 @@ struct Tracer::Impl {
     rtcCommitScene(s);
     check("building a mesh");
     mesh_scenes.emplace(&mesh, s);
+    Vec3 lower = mesh.positions.empty() ? Vec3{} : mesh.positions[0], upper = lower;
+    for (const Vec3& p : mesh.positions)
+      for (int k = 0; k < 3; ++k) {
+        lower[k] = std::min(lower[k], p[k]);
+        upper[k] = std::max(upper[k], p[k]);
+      }
+    Ball ball{(lower + upper) * 0.5, 0};
+    for (const Vec3& p : mesh.positions)
+      ball.radius = std::max(ball.radius, length(p - ball.centre));
+    ball.radius = ball.radius * (1 + 1e-6) + 1e-9;
+    mesh_balls.emplace(&mesh, ball);
     return s;
   }
 
@@ -251,9 +325,10 @@ struct Tracer::Impl {
     instance_body[id] = index;
   }
 
-  void attach_bodies(RTCScene target, BodiesRef& ref, unsigned count) {
+  void attach_bodies(RTCScene target, BodiesRef& ref, unsigned count, unsigned time_steps = 1) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, count);
+    if (time_steps > 1) rtcSetGeometryTimeStepCount(g, time_steps);
     rtcSetGeometryUserData(g, &ref);
     rtcSetGeometryBoundsFunction(g, &Impl::bounds_callback, nullptr);
     rtcSetGeometryIntersectFunction(g, &Impl::intersect_callback);
@@ -263,17 +338,46 @@ struct Tracer::Impl {
     rtcReleaseGeometry(g);
   }
 
+  // Rounded outwards, so that the float bounds still contain the double ones.
+  static RTCBounds float_bounds(const Bounds3& b) {
+    RTCBounds f;
+    f.lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
+    f.lower_y = std::nextafter(static_cast<float>(b.lower.y), -INFINITY);
+    f.lower_z = std::nextafter(static_cast<float>(b.lower.z), -INFINITY);
+    f.upper_x = std::nextafter(static_cast<float>(b.upper.x), INFINITY);
+    f.upper_y = std::nextafter(static_cast<float>(b.upper.y), INFINITY);
+    f.upper_z = std::nextafter(static_cast<float>(b.upper.z), INFINITY);
+    return f;
+  }
+
   static void bounds_callback(const RTCBoundsFunctionArguments* args) {
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
+    if (ref->labels) {
+      *args->bounds_o =
+          ref->labels->boxes[std::size_t{args->primID} * ref->labels->steps + args->timeStep];
+      return;
+    }
     const ResolvedBody& body = ref->impl->scene.bodies[ref->body(args->primID)];
-    const Bounds3& b = ref->shadow ? body.shadow_bounds : body.trace_bounds;
-    // Round outwards so that float bounds still contain the double ones.
-    args->bounds_o->lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
-    args->bounds_o->lower_y = std::nextafter(static_cast<float>(b.lower.y), -INFINITY);
-    args->bounds_o->lower_z = std::nextafter(static_cast<float>(b.lower.z), -INFINITY);
-    args->bounds_o->upper_x = std::nextafter(static_cast<float>(b.upper.x), INFINITY);
-    args->bounds_o->upper_y = std::nextafter(static_cast<float>(b.upper.y), INFINITY);
-    args->bounds_o->upper_z = std::nextafter(static_cast<float>(b.upper.z), INFINITY);
+    *args->bounds_o = float_bounds(ref->shadow ? body.shadow_bounds : body.trace_bounds);
+  }
+
+  // Embree interpolates in single precision, at a label rounded to a float time: a margin of
+  // 1e-6 of the label range in the times and of the box's reach in space.
+  static Bounds3 padded_step_bounds(const LabelledBounds& bounds, const ShadowLight& light,
+                                    unsigned steps, unsigned step) {
+    Bounds3 box = label_step_bounds(bounds, light, steps, step);
+    const double late =
+        1e-6 * (std::abs(bounds.t1) + length(bounds.b)) * (light.label_max - light.label_min);
+    double reach = 0;
+    for (int i = 0; i < 3; ++i)
+      reach = std::max({reach, std::abs(box.lower[i]), std::abs(box.upper[i])});
+    const double pad = 1e-6 * reach + late * std::max({std::abs(bounds.v.x), std::abs(bounds.v.y),
+                                                       std::abs(bounds.v.z)});
+    for (int i = 0; i < 3; ++i) {
+      box.lower[i] -= pad;
+      box.upper[i] += pad;
+    }
+    return box;
   }
 
   // `origin` and `direction` are in F for camera rays, in W for shadow rays.
@@ -297,6 +401,12 @@ struct Tracer::Impl {
       bool operator()(const MeshShape&) const { return false; }
     };
     if (RTCScene mesh = body_mesh_scene[index]) {
+      const Ball& ball = *body_mesh_ball[index];
+      double in, out;
+      if (!sphere_span(Sphere{ball.radius}, ShapeRay{ray.origin - ball.centre, ray.direction}, in,
+                       out) ||
+          out < tnear || in >= tfar)
+        return hit;
       RTCRayHit rh{};
       rh.ray.org_x = static_cast<float>(ray.origin.x);
       rh.ray.org_y = static_cast<float>(ray.origin.y);
@@ -504,7 +614,8 @@ struct Tracer::Impl {
 
 namespace lightcone {
 
-Tracer::Tracer(const ResolvedScene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+Tracer::Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds)
+    : impl_(std::make_unique<Impl>(scene, shadow_bounds)) {}
 Tracer::~Tracer() = default;
 
 std::size_t Tracer::acceleration_bytes() const {
@@ -601,24 +712,32 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   return hit;
 }
 
-bool Tracer::occluded(const Vec4& origin, const Vec4& direction, double t_near,
-                      double t_far) const {
-  if (impl_->scene.bodies.empty()) return false;
+bool Tracer::occluded(const ShadowRay& shadow) const {
+  RTCScene target = impl_->shadows;
+  float time = 0;
+  if (shadow.light >= 0 && impl_->labelled_shadows[shadow.light]) {
+    const ShadowLight& light = impl_->scene.shadow_lights[shadow.light];
+    target = impl_->labelled_shadows[shadow.light];
+    time = static_cast<float>(std::clamp(
+        (shadow.label - light.label_min) / (light.label_max - light.label_min), 0.0, 1.0));
+  }
+  if (!target) return false;  // no bodies, or shadows off
   TraceContext context;
   rtcInitIntersectContext(&context.embree);
-  context.origin = origin;
-  context.direction = direction;
+  context.origin = shadow.origin;
+  context.direction = shadow.direction;
   RTCRay ray{};
-  ray.org_x = static_cast<float>(origin.x.x);
-  ray.org_y = static_cast<float>(origin.x.y);
-  ray.org_z = static_cast<float>(origin.x.z);
-  ray.dir_x = static_cast<float>(direction.x.x);
-  ray.dir_y = static_cast<float>(direction.x.y);
-  ray.dir_z = static_cast<float>(direction.x.z);
-  ray.tnear = static_cast<float>(t_near);
-  ray.tfar = static_cast<float>(t_far);
+  ray.org_x = static_cast<float>(shadow.origin.x.x);
+  ray.org_y = static_cast<float>(shadow.origin.x.y);
+  ray.org_z = static_cast<float>(shadow.origin.x.z);
+  ray.dir_x = static_cast<float>(shadow.direction.x.x);
+  ray.dir_y = static_cast<float>(shadow.direction.x.y);
+  ray.dir_z = static_cast<float>(shadow.direction.x.z);
+  ray.tnear = static_cast<float>(shadow.t_near);
+  ray.tfar = static_cast<float>(shadow.t_far);
+  ray.time = time;
   ray.mask = ~0u;
-  rtcOccluded1(impl_->shadows, &context.embree, &ray);
+  rtcOccluded1(target, &context.embree, &ray);
   return ray.tfar < 0;
 }
 

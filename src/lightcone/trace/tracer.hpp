@@ -1,10 +1,12 @@
 // Nearest-hit queries of camera rays against a resolved scene, on Embree.
 //
 // The top level is an Embree BVH over one user geometry per body, bounded by the body's
-// conservative trace bounds in F. Its callback carries the ray into the body's shape
-// coordinates, where the body is static, and intersects there: analytically for spheres, boxes
-// and planes (double precision), or through the mesh's own Embree BVH, which is built once per
-// mesh however many bodies use it.
+// conservative trace bounds in F. Shadow rays of a labelled light (ShadowLight) traverse a
+// motion-blur BVH whose time is their label, with bounds at evenly spaced labels interpolated
+// linearly between them; the others traverse bounds swept over the shadow window. Its callback
+// carries the ray into the body's shape coordinates, where the body is static, and intersects
+// there: analytically for spheres, boxes and planes (double precision), or through the mesh's own
+// Embree BVH, which is built once per mesh however many bodies use it.
 #pragma once
 
 #include <array>
@@ -17,9 +19,14 @@
 
 namespace lightcone {
 
+// How shadow rays of labelled lights (ShadowLight) find their bodies: through bounds over
+// intervals of their labels (what renders use), or through the bounds swept over the whole
+// shadow window that unlabelled rays use (to test the first against).
+enum class ShadowBounds { kLabelled, kSwept };
+
 class Tracer : public ShadowQuery {
  public:
-  explicit Tracer(const ResolvedScene& scene);
+  explicit Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds = ShadowBounds::kLabelled);
   ~Tracer() override;
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
@@ -27,8 +34,7 @@ class Tracer : public ShadowQuery {
   // The nearest body along the ray with look direction u (unit, in F), if any.
   std::optional<Hit> trace(const Vec3& u) const;
 
-  bool occluded(const Vec4& origin, const Vec4& direction, double t_near,
-                double t_far) const override;
+  bool occluded(const ShadowRay& ray) const override;
 
   // Bytes Embree holds for the acceleration structures (for memory benchmarks).
   std::size_t acceleration_bytes() const;
