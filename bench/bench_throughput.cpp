@@ -1,12 +1,12 @@
 // lightcone's throughput against raw Embree on the same triangles, and its per-ray cost as a
 // swarm of fast bodies gets denser (issue 13), each comparison within one run:
-//   Throughput/raw_embree/case:C/threads:T        rtcIntersect1 per pixel (pixel centres)
+//   Throughput_raw_embree/case:C/threads:T        rtcIntersect1 per pixel (pixel centres)
 //                                                 through the scene's triangles at rest, one
 //                                                 instance per body, nothing else: what a user
 //                                                 could write by hand
-//   Throughput/lightcone_static/case:C/threads:T  lightcone's render of the same scene at rest
+//   Throughput_lightcone/static/case:C/threads:T  lightcone's render of the same scene at rest
 //                                                 (unlit, doppler and searchlight off, 1 sample)
-//   Throughput/lightcone_moving/case:C/threads:T  the same scene in motion
+//   Throughput_lightcone/moving/case:C/threads:T  the same scene in motion
 // The cases, all at 1920 x 1080:
 //   0 grid: a 10 x 10 grid of unit UV spheres (100 x 10,082 triangles, one shared mesh) at
 //     distance 20, fov 70; in motion the spheres move at 0.9c along x. Targets: rays_per_s at
