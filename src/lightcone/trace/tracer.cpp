@@ -340,7 +340,7 @@ struct Tracer::Impl {
 
   // Rounded outwards, so that the float bounds still contain the double ones.
   static RTCBounds float_bounds(const Bounds3& b) {
-    RTCBounds f;
+    RTCBounds f{};
     f.lower_x = std::nextafter(static_cast<float>(b.lower.x), -INFINITY);
     f.lower_y = std::nextafter(static_cast<float>(b.lower.y), -INFINITY);
     f.lower_z = std::nextafter(static_cast<float>(b.lower.z), -INFINITY);
