@@ -914,12 +914,37 @@ std::string read_text(const fs::path& file) {
   return text;
 }
 
-// nlohmann's DOM builder with the position of the first error recorded. Parsing through this
-// hook, rather than catching json::parse_error, also gives a position to errors that nlohmann
-// throws without one (a number too large for a double, 1e400, is an out_of_range error).
-class PositionedDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
+// Builds nlohmann's DOM from the events of its parser, as its own json_sax_dom_parser does, and
+// records the position of the first error: parsing through this hook, rather than catching
+// json::parse_error, also gives a position to errors that nlohmann throws without one (a number
+// too large for a double, 1e400, is an out_of_range error). It also notes whether a key repeats
+// within an object, which the DOM hides (it keeps the last one), so that the slower scan that
+// names the repeats runs only then.
+class DomBuilder {
  public:
-  using json_sax_dom_parser::json_sax_dom_parser;
+  explicit DomBuilder(json& root) : root_(root) {}
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool b) { return add(b); }
+  bool number_integer(json::number_integer_t i) { return add(i); }
+  bool number_unsigned(json::number_unsigned_t u) { return add(u); }
+  bool number_float(json::number_float_t d, const std::string& /*text*/) { return add(d); }
+  bool string(std::string& s) { return add(std::move(s)); }
+  bool binary(json::binary_t& b) { return add(std::move(b)); }
+
+  // Nesting deeper than any scene needs is refused as it is read (each level costs memory
+  // and stack in the DOM and the line map).
+  bool start_object(std::size_t /*elements*/) { return open(json::value_t::object); }
+  bool start_array(std::size_t /*elements*/) { return open(json::value_t::array); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(std::string& k) {
+    const auto [it, added] = open_.back()->get_ref<json::object_t&>().try_emplace(std::move(k));
+    repeated_key |= !added;
+    member_ = &it->second;
+    return true;
+  }
 
   template <class Exception>
   bool parse_error(std::size_t byte, const std::string& /*token*/, const Exception& e) {
@@ -932,55 +957,74 @@ class PositionedDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
     return false;
   }
 
-  // Nesting deeper than any scene needs is refused as it is read (each level costs memory
-  // and stack in the DOM and the line map).
-  bool start_object(std::size_t elements) {
-    return deeper() && json_sax_dom_parser::start_object(elements);
-  }
-  bool start_array(std::size_t elements) {
-    return deeper() && json_sax_dom_parser::start_array(elements);
-  }
-  bool end_object() {
-    --depth_;
-    return json_sax_dom_parser::end_object();
-  }
-  bool end_array() {
-    --depth_;
-    return json_sax_dom_parser::end_array();
-  }
-
   static constexpr int kMaxDepth = 64;
   std::size_t error_byte = 0;  // 1-based offset of the last character read
   std::string error;
+  bool repeated_key = false;
 
  private:
-  bool deeper() {
-    if (++depth_ <= kMaxDepth) return true;
-    error = fmt::format("nested more than {} levels deep", kMaxDepth);
-    return false;
+  // Places a value: the root, the next element of the open array, or the member just keyed.
+  template <class Value>
+  json* place(Value&& v) {
+    if (open_.empty()) {
+      root_ = json(std::forward<Value>(v));
+      return &root_;
+    }
+    if (json& parent = *open_.back(); parent.is_array()) {
+      auto& array = parent.get_ref<json::array_t&>();
+      array.emplace_back(std::forward<Value>(v));
+      return &array.back();
+    }
+    *member_ = json(std::forward<Value>(v));
+    return member_;
   }
-  int depth_ = 0;
+  template <class Value>
+  bool add(Value&& v) {
+    place(std::forward<Value>(v));
+    return true;
+  }
+  bool open(json::value_t type) {
+    if (open_.size() >= kMaxDepth) {
+      error = fmt::format("nested more than {} levels deep", kMaxDepth);
+      return false;
+    }
+    open_.push_back(place(type));
+    return true;
+  }
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+
+  json& root_;
+  std::vector<json*> open_;  // the arrays and objects being read, innermost last
+  json* member_ = nullptr;   // the value of the key just read
 };
 
-json parse_document(const fs::path& file, const std::string& text) {
+// The document, and whether a key repeats in one of its objects.
+json parse_document(const fs::path& file, const std::string& text, bool& repeated_key) {
   json document;
-  PositionedDomParser parser(document);
-  if (json::sax_parse(text, &parser, json::input_format_t::json, /*strict=*/true,
-                      /*ignore_comments=*/true))
+  DomBuilder builder(document);
+  if (json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true,
+                      /*ignore_comments=*/true)) {
+    repeated_key = builder.repeated_key;
     return document;
-  const std::size_t end = std::min(parser.error_byte > 0 ? parser.error_byte - 1 : 0, text.size());
+  }
+  const std::size_t end =
+      std::min(builder.error_byte > 0 ? builder.error_byte - 1 : 0, text.size());
   const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
-  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, parser.error));
+  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, builder.error));
 }
 
 }  // namespace
 
 Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report) {
-  const std::string text = read_text(file);
-  json document = parse_document(file, text);
-  const JsonLineMap lines(text);
-  if (!lines.duplicate_keys().empty()) {
+  std::string text = read_text(file);
+  bool repeated_key = false;
+  json document = parse_document(file, text, repeated_key);
+  const JsonLineMap lines(std::move(text));
+  if (repeated_key && !lines.duplicate_keys().empty()) {
     const auto& d = lines.duplicate_keys().front();
     throw InputError(fmt::format("{}:{}: {}: duplicate key (each key may appear only once)",
                                  file.string(), d.line, d.path));
