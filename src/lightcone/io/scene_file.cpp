@@ -24,13 +24,14 @@
 #include "lightcone/io/input_file.hpp"
 #include "lightcone/io/json_locator.hpp"
 #include "lightcone/io/mesh_file.hpp"
+#include "lightcone/io/scene_document.hpp"
 #include "lightcone/io/scene_overrides.hpp"
 #include "lightcone/physics/lorentz.hpp"
 
 namespace lightcone {
 namespace {
 
-using nlohmann::json;
+using json = SceneJson;
 namespace fs = std::filesystem;
 
 constexpr int kMaxImageSide = 16384;
@@ -1016,7 +1017,11 @@ class DomBuilder {
       error = fmt::format("nested more than {} levels deep", kMaxDepth);
       return false;
     }
-    open_.push_back(place(type));
+    json* value = place(type);
+    // Most arrays of a scene are vectors and colours: room for 3 at once, not for 1, 2 and 4 in
+    // turn (the arena keeps what a vector outgrows).
+    if (type == json::value_t::array) value->get_ref<json::array_t&>().reserve(3);
+    open_.push_back(value);
     return true;
   }
   bool close() {
@@ -1049,6 +1054,7 @@ json parse_document(const fs::path& file, const std::string& text, bool& repeate
 Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report) {
   std::string text = read_text(file);
+  const DocumentArena arena;  // for the document, which is gone when the scene is returned
   bool repeated_key = false;
   json document = parse_document(file, text, repeated_key);
   const JsonLineMap lines(std::move(text));
