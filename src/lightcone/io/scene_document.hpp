@@ -20,7 +20,7 @@ namespace lightcone {
 // Every value made under it must be destroyed before it ends.
 class DocumentArena {
  public:
-  DocumentArena() : outer_(current_) { current_ = &memory_; }
+  DocumentArena() : memory_(kFirstBlock, &blocks()), outer_(current_) { current_ = &memory_; }
   ~DocumentArena() { current_ = outer_; }
   DocumentArena(const DocumentArena&) = delete;
   DocumentArena& operator=(const DocumentArena&) = delete;
@@ -30,6 +30,10 @@ class DocumentArena {
   static std::pmr::memory_resource* current() { return current_; }
 
  private:
+  static constexpr std::size_t kFirstBlock = std::size_t{64} << 10;  // each next one is larger
+  // Where the arenas' blocks come from.
+  static std::pmr::memory_resource& blocks();
+
   std::pmr::monotonic_buffer_resource memory_;
   std::pmr::memory_resource* outer_;
   static inline thread_local std::pmr::memory_resource* current_ = nullptr;
