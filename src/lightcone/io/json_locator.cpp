@@ -206,8 +206,10 @@ class JsonScanner {
   int line_ = 1;
 };
 
-JsonLineMap::JsonLineMap(std::string_view text) : text_(text) {
-  JsonScanner(text_, nullptr, nullptr, &duplicates_).run();
+const std::vector<JsonLineMap::DuplicateKey>& JsonLineMap::duplicate_keys() const {
+  if (!duplicates_found_) JsonScanner(text_, nullptr, nullptr, &duplicates_).run();
+  duplicates_found_ = true;
+  return duplicates_;
 }
 
 void JsonLineMap::build() const {

@@ -1,16 +1,16 @@
-// Line numbers for the values of a JSON text. nlohmann::json keeps no source positions, so after
-// a successful parse the text is scanned once more for repeated keys; the lines themselves are
-// wanted only for messages, so they are found on the first question: for every object member,
-// the line where its key and its value start is remembered under its readable path:
-// `camera.velocity`, `objects[2].shape.sphere.radius`; the root is "". Array elements are kept
-// as runs of elements per line of their array, so that memory follows the keys and lines, not
-// the elements.
+// Line numbers for the values of a JSON text. nlohmann::json keeps no source positions, so the
+// text is scanned once more, and only when asked: for repeated keys, or for lines (which only
+// messages want). For every object member, the line where its key and its value start is
+// remembered under its readable path: `camera.velocity`, `objects[2].shape.sphere.radius`; the
+// root is "". Array elements are kept as runs of elements per line of their array, so that memory
+// follows the keys and lines, not the elements.
 #pragma once
 
 #include <cstddef>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace lightcone {
@@ -28,7 +28,7 @@ class JsonLineMap {
   };
 
   // `text` must be a JSON document that nlohmann::json accepted (comments allowed); it is kept.
-  explicit JsonLineMap(std::string_view text);
+  explicit JsonLineMap(std::string text) : text_(std::move(text)) {}
 
   // 1-based line where the value at `path` starts. A path that is not in the text (a missing
   // key) gets the line of its nearest ancestor that is.
@@ -37,7 +37,8 @@ class JsonLineMap {
   int key_line(const std::string& path) const;
   // Keys repeated within one object (every occurrence after the first), in text order.
   // nlohmann::json silently keeps the last one, which hides typos, so callers reject them.
-  const std::vector<DuplicateKey>& duplicate_keys() const { return duplicates_; }
+  // Scanned for on the first call (not thread-safe).
+  const std::vector<DuplicateKey>& duplicate_keys() const;
 
   // What the map holds: one path per object member (and the root), one run per line of an array
   // that spans lines.
@@ -71,7 +72,8 @@ class JsonLineMap {
   mutable std::unordered_map<std::string, Lines> lines_;
   // Lines of the elements of every array that spans lines, by the array's path.
   mutable std::unordered_map<std::string, std::vector<ElementRun>> element_runs_;
-  std::vector<DuplicateKey> duplicates_;
+  mutable bool duplicates_found_ = false;
+  mutable std::vector<DuplicateKey> duplicates_;
 };
 
 }  // namespace lightcone

@@ -8,44 +8,61 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
+#include <iterator>
 #include <map>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <span>
 #include <sstream>
+#include <string_view>
+#include <unordered_map>
 
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/input_file.hpp"
 #include "lightcone/io/json_locator.hpp"
 #include "lightcone/io/mesh_file.hpp"
+#include "lightcone/io/scene_document.hpp"
 #include "lightcone/io/scene_overrides.hpp"
 #include "lightcone/physics/lorentz.hpp"
 
 namespace lightcone {
 namespace {
 
-using nlohmann::json;
+using json = SceneJson;
 namespace fs = std::filesystem;
 
 constexpr int kMaxImageSide = 16384;
 constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
 constexpr int kMaxSamples = 65536;
 
-// A value in the document with its readable path; `value` is null when the key is absent, so
-// optional keys keep the scene model's defaults (which are the format's defaults).
+// A value in the document and where it is: its parent and its key or index. The readable path
+// is spelled out only for a message, so that reading a valid file builds no path strings. `value`
+// is null when the key is absent, so optional keys keep the scene model's defaults (which are the
+// format's defaults). A node refers to its parent and its key: both must outlive it.
 struct Node {
   const json* value;
-  std::string path;
+  const Node* parent = nullptr;  // null for the root
+  std::string_view key = {};     // of a member
+  std::size_t index = 0;         // of an element
+  bool element = false;
+
+  std::string path() const {
+    if (!parent) return "";
+    const std::string up = parent->path();
+    return element ? json_element_path(up, index) : json_member_path(up, key);
+  }
 };
 
-Node member(const Node& object, const char* key) {
+Node member(const Node& object, std::string_view key) {
   const auto it = object.value->find(key);
-  return {it == object.value->end() ? nullptr : &*it, json_member_path(object.path, key)};
+  return {it == object.value->end() ? nullptr : &*it, &object, key};
 }
 
 Node element(const Node& array, std::size_t index) {
-  return {&(*array.value)[index], json_element_path(array.path, index)};
+  return {&(*array.value)[index], &array, {}, index, true};
 }
 
 std::string describe(const json& v) {
@@ -58,9 +75,19 @@ std::string describe(const json& v) {
   return fmt::format("{} {}", v.type_name(), text);
 }
 
-std::string join(const std::vector<std::string>& words) {
+// Key names, from a braced list or a vector, without copying them.
+struct Names : std::span<const std::string_view> {
+  using span::span;
+  Names(std::initializer_list<std::string_view> names) : span(names.begin(), names.size()) {}
+};
+
+std::string join(Names words, Names more = {}) {
   std::string out;
-  for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+  for (const Names list : {words, more})
+    for (const std::string_view w : list) {
+      if (!out.empty()) out += ", ";
+      out += w;
+    }
   return out;
 }
 
@@ -73,7 +100,7 @@ class SceneReader {
       : file_(file), lines_(lines), overridden_(std::move(overridden)), report_(report) {}
 
   Scene read(const json& document) {
-    const Node root{&document, ""};
+    const Node root{&document};
     object(root, {"$schema", "speed_of_light", "camera", "objects", "lights", "sky", "render"});
     if (Node schema = member(root, "$schema"); schema.value) string(schema);
     // Every speed, time and acceleration in the file is in the scene's units; the engine's are
@@ -131,7 +158,8 @@ class SceneReader {
     throw InputError(fmt::format("{}:{}: {}: {}", file_.string(), line, shown, what));
   }
   [[noreturn]] void fail(const Node& n, const std::string& what) const {
-    fail_at(n.path, lines_.value_line(n.path), what);
+    const std::string path = n.path();
+    fail_at(path, lines_.value_line(path), what);
   }
 
   // --- Typed values -----------------------------------------------------------------------
@@ -141,34 +169,33 @@ class SceneReader {
     return *n.value;
   }
 
-  // Checks that `n` is an object whose keys are all in `allowed`; `context` (" for a point
-  // light") qualifies the message about an unknown key.
-  void object(const Node& n, const std::vector<std::string>& allowed,
-              const std::string& context = "") const {
+  // Checks that `n` is an object whose keys are all in `allowed` or `more`; `context` (" for a
+  // point light") qualifies the message about an unknown key.
+  void object(const Node& n, Names allowed, Names more = {}, std::string_view context = "") const {
     const json& v = need(n);
     if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
-    for (const auto& item : v.items()) {
-      if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
-      const std::string path = json_member_path(n.path, item.key());
+    for (const auto& [key, value] : v.get_ref<const json::object_t&>()) {
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end() ||
+          std::find(more.begin(), more.end(), key) != more.end())
+        continue;
+      const std::string path = json_member_path(n.path(), key);
       fail_at(path, lines_.key_line(path),
-              fmt::format("unknown key \"{}\"{} (expected one of: {})",
-                          json_member_path("", item.key()), context, join(allowed)));
+              fmt::format("unknown key \"{}\"{} (expected one of: {})", json_member_path("", key),
+                          context, join(allowed, more)));
     }
   }
 
   // An object with exactly one of `choices` (plus any of `others`); returns the chosen key.
-  std::string one_of(const Node& n, const std::vector<std::string>& choices,
-                     const std::vector<std::string>& others = {}) const {
-    std::vector<std::string> allowed = choices;
-    allowed.insert(allowed.end(), others.begin(), others.end());
-    object(n, allowed);
-    std::vector<std::string> present;
-    for (const auto& c : choices)
-      if (n.value->contains(c)) present.push_back(c);
-    if (present.size() != 1)
+  std::string_view one_of(const Node& n, Names choices, Names others = {}) const {
+    object(n, choices, others);
+    const auto has = [&](std::string_view c) { return n.value->contains(c); };
+    if (std::count_if(choices.begin(), choices.end(), has) != 1) {
+      std::vector<std::string_view> present;
+      std::copy_if(choices.begin(), choices.end(), std::back_inserter(present), has);
       fail(n, fmt::format("must have exactly one of: {} (found {})", join(choices),
                           present.empty() ? "none" : join(present)));
-    return present.front();
+    }
+    return *std::find_if(choices.begin(), choices.end(), has);
   }
 
   double number(const Node& n) const {
@@ -210,18 +237,18 @@ class SceneReader {
     return v.get<std::string>();
   }
 
-  std::vector<double> numbers(const Node& n, std::size_t count) const {
+  // Checks that `n` is an array of `count` finite numbers.
+  void numbers(const Node& n, std::size_t count) const {
     const json& v = need(n);
     if (!v.is_array() || v.size() != count)
       fail(n, fmt::format("must be an array of {} numbers, got {}", count, describe(v)));
-    std::vector<double> out;
-    for (std::size_t i = 0; i < count; ++i) out.push_back(number(element(n, i)));
-    return out;
+    for (std::size_t i = 0; i < count; ++i) number(element(n, i));
   }
 
   Vec3 vec3(const Node& n) const {
-    const auto v = numbers(n, 3);
-    return {v[0], v[1], v[2]};
+    numbers(n, 3);
+    const json& v = *n.value;
+    return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
   }
 
   Vec3 positive_vec3(const Node& n) const {
@@ -461,18 +488,31 @@ class SceneReader {
     return motion;
   }
 
-  void read_objects(const Node& n, Scene& scene) {
+  // The array `n` of objects or lights (`noun`s), each read by `read`; no two may have the
+  // same name.
+  template <class T, class Read>
+  void read_named(const Node& n, std::string_view noun, std::vector<T>& out, Read read) {
     if (!n.value->is_array())
-      fail(n, fmt::format("must be an array of objects, got {}", describe(*n.value)));
-    std::map<std::string, std::string> names;  // name -> path of the object that has it
-    for (std::size_t i = 0; i < n.value->size(); ++i) {
-      const Node o = element(n, i);
-      scene.objects.push_back(read_object(o, i));
-      const auto [it, added] = names.emplace(scene.objects.back().name, o.path);
+      fail(n, fmt::format("must be an array of {}s, got {}", noun, describe(*n.value)));
+    const std::size_t count = n.value->size();
+    out.reserve(count);
+    // Name (in the document, which outlives this) -> index of the first element that has it.
+    std::unordered_map<std::string_view, std::size_t> names;
+    names.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Node e = element(n, i);
+      out.push_back(read(e, i));
+      const auto [it, added] =
+          names.emplace(member(e, "name").value->get_ref<const std::string&>(), i);
       if (!added)
-        fail(member(o, "name"),
-             fmt::format("duplicate object name \"{}\" (also used by {})", it->first, it->second));
+        fail(member(e, "name"), fmt::format("duplicate {} name \"{}\" (also used by {})", noun,
+                                            it->first, json_element_path(n.path(), it->second)));
     }
+  }
+
+  void read_objects(const Node& n, Scene& scene) {
+    read_named(n, "object", scene.objects,
+               [&](const Node& o, std::size_t i) { return read_object(o, i); });
   }
 
   Object read_object(const Node& n, std::size_t index) {
@@ -504,14 +544,14 @@ class SceneReader {
       if (!rate.value) fail(sp, "needs \"rate\" (degrees per unit of the body's proper time)");
       // Degrees per unit of the scene's time, in radians per unit of the engine's (c t).
       o.spin = Spin{direction(axis), number(rate) * std::numbers::pi / 180 / c_};
-      spins_.push_back({index, rate.path});
+      spins_.push_back({index, rate.path()});
     }
     return o;
   }
 
   Shape shape(const Node& n, std::size_t index) {
-    const std::string kind = one_of(n, {"sphere", "box", "plane", "mesh"});
-    const Node body = member(n, kind.c_str());
+    const std::string_view kind = one_of(n, {"sphere", "box", "plane", "mesh"});
+    const Node body = member(n, kind);
     if (kind == "sphere") {
       object(body, {"radius"});
       return Sphere{positive(member(body, "radius"))};
@@ -528,12 +568,12 @@ class SceneReader {
     }
     object(body, {"file"});
     const Node file = member(body, "file");
-    assets_.push_back({Asset::kMesh, index, file_path(file), file.path});
+    assets_.push_back({Asset::kMesh, index, file_path(file), file.path()});
     return MeshShape{};
   }
 
   Material material(const Node& n, std::size_t index) {
-    const std::string kind =
+    const std::string_view kind =
         one_of(n, {"color", "checker", "texture", "blackbody", "spectrum", "blink", "clock"},
                {"unlit", "glossy"});
     Material m;
@@ -549,7 +589,7 @@ class SceneReader {
     }
     // A lit surface reflects a fraction of the light: its colours are albedos, in [0, 1].
     auto surface_color = [&](const Node& c) { return m.unlit ? color(c) : albedo(c); };
-    const Node body = member(n, kind.c_str());
+    const Node body = member(n, kind);
     if (kind == "color") {
       m.pattern = SolidColor{surface_color(body)};
     } else if (kind == "checker") {
@@ -565,8 +605,7 @@ class SceneReader {
     } else if (kind == "blink" || kind == "clock") {
       // Patterns on the body's own clock: a period of its proper time, two colours.
       const bool blink = kind == "blink";
-      object(body, blink ? std::vector<std::string>{"period", "duty", "colors"}
-                         : std::vector<std::string>{"period", "colors"});
+      object(body, blink ? Names{"period", "duty", "colors"} : Names{"period", "colors"});
       const Node period = member(body, "period");
       const double p = positive(period) * c_;
       if (!std::isfinite(p)) fail(period, "must be finite");
@@ -599,7 +638,7 @@ class SceneReader {
     } else if (kind == "spectrum") {
       m.pattern = emission_spectrum(body);
     } else {
-      assets_.push_back({Asset::kTexture, index, file_path(body), body.path});
+      assets_.push_back({Asset::kTexture, index, file_path(body), body.path()});
       m.pattern = Texture{};
     }
     return m;
@@ -615,18 +654,8 @@ class SceneReader {
 
   // --- Lights -----------------------------------------------------------------------------
 
-  void read_lights(const Node& n, Scene& scene) const {
-    if (!n.value->is_array())
-      fail(n, fmt::format("must be an array of lights, got {}", describe(*n.value)));
-    std::map<std::string, std::string> names;  // name -> path of the light that has it
-    for (std::size_t i = 0; i < n.value->size(); ++i) {
-      const Node l = element(n, i);
-      scene.lights.push_back(read_light(l));
-      const auto [it, added] = names.emplace(scene.lights.back().name, l.path);
-      if (!added)
-        fail(member(l, "name"),
-             fmt::format("duplicate light name \"{}\" (also used by {})", it->first, it->second));
-    }
+  void read_lights(const Node& n, Scene& scene) {
+    read_named(n, "light", scene.lights, [&](const Node& l, std::size_t) { return read_light(l); });
   }
 
   Light read_light(const Node& n) const {
@@ -634,8 +663,8 @@ class SceneReader {
     if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
     const Node type = member(n, "type");
     const std::string kind = string(type);
-    std::vector<std::string> allowed = {"name",     "type",   "position", "time",
-                                        "velocity", "motion", "color",    "blackbody"};
+    std::vector<std::string_view> allowed = {"name",     "type",   "position", "time",
+                                             "velocity", "motion", "color",    "blackbody"};
     if (kind == "point") {
       allowed.insert(allowed.end(), {"intensity"});
     } else if (kind == "spot") {
@@ -649,7 +678,7 @@ class SceneReader {
                              "directional, sphere)",
                              kind));
     }
-    object(n, allowed, fmt::format(" for a {} light", kind));
+    object(n, allowed, {}, fmt::format(" for a {} light", kind));
 
     Light l;
     const Node name = member(n, "name");
@@ -737,13 +766,13 @@ class SceneReader {
   }
 
   Sky sky(const Node& n) {
-    const std::string kind = one_of(n, {"color", "image", "grid"}, {"velocity", "rotation"});
+    const std::string_view kind = one_of(n, {"color", "image", "grid"}, {"velocity", "rotation"});
     Sky s;
-    const Node body = member(n, kind.c_str());
+    const Node body = member(n, kind);
     if (kind == "color") {
       s.pattern = SolidColor{color(body)};
     } else if (kind == "image") {
-      assets_.push_back({Asset::kSkyImage, 0, file_path(body), body.path});
+      assets_.push_back({Asset::kSkyImage, 0, file_path(body), body.path()});
       s.pattern = SkyImage{};
     } else {
       object(body, {"spacing", "line_width", "color", "background"});
@@ -810,7 +839,7 @@ class SceneReader {
   T choice(const Node& n, const std::vector<std::pair<std::string, T>>& names,
            const char* noun = "model") const {
     const std::string given = string(n);
-    std::vector<std::string> known;
+    std::vector<std::string_view> known;
     for (const auto& [name, value] : names) {
       if (name == given) return value;
       known.push_back(name);
@@ -914,12 +943,37 @@ std::string read_text(const fs::path& file) {
   return text;
 }
 
-// nlohmann's DOM builder with the position of the first error recorded. Parsing through this
-// hook, rather than catching json::parse_error, also gives a position to errors that nlohmann
-// throws without one (a number too large for a double, 1e400, is an out_of_range error).
-class PositionedDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
+// Builds nlohmann's DOM from the events of its parser, as its own json_sax_dom_parser does, and
+// records the position of the first error: parsing through this hook, rather than catching
+// json::parse_error, also gives a position to errors that nlohmann throws without one (a number
+// too large for a double, 1e400, is an out_of_range error). It also notes whether a key repeats
+// within an object, which the DOM hides (it keeps the last one), so that the slower scan that
+// names the repeats runs only then.
+class DomBuilder {
  public:
-  using json_sax_dom_parser::json_sax_dom_parser;
+  explicit DomBuilder(json& root) : root_(root) {}
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool b) { return add(b); }
+  bool number_integer(json::number_integer_t i) { return add(i); }
+  bool number_unsigned(json::number_unsigned_t u) { return add(u); }
+  bool number_float(json::number_float_t d, const std::string& /*text*/) { return add(d); }
+  bool string(std::string& s) { return add(std::move(s)); }
+  bool binary(json::binary_t& b) { return add(std::move(b)); }
+
+  // Nesting deeper than any scene needs is refused as it is read (each level costs memory
+  // and stack in the DOM and the line map).
+  bool start_object(std::size_t /*elements*/) { return open(json::value_t::object); }
+  bool start_array(std::size_t /*elements*/) { return open(json::value_t::array); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(std::string& k) {
+    const auto [it, added] = open_.back()->get_ref<json::object_t&>().try_emplace(std::move(k));
+    repeated_key |= !added;
+    member_ = &it->second;
+    return true;
+  }
 
   template <class Exception>
   bool parse_error(std::size_t byte, const std::string& /*token*/, const Exception& e) {
@@ -932,55 +986,79 @@ class PositionedDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
     return false;
   }
 
-  // Nesting deeper than any scene needs is refused as it is read (each level costs memory
-  // and stack in the DOM and the line map).
-  bool start_object(std::size_t elements) {
-    return deeper() && json_sax_dom_parser::start_object(elements);
-  }
-  bool start_array(std::size_t elements) {
-    return deeper() && json_sax_dom_parser::start_array(elements);
-  }
-  bool end_object() {
-    --depth_;
-    return json_sax_dom_parser::end_object();
-  }
-  bool end_array() {
-    --depth_;
-    return json_sax_dom_parser::end_array();
-  }
-
   static constexpr int kMaxDepth = 64;
   std::size_t error_byte = 0;  // 1-based offset of the last character read
   std::string error;
+  bool repeated_key = false;
 
  private:
-  bool deeper() {
-    if (++depth_ <= kMaxDepth) return true;
-    error = fmt::format("nested more than {} levels deep", kMaxDepth);
-    return false;
+  // Places a value: the root, the next element of the open array, or the member just keyed.
+  template <class Value>
+  json* place(Value&& v) {
+    if (open_.empty()) {
+      root_ = json(std::forward<Value>(v));
+      return &root_;
+    }
+    if (json& parent = *open_.back(); parent.is_array()) {
+      auto& array = parent.get_ref<json::array_t&>();
+      array.emplace_back(std::forward<Value>(v));
+      return &array.back();
+    }
+    *member_ = json(std::forward<Value>(v));
+    return member_;
   }
-  int depth_ = 0;
+  template <class Value>
+  bool add(Value&& v) {
+    place(std::forward<Value>(v));
+    return true;
+  }
+  bool open(json::value_t type) {
+    if (open_.size() >= kMaxDepth) {
+      error = fmt::format("nested more than {} levels deep", kMaxDepth);
+      return false;
+    }
+    json* value = place(type);
+    // Most arrays of a scene are vectors and colours: room for 3 at once, not for 1, 2 and 4 in
+    // turn (the arena keeps what a vector outgrows).
+    if (type == json::value_t::array) value->get_ref<json::array_t&>().reserve(3);
+    open_.push_back(value);
+    return true;
+  }
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+
+  json& root_;
+  std::vector<json*> open_;  // the arrays and objects being read, innermost last
+  json* member_ = nullptr;   // the value of the key just read
 };
 
-json parse_document(const fs::path& file, const std::string& text) {
+// The document, and whether a key repeats in one of its objects.
+json parse_document(const fs::path& file, const std::string& text, bool& repeated_key) {
   json document;
-  PositionedDomParser parser(document);
-  if (json::sax_parse(text, &parser, json::input_format_t::json, /*strict=*/true,
-                      /*ignore_comments=*/true))
+  DomBuilder builder(document);
+  if (json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true,
+                      /*ignore_comments=*/true)) {
+    repeated_key = builder.repeated_key;
     return document;
-  const std::size_t end = std::min(parser.error_byte > 0 ? parser.error_byte - 1 : 0, text.size());
+  }
+  const std::size_t end =
+      std::min(builder.error_byte > 0 ? builder.error_byte - 1 : 0, text.size());
   const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
-  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, parser.error));
+  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, builder.error));
 }
 
 }  // namespace
 
 Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report) {
-  const std::string text = read_text(file);
-  json document = parse_document(file, text);
-  const JsonLineMap lines(text);
-  if (!lines.duplicate_keys().empty()) {
+  std::string text = read_text(file);
+  const DocumentArena arena;  // for the document, which is gone when the scene is returned
+  bool repeated_key = false;
+  json document = parse_document(file, text, repeated_key);
+  const JsonLineMap lines(std::move(text));
+  if (repeated_key && !lines.duplicate_keys().empty()) {
     const auto& d = lines.duplicate_keys().front();
     throw InputError(fmt::format("{}:{}: {}: duplicate key (each key may appear only once)",
                                  file.string(), d.line, d.path));

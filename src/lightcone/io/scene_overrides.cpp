@@ -10,7 +10,7 @@
 
 namespace lightcone {
 
-std::string apply_scene_override(nlohmann::json& document, const std::string& override_text) {
+std::string apply_scene_override(SceneJson& document, const std::string& override_text) {
   const std::size_t equals = override_text.find('=');
   if (equals == std::string::npos)
     throw InputError(fmt::format("--set {}: expected key.path=value", override_text));
@@ -31,14 +31,14 @@ std::string apply_scene_override(nlohmann::json& document, const std::string& ov
   if (std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
     fail("empty component in the key path");
 
-  nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  SceneJson value = SceneJson::parse(text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded()) value = text;
 
-  nlohmann::json* node = &document;
+  SceneJson* node = &document;
   std::string path;
   auto where = [&] { return path.empty() ? std::string("the scene") : path; };
   for (const std::string& part : parts) {
-    if (node->is_null()) *node = nlohmann::json::object();
+    if (node->is_null()) *node = SceneJson::object();
     if (node->is_object()) {
       path = json_member_path(path, part);
       node = &(*node)[part];

@@ -1,8 +1,9 @@
 // --set overrides ("key.path=value") applied to a parsed scene document before validation.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include "lightcone/io/scene_document.hpp"
 
 namespace lightcone {
 
@@ -12,6 +13,6 @@ namespace lightcone {
 // one past the end appends. Missing objects on the way are created. Returns the readable path
 // of the replaced value (as json_member_path/json_element_path build it), so that errors in it
 // can be blamed on the override. Throws InputError "--set PATH: what is wrong".
-std::string apply_scene_override(nlohmann::json& document, const std::string& override_text);
+std::string apply_scene_override(SceneJson& document, const std::string& override_text);
 
 }  // namespace lightcone
