@@ -159,19 +159,18 @@ struct Tracer::Impl {
   };
   std::unordered_map<const Mesh*, Ball> mesh_balls;
   std::vector<const Ball*> body_mesh_ball;
-  // Every body is one primitive of one user geometry per scene, so that Embree keeps no
-  // geometry object per body; except, for camera rays, a mesh body whose shape coordinates are
-  // an affine map of F's (at rest in F, or any body in the simultaneous picture: its rays carry
-  // no time term), which is a native Embree instance of its mesh.
-  // A light's labelled shadow bounds, while its scene is built: body b's box at time step j
-  // (boxes[b steps + j], at label label_min + j label_step) holds its events for that label,
-  // lowered at their early end by the chord gaps of the steps on either side, so that the boxes
-  // Embree interpolates between steps hold them at every label between. Computed once: Embree's
+  // A light's labelled shadow bounds, while its scene is built: body b's box at time step j of
+  // `steps` (boxes[b steps + j], label_step_bounds) holds its events for that step's label and,
+  // interpolated with the next step's, for every label between. Computed once: Embree's
   // multi-segment builder asks for each box many times.
   struct LabelSteps {
     std::vector<RTCBounds> boxes;
     unsigned steps = 0;
   };
+  // Every body is one primitive of one user geometry per scene, so that Embree keeps no
+  // geometry object per body; except, for camera rays, a mesh body whose shape coordinates are
+  // an affine map of F's (at rest in F, or any body in the simultaneous picture: its rays carry
+  // no time term), which is a native Embree instance of its mesh.
   struct BodiesRef {
     const Impl* impl;
     bool shadow;                           // which bounds
