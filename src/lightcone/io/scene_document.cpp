@@ -45,7 +45,7 @@ class BlockResource final : public std::pmr::memory_resource {
       return;
     }
 #endif
-    ::operator delete(p, bytes, std::align_val_t(alignment));
+    ::operator delete(p, std::align_val_t(alignment));
   }
 
   bool do_is_equal(const std::pmr::memory_resource& other) const noexcept override {
