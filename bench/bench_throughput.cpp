@@ -41,8 +41,10 @@
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/tracer.hpp"
+#include "meshes.hpp"
 
 using namespace lightcone;
+using lightcone::bench::icosphere;
 
 namespace {
 
@@ -66,36 +68,6 @@ std::shared_ptr<const Mesh> uv_sphere(int stacks, int slices) {
       if (i > 0) mesh->triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
       if (i + 1 < stacks) mesh->triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
     }
-  return mesh;
-}
-
-// An icosahedron subdivided `levels` times, on the unit sphere: 20 * 4^levels triangles.
-std::shared_ptr<const Mesh> icosphere(int levels) {
-  auto mesh = std::make_shared<Mesh>();
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  for (const Vec3& p : {Vec3{-1, t, 0}, Vec3{1, t, 0}, Vec3{-1, -t, 0}, Vec3{1, -t, 0},
-                        Vec3{0, -1, t}, Vec3{0, 1, t}, Vec3{0, -1, -t}, Vec3{0, 1, -t},
-                        Vec3{t, 0, -1}, Vec3{t, 0, 1}, Vec3{-t, 0, -1}, Vec3{-t, 0, 1}})
-    mesh->positions.push_back(normalize(p));
-  mesh->triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
-    const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-      const auto key = std::minmax(a, b);
-      if (auto it = midpoints.find(key); it != midpoints.end()) return it->second;
-      mesh->positions.push_back(normalize(mesh->positions[a] + mesh->positions[b]));
-      return midpoints[key] = static_cast<std::uint32_t>(mesh->positions.size() - 1);
-    };
-    std::vector<std::array<std::uint32_t, 3>> finer;
-    for (const auto& [a, b, c] : mesh->triangles) {
-      const auto ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-      finer.insert(finer.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
-    }
-    mesh->triangles = std::move(finer);
-  }
   return mesh;
 }
 

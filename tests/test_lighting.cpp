@@ -28,13 +28,7 @@ constexpr double kPi = std::numbers::pi;
 
 using test::make_object;
 
-// A lit (Lambertian) material: the pattern is the albedo.
-Material lit(Rgb albedo) {
-  Material m;
-  m.pattern = SolidColor{albedo};
-  m.unlit = false;
-  return m;
-}
+using test::lit;
 Material lit_checker(Rgb a, Rgb b) {
   Material m;
   m.pattern = Checker{1.0, {a, b}};

@@ -21,12 +21,7 @@ namespace {
 
 using test::make_object;
 
-Material lit(Rgb albedo) {
-  Material m;
-  m.pattern = SolidColor{albedo};
-  m.unlit = false;
-  return m;
-}
+using test::lit;
 
 Light light_of(std::variant<PointLight, SpotLight, DirectionalLight, SphereLight> kind,
                Vec3 position, Vec3 velocity, double intensity) {

@@ -38,6 +38,13 @@ Material solid(Rgb colour) {
   return m;
 }
 
+Material lit(Rgb albedo) {
+  Material m;
+  m.pattern = SolidColor{albedo};
+  m.unlit = false;
+  return m;
+}
+
 double minkowski(const Vec4& a, const Vec4& b) {
   return -a.t * b.t + dot(a.x, b.x);
 }

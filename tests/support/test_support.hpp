@@ -18,6 +18,9 @@ Object make_object(const std::string& name, Shape shape, Vec3 position, Vec3 vel
 // An unlit material of one colour.
 Material solid(Rgb colour);
 
+// A lit (Lambertian) material: the pattern is the albedo.
+Material lit(Rgb albedo);
+
 // The interval a.b with signature (- + + +).
 double minkowski(const Vec4& a, const Vec4& b);
 

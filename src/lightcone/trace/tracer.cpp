@@ -98,6 +98,22 @@ bool first_in(double in, double out, double tnear, double tfar, double& s) {
   return false;
 }
 
+// The ray Embree traces through a mesh's BVH, in single precision, with no hit yet.
+RTCRayHit mesh_ray(const ShapeRay& ray, double tnear, double tfar) {
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(ray.origin.x);
+  rh.ray.org_y = static_cast<float>(ray.origin.y);
+  rh.ray.org_z = static_cast<float>(ray.origin.z);
+  rh.ray.dir_x = static_cast<float>(ray.direction.x);
+  rh.ray.dir_y = static_cast<float>(ray.direction.y);
+  rh.ray.dir_z = static_cast<float>(ray.direction.z);
+  rh.ray.tnear = static_cast<float>(tnear);
+  rh.ray.tfar = static_cast<float>(std::min(tfar, 3.0e38));
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 bool intersect_sphere(const Sphere& sphere, const ShapeRay& ray, double tnear, double tfar,
                       double& s) {
   double in, out;
@@ -406,17 +422,7 @@ struct Tracer::Impl {
                        out) ||
           out < tnear || in >= tfar)
         return hit;
-      RTCRayHit rh{};
-      rh.ray.org_x = static_cast<float>(ray.origin.x);
-      rh.ray.org_y = static_cast<float>(ray.origin.y);
-      rh.ray.org_z = static_cast<float>(ray.origin.z);
-      rh.ray.dir_x = static_cast<float>(ray.direction.x);
-      rh.ray.dir_y = static_cast<float>(ray.direction.y);
-      rh.ray.dir_z = static_cast<float>(ray.direction.z);
-      rh.ray.tnear = static_cast<float>(tnear);
-      rh.ray.tfar = static_cast<float>(std::min(tfar, 3.0e38));
-      rh.ray.mask = ~0u;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit rh = mesh_ray(ray, tnear, tfar);
       rtcIntersect1(mesh, context, &rh);
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
         hit.s = rh.ray.tfar;
@@ -518,17 +524,7 @@ struct Tracer::Impl {
           surface = {false, {0, pa.y >= 0 ? 1.0 : -1.0, 0}, 0};
         }
       } else if (mesh) {
-        RTCRayHit rh{};
-        rh.ray.org_x = static_cast<float>(chord.origin.x);
-        rh.ray.org_y = static_cast<float>(chord.origin.y);
-        rh.ray.org_z = static_cast<float>(chord.origin.z);
-        rh.ray.dir_x = static_cast<float>(chord.direction.x);
-        rh.ray.dir_y = static_cast<float>(chord.direction.y);
-        rh.ray.dir_z = static_cast<float>(chord.direction.z);
-        rh.ray.tnear = 0;
-        rh.ray.tfar = 1;
-        rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        RTCRayHit rh = mesh_ray(chord, 0, 1);
         rtcIntersect1(mesh, context, &rh);
         if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
           met = true;
