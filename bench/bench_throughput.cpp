@@ -1,16 +1,20 @@
 // lightcone's throughput against raw Embree on the same triangles, and its per-ray cost as a
 // swarm of fast bodies gets denser (issue 13), each comparison within one run:
-//   Throughput_raw_embree/case:C/threads:T        rtcIntersect1 per pixel (pixel centres)
+//   Throughput_raw_embree/single/case:C/threads:T  rtcIntersect1 per pixel (pixel centres)
 //                                                 through the scene's triangles at rest, one
 //                                                 instance per body, nothing else: what a user
-//                                                 could write by hand
-//   Throughput_lightcone/static/case:C/threads:T  lightcone's render of the same scene at rest
+//                                                 could write by hand; the issue's baseline
+//   Throughput_raw_embree/packets/case:C/threads:T the same through rtcIntersect8, 4 x 2
+//                                                 pixels a packet (lightcone traces its camera
+//                                                 rays so): what a hand-written tracer could
+//                                                 reach with Embree's packets
+//   Throughput_lightcone/static/case:C/threads:T   lightcone's render of the same scene at rest
 //                                                 (unlit, doppler and searchlight off, 1 sample)
-//   Throughput_lightcone/moving/case:C/threads:T  the same scene in motion
+//   Throughput_lightcone/moving/case:C/threads:T   the same scene in motion
 // The cases, all at 1920 x 1080:
 //   0 grid: a 10 x 10 grid of unit UV spheres (100 x 10,082 triangles, one shared mesh) at
 //     distance 20, fov 70; in motion the spheres move at 0.9c along x. Targets: rays_per_s at
-//     least 0.70 of raw_embree's at the same thread count at rest, 0.60 in motion.
+//     least 0.70 of raw_embree/single's at the same thread count at rest, 0.60 in motion.
 //   1 street: scenes/street.json (boxes and planes; raw Embree traces their 12 and 2 triangles
 //     each); at rest the camera stands still, in motion it flies at 0.8c as in the file.
 //   2 swarm: 1,000 instances of one 1,280-triangle icosphere; in motion they move in random
@@ -242,7 +246,18 @@ void set_rates(benchmark::State& state, double rays_per_iteration) {
       benchmark::Counter(rays_per_iteration, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void Throughput_raw_embree(benchmark::State& state) {
+// The camera ray through pixel (x, y)'s centre, as Embree takes it.
+struct RawRay {
+  float org[3], dir[3];
+};
+
+RawRay raw_ray(const CameraBasis& camera, const Vec3& eye, int x, int y) {
+  const Vec3 u = look_direction(camera, x + 0.5, y + 0.5);
+  return {{float(eye.x), float(eye.y), float(eye.z)}, {float(u.x), float(u.y), float(u.z)}};
+}
+
+// rtcIntersect1 per pixel (packets: false), or rtcIntersect8 per block of 4 x 2 pixels.
+void Throughput_raw_embree(benchmark::State& state, bool packets) {
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(state.range(1)));
   const Scene scene = test_case(static_cast<int>(state.range(0)), false);
@@ -250,25 +265,51 @@ void Throughput_raw_embree(benchmark::State& state) {
   const CameraBasis camera = camera_basis(scene.camera);
   const Vec3 eye = scene.camera.world_line.position;
   std::atomic<long long> hits{0};
+  static_assert(kHeight % 2 == 0 && kWidth % 4 == 0);
   for (auto _ : state) {
-    tbb::parallel_for(0, kHeight, [&](int y) {
+    tbb::parallel_for(0, kHeight / 2, [&](int row_pair) {
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       long long row_hits = 0;
-      for (int x = 0; x < kWidth; ++x) {
-        const Vec3 u = look_direction(camera, x + 0.5, y + 0.5);
-        RTCRayHit rh{};
-        rh.ray.org_x = float(eye.x);
-        rh.ray.org_y = float(eye.y);
-        rh.ray.org_z = float(eye.z);
-        rh.ray.dir_x = float(u.x);
-        rh.ray.dir_y = float(u.y);
-        rh.ray.dir_z = float(u.z);
-        rh.ray.tfar = INFINITY;
-        rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(raw.top, &context, &rh);
-        row_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (!packets) {
+        for (int y = 2 * row_pair; y < 2 * row_pair + 2; ++y)
+          for (int x = 0; x < kWidth; ++x) {
+            const RawRay r = raw_ray(camera, eye, x, y);
+            RTCRayHit rh{};
+            rh.ray.org_x = r.org[0];
+            rh.ray.org_y = r.org[1];
+            rh.ray.org_z = r.org[2];
+            rh.ray.dir_x = r.dir[0];
+            rh.ray.dir_y = r.dir[1];
+            rh.ray.dir_z = r.dir[2];
+            rh.ray.tfar = INFINITY;
+            rh.ray.mask = ~0u;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(raw.top, &context, &rh);
+            row_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+          }
+        hits += row_hits;
+        return;
+      }
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (int x0 = 0; x0 < kWidth; x0 += 4) {
+        alignas(32) RTCRayHit8 rh{};
+        alignas(32) int valid[8];
+        for (int k = 0; k < 8; ++k) {
+          const RawRay r = raw_ray(camera, eye, x0 + k % 4, 2 * row_pair + k / 4);
+          valid[k] = -1;
+          rh.ray.org_x[k] = r.org[0];
+          rh.ray.org_y[k] = r.org[1];
+          rh.ray.org_z[k] = r.org[2];
+          rh.ray.dir_x[k] = r.dir[0];
+          rh.ray.dir_y[k] = r.dir[1];
+          rh.ray.dir_z[k] = r.dir[2];
+          rh.ray.tfar[k] = INFINITY;
+          rh.ray.mask[k] = ~0u;
+          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, raw.top, &context, &rh);
+        for (int k = 0; k < 8; ++k) row_hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
       }
       hits += row_hits;
     });
@@ -353,7 +394,8 @@ void cases_and_threads(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
-BENCHMARK(Throughput_raw_embree)->Apply(cases_and_threads);
+BENCHMARK_CAPTURE(Throughput_raw_embree, single, false)->Apply(cases_and_threads);
+BENCHMARK_CAPTURE(Throughput_raw_embree, packets, true)->Apply(cases_and_threads);
 BENCHMARK_CAPTURE(Throughput_lightcone, static, false)->Apply(cases_and_threads);
 BENCHMARK_CAPTURE(Throughput_lightcone, moving, true)->Apply(cases_and_threads);
 BENCHMARK(DenseSwarm)

@@ -17,17 +17,27 @@ namespace lightcone {
 namespace {
 
 constexpr int kTileSize = 16;
+// A tile's pixels are traced in blocks of one ray packet (Tracer::kPacketSize), whose rays
+// leave through neighbouring pixels and so mostly meet the same bodies.
+constexpr int kBlockWidth = 4, kBlockHeight = 2;
+static_assert(kBlockWidth * kBlockHeight == Tracer::kPacketSize);
 
 }  // namespace
 
 LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
                          const Tracer& tracer, const Vec3& u, const Lighting* lighting,
                          const std::array<double, 2>& light_sample) {
+  return radiance_of(scene, emission, tracer.trace(u), u, lighting, light_sample);
+}
+
+LinearRgb radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
+                      const std::optional<Hit>& hit, const Vec3& u, const Lighting* lighting,
+                      const std::array<double, 2>& light_sample) {
   const RenderSettings& settings = scene.scene->render;
   // An emitter's colour does not depend on D when neither its colour nor its brightness does.
   const bool emitters_see_d =
       settings.doppler != DopplerModel::kOff || settings.searchlight != SearchlightModel::kOff;
-  if (const auto hit = tracer.trace(u)) {
+  if (hit) {
     const PointEmission surface = emission.surface(hit->body, *hit);
     if (!scene.bodies[hit->body].object->material.unlit) {
       if (!lighting) return {0, 0, 0};
@@ -116,36 +126,57 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         // renders exactly the pixels of the whole image.
         const int x0 = window.x0 + static_cast<int>(tile % tiles_x) * kTileSize;
         const int y0 = window.y0 + static_cast<int>(tile / tiles_x) * kTileSize;
-        for (int j = y0; j < std::min(y0 + kTileSize, window.y1); ++j)
-          for (int i = x0; i < std::min(x0 + kTileSize, window.x1); ++i) {
-            double r = 0, g = 0, b = 0;
+        const int x_end = std::min(x0 + kTileSize, window.x1);
+        const int y_end = std::min(y0 + kTileSize, window.y1);
+        for (int by = y0; by < y_end; by += kBlockHeight)
+          for (int bx = x0; bx < x_end; bx += kBlockWidth) {
+            // The block's pixels in the window, and their sums over the samples.
+            int pixel_i[Tracer::kPacketSize], pixel_j[Tracer::kPacketSize];
+            std::size_t lanes = 0;
+            for (int j = by; j < std::min(by + kBlockHeight, y_end); ++j)
+              for (int i = bx; i < std::min(bx + kBlockWidth, x_end); ++i) {
+                pixel_i[lanes] = i;
+                pixel_j[lanes++] = j;
+              }
+            double sums[Tracer::kPacketSize][3] = {};
+            Vec3 directions[Tracer::kPacketSize];
+            std::array<double, 2> light[Tracer::kPacketSize];
+            std::optional<Hit> hits[Tracer::kPacketSize];
             for (int k = first; k < first + count; ++k) {
-              const PixelSample ps = pixel_sample(i, j, k, n, options.seed, light_samples);
-              const LinearRgb c = radiance_along(
-                  resolved, seen.emission, seen.tracer,
-                  look_direction(resolved.camera, i + ps.x, j + ps.y), &seen.lighting, ps.light);
-              r += c.r;
-              g += c.g;
-              b += c.b;
+              for (std::size_t l = 0; l < lanes; ++l) {
+                const PixelSample ps =
+                    pixel_sample(pixel_i[l], pixel_j[l], k, n, options.seed, light_samples);
+                directions[l] =
+                    look_direction(resolved.camera, pixel_i[l] + ps.x, pixel_j[l] + ps.y);
+                light[l] = ps.light;
+              }
+              seen.tracer.trace(std::span(directions, lanes), std::span(hits, lanes));
+              for (std::size_t l = 0; l < lanes; ++l) {
+                const LinearRgb c = radiance_of(resolved, seen.emission, hits[l], directions[l],
+                                                &seen.lighting, light[l]);
+                sums[l][0] += c.r;
+                sums[l][1] += c.g;
+                sums[l][2] += c.b;
+              }
             }
-            const std::size_t at =
-                static_cast<std::size_t>(j - window.y0) * width + (i - window.x0);
-            if (observations > 1) {
-              sum[3 * at] += r;
-              sum[3 * at + 1] += g;
-              sum[3 * at + 2] += b;
-            } else {
-              image.rgb[3 * at] = static_cast<float>(r / n);
-              image.rgb[3 * at + 1] = static_cast<float>(g / n);
-              image.rgb[3 * at + 2] = static_cast<float>(b / n);
-            }
-            if (with_aovs) {
-              const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
-              for (std::size_t a = 0; a < options.aovs.size(); ++a) {
-                float values[3];
-                aov_values(resolved, seen.tracer, centre, options.aovs[a], values);
-                for (std::size_t c = 0; c < aov_count[a]; ++c)
-                  image.channels[aov_first[a] + c].values[at] = values[c];
+            for (std::size_t l = 0; l < lanes; ++l) {
+              const int i = pixel_i[l], j = pixel_j[l];
+              const std::size_t at =
+                  static_cast<std::size_t>(j - window.y0) * width + (i - window.x0);
+              for (int c = 0; c < 3; ++c) {
+                if (observations > 1)
+                  sum[3 * at + c] += sums[l][c];
+                else
+                  image.rgb[3 * at + c] = static_cast<float>(sums[l][c] / n);
+              }
+              if (with_aovs) {
+                const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
+                for (std::size_t a = 0; a < options.aovs.size(); ++a) {
+                  float values[3];
+                  aov_values(resolved, seen.tracer, centre, options.aovs[a], values);
+                  for (std::size_t c = 0; c < aov_count[a]; ++c)
+                    image.channels[aov_first[a] + c].values[at] = values[c];
+                }
               }
             }
           }

@@ -53,6 +53,11 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
                          const Tracer& tracer, const Vec3& u, const Lighting* lighting = nullptr,
                          const std::array<double, 2>& light_sample = {0.5, 0.5});
 
+// The same for a ray whose nearest hit (if any) is known.
+LinearRgb radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
+                      const std::optional<Hit>& hit, const Vec3& u, const Lighting* lighting,
+                      const std::array<double, 2>& light_sample);
+
 // Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB
 // triple per pixel. `stats->exposure` reports the EV used.
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats = nullptr);

@@ -19,13 +19,15 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// Embree lets the application extend the intersect context; we carry the exact (double) ray,
-// an origin event and a 4-direction in F, so that the body callbacks do not work from Embree's
-// float copy of its spatial part.
+// Embree lets the application extend the intersect context; we carry the exact (double) rays,
+// an origin event shared by all and a 4-direction for each (in F for camera rays, in W for
+// shadow rays), so that the body callbacks do not work from Embree's float copy of their
+// spatial part. A ray's Embree id is its index here: Embree may reorder a packet's rays when it
+// calls back.
 struct TraceContext {
   RTCIntersectContext embree;
   Vec4 origin;
-  Vec4 direction;
+  Vec4 directions[Tracer::kPacketSize];
 };
 
 struct ShapeRay {
@@ -573,36 +575,55 @@ struct Tracer::Impl {
     return hit;
   }
 
+  // Embree calls back with packets of N rays (one for rtcIntersect1), of which those `valid`
+  // are to be intersected.
   static void intersect_callback(const RTCIntersectFunctionNArguments* args) {
-    if (!args->valid[0]) return;
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
-    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const unsigned body = ref->body(args->primID);
-    const ShapeHit hit =
-        ref->impl->intersect(body, ref->shadow, context->origin, context->direction, rh->ray.tnear,
-                             rh->ray.tfar, args->context);
-    if (!(hit.s < rh->ray.tfar)) return;
-    rh->ray.tfar = static_cast<float>(hit.s);
-    // The hit is this code's own record, which Embree passes through: geomID holds the body,
-    // primID the triangle of a mesh body.
-    rh->hit.geomID = body;
-    rh->hit.primID = hit.prim;
-    rh->hit.u = hit.bary_u;
-    rh->hit.v = hit.bary_v;
-    rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    const unsigned body = ref->body(args->primID), n = args->N;
+    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, n);
+    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
+    for (unsigned i = 0; i < n; ++i) {
+      if (!args->valid[i]) continue;
+      float& tfar = RTCRayN_tfar(rays, n, i);
+      const ShapeHit hit = ref->impl->intersect(body, ref->shadow, context->origin,
+                                                context->directions[RTCRayN_id(rays, n, i)],
+                                                RTCRayN_tnear(rays, n, i), tfar, args->context);
+      if (!(hit.s < tfar)) continue;
+      tfar = static_cast<float>(hit.s);
+      // The hit is this code's own record, which Embree passes through: geomID holds the body,
+      // primID the triangle of a mesh body.
+      RTCHitN_geomID(hits, n, i) = body;
+      RTCHitN_primID(hits, n, i) = hit.prim;
+      RTCHitN_u(hits, n, i) = hit.bary_u;
+      RTCHitN_v(hits, n, i) = hit.bary_v;
+      RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
+    }
   }
 
   static void occluded_callback(const RTCOccludedFunctionNArguments* args) {
-    if (!args->valid[0]) return;
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
-    auto* ray = reinterpret_cast<RTCRay*>(args->ray);
     auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const ShapeHit hit =
-        ref->impl->intersect(ref->body(args->primID), ref->shadow, context->origin,
-                             context->direction, ray->tnear, ray->tfar, args->context);
-    if (hit.s < ray->tfar) ray->tfar = -std::numeric_limits<float>::infinity();
+    const unsigned body = ref->body(args->primID), n = args->N;
+    for (unsigned i = 0; i < n; ++i) {
+      if (!args->valid[i]) continue;
+      float& tfar = RTCRayN_tfar(args->ray, n, i);
+      const ShapeHit hit = ref->impl->intersect(
+          body, ref->shadow, context->origin, context->directions[RTCRayN_id(args->ray, n, i)],
+          RTCRayN_tnear(args->ray, n, i), tfar, args->context);
+      if (hit.s < tfar) tfar = -std::numeric_limits<float>::infinity();
+    }
   }
+
+  // What Embree found for a camera ray: the body, and for a mesh body the triangle, its
+  // barycentric coordinates and the ray parameter.
+  struct EmbreeHit {
+    unsigned body;
+    unsigned prim;
+    float bary_u, bary_v, tfar;
+  };
+
+  std::optional<Hit> camera_hit(const Vec3& u, const EmbreeHit& found, TraceContext& context) const;
 };
 
 }  // namespace lightcone
@@ -621,7 +642,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   TraceContext context;
   rtcInitIntersectContext(&context.embree);
   context.origin = {};
-  context.direction = {impl_->scene.ray_time, u};
+  context.directions[0] = {impl_->scene.ray_time, u};
   RTCRayHit rh{};
   rh.ray.dir_x = static_cast<float>(u.x);
   rh.ray.dir_y = static_cast<float>(u.y);
@@ -633,33 +654,80 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->top, &context.embree, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-
-  // Embree chose the body (an instance's, or the one our callback recorded); an analytic hit is
-  // recomputed in double precision.
   const unsigned index = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID
                              ? impl_->instance_body[rh.hit.instID[0]]
                              : rh.hit.geomID;
-  const ResolvedBody& body = impl_->scene.bodies[index];
+  return impl_->camera_hit(u, {index, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar}, context);
+}
+
+void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit>> hits) const {
+  for (std::size_t first = 0; first < directions.size(); first += kPacketSize) {
+    const std::size_t count = std::min<std::size_t>(kPacketSize, directions.size() - first);
+    TraceContext context;
+    rtcInitIntersectContext(&context.embree);
+    context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    context.origin = {};
+    alignas(32) RTCRayHit8 rh;
+    alignas(32) int valid[kPacketSize];
+    for (std::size_t i = 0; i < kPacketSize; ++i) {
+      const Vec3& u = directions[first + std::min(i, count - 1)];
+      valid[i] = i < count ? -1 : 0;
+      context.directions[i] = {impl_->scene.ray_time, u};
+      rh.ray.org_x[i] = rh.ray.org_y[i] = rh.ray.org_z[i] = 0;
+      rh.ray.dir_x[i] = static_cast<float>(u.x);
+      rh.ray.dir_y[i] = static_cast<float>(u.y);
+      rh.ray.dir_z[i] = static_cast<float>(u.z);
+      rh.ray.tnear[i] = 0;
+      rh.ray.time[i] = 0;
+      rh.ray.tfar[i] = INFINITY;
+      rh.ray.mask[i] = ~0u;
+      rh.ray.id[i] = static_cast<unsigned>(i);
+      rh.ray.flags[i] = 0;
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, impl_->top, &context.embree, &rh);
+    for (std::size_t i = 0; i < count; ++i) {
+      std::optional<Hit>& hit = hits[first + i];
+      hit.reset();
+      if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+      const unsigned index = rh.hit.instID[0][i] != RTC_INVALID_GEOMETRY_ID
+                                 ? impl_->instance_body[rh.hit.instID[0][i]]
+                                 : rh.hit.geomID[i];
+      hit = impl_->camera_hit(directions[first + i],
+                              {index, rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i]},
+                              context);
+    }
+  }
+}
+
+// Embree chose the body (an instance's, or the one our callback recorded); an analytic hit is
+// recomputed in double precision.
+std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& found,
+                                            TraceContext& context) const {
+  const unsigned index = found.body;
+  const ResolvedBody& body = scene.bodies[index];
   const bool spinning = body.spin >= 0;
+  const Vec4 direction{scene.ray_time, u};
   Hit hit;
   hit.body = static_cast<int>(index);
   const ShapeRay ray{body.shape_origin, body.shape_direction(u)};
   ShapeHit exact;
   if (spinning) {
-    exact = impl_->intersect(index, false, context.origin, context.direction, 0, kInfinity,
-                             &context.embree);
+    exact = intersect(index, false, context.origin, direction, 0, kInfinity, &context.embree);
     if (!std::isfinite(exact.s)) return std::nullopt;
   }
   if (const auto* m = std::get_if<MeshShape>(&body.object->shape)) {
     const Mesh& mesh = *m->mesh;
-    const unsigned prim = spinning ? exact.prim : rh.hit.primID;
+    const unsigned prim = spinning ? exact.prim : found.prim;
     const auto& tri = mesh.triangles[prim];
-    const double bu = spinning ? exact.bary_u : rh.hit.u, bv = spinning ? exact.bary_v : rh.hit.v;
+    const double bu = spinning ? exact.bary_u : found.bary_u,
+                 bv = spinning ? exact.bary_v : found.bary_v;
     const double bw = 1.0 - bu - bv;
     hit.shape_point = spinning ? exact.shape_point
                                : mesh.positions[tri[0]] * bw + mesh.positions[tri[1]] * bu +
                                      mesh.positions[tri[2]] * bv;
-    hit.s = spinning ? exact.s : rh.ray.tfar;
+    hit.s = spinning ? exact.s : found.tfar;
     if (!mesh.uvs.empty())
       for (int k = 0; k < 2; ++k)
         hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
@@ -667,9 +735,8 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
                              mesh.positions[tri[2]] - mesh.positions[tri[0]]);
   } else {
     if (!spinning)
-      exact = impl_->intersect(index, false, context.origin, context.direction, 0, kInfinity,
-                               &context.embree);
-    hit.s = std::isfinite(exact.s) ? exact.s : rh.ray.tfar;
+      exact = intersect(index, false, context.origin, direction, 0, kInfinity, &context.embree);
+    hit.s = std::isfinite(exact.s) ? exact.s : found.tfar;
     hit.shape_point = spinning ? exact.shape_point : ray.origin + ray.direction * hit.s;
     // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
     // boundary at the face) do not flip with rounding.
@@ -690,7 +757,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   Vec3 incoming = ray.direction;
   if (spinning) {
     // The point's own motion: rate axis x r in the rest frame, carried to F.
-    const ResolvedSpin& spin = impl_->scene.spins[body.spin];
+    const ResolvedSpin& spin = scene.spins[body.spin];
     hit.proper_time = exact.proper_time;
     hit.spin_angle = spin.rate * exact.proper_time;
     const Vec3 rest_velocity = cross(spin.axis, exact.rest_point) * spin.rate;
@@ -698,7 +765,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
     incoming = spin.shape_of_rest *
                rotated(spin.axis, -hit.spin_angle, spin.rest_from_shape * ray.direction);
   } else {
-    hit.proper_time = body.proper_time(Vec4{impl_->scene.ray_time * hit.s, u * hit.s});
+    hit.proper_time = body.proper_time(Vec4{scene.ray_time * hit.s, u * hit.s});
     hit.velocity = body.velocity;
   }
   // Facing the ray: surfaces are two-sided.
@@ -720,7 +787,7 @@ bool Tracer::occluded(const ShadowRay& shadow) const {
   TraceContext context;
   rtcInitIntersectContext(&context.embree);
   context.origin = shadow.origin;
-  context.direction = shadow.direction;
+  context.directions[0] = shadow.direction;
   RTCRay ray{};
   ray.org_x = static_cast<float>(shadow.origin.x.x);
   ray.org_y = static_cast<float>(shadow.origin.x.y);

@@ -12,6 +12,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/shadow_query.hpp"
@@ -33,6 +34,11 @@ class Tracer : public ShadowQuery {
 
   // The nearest body along the ray with look direction u (unit, in F), if any.
   std::optional<Hit> trace(const Vec3& u) const;
+  // The same for many rays, kPacketSize at a time through Embree's packet traversal, which is
+  // faster where neighbouring rays take the same paths (one tile's camera rays). hits has the
+  // size of directions.
+  static constexpr std::size_t kPacketSize = 8;
+  void trace(std::span<const Vec3> directions, std::span<std::optional<Hit>> hits) const;
 
   bool occluded(const ShadowRay& ray) const override;
 
