@@ -50,8 +50,14 @@ struct ShapeHit {
 constexpr double kSpinChordAngle = 0.03;
 constexpr int kMaxSpinChords = 4096;
 
-// Time steps of a point, spot or sphere light's labelled shadow bounds (ShadowLight).
-constexpr unsigned kPointLightLabelSteps = 9;
+// A labelled light's shadow bounds (ShadowLight) are kLabelParts motion-blur BVHs, each over an
+// equal part of its labels, with bounds at evenly spaced time steps: 3 a part for a point, spot
+// or sphere light, 2 (which is exact: its bounds move linearly with the label) for a directional
+// one. One BVH over all labels does far worse in dense swarms of fast bodies: bodies moving
+// apart over the whole range loosen its inner nodes, and Embree's builder joins steps into
+// leaves whose linear bounds hold the bodies' curved paths loosely.
+constexpr unsigned kLabelParts = 8;
+constexpr unsigned kPointLightPartSteps = 3;
 
 // The surface a chord crossed, by which side of it a point is: positive on the side the chord
 // came from. A sphere |p|^2 = offset, or a plane normal . p = offset.
@@ -177,10 +183,10 @@ struct Tracer::Impl {
   };
   std::unordered_map<const Mesh*, Ball> mesh_balls;
   std::vector<const Ball*> body_mesh_ball;
-  // A light's labelled shadow bounds, while its scene is built: body b's box at time step j of
-  // `steps` (boxes[b steps + j], label_step_bounds) holds its events for that step's label and,
-  // interpolated with the next step's, for every label between. Computed once: Embree's
-  // multi-segment builder asks for each box many times.
+  // A light's labelled shadow bounds, while its scenes are built: body b's box at time step j of
+  // `steps` over all its labels (boxes[b steps + j], label_step_bounds) holds its events for
+  // that step's label and, interpolated with the next step's, for every label between. Computed
+  // once: Embree's multi-segment builder asks for each box many times.
   struct LabelSteps {
     std::vector<RTCBounds> boxes;
     unsigned steps = 0;
@@ -194,13 +200,15 @@ struct Tracer::Impl {
     bool shadow;                           // which bounds
     const std::vector<unsigned>* indices;  // primitive -> body (null: the same)
     const LabelSteps* labels = nullptr;    // shadow bounds by label, while building
+    unsigned first_step = 0;               // of its part of the labels, among labels->steps
     unsigned body(unsigned primitive) const { return indices ? (*indices)[primitive] : primitive; }
   };
   std::vector<unsigned> user_trace_bodies;  // the bodies camera rays meet through callbacks
   std::vector<unsigned> instance_body;      // geometry ID in `top` -> body, for instances
   BodiesRef trace_bodies{this, false, &user_trace_bodies}, shadow_bodies{this, true, nullptr};
-  std::vector<RTCScene> labelled_shadows;  // per light: its labelled scene, or null
-  std::deque<BodiesRef> labelled_bodies;   // their user data
+  // Per light: the scenes of its parts of the labels in order, or none if it is not labelled.
+  std::vector<std::vector<RTCScene>> labelled_shadows;
+  std::deque<BodiesRef> labelled_bodies;  // their user data
   std::atomic<long long> embree_bytes{0};
 
   Impl(const ResolvedScene& s, ShadowBounds shadow_bounds) : scene(s) {
@@ -240,7 +248,7 @@ struct Tracer::Impl {
     });
     const auto count = static_cast<unsigned>(scene.bodies.size());
     bool swept = false;
-    labelled_shadows.assign(scene.shadow_lights.size(), nullptr);
+    labelled_shadows.resize(scene.shadow_lights.size());
     for (std::size_t l = 0; l < scene.shadow_lights.size(); ++l) {
       const ShadowLight& light = scene.shadow_lights[l];
       if (count == 0 || !scene.scene->render.shadows) continue;
@@ -248,9 +256,9 @@ struct Tracer::Impl {
         swept = true;
         continue;
       }
-      // A directional light's bounds move linearly with its label: two steps hold them exactly.
+      const unsigned part_steps = light.directional() ? 2 : kPointLightPartSteps;
       LabelSteps labels;
-      labels.steps = light.directional() ? 2 : kPointLightLabelSteps;
+      labels.steps = kLabelParts * (part_steps - 1) + 1;
       labels.boxes.resize(std::size_t{count} * labels.steps);
       tbb::parallel_for(0u, count, [&](unsigned b) {
         const LabelledBounds bounds = labelled_bounds(scene, scene.bodies[b], light);
@@ -258,11 +266,14 @@ struct Tracer::Impl {
           labels.boxes[std::size_t{b} * labels.steps + j] =
               float_bounds(padded_step_bounds(bounds, light, labels.steps, j));
       });
-      BodiesRef& ref = labelled_bodies.emplace_back(BodiesRef{this, true, nullptr, &labels});
-      labelled_shadows[l] = rtcNewScene(device);
-      attach_bodies(labelled_shadows[l], ref, count, labels.steps);
-      rtcCommitScene(labelled_shadows[l]);
-      ref.labels = nullptr;
+      for (unsigned part = 0; part < kLabelParts; ++part) {
+        BodiesRef& ref = labelled_bodies.emplace_back(
+            BodiesRef{this, true, nullptr, &labels, part * (part_steps - 1)});
+        RTCScene target = labelled_shadows[l].emplace_back(rtcNewScene(device));
+        attach_bodies(target, ref, count, part_steps);
+        rtcCommitScene(target);
+        ref.labels = nullptr;
+      }
     }
     if (swept) {
       shadows = rtcNewScene(device);
@@ -274,8 +285,8 @@ struct Tracer::Impl {
 
   ~Impl() {
     for (auto& [mesh, s] : mesh_scenes) rtcReleaseScene(s);
-    for (RTCScene s : labelled_shadows)
-      if (s) rtcReleaseScene(s);
+    for (const auto& parts : labelled_shadows)
+      for (RTCScene s : parts) rtcReleaseScene(s);
     if (top) rtcReleaseScene(top);
     if (shadows) rtcReleaseScene(shadows);
     if (device) rtcReleaseDevice(device);
@@ -370,8 +381,8 @@ struct Tracer::Impl {
   static void bounds_callback(const RTCBoundsFunctionArguments* args) {
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
     if (ref->labels) {
-      *args->bounds_o =
-          ref->labels->boxes[std::size_t{args->primID} * ref->labels->steps + args->timeStep];
+      *args->bounds_o = ref->labels->boxes[std::size_t{args->primID} * ref->labels->steps +
+                                           ref->first_step + args->timeStep];
       return;
     }
     const ResolvedBody& body = ref->impl->scene.bodies[ref->body(args->primID)];
@@ -777,11 +788,17 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
 bool Tracer::occluded(const ShadowRay& shadow) const {
   RTCScene target = impl_->shadows;
   float time = 0;
-  if (shadow.light >= 0 && impl_->labelled_shadows[shadow.light]) {
+  if (shadow.light >= 0 && !impl_->labelled_shadows[shadow.light].empty()) {
+    // The part of the light's labels the ray's lies in, and where in it.
     const ShadowLight& light = impl_->scene.shadow_lights[shadow.light];
-    target = impl_->labelled_shadows[shadow.light];
-    time = static_cast<float>(std::clamp(
-        (shadow.label - light.label_min) / (light.label_max - light.label_min), 0.0, 1.0));
+    const auto& parts = impl_->labelled_shadows[shadow.light];
+    const double at =
+        std::clamp((shadow.label - light.label_min) / (light.label_max - light.label_min), 0.0,
+                   1.0) *
+        static_cast<double>(parts.size());
+    const std::size_t part = std::min(parts.size() - 1, static_cast<std::size_t>(at));
+    target = parts[part];
+    time = static_cast<float>(std::min(1.0, at - static_cast<double>(part)));
   }
   if (!target) return false;  // no bodies, or shadows off
   TraceContext context;
