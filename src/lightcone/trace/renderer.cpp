@@ -105,13 +105,17 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
       std::any_of(scene.lights.begin(), scene.lights.end(),
                   [](const Light& l) { return std::holds_alternative<SphereLight>(l.kind); });
 
+  double setup_seconds = 0;
   for (int o = 0; o < observations; ++o) {
     Scene moved;
     if (observations > 1) {
       moved = scene;
       moved.camera.world_line = observation_after(cam, cam.shutter * (o + 0.5) / n);
     }
+    const auto setup_start = std::chrono::steady_clock::now();
     const Observation seen(observations > 1 ? moved : scene);
+    setup_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
     const ResolvedScene& resolved = seen.resolved;
     const int first = observations > 1 ? o : 0, count = observations > 1 ? 1 : n;
     // The output variables come from the first observation's ray through each pixel's centre.
@@ -194,6 +198,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
 
   if (stats) {
     stats->exposure = ev;
+    stats->setup_seconds = setup_seconds;
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->rays = static_cast<std::uint64_t>(width) * height * n;

@@ -41,9 +41,10 @@ struct RenderOptions {
 
 struct RenderStats {
   double seconds = 0;
-  std::uint64_t rays = 0;  // camera rays traced
-  double exposure = 0;     // EV applied
-  bool cancelled = false;  // some tiles were skipped (RenderOptions::cancel)
+  double setup_seconds = 0;  // of those, resolving the scene and building its tables and BVHs
+  std::uint64_t rays = 0;    // camera rays traced
+  double exposure = 0;       // EV applied
+  bool cancelled = false;    // some tiles were skipped (RenderOptions::cancel)
 };
 
 // Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F). Lit
