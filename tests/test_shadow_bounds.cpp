@@ -1,16 +1,21 @@
 // The bounds shadow rays are culled with: a labelled light's boxes (interpolated between label
 // steps) hold every event where its light can meet a body, checked against each body point's own
 // world-line crossing the light's cones or wavefronts; every label Lighting asks with lies in its
-// light's range; and a lit scene of fast bodies renders the same through the labelled bounds as
-// through the swept ones, pixel for pixel.
+// light's range; a lit scene of fast bodies renders the same through the labelled bounds as
+// through the swept ones, pixel for pixel; and shadow rays asked together (the renderer's
+// packets) find what each finds alone.
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <memory>
 #include <random>
+#include <set>
+#include <vector>
 
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/sampler.hpp"
 #include "lightcone/physics/retarded_time.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/tracer.hpp"
@@ -110,7 +115,8 @@ TEST(LabelledShadowBounds, HoldEveryEventWhereALightsRaysMeetABody) {
     for (const ResolvedBody& body : r.bodies) {
       const LabelledBounds bounds = labelled_bounds(r, body, light);
       const AffineMap4 world_to_body = body_frame_map(s.render, body.object->world_line);
-      for (const unsigned steps : {2u, 9u}) {
+      // 17: the tracer's, for a point-type light (8 parts of its labels, 3 steps each).
+      for (const unsigned steps : {2u, 9u, 17u}) {
         for (int sample = 0; sample < 400; ++sample) {
           const double label =
               light.label_min + (light.label_max - light.label_min) * fraction(rng);
@@ -142,7 +148,7 @@ TEST(LabelledShadowBounds, HoldEveryEventWhereALightsRaysMeetABody) {
       }
     }
   }
-  EXPECT_EQ(checked, 4 * 7 * 2 * 400);
+  EXPECT_EQ(checked, 4 * 7 * 3 * 400);
 }
 
 TEST(LabelledShadowBounds, ChordGapBoundsHowFarTheNormLiesBelowItsChord) {
@@ -172,11 +178,13 @@ class CheckedShadows : public ShadowQuery {
  public:
   CheckedShadows(const ResolvedScene& scene, const Tracer& tracer)
       : scene_(scene), tracer_(tracer) {}
-  bool occluded(const ShadowRay& ray) const override {
-    ++asked_;
-    const ShadowLight& light = scene_.shadow_lights.at(ray.light);
-    if (ray.label < light.label_min || ray.label > light.label_max) ++outside_;
-    return tracer_.occluded(ray);
+  void occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const override {
+    for (const ShadowRay& ray : rays) {
+      ++asked_;
+      const ShadowLight& light = scene_.shadow_lights.at(ray.light);
+      if (ray.label < light.label_min || ray.label > light.label_max) ++outside_;
+    }
+    tracer_.occluded(rays, blocked);
   }
   long long asked() const { return asked_; }
   long long outside() const { return outside_; }
@@ -212,6 +220,84 @@ TEST(LabelledShadowBounds, RenderTheSameShadowsAsTheSweptBounds) {
   EXPECT_GT(shadowed, 60);
   EXPECT_GT(checked.asked(), 4 * lit / 2);
   EXPECT_EQ(checked.outside(), 0);
+}
+
+// Forwards to a tracer one ray at a time, and keeps the rays.
+class RecordedShadows : public ShadowQuery {
+ public:
+  explicit RecordedShadows(const Tracer& tracer) : tracer_(tracer) {}
+  void occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const override {
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+      rays_.push_back(rays[r]);
+      blocked[r] = tracer_.occluded(rays[r]);
+    }
+  }
+  const std::vector<ShadowRay>& rays() const { return rays_; }
+
+ private:
+  const Tracer& tracer_;
+  mutable std::vector<ShadowRay> rays_;
+};
+
+TEST(ShadowPackets, RaysAskedTogetherFindWhatEachFindsAlone) {
+  const Scene s = fast_lit_scene();
+  const ResolvedScene r = resolve_scene(s);
+  const EmissionTable emission(r);
+  for (const ShadowBounds bounds : {ShadowBounds::kLabelled, ShadowBounds::kSwept}) {
+    const Tracer tracer(r, bounds);
+    // The shadow rays of a picture, in the order its pixels ask them.
+    const RecordedShadows recorded(tracer);
+    const Lighting lighting(r, &recorded);
+    for (int j = 0; j < s.camera.height; ++j)
+      for (int i = 0; i < s.camera.width; ++i)
+        radiance_along(r, emission, tracer, look_direction(r.camera, i + 0.5, j + 0.5), &lighting,
+                       {0.3, 0.7});
+    const std::vector<ShadowRay>& rays = recorded.rays();
+    std::vector<char> alone(rays.size());
+    std::set<int> lights;
+    int blocked_alone = 0;
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      alone[k] = tracer.occluded(rays[k]);
+      blocked_alone += alone[k];
+      lights.insert(rays[k].light);
+    }
+    EXPECT_EQ(lights.size(), s.lights.size());
+    EXPECT_GT(blocked_alone, 100);
+    EXPECT_LT(blocked_alone, static_cast<int>(rays.size()) - 100);
+    // All at once (many packets, rays of every light mixed), and in runs of awkward lengths.
+    std::unique_ptr<bool[]> together(new bool[rays.size()]);
+    tracer.occluded(rays, std::span(together.get(), rays.size()));
+    std::unique_ptr<bool[]> runs(new bool[rays.size()]);
+    for (std::size_t first = 0, length = 1; first < rays.size();
+         first += length, length = length % 19 + 1) {
+      const std::size_t count = std::min(length, rays.size() - first);
+      tracer.occluded(std::span(rays).subspan(first, count), std::span(runs.get() + first, count));
+    }
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      ASSERT_EQ(together[k], static_cast<bool>(alone[k])) << "ray " << k;
+      ASSERT_EQ(runs[k], static_cast<bool>(alone[k])) << "ray " << k;
+    }
+  }
+}
+
+TEST(ShadowPackets, RenderedPixelsAreTheirRaysShadedAlone) {
+  Scene s = fast_lit_scene();
+  s.camera.samples = 1;
+  const Image image = render_image(s, {});
+  const ResolvedScene r = resolve_scene(s);
+  const Tracer tracer(r);
+  const EmissionTable emission(r);
+  const Lighting lighting(r, &tracer);
+  for (int j = 0; j < s.camera.height; ++j)
+    for (int i = 0; i < s.camera.width; ++i) {
+      const PixelSample ps = pixel_sample(i, j, 0, 1, 0, true);
+      const LinearRgb c = radiance_along(
+          r, emission, tracer, look_direction(r.camera, i + ps.x, j + ps.y), &lighting, ps.light);
+      const std::size_t at = 3 * (static_cast<std::size_t>(j) * s.camera.width + i);
+      ASSERT_EQ(image.rgb[at], static_cast<float>(c.r)) << i << ", " << j;
+      ASSERT_EQ(image.rgb[at + 1], static_cast<float>(c.g)) << i << ", " << j;
+      ASSERT_EQ(image.rgb[at + 2], static_cast<float>(c.b)) << i << ", " << j;
+    }
 }
 
 TEST(LabelledShadowBounds, FixedEmissionEventsAreNotLabelled) {

@@ -187,7 +187,9 @@ ShadowRay Lighting::shadow_ray(const ResolvedLight& rl, const Vec4& surface_worl
 
 bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
                         const Vec3& surface_velocity, const Vec3& normal,
-                        const std::array<double, 2>& light_sample, Incoming& out) const {
+                        const std::array<double, 2>& light_sample, Incoming& out,
+                        std::optional<ShadowRay>& shadow) const {
+  shadow.reset();
   const Light& light = *rl.light;
   const RenderSettings& settings = scene_.scene->render;
   const Vec3 light_velocity = settings.relativity ? light.world_line.velocity : Vec3{};
@@ -208,9 +210,7 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
       // Backward along the light's direction, as far as shadow rays are bounded.
       const Vec4 back = (-1.0 / k_world.t) * k_world;
       const double reach = surface_world.t - scene_.shadow_time_min;
-      if (reach > 0 &&
-          shadows_->occluded(shadow_ray(rl, surface_world, back, reach, surface_world)))
-        return false;
+      if (reach > 0) shadow = shadow_ray(rl, surface_world, back, reach, surface_world);
     }
     return true;
   }
@@ -259,10 +259,8 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
                  point_source_irradiance(leg, intensity, cos_i),
                  intensity * point_source_spectral_factor(leg, cos_i));
 
-  if (settings.shadows && shadows_ &&
-      shadows_->occluded(
-          shadow_ray(rl, surface_world, emission - surface_world, 1 - kShadowEpsilon, emission)))
-    return false;
+  if (settings.shadows && shadows_)
+    shadow = shadow_ray(rl, surface_world, emission - surface_world, 1 - kShadowEpsilon, emission);
   return true;
 }
 
@@ -280,94 +278,155 @@ Xyz Lighting::reflected(std::size_t object, int colour, std::size_t l, double d_
                       grid_stencil(camera_grid_, d_camera), d_camera, d_light);
 }
 
-LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
-                             const PointEmission& surface,
-                             const std::array<double, 2>& light_sample) const {
+struct Lighting::Shading {
+  const Material* material = nullptr;
+  const LinearRgb* albedo = nullptr;
+  Vec4 surface_world;                        // the surface event
+  Vec3 surface_velocity, normal, to_camera;  // W; rest-frame unit normal and direction to camera
+  double d_camera = 1;
+  double diffuse = 1;  // the diffuse layer's share
+  // Spectral: the colour reaching the camera before its searchlight factor, and the tables it
+  // is read from (the fixed colour's, or else a spectrum fitted to the albedo per hit).
+  // Otherwise: the surface-frame outgoing radiance, shifted to the camera afterwards.
+  Xyz seen;
+  LinearRgb outgoing{0, 0, 0};
+  GridStencil camera_stencil;
+  const std::vector<Reflection>* reflections = nullptr;
+  RgbAlbedoSpectrum per_hit_albedo;
+};
+
+void Lighting::prepare(const LitPoint& point, Shading& shading) const {
   const RenderSettings& settings = scene_.scene->render;
+  const Hit& hit = *point.hit;
   const Object& object = *scene_.bodies[hit.body].object;
-  const Material& material = object.material;
-  const LinearRgb& albedo = surface.rest_rgb;
+  shading.material = &object.material;
+  shading.albedo = &point.surface.rest_rgb;
+  shading.d_camera = point.d_camera;
 
   // The surface event and velocity, and its rest-frame normal and direction to the camera.
-  const Vec4 surface_trace{scene_.ray_time * hit.s, u * hit.s};
-  const Vec4 surface_world = scene_.trace_to_world(surface_trace);
+  const Vec4 surface_trace{scene_.ray_time * hit.s, point.u * hit.s};
+  shading.surface_world = scene_.trace_to_world(surface_trace);
   // A spinning body's point moves and is turned with its spin; the normal is taken in the
   // body's rest frame (docs/design/spinning-bodies.md).
   const ResolvedBody& body = scene_.bodies[hit.body];
-  const Vec3 surface_velocity =
-      !settings.relativity ? Vec3{}
-      : body.spin >= 0     ? velocity_of(scene_.trace_to_world.linear * Vec4{1, hit.velocity})
-                           : object.world_line.velocity;
-  Vec3 normal = normalize(object.rotation * component_div(hit.shape_normal, object.scale));
+  shading.surface_velocity = !settings.relativity ? Vec3{}
+                             : body.spin >= 0
+                                 ? velocity_of(scene_.trace_to_world.linear * Vec4{1, hit.velocity})
+                                 : object.world_line.velocity;
+  shading.normal = normalize(object.rotation * component_div(hit.shape_normal, object.scale));
   if (body.spin >= 0)
-    normal = Mat3::rotation(scene_.spins[body.spin].axis, hit.spin_angle) * normal;
+    shading.normal = Mat3::rotation(scene_.spins[body.spin].axis, hit.spin_angle) * shading.normal;
   const Vec3 camera_velocity =
       settings.relativity ? scene_.scene->camera.world_line.velocity : Vec3{};
-  const ReceivedLeg view =
-      receive_leg(surface_world, surface_velocity, scene_.observation_event, camera_velocity);
-  const Vec3 to_camera = view.emitted_direction;
+  shading.to_camera = receive_leg(shading.surface_world, shading.surface_velocity,
+                                  scene_.observation_event, camera_velocity)
+                          .emitted_direction;
+  shading.diffuse = object.material.glossy ? 1 - object.material.glossy->specular : 1.0;
+  if (settings.doppler != DopplerModel::kSpectral) return;
+  shading.camera_stencil = grid_stencil(camera_grid_, point.d_camera);
+  if (point.surface.fixed_colour >= 0)
+    shading.reflections =
+        &object_reflections_[hit.body][static_cast<std::size_t>(point.surface.fixed_colour)];
+  else
+    shading.per_hit_albedo = RgbAlbedoSpectrum::from_rgb(point.surface.rest_rgb);
+}
 
-  const bool spectral = settings.doppler == DopplerModel::kSpectral;
-  const double diffuse = material.glossy ? 1 - material.glossy->specular : 1.0;
-  // Spectral: the colour reaching the camera before its searchlight factor. Otherwise: the
-  // surface-frame outgoing radiance, shifted to the camera afterwards.
-  Xyz seen;
-  LinearRgb outgoing{0, 0, 0};
-  const GridStencil camera_stencil =
-      spectral ? grid_stencil(camera_grid_, d_camera) : GridStencil{};
-  const auto* reflections =
-      spectral && surface.fixed_colour >= 0
-          ? &object_reflections_[hit.body][static_cast<std::size_t>(surface.fixed_colour)]
-          : nullptr;
-  const RgbAlbedoSpectrum per_hit_albedo =
-      spectral && !reflections ? RgbAlbedoSpectrum::from_rgb(albedo) : RgbAlbedoSpectrum{};
-  RenderSettings unshifted = settings;  // colour shift of the light alone (its irradiance apart)
-  unshifted.searchlight = SearchlightModel::kOff;
-
-  for (std::size_t l = 0; l < lights_.size(); ++l) {
-    const ResolvedLight& light = lights_[l];
-    Incoming in;
-    if (!incoming(light, surface_world, surface_velocity, normal, light_sample, in)) continue;
-    const double gloss = material.glossy ? glossy_reflectance(*material.glossy, normal,
-                                                              in.direction_to_light, to_camera)
-                                         : 0.0;
-    if (spectral) {
-      // Reflected per unit spectral irradiance: albedo / pi (diffuse) plus the flat glossy lobe.
-      const bool at_rest = d_camera == 1 && in.doppler == 1;
-      Xyz reflected;
-      if (reflections)
-        reflected = reflected_at((*reflections)[l], camera_stencil, d_camera, in.doppler);
-      else
-        reflected = xyz_of_reflection_seen_with_doppler(
-            per_hit_albedo, [&light](double lambda) { return light.spectral(lambda); }, d_camera,
-            in.doppler);
-      const double kd = diffuse / kPi * in.spectral_factor;
-      seen.x += kd * reflected.x;
-      seen.y += kd * reflected.y;
-      seen.z += kd * reflected.z;
-      if (gloss > 0) {
-        const Xyz direct = at_rest ? light.seen.at_rest() : light.seen(d_camera * in.doppler);
-        const double ks = gloss * in.spectral_factor;
-        seen.x += ks * direct.x;
-        seen.y += ks * direct.y;
-        seen.z += ks * direct.z;
-      }
-    } else {
-      // The light's colour as the surface sees it, under the chosen model, then reflected.
-      const LinearRgb colour = received_colour(PointEmission{light.rgb}, in.doppler, unshifted);
-      auto brdf = [&](double albedo_value) { return diffuse * albedo_value / kPi + gloss; };
-      outgoing.r += brdf(albedo.r) * colour.r * in.irradiance;
-      outgoing.g += brdf(albedo.g) * colour.g * in.irradiance;
-      outgoing.b += brdf(albedo.b) * colour.b * in.irradiance;
+void Lighting::add_light(std::size_t l, const Incoming& in, Shading& shading) const {
+  const RenderSettings& settings = scene_.scene->render;
+  const ResolvedLight& light = lights_[l];
+  const Material& material = *shading.material;
+  const double d_camera = shading.d_camera;
+  const double gloss = material.glossy
+                           ? glossy_reflectance(*material.glossy, shading.normal,
+                                                in.direction_to_light, shading.to_camera)
+                           : 0.0;
+  if (settings.doppler == DopplerModel::kSpectral) {
+    // Reflected per unit spectral irradiance: albedo / pi (diffuse) plus the flat glossy lobe.
+    const bool at_rest = d_camera == 1 && in.doppler == 1;
+    Xyz reflected;
+    if (shading.reflections)
+      reflected =
+          reflected_at((*shading.reflections)[l], shading.camera_stencil, d_camera, in.doppler);
+    else
+      reflected = xyz_of_reflection_seen_with_doppler(
+          shading.per_hit_albedo, [&light](double lambda) { return light.spectral(lambda); },
+          d_camera, in.doppler);
+    const double kd = shading.diffuse / kPi * in.spectral_factor;
+    shading.seen.x += kd * reflected.x;
+    shading.seen.y += kd * reflected.y;
+    shading.seen.z += kd * reflected.z;
+    if (gloss > 0) {
+      const Xyz direct = at_rest ? light.seen.at_rest() : light.seen(d_camera * in.doppler);
+      const double ks = gloss * in.spectral_factor;
+      shading.seen.x += ks * direct.x;
+      shading.seen.y += ks * direct.y;
+      shading.seen.z += ks * direct.z;
     }
+    return;
   }
+  // The light's colour as the surface sees it, under the chosen model (its irradiance apart),
+  // then reflected.
+  RenderSettings unshifted = settings;
+  unshifted.searchlight = SearchlightModel::kOff;
+  const LinearRgb colour = received_colour(PointEmission{light.rgb}, in.doppler, unshifted);
+  const LinearRgb& albedo = *shading.albedo;
+  auto brdf = [&](double albedo_value) { return shading.diffuse * albedo_value / kPi + gloss; };
+  shading.outgoing.r += brdf(albedo.r) * colour.r * in.irradiance;
+  shading.outgoing.g += brdf(albedo.g) * colour.g * in.irradiance;
+  shading.outgoing.b += brdf(albedo.b) * colour.b * in.irradiance;
+}
 
-  if (spectral) {
-    const LinearRgb c = linear_srgb_from_xyz(seen);
+LinearRgb Lighting::finish(const Shading& shading, double d_camera) const {
+  const RenderSettings& settings = scene_.scene->render;
+  if (settings.doppler == DopplerModel::kSpectral) {
+    const LinearRgb c = linear_srgb_from_xyz(shading.seen);
     const double k = spectral_searchlight(d_camera, settings.searchlight);
     return {c.r * k, c.g * k, c.b * k};
   }
-  return received_colour(PointEmission{outgoing}, d_camera, settings);
+  return received_colour(PointEmission{shading.outgoing}, d_camera, settings);
+}
+
+LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,
+                             const PointEmission& surface,
+                             const std::array<double, 2>& light_sample) const {
+  const LitPoint point{&hit, u, d_camera, surface, light_sample};
+  LinearRgb out;
+  received(std::span(&point, 1), std::span(&out, 1));
+  return out;
+}
+
+void Lighting::received(std::span<const LitPoint> points, std::span<LinearRgb> out) const {
+  for (std::size_t first = 0; first < points.size(); first += kBatchSize) {
+    const std::size_t count = std::min(kBatchSize, points.size() - first);
+    Shading shading[kBatchSize];
+    for (std::size_t p = 0; p < count; ++p) prepare(points[first + p], shading[p]);
+    for (std::size_t l = 0; l < lights_.size(); ++l) {
+      // What light l delivers to each point, and the shadow rays that decide whether it does.
+      Incoming in[kBatchSize];
+      bool arrives[kBatchSize];
+      ShadowRay rays[kBatchSize];
+      bool blocked[kBatchSize];
+      std::size_t ray_point[kBatchSize], ray_count = 0;
+      for (std::size_t p = 0; p < count; ++p) {
+        std::optional<ShadowRay> shadow;
+        arrives[p] = incoming(lights_[l], shading[p].surface_world, shading[p].surface_velocity,
+                              shading[p].normal, points[first + p].light_sample, in[p], shadow);
+        if (arrives[p] && shadow) {
+          rays[ray_count] = *shadow;
+          ray_point[ray_count++] = p;
+        }
+      }
+      if (ray_count > 0) {
+        shadows_->occluded(std::span(rays, ray_count), std::span(blocked, ray_count));
+        for (std::size_t r = 0; r < ray_count; ++r)
+          if (blocked[r]) arrives[ray_point[r]] = false;
+      }
+      for (std::size_t p = 0; p < count; ++p)
+        if (arrives[p]) add_light(l, in[p], shading[p]);
+    }
+    for (std::size_t p = 0; p < count; ++p)
+      out[first + p] = finish(shading[p], points[first + p].d_camera);
+  }
 }
 
 }  // namespace lightcone

@@ -5,6 +5,7 @@
 #include <array>
 #include <deque>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "lightcone/color/doppler_table.hpp"
@@ -30,6 +31,18 @@ class Lighting {
   // sphere lights.
   LinearRgb received(const Hit& hit, const Vec3& u, double d_camera, const PointEmission& surface,
                      const std::array<double, 2>& light_sample) const;
+  // The same for many points (out[i] for points[i], of the same size), whose shadow rays to each
+  // light are asked together, kBatchSize points at a time: neighbouring points of a picture
+  // have alike shadow rays, which the tracer follows together.
+  struct LitPoint {
+    const Hit* hit = nullptr;
+    Vec3 u;
+    double d_camera = 1;
+    PointEmission surface;
+    std::array<double, 2> light_sample{0.5, 0.5};
+  };
+  static constexpr std::size_t kBatchSize = 8;
+  void received(std::span<const LitPoint> points, std::span<LinearRgb> out) const;
 
   // What `received` reads, for a renderer that tabulates it (the raster renderer):
   // light l's colour at rest (Y = 1 per unit intensity);
@@ -79,8 +92,16 @@ class Lighting {
   // end.
   ShadowRay shadow_ray(const ResolvedLight& light, const Vec4& surface_world, const Vec4& direction,
                        double t_far, const Vec4& light_end) const;
+  // Whether the light reaches the surface event (facing it, and within a spot's cone), and if so
+  // what it delivers, unless `shadow` (set where shadows are cast) is blocked.
   bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec3& surface_velocity,
-                const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out) const;
+                const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out,
+                std::optional<ShadowRay>& shadow) const;
+  // One lit point's state while its lights are summed.
+  struct Shading;
+  void prepare(const LitPoint& point, Shading& shading) const;
+  void add_light(std::size_t l, const Incoming& in, Shading& shading) const;
+  LinearRgb finish(const Shading& shading, double d_camera) const;
 
   const ResolvedScene& scene_;
   const ShadowQuery* shadows_;

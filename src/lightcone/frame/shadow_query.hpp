@@ -1,6 +1,8 @@
 // What the lighting code asks a renderer that casts shadows: whether a body blocks a light path.
 #pragma once
 
+#include <span>
+
 #include "lightcone/physics/vec.hpp"
 
 namespace lightcone {
@@ -19,8 +21,15 @@ struct ShadowRay {
 class ShadowQuery {
  public:
   virtual ~ShadowQuery() = default;
-  // Whether a body blocks the ray; bodies are met where they are at each event.
-  virtual bool occluded(const ShadowRay& ray) const = 0;
+  // Whether a body blocks each ray (blocked[i] for rays[i], of the same size); bodies are met
+  // where they are at each event. Rays asked together may be traced together, which is faster
+  // where they are alike (from neighbouring points of a picture to one light).
+  virtual void occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const = 0;
+  bool occluded(const ShadowRay& ray) const {
+    bool blocked = false;
+    occluded(std::span(&ray, 1), std::span(&blocked, 1));
+    return blocked;
+  }
 };
 
 }  // namespace lightcone

@@ -33,21 +33,49 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
 LinearRgb radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
                       const std::optional<Hit>& hit, const Vec3& u, const Lighting* lighting,
                       const std::array<double, 2>& light_sample) {
+  LinearRgb out;
+  radiance_of(scene, emission, std::span(&hit, 1), std::span(&u, 1), lighting,
+              std::span(&light_sample, 1), std::span(&out, 1));
+  return out;
+}
+
+void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
+                 std::span<const std::optional<Hit>> hits, std::span<const Vec3> directions,
+                 const Lighting* lighting, std::span<const std::array<double, 2>> light_samples,
+                 std::span<LinearRgb> out) {
   const RenderSettings& settings = scene.scene->render;
   // An emitter's colour does not depend on D when neither its colour nor its brightness does.
   const bool emitters_see_d =
       settings.doppler != DopplerModel::kOff || settings.searchlight != SearchlightModel::kOff;
-  if (hit) {
-    const PointEmission surface = emission.surface(hit->body, *hit);
-    if (!scene.bodies[hit->body].object->material.unlit) {
-      if (!lighting) return {0, 0, 0};
-      return lighting->received(*hit, u, scene.doppler(u, hit->velocity), surface, light_sample);
+  constexpr std::size_t kBatch = Lighting::kBatchSize;
+  for (std::size_t first = 0; first < hits.size(); first += kBatch) {
+    const std::size_t count = std::min(kBatch, hits.size() - first);
+    Lighting::LitPoint lit[kBatch];
+    std::size_t lit_ray[kBatch], lit_count = 0;
+    for (std::size_t r = first; r < first + count; ++r) {
+      const std::optional<Hit>& hit = hits[r];
+      const Vec3& u = directions[r];
+      if (!hit) {
+        const double d = emitters_see_d ? scene.doppler(u, scene.sky_velocity) : 1.0;
+        out[r] = received_colour(emission.sky(scene.sky_direction(u)), d, settings);
+        continue;
+      }
+      const PointEmission surface = emission.surface(hit->body, *hit);
+      if (scene.bodies[hit->body].object->material.unlit) {
+        out[r] = received_colour(surface, emitters_see_d ? scene.doppler(u, hit->velocity) : 1.0,
+                                 settings);
+      } else if (!lighting) {
+        out[r] = {0, 0, 0};
+      } else {
+        lit[lit_count] = {&*hit, u, scene.doppler(u, hit->velocity), surface, light_samples[r]};
+        lit_ray[lit_count++] = r;
+      }
     }
-    return received_colour(surface, emitters_see_d ? scene.doppler(u, hit->velocity) : 1.0,
-                           settings);
+    if (lit_count == 0) continue;
+    LinearRgb shaded[kBatch];
+    lighting->received(std::span(lit, lit_count), std::span(shaded, lit_count));
+    for (std::size_t k = 0; k < lit_count; ++k) out[lit_ray[k]] = shaded[k];
   }
-  const double d = emitters_see_d ? scene.doppler(u, scene.sky_velocity) : 1.0;
-  return received_colour(emission.sky(scene.sky_direction(u)), d, settings);
 }
 
 namespace {
@@ -155,12 +183,14 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 light[l] = ps.light;
               }
               seen.tracer.trace(std::span(directions, lanes), std::span(hits, lanes));
+              LinearRgb colours[Tracer::kPacketSize];
+              radiance_of(resolved, seen.emission, std::span(hits, lanes),
+                          std::span(directions, lanes), &seen.lighting, std::span(light, lanes),
+                          std::span(colours, lanes));
               for (std::size_t l = 0; l < lanes; ++l) {
-                const LinearRgb c = radiance_of(resolved, seen.emission, hits[l], directions[l],
-                                                &seen.lighting, light[l]);
-                sums[l][0] += c.r;
-                sums[l][1] += c.g;
-                sums[l][2] += c.b;
+                sums[l][0] += colours[l].r;
+                sums[l][1] += colours[l].g;
+                sums[l][2] += colours[l].b;
               }
             }
             for (std::size_t l = 0; l < lanes; ++l) {

@@ -58,6 +58,12 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
 LinearRgb radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
                       const std::optional<Hit>& hit, const Vec3& u, const Lighting* lighting,
                       const std::array<double, 2>& light_sample);
+// The same for many rays (out[i] along directions[i], hits[i] its nearest hit, light_samples[i]
+// its sample; all of one size), whose lit points are shaded together (Lighting's batches).
+void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
+                 std::span<const std::optional<Hit>> hits, std::span<const Vec3> directions,
+                 const Lighting* lighting, std::span<const std::array<double, 2>> light_samples,
+                 std::span<LinearRgb> out);
 
 // Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB
 // triple per pixel. `stats->exposure` reports the EV used.

@@ -20,14 +20,15 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Embree lets the application extend the intersect context; we carry the exact (double) rays,
-// an origin event shared by all and a 4-direction for each (in F for camera rays, in W for
-// shadow rays), so that the body callbacks do not work from Embree's float copy of their
-// spatial part. A ray's Embree id is its index here: Embree may reorder a packet's rays when it
-// calls back.
+// an origin event and a 4-direction each (in F for camera rays, in W for shadow rays), so that
+// the body callbacks do not work from Embree's float copy of their spatial part. A ray's Embree
+// id is its index here: Embree may reorder a packet's rays when it calls back.
+struct ExactRay {
+  Vec4 origin, direction;
+};
 struct TraceContext {
   RTCIntersectContext embree;
-  Vec4 origin;
-  Vec4 directions[Tracer::kPacketSize];
+  ExactRay rays[Tracer::kPacketSize];
 };
 
 struct ShapeRay {
@@ -597,8 +598,8 @@ struct Tracer::Impl {
     for (unsigned i = 0; i < n; ++i) {
       if (!args->valid[i]) continue;
       float& tfar = RTCRayN_tfar(rays, n, i);
-      const ShapeHit hit = ref->impl->intersect(body, ref->shadow, context->origin,
-                                                context->directions[RTCRayN_id(rays, n, i)],
+      const ExactRay& ray = context->rays[RTCRayN_id(rays, n, i)];
+      const ShapeHit hit = ref->impl->intersect(body, ref->shadow, ray.origin, ray.direction,
                                                 RTCRayN_tnear(rays, n, i), tfar, args->context);
       if (!(hit.s < tfar)) continue;
       tfar = static_cast<float>(hit.s);
@@ -619,9 +620,10 @@ struct Tracer::Impl {
     for (unsigned i = 0; i < n; ++i) {
       if (!args->valid[i]) continue;
       float& tfar = RTCRayN_tfar(args->ray, n, i);
-      const ShapeHit hit = ref->impl->intersect(
-          body, ref->shadow, context->origin, context->directions[RTCRayN_id(args->ray, n, i)],
-          RTCRayN_tnear(args->ray, n, i), tfar, args->context);
+      const ExactRay& ray = context->rays[RTCRayN_id(args->ray, n, i)];
+      const ShapeHit hit =
+          ref->impl->intersect(body, ref->shadow, ray.origin, ray.direction,
+                               RTCRayN_tnear(args->ray, n, i), tfar, args->context);
       if (hit.s < tfar) tfar = -std::numeric_limits<float>::infinity();
     }
   }
@@ -652,8 +654,7 @@ std::size_t Tracer::acceleration_bytes() const {
 std::optional<Hit> Tracer::trace(const Vec3& u) const {
   TraceContext context;
   rtcInitIntersectContext(&context.embree);
-  context.origin = {};
-  context.directions[0] = {impl_->scene.ray_time, u};
+  context.rays[0] = {{}, {impl_->scene.ray_time, u}};
   RTCRayHit rh{};
   rh.ray.dir_x = static_cast<float>(u.x);
   rh.ray.dir_y = static_cast<float>(u.y);
@@ -677,13 +678,12 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
     TraceContext context;
     rtcInitIntersectContext(&context.embree);
     context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    context.origin = {};
     alignas(32) RTCRayHit8 rh;
     alignas(32) int valid[kPacketSize];
     for (std::size_t i = 0; i < kPacketSize; ++i) {
       const Vec3& u = directions[first + std::min(i, count - 1)];
       valid[i] = i < count ? -1 : 0;
-      context.directions[i] = {impl_->scene.ray_time, u};
+      context.rays[i] = {{}, {impl_->scene.ray_time, u}};
       rh.ray.org_x[i] = rh.ray.org_y[i] = rh.ray.org_z[i] = 0;
       rh.ray.dir_x[i] = static_cast<float>(u.x);
       rh.ray.dir_y[i] = static_cast<float>(u.y);
@@ -725,7 +725,7 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
   const ShapeRay ray{body.shape_origin, body.shape_direction(u)};
   ShapeHit exact;
   if (spinning) {
-    exact = intersect(index, false, context.origin, direction, 0, kInfinity, &context.embree);
+    exact = intersect(index, false, {}, direction, 0, kInfinity, &context.embree);
     if (!std::isfinite(exact.s)) return std::nullopt;
   }
   if (const auto* m = std::get_if<MeshShape>(&body.object->shape)) {
@@ -745,8 +745,7 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
     hit.shape_normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
                              mesh.positions[tri[2]] - mesh.positions[tri[0]]);
   } else {
-    if (!spinning)
-      exact = intersect(index, false, context.origin, direction, 0, kInfinity, &context.embree);
+    if (!spinning) exact = intersect(index, false, {}, direction, 0, kInfinity, &context.embree);
     hit.s = std::isfinite(exact.s) ? exact.s : found.tfar;
     hit.shape_point = spinning ? exact.shape_point : ray.origin + ray.direction * hit.s;
     // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
@@ -785,11 +784,17 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
   return hit;
 }
 
-bool Tracer::occluded(const ShadowRay& shadow) const {
-  RTCScene target = impl_->shadows;
-  float time = 0;
-  if (shadow.light >= 0 && !impl_->labelled_shadows[shadow.light].empty()) {
-    // The part of the light's labels the ray's lies in, and where in it.
+// Shadow rays go to their light's labelled scene for the part of its labels theirs lies in (at
+// the time of their label within it), or else to the swept scene; those bound for one scene are
+// traced together, a packet at a time.
+void Tracer::occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const {
+  struct Query {
+    RTCScene target;
+    float time;
+  };
+  const auto query = [&](const ShadowRay& shadow) {
+    if (shadow.light < 0 || impl_->labelled_shadows[shadow.light].empty())
+      return Query{impl_->shadows, 0};
     const ShadowLight& light = impl_->scene.shadow_lights[shadow.light];
     const auto& parts = impl_->labelled_shadows[shadow.light];
     const double at =
@@ -797,27 +802,73 @@ bool Tracer::occluded(const ShadowRay& shadow) const {
                    1.0) *
         static_cast<double>(parts.size());
     const std::size_t part = std::min(parts.size() - 1, static_cast<std::size_t>(at));
-    target = parts[part];
-    time = static_cast<float>(std::min(1.0, at - static_cast<double>(part)));
+    return Query{parts[part], static_cast<float>(std::min(1.0, at - static_cast<double>(part)))};
+  };
+  // The rays still to trace, in order; each round takes up to a packet of those bound for the
+  // first one's scene.
+  std::size_t waiting[kMaxShadowBatch];
+  Query queries[kMaxShadowBatch];
+  for (std::size_t first = 0; first < rays.size(); first += kMaxShadowBatch) {
+    const std::size_t count = std::min(kMaxShadowBatch, rays.size() - first);
+    std::size_t left = 0;
+    for (std::size_t r = 0; r < count; ++r) {
+      queries[r] = query(rays[first + r]);
+      blocked[first + r] = false;
+      if (queries[r].target) waiting[left++] = r;  // none: no bodies, or shadows off
+    }
+    while (left > 0) {
+      const RTCScene target = queries[waiting[0]].target;
+      TraceContext context;
+      rtcInitIntersectContext(&context.embree);
+      alignas(32) RTCRay8 packet;
+      alignas(32) int valid[kPacketSize] = {};
+      std::size_t lanes = 0, kept = 0, lane_ray[kPacketSize];
+      for (std::size_t w = 0; w < left; ++w) {
+        const std::size_t r = waiting[w];
+        if (queries[r].target != target || lanes == kPacketSize) {
+          waiting[kept++] = r;
+          continue;
+        }
+        const ShadowRay& shadow = rays[first + r];
+        context.rays[lanes] = {shadow.origin, shadow.direction};
+        packet.org_x[lanes] = static_cast<float>(shadow.origin.x.x);
+        packet.org_y[lanes] = static_cast<float>(shadow.origin.x.y);
+        packet.org_z[lanes] = static_cast<float>(shadow.origin.x.z);
+        packet.dir_x[lanes] = static_cast<float>(shadow.direction.x.x);
+        packet.dir_y[lanes] = static_cast<float>(shadow.direction.x.y);
+        packet.dir_z[lanes] = static_cast<float>(shadow.direction.x.z);
+        packet.tnear[lanes] = static_cast<float>(shadow.t_near);
+        packet.tfar[lanes] = static_cast<float>(shadow.t_far);
+        packet.time[lanes] = queries[r].time;
+        packet.mask[lanes] = ~0u;
+        packet.id[lanes] = static_cast<unsigned>(lanes);
+        packet.flags[lanes] = 0;
+        valid[lanes] = -1;
+        lane_ray[lanes++] = r;
+      }
+      left = kept;
+      if (lanes == 1) {
+        // A ray alone goes faster through the single-ray traversal.
+        RTCRay ray{};
+        ray.org_x = packet.org_x[0];
+        ray.org_y = packet.org_y[0];
+        ray.org_z = packet.org_z[0];
+        ray.dir_x = packet.dir_x[0];
+        ray.dir_y = packet.dir_y[0];
+        ray.dir_z = packet.dir_z[0];
+        ray.tnear = packet.tnear[0];
+        ray.tfar = packet.tfar[0];
+        ray.time = packet.time[0];
+        ray.mask = ~0u;
+        rtcOccluded1(target, &context.embree, &ray);
+        blocked[first + lane_ray[0]] = ray.tfar < 0;
+        continue;
+      }
+      context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcOccluded8(valid, target, &context.embree, &packet);
+      for (std::size_t l = 0; l < lanes; ++l) blocked[first + lane_ray[l]] = packet.tfar[l] < 0;
+    }
   }
-  if (!target) return false;  // no bodies, or shadows off
-  TraceContext context;
-  rtcInitIntersectContext(&context.embree);
-  context.origin = shadow.origin;
-  context.directions[0] = shadow.direction;
-  RTCRay ray{};
-  ray.org_x = static_cast<float>(shadow.origin.x.x);
-  ray.org_y = static_cast<float>(shadow.origin.x.y);
-  ray.org_z = static_cast<float>(shadow.origin.x.z);
-  ray.dir_x = static_cast<float>(shadow.direction.x.x);
-  ray.dir_y = static_cast<float>(shadow.direction.x.y);
-  ray.dir_z = static_cast<float>(shadow.direction.x.z);
-  ray.tnear = static_cast<float>(shadow.t_near);
-  ray.tfar = static_cast<float>(shadow.t_far);
-  ray.time = time;
-  ray.mask = ~0u;
-  rtcOccluded1(target, &context.embree, &ray);
-  return ray.tfar < 0;
 }
 
 }  // namespace lightcone

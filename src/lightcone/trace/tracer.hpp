@@ -40,7 +40,10 @@ class Tracer : public ShadowQuery {
   static constexpr std::size_t kPacketSize = 8;
   void trace(std::span<const Vec3> directions, std::span<std::optional<Hit>> hits) const;
 
-  bool occluded(const ShadowRay& ray) const override;
+  using ShadowQuery::occluded;
+  void occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const override;
+  // How many shadow rays occluded() sorts into packets at a time.
+  static constexpr std::size_t kMaxShadowBatch = 64;
 
   // Bytes Embree holds for the acceleration structures (for memory benchmarks).
   std::size_t acceleration_bytes() const;
