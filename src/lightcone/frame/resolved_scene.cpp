@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
 
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/retarded_time.hpp"
@@ -213,6 +215,35 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
   // Each body's centre world-line in W and bounding radius, for its shadow bounds below.
   std::vector<std::pair<TraceWorldLine, double>> world_centres;
   world_centres.reserve(scene.objects.size());
+  // A shape's bounds and the radius of the ball about their centre that holds it scaled, once
+  // for all the bodies of one mesh and scale: a swarm of one mesh would otherwise go through its
+  // vertices once a body.
+  struct ShapeExtent {
+    Bounds3 local;
+    double scaled_radius = 0;
+  };
+  std::map<std::tuple<const Mesh*, double, double, double>, ShapeExtent> mesh_extents;
+  ShapeExtent other_extent;
+  const auto extent_of = [&](const Object& object) -> const ShapeExtent& {
+    const auto compute = [&](ShapeExtent& e) {
+      e.local = shape_bounds(object.shape);
+      e.scaled_radius =
+          scaled_radius(object.shape, object.scale, (e.local.lower + e.local.upper) * 0.5);
+    };
+    const auto* mesh = std::get_if<MeshShape>(&object.shape);
+    if (!mesh) {
+      compute(other_extent);
+      return other_extent;
+    }
+    const auto key =
+        std::make_tuple(mesh->mesh.get(), object.scale.x, object.scale.y, object.scale.z);
+    auto it = mesh_extents.find(key);
+    if (it == mesh_extents.end()) {
+      it = mesh_extents.emplace(key, ShapeExtent{}).first;
+      compute(it->second);
+    }
+    return it->second;
+  };
   for (const Object& object : scene.objects) {
     const AffineMap4 world_to_body = body_frame_map(settings, object.world_line);
     const AffineMap4 trace_to_body = compose(world_to_body, r.trace_to_world);
@@ -252,13 +283,12 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
     body.shadow_time_column = to_shape * time_column(world_to_body.linear);
     body.shadow_spatial = to_shape * world_to_body.linear.spatial();
 
-    const Bounds3 local = shape_bounds(object.shape);
-    const Vec3 centre = (local.lower + local.upper) * 0.5;
+    const ShapeExtent& extent = extent_of(object);
+    const Vec3 centre = (extent.local.lower + extent.local.upper) * 0.5;
     // Slightly enlarged so that rounding in the maps cannot cut off a grazing hit; a spinning
     // body sweeps the ball about its origin.
-    const double radius = body.spin >= 0
-                              ? r.spins[body.spin].radius
-                              : scaled_radius(object.shape, object.scale, centre) * (1 + 1e-9);
+    const double radius =
+        body.spin >= 0 ? r.spins[body.spin].radius : extent.scaled_radius * (1 + 1e-9);
     const Vec3 rest_centre =
         body.spin >= 0 ? Vec3{} : object.rotation * component_mul(object.scale, centre);
     body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
