@@ -1,11 +1,12 @@
 // Nearest-hit queries of camera rays against a resolved scene, on Embree.
 //
 // The top level is an Embree BVH over one user geometry per body, bounded by the body's
-// conservative trace bounds in F. Shadow rays of a labelled light (ShadowLight) traverse a
-// motion-blur BVH whose time is their label, with bounds at evenly spaced labels interpolated
-// linearly between them; the others traverse bounds swept over the shadow window. Its callback
-// carries the ray into the body's shape coordinates, where the body is static, and intersects
-// there: analytically for spheres, boxes and planes (double precision), or through the mesh's own
+// conservative trace bounds in F. Shadow rays of a labelled light (ShadowLight) traverse the
+// motion-blur BVH of the part of its labels theirs lies in, whose time is the label, with bounds
+// at evenly spaced labels interpolated linearly between them; the others traverse bounds swept
+// over the shadow window. Rays asked together go through Embree in packets. The callback carries
+// each ray into the body's shape coordinates, where the body is static, and intersects there:
+// analytically for spheres, boxes and planes (double precision), or through the mesh's own
 // Embree BVH, which is built once per mesh however many bodies use it.
 #pragma once
 
