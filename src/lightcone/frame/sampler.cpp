@@ -24,7 +24,9 @@ double unit_float(std::uint64_t bits) {
 // constant, multiplication by an odd number, xor with a right shift of itself) is invertible
 // modulo 2^bits.
 std::uint32_t scramble_bits(std::uint32_t x, std::uint32_t mask, std::uint32_t seed) {
-  const int bits = std::popcount(mask);
+  // mask is 2^bits - 1; bit_width compiles to one instruction where popcount, without a
+  // target that has it, is a library call.
+  const int bits = std::bit_width(mask);
   const int shift = bits > 1 ? (bits + 1) / 2 : 1;
   for (std::uint32_t round = 0; round < 3; ++round) {
     const std::uint32_t key = static_cast<std::uint32_t>(mix(seed + 0x9e3779b9u * (round + 1)));
