@@ -18,7 +18,8 @@ namespace {
 
 constexpr int kTileSize = 16;
 // A tile's pixels are traced in blocks of one ray packet (Tracer::kPacketSize), whose rays
-// leave through neighbouring pixels and so mostly meet the same bodies.
+// leave through neighbouring pixels and so mostly meet the same bodies; a block's lit points are
+// shaded together, their shadow rays to each light traced as packets too.
 constexpr int kBlockWidth = 4, kBlockHeight = 2;
 static_assert(kBlockWidth * kBlockHeight == Tracer::kPacketSize);
 

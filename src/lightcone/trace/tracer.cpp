@@ -58,6 +58,11 @@ constexpr int kMaxSpinChords = 4096;
 // apart over the whole range loosen its inner nodes, and Embree's builder joins steps into
 // leaves whose linear bounds hold the bodies' curved paths loosely.
 constexpr unsigned kLabelParts = 8;
+// A camera packet's rays through a moving mesh go through the mesh's BVH as a packet where at
+// least kMinMeshPacket of them meet its ball there within kCoherentTriangles triangle sizes of
+// each other (rays farther apart take different paths down the BVH: one by one is faster).
+constexpr unsigned kMinMeshPacket = 4;
+constexpr double kCoherentTriangles = 4;
 constexpr unsigned kPointLightPartSteps = 3;
 
 // The surface a chord crossed, by which side of it a point is: positive on the side the chord
@@ -181,6 +186,7 @@ struct Tracer::Impl {
   struct Ball {
     Vec3 centre;
     double radius = 0;
+    double triangle_size = 0;  // the side of a square of a triangle's mean area
   };
   std::unordered_map<const Mesh*, Ball> mesh_balls;
   std::vector<const Ball*> body_mesh_ball;
@@ -330,6 +336,12 @@ struct Tracer::Impl {
     for (const Vec3& p : mesh.positions)
       ball.radius = std::max(ball.radius, length(p - ball.centre));
     ball.radius = ball.radius * (1 + 1e-6) + 1e-9;
+    double area = 0;
+    for (const auto& t : mesh.triangles)
+      area += 0.5 * length(cross(mesh.positions[t[1]] - mesh.positions[t[0]],
+                                 mesh.positions[t[2]] - mesh.positions[t[0]]));
+    if (!mesh.triangles.empty())
+      ball.triangle_size = std::sqrt(area / static_cast<double>(mesh.triangles.size()));
     mesh_balls.emplace(&mesh, ball);
     return s;
   }
@@ -410,14 +422,31 @@ struct Tracer::Impl {
   }
 
   // `origin` and `direction` are in F for camera rays, in W for shadow rays.
+  static ShapeRay shape_ray(const ResolvedBody& body, bool shadow, const Vec4& origin,
+                            const Vec4& direction) {
+    return shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
+                  : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
+  }
+
+  bool meets_mesh_ball(unsigned index, const ShapeRay& ray, double tnear, double tfar,
+                       double* entry = nullptr) const {
+    const Ball& ball = *body_mesh_ball[index];
+    double in, out;
+    if (!sphere_span(Sphere{ball.radius}, ShapeRay{ray.origin - ball.centre, ray.direction}, in,
+                     out) ||
+        out < tnear || in >= tfar)
+      return false;
+    if (entry) *entry = in;
+    return true;
+  }
+
+  // `origin` and `direction` are in F for camera rays, in W for shadow rays.
   ShapeHit intersect(unsigned index, bool shadow, const Vec4& origin, const Vec4& direction,
                      double tnear, double tfar, RTCIntersectContext* context) const {
     const ResolvedBody& body = scene.bodies[index];
     if (body.spin >= 0)
       return intersect_spinning(index, shadow, origin, direction, tnear, tfar, context);
-    const ShapeRay ray =
-        shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
-               : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
+    const ShapeRay ray = shape_ray(body, shadow, origin, direction);
     ShapeHit hit;
     double s = 0;
     struct Visitor {
@@ -430,12 +459,7 @@ struct Tracer::Impl {
       bool operator()(const MeshShape&) const { return false; }
     };
     if (RTCScene mesh = body_mesh_scene[index]) {
-      const Ball& ball = *body_mesh_ball[index];
-      double in, out;
-      if (!sphere_span(Sphere{ball.radius}, ShapeRay{ray.origin - ball.centre, ray.direction}, in,
-                       out) ||
-          out < tnear || in >= tfar)
-        return hit;
+      if (!meets_mesh_ball(index, ray, tnear, tfar)) return hit;
       RTCRayHit rh = mesh_ray(ray, tnear, tfar);
       rtcIntersect1(mesh, context, &rh);
       if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
@@ -595,6 +619,11 @@ struct Tracer::Impl {
     const unsigned body = ref->body(args->primID), n = args->N;
     RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, n);
     RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
+    if (n == kPacketSize && ref->impl->body_mesh_scene[body] &&
+        ref->impl->scene.bodies[body].spin < 0) {
+      ref->impl->intersect_mesh_packet(body, ref->shadow, *context, args->valid, rays, hits);
+      return;
+    }
     for (unsigned i = 0; i < n; ++i) {
       if (!args->valid[i]) continue;
       float& tfar = RTCRayN_tfar(rays, n, i);
@@ -609,6 +638,86 @@ struct Tracer::Impl {
       RTCHitN_primID(hits, n, i) = hit.prim;
       RTCHitN_u(hits, n, i) = hit.bary_u;
       RTCHitN_v(hits, n, i) = hit.bary_v;
+      RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
+    }
+  }
+
+  // A packet's rays through a mesh body (not spinning) together, a packet through the mesh's own
+  // BVH: their straight rays in its shape coordinates leave from nearby and run alike.
+  void intersect_mesh_packet(unsigned index, bool shadow, const TraceContext& context,
+                             const int* valid, RTCRayN* rays, RTCHitN* hits) const {
+    constexpr unsigned n = kPacketSize;
+    const ResolvedBody& body = scene.bodies[index];
+    alignas(32) RTCRayHit8 packet{};
+    alignas(32) int inside[n] = {};
+    unsigned count = 0;
+    // Where the rays enter the mesh's ball: the box about those points.
+    Vec3 lowest{kInfinity, kInfinity, kInfinity}, highest = lowest * -1.0;
+    for (unsigned i = 0; i < n; ++i) {
+      if (!valid[i]) continue;
+      const ExactRay& exact = context.rays[RTCRayN_id(rays, n, i)];
+      const ShapeRay ray = shape_ray(body, shadow, exact.origin, exact.direction);
+      const double tnear = RTCRayN_tnear(rays, n, i), tfar = RTCRayN_tfar(rays, n, i);
+      double entry = 0;
+      if (!meets_mesh_ball(index, ray, tnear, tfar, &entry)) continue;
+      const Vec3 at = ray.origin + ray.direction * std::max(entry, tnear);
+      for (int k = 0; k < 3; ++k) {
+        lowest[k] = std::min(lowest[k], at[k]);
+        highest[k] = std::max(highest[k], at[k]);
+      }
+      const RTCRayHit one = mesh_ray(ray, tnear, tfar);
+      packet.ray.org_x[i] = one.ray.org_x;
+      packet.ray.org_y[i] = one.ray.org_y;
+      packet.ray.org_z[i] = one.ray.org_z;
+      packet.ray.dir_x[i] = one.ray.dir_x;
+      packet.ray.dir_y[i] = one.ray.dir_y;
+      packet.ray.dir_z[i] = one.ray.dir_z;
+      packet.ray.tnear[i] = one.ray.tnear;
+      packet.ray.tfar[i] = one.ray.tfar;
+      packet.ray.mask[i] = ~0u;
+      packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      inside[i] = -1;
+      ++count;
+    }
+    RTCIntersectContext nested;
+    rtcInitIntersectContext(&nested);
+    const double spread = count > 0 ? length(highest - lowest) : 0;
+    if (count >= kMinMeshPacket &&
+        spread <= kCoherentTriangles * body_mesh_ball[index]->triangle_size) {
+      nested.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcIntersect8(inside, body_mesh_scene[index], &nested, &packet);
+    } else {
+      // Few rays: each alone is faster.
+      for (unsigned i = 0; i < n; ++i) {
+        if (!inside[i]) continue;
+        RTCRayHit one{};
+        one.ray.org_x = packet.ray.org_x[i];
+        one.ray.org_y = packet.ray.org_y[i];
+        one.ray.org_z = packet.ray.org_z[i];
+        one.ray.dir_x = packet.ray.dir_x[i];
+        one.ray.dir_y = packet.ray.dir_y[i];
+        one.ray.dir_z = packet.ray.dir_z[i];
+        one.ray.tnear = packet.ray.tnear[i];
+        one.ray.tfar = packet.ray.tfar[i];
+        one.ray.mask = ~0u;
+        one.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(body_mesh_scene[index], &nested, &one);
+        packet.ray.tfar[i] = one.ray.tfar;
+        packet.hit.geomID[i] = one.hit.geomID;
+        packet.hit.primID[i] = one.hit.primID;
+        packet.hit.u[i] = one.hit.u;
+        packet.hit.v[i] = one.hit.v;
+      }
+    }
+    for (unsigned i = 0; i < n; ++i) {
+      if (!inside[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+      float& tfar = RTCRayN_tfar(rays, n, i);
+      if (!(packet.ray.tfar[i] < tfar)) continue;
+      tfar = packet.ray.tfar[i];
+      RTCHitN_geomID(hits, n, i) = index;
+      RTCHitN_primID(hits, n, i) = packet.hit.primID[i];
+      RTCHitN_u(hits, n, i) = packet.hit.u[i];
+      RTCHitN_v(hits, n, i) = packet.hit.v[i];
       RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
     }
   }
@@ -820,7 +929,7 @@ void Tracer::occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) 
       const RTCScene target = queries[waiting[0]].target;
       TraceContext context;
       rtcInitIntersectContext(&context.embree);
-      alignas(32) RTCRay8 packet;
+      alignas(32) RTCRay8 packet{};
       alignas(32) int valid[kPacketSize] = {};
       std::size_t lanes = 0, kept = 0, lane_ray[kPacketSize];
       for (std::size_t w = 0; w < left; ++w) {
