@@ -165,9 +165,11 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
             int pixel_i[Tracer::kPacketSize], pixel_j[Tracer::kPacketSize];
+            PixelSampler samplers[Tracer::kPacketSize];
             std::size_t lanes = 0;
             for (int j = by; j < std::min(by + kBlockHeight, y_end); ++j)
               for (int i = bx; i < std::min(bx + kBlockWidth, x_end); ++i) {
+                samplers[lanes] = PixelSampler(i, j, n, options.seed, light_samples);
                 pixel_i[lanes] = i;
                 pixel_j[lanes++] = j;
               }
@@ -177,8 +179,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
             std::optional<Hit> hits[Tracer::kPacketSize];
             for (int k = first; k < first + count; ++k) {
               for (std::size_t l = 0; l < lanes; ++l) {
-                const PixelSample ps =
-                    pixel_sample(pixel_i[l], pixel_j[l], k, n, options.seed, light_samples);
+                const PixelSample ps = samplers[l](k);
                 directions[l] =
                     look_direction(resolved.camera, pixel_i[l] + ps.x, pixel_j[l] + ps.y);
                 light[l] = ps.light;
