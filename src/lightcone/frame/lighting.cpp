@@ -87,6 +87,8 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
     : scene_(scene), shadows_(shadows) {
   const Scene& s = *scene.scene;
   const RenderSettings& settings = s.render;
+  unshifted_ = settings;
+  unshifted_.searchlight = SearchlightModel::kOff;
   const Vec4& observation = scene.observation_event;
   for (const Light& light : s.lights) {
     ResolvedLight r;
@@ -366,9 +368,7 @@ void Lighting::add_light(std::size_t l, const Incoming& in, Shading& shading) co
   }
   // The light's colour as the surface sees it, under the chosen model (its irradiance apart),
   // then reflected.
-  RenderSettings unshifted = settings;
-  unshifted.searchlight = SearchlightModel::kOff;
-  const LinearRgb colour = received_colour(PointEmission{light.rgb}, in.doppler, unshifted);
+  const LinearRgb colour = received_colour(PointEmission{light.rgb}, in.doppler, unshifted_);
   const LinearRgb& albedo = *shading.albedo;
   auto brdf = [&](double albedo_value) { return shading.diffuse * albedo_value / kPi + gloss; };
   shading.outgoing.r += brdf(albedo.r) * colour.r * in.irradiance;
@@ -376,7 +376,8 @@ void Lighting::add_light(std::size_t l, const Incoming& in, Shading& shading) co
   shading.outgoing.b += brdf(albedo.b) * colour.b * in.irradiance;
 }
 
-LinearRgb Lighting::finish(const Shading& shading, double d_camera) const {
+LinearRgb Lighting::finish(const Shading& shading) const {
+  const double d_camera = shading.d_camera;
   const RenderSettings& settings = scene_.scene->render;
   if (settings.doppler == DopplerModel::kSpectral) {
     const LinearRgb c = linear_srgb_from_xyz(shading.seen);
@@ -424,8 +425,7 @@ void Lighting::received(std::span<const LitPoint> points, std::span<LinearRgb> o
       for (std::size_t p = 0; p < count; ++p)
         if (arrives[p]) add_light(l, in[p], shading[p]);
     }
-    for (std::size_t p = 0; p < count; ++p)
-      out[first + p] = finish(shading[p], points[first + p].d_camera);
+    for (std::size_t p = 0; p < count; ++p) out[first + p] = finish(shading[p]);
   }
 }
 

@@ -101,10 +101,13 @@ class Lighting {
   struct Shading;
   void prepare(const LitPoint& point, Shading& shading) const;
   void add_light(std::size_t l, const Incoming& in, Shading& shading) const;
-  LinearRgb finish(const Shading& shading, double d_camera) const;
+  LinearRgb finish(const Shading& shading) const;
 
   const ResolvedScene& scene_;
   const ShadowQuery* shadows_;
+  // The scene's settings with the searchlight off: a light's colour shift as a surface sees it,
+  // its irradiance apart.
+  RenderSettings unshifted_;
   std::vector<ResolvedLight> lights_;
   DopplerGrid camera_grid_, light_grid_;
   double light_rapidity_ = 0;

@@ -65,8 +65,9 @@ std::uint32_t shuffled_index(std::uint32_t index, std::uint32_t count, std::uint
 
 namespace {
 
+// The columns of the near-square grid of count (>= 1) cells.
 std::uint32_t grid_columns(std::uint32_t count) {
-  return static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(std::max(count, 1u)))));
+  return static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(count))));
 }
 
 }  // namespace

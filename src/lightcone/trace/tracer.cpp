@@ -112,20 +112,72 @@ bool first_in(double in, double out, double tnear, double tfar, double& s) {
   return false;
 }
 
-// The ray Embree traces through a mesh's BVH, in single precision, with no hit yet.
-RTCRayHit mesh_ray(const ShapeRay& ray, double tnear, double tfar) {
+// A ray as Embree traces it, in single precision, with no hit yet (the parameter range clamped
+// to what a float holds).
+RTCRayHit embree_ray(const Vec3& origin, const Vec3& direction, double tnear, double tfar,
+                     float time = 0) {
   RTCRayHit rh{};
-  rh.ray.org_x = static_cast<float>(ray.origin.x);
-  rh.ray.org_y = static_cast<float>(ray.origin.y);
-  rh.ray.org_z = static_cast<float>(ray.origin.z);
-  rh.ray.dir_x = static_cast<float>(ray.direction.x);
-  rh.ray.dir_y = static_cast<float>(ray.direction.y);
-  rh.ray.dir_z = static_cast<float>(ray.direction.z);
+  rh.ray.org_x = static_cast<float>(origin.x);
+  rh.ray.org_y = static_cast<float>(origin.y);
+  rh.ray.org_z = static_cast<float>(origin.z);
+  rh.ray.dir_x = static_cast<float>(direction.x);
+  rh.ray.dir_y = static_cast<float>(direction.y);
+  rh.ray.dir_z = static_cast<float>(direction.z);
   rh.ray.tnear = static_cast<float>(tnear);
   rh.ray.tfar = static_cast<float>(std::min(tfar, 3.0e38));
+  rh.ray.time = time;
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   return rh;
+}
+
+// The ray through a mesh's BVH.
+RTCRayHit mesh_ray(const ShapeRay& ray, double tnear, double tfar) {
+  return embree_ray(ray.origin, ray.direction, tnear, tfar);
+}
+
+// Lane i of an 8-wide packet set from a single ray (and its empty hit), and a lane's result read
+// back: the two layouts hold the same fields.
+void put_lane(RTCRay8& packet, unsigned i, const RTCRay& ray) {
+  packet.org_x[i] = ray.org_x;
+  packet.org_y[i] = ray.org_y;
+  packet.org_z[i] = ray.org_z;
+  packet.tnear[i] = ray.tnear;
+  packet.dir_x[i] = ray.dir_x;
+  packet.dir_y[i] = ray.dir_y;
+  packet.dir_z[i] = ray.dir_z;
+  packet.time[i] = ray.time;
+  packet.tfar[i] = ray.tfar;
+  packet.mask[i] = ray.mask;
+  packet.id[i] = ray.id;
+  packet.flags[i] = ray.flags;
+}
+
+void put_lane(RTCRayHit8& packet, unsigned i, const RTCRayHit& rh) {
+  put_lane(packet.ray, i, rh.ray);
+  packet.hit.geomID[i] = rh.hit.geomID;
+  packet.hit.instID[0][i] = rh.hit.instID[0];
+}
+
+void take_lane(const RTCRayHit8& packet, unsigned i, RTCRayHit& rh) {
+  rh.ray.tfar = packet.ray.tfar[i];
+  rh.hit.geomID = packet.hit.geomID[i];
+  rh.hit.primID = packet.hit.primID[i];
+  rh.hit.u = packet.hit.u[i];
+  rh.hit.v = packet.hit.v[i];
+  rh.hit.instID[0] = packet.hit.instID[0][i];
+}
+
+// A hit of this code's own into lane i of the hits Embree passes through: geomID holds the
+// body, primID the triangle of a mesh body.
+void record_hit(RTCHitN* hits, unsigned n, unsigned i, unsigned body, unsigned prim, float u,
+                float v) {
+  RTCHitN_geomID(hits, n, i) = body;
+  RTCHitN_primID(hits, n, i) = prim;
+  RTCHitN_u(hits, n, i) = u;
+  RTCHitN_v(hits, n, i) = v;
+  RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
 }
 
 bool intersect_sphere(const Sphere& sphere, const ShapeRay& ray, double tnear, double tfar,
@@ -632,13 +684,7 @@ struct Tracer::Impl {
                                                 RTCRayN_tnear(rays, n, i), tfar, args->context);
       if (!(hit.s < tfar)) continue;
       tfar = static_cast<float>(hit.s);
-      // The hit is this code's own record, which Embree passes through: geomID holds the body,
-      // primID the triangle of a mesh body.
-      RTCHitN_geomID(hits, n, i) = body;
-      RTCHitN_primID(hits, n, i) = hit.prim;
-      RTCHitN_u(hits, n, i) = hit.bary_u;
-      RTCHitN_v(hits, n, i) = hit.bary_v;
-      RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
+      record_hit(hits, n, i, body, hit.prim, hit.bary_u, hit.bary_v);
     }
   }
 
@@ -648,7 +694,7 @@ struct Tracer::Impl {
                              const int* valid, RTCRayN* rays, RTCHitN* hits) const {
     constexpr unsigned n = kPacketSize;
     const ResolvedBody& body = scene.bodies[index];
-    alignas(32) RTCRayHit8 packet{};
+    RTCRayHit ones[n];
     alignas(32) int inside[n] = {};
     unsigned count = 0;
     // Where the rays enter the mesh's ball: the box about those points.
@@ -665,17 +711,7 @@ struct Tracer::Impl {
         lowest[k] = std::min(lowest[k], at[k]);
         highest[k] = std::max(highest[k], at[k]);
       }
-      const RTCRayHit one = mesh_ray(ray, tnear, tfar);
-      packet.ray.org_x[i] = one.ray.org_x;
-      packet.ray.org_y[i] = one.ray.org_y;
-      packet.ray.org_z[i] = one.ray.org_z;
-      packet.ray.dir_x[i] = one.ray.dir_x;
-      packet.ray.dir_y[i] = one.ray.dir_y;
-      packet.ray.dir_z[i] = one.ray.dir_z;
-      packet.ray.tnear[i] = one.ray.tnear;
-      packet.ray.tfar[i] = one.ray.tfar;
-      packet.ray.mask[i] = ~0u;
-      packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      ones[i] = mesh_ray(ray, tnear, tfar);
       inside[i] = -1;
       ++count;
     }
@@ -684,41 +720,24 @@ struct Tracer::Impl {
     const double spread = count > 0 ? length(highest - lowest) : 0;
     if (count >= kMinMeshPacket &&
         spread <= kCoherentTriangles * body_mesh_ball[index]->triangle_size) {
+      alignas(32) RTCRayHit8 packet{};
+      for (unsigned i = 0; i < n; ++i)
+        if (inside[i]) put_lane(packet, i, ones[i]);
       nested.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       rtcIntersect8(inside, body_mesh_scene[index], &nested, &packet);
+      for (unsigned i = 0; i < n; ++i)
+        if (inside[i]) take_lane(packet, i, ones[i]);
     } else {
-      // Few rays: each alone is faster.
-      for (unsigned i = 0; i < n; ++i) {
-        if (!inside[i]) continue;
-        RTCRayHit one{};
-        one.ray.org_x = packet.ray.org_x[i];
-        one.ray.org_y = packet.ray.org_y[i];
-        one.ray.org_z = packet.ray.org_z[i];
-        one.ray.dir_x = packet.ray.dir_x[i];
-        one.ray.dir_y = packet.ray.dir_y[i];
-        one.ray.dir_z = packet.ray.dir_z[i];
-        one.ray.tnear = packet.ray.tnear[i];
-        one.ray.tfar = packet.ray.tfar[i];
-        one.ray.mask = ~0u;
-        one.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(body_mesh_scene[index], &nested, &one);
-        packet.ray.tfar[i] = one.ray.tfar;
-        packet.hit.geomID[i] = one.hit.geomID;
-        packet.hit.primID[i] = one.hit.primID;
-        packet.hit.u[i] = one.hit.u;
-        packet.hit.v[i] = one.hit.v;
-      }
+      // Few rays, or far apart: each alone is faster.
+      for (unsigned i = 0; i < n; ++i)
+        if (inside[i]) rtcIntersect1(body_mesh_scene[index], &nested, &ones[i]);
     }
     for (unsigned i = 0; i < n; ++i) {
-      if (!inside[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+      if (!inside[i] || ones[i].hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
       float& tfar = RTCRayN_tfar(rays, n, i);
-      if (!(packet.ray.tfar[i] < tfar)) continue;
-      tfar = packet.ray.tfar[i];
-      RTCHitN_geomID(hits, n, i) = index;
-      RTCHitN_primID(hits, n, i) = packet.hit.primID[i];
-      RTCHitN_u(hits, n, i) = packet.hit.u[i];
-      RTCHitN_v(hits, n, i) = packet.hit.v[i];
-      RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
+      if (!(ones[i].ray.tfar < tfar)) continue;
+      tfar = ones[i].ray.tfar;
+      record_hit(hits, n, i, index, ones[i].hit.primID, ones[i].hit.u, ones[i].hit.v);
     }
   }
 
@@ -764,15 +783,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   TraceContext context;
   rtcInitIntersectContext(&context.embree);
   context.rays[0] = {{}, {impl_->scene.ray_time, u}};
-  RTCRayHit rh{};
-  rh.ray.dir_x = static_cast<float>(u.x);
-  rh.ray.dir_y = static_cast<float>(u.y);
-  rh.ray.dir_z = static_cast<float>(u.z);
-  rh.ray.tnear = 0;
-  rh.ray.tfar = INFINITY;
-  rh.ray.mask = ~0u;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = embree_ray({}, u, 0, kInfinity);
   rtcIntersect1(impl_->top, &context.embree, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   const unsigned index = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID
@@ -787,24 +798,16 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
     TraceContext context;
     rtcInitIntersectContext(&context.embree);
     context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(32) RTCRayHit8 rh;
+    alignas(32) RTCRayHit8 rh{};
     alignas(32) int valid[kPacketSize];
-    for (std::size_t i = 0; i < kPacketSize; ++i) {
-      const Vec3& u = directions[first + std::min(i, count - 1)];
+    for (unsigned i = 0; i < kPacketSize; ++i) {
+      // Lanes past the last ray repeat it, unused.
+      const Vec3& u = directions[first + std::min<std::size_t>(i, count - 1)];
       valid[i] = i < count ? -1 : 0;
       context.rays[i] = {{}, {impl_->scene.ray_time, u}};
-      rh.ray.org_x[i] = rh.ray.org_y[i] = rh.ray.org_z[i] = 0;
-      rh.ray.dir_x[i] = static_cast<float>(u.x);
-      rh.ray.dir_y[i] = static_cast<float>(u.y);
-      rh.ray.dir_z[i] = static_cast<float>(u.z);
-      rh.ray.tnear[i] = 0;
-      rh.ray.time[i] = 0;
-      rh.ray.tfar[i] = INFINITY;
-      rh.ray.mask[i] = ~0u;
-      rh.ray.id[i] = static_cast<unsigned>(i);
-      rh.ray.flags[i] = 0;
-      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit one = embree_ray({}, u, 0, kInfinity);
+      one.ray.id = i;
+      put_lane(rh, i, one);
     }
     rtcIntersect8(valid, impl_->top, &context.embree, &rh);
     for (std::size_t i = 0; i < count; ++i) {
@@ -929,7 +932,7 @@ void Tracer::occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) 
       const RTCScene target = queries[waiting[0]].target;
       TraceContext context;
       rtcInitIntersectContext(&context.embree);
-      alignas(32) RTCRay8 packet{};
+      RTCRay ones[kPacketSize];
       alignas(32) int valid[kPacketSize] = {};
       std::size_t lanes = 0, kept = 0, lane_ray[kPacketSize];
       for (std::size_t w = 0; w < left; ++w) {
@@ -940,39 +943,22 @@ void Tracer::occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) 
         }
         const ShadowRay& shadow = rays[first + r];
         context.rays[lanes] = {shadow.origin, shadow.direction};
-        packet.org_x[lanes] = static_cast<float>(shadow.origin.x.x);
-        packet.org_y[lanes] = static_cast<float>(shadow.origin.x.y);
-        packet.org_z[lanes] = static_cast<float>(shadow.origin.x.z);
-        packet.dir_x[lanes] = static_cast<float>(shadow.direction.x.x);
-        packet.dir_y[lanes] = static_cast<float>(shadow.direction.x.y);
-        packet.dir_z[lanes] = static_cast<float>(shadow.direction.x.z);
-        packet.tnear[lanes] = static_cast<float>(shadow.t_near);
-        packet.tfar[lanes] = static_cast<float>(shadow.t_far);
-        packet.time[lanes] = queries[r].time;
-        packet.mask[lanes] = ~0u;
-        packet.id[lanes] = static_cast<unsigned>(lanes);
-        packet.flags[lanes] = 0;
+        ones[lanes] = embree_ray(shadow.origin.x, shadow.direction.x, shadow.t_near, shadow.t_far,
+                                 queries[r].time)
+                          .ray;
+        ones[lanes].id = static_cast<unsigned>(lanes);
         valid[lanes] = -1;
         lane_ray[lanes++] = r;
       }
       left = kept;
       if (lanes == 1) {
         // A ray alone goes faster through the single-ray traversal.
-        RTCRay ray{};
-        ray.org_x = packet.org_x[0];
-        ray.org_y = packet.org_y[0];
-        ray.org_z = packet.org_z[0];
-        ray.dir_x = packet.dir_x[0];
-        ray.dir_y = packet.dir_y[0];
-        ray.dir_z = packet.dir_z[0];
-        ray.tnear = packet.tnear[0];
-        ray.tfar = packet.tfar[0];
-        ray.time = packet.time[0];
-        ray.mask = ~0u;
-        rtcOccluded1(target, &context.embree, &ray);
-        blocked[first + lane_ray[0]] = ray.tfar < 0;
+        rtcOccluded1(target, &context.embree, &ones[0]);
+        blocked[first + lane_ray[0]] = ones[0].tfar < 0;
         continue;
       }
+      alignas(32) RTCRay8 packet{};
+      for (unsigned l = 0; l < lanes; ++l) put_lane(packet, l, ones[l]);
       context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       rtcOccluded8(valid, target, &context.embree, &packet);
       for (std::size_t l = 0; l < lanes; ++l) blocked[first + lane_ray[l]] = packet.tfar[l] < 0;
