@@ -25,6 +25,10 @@
 //     hit casts a shadow ray through the swarm. s_per_ray is render_image's time per camera ray
 //     (one thread, 960 x 540, 1 sample), apart from its setup (setup_s).
 //     The figure is the s_per_ray of 10,000 bodies against 100 (target <= 2x).
+//   DenseSwarm_raw_embree/bodies:N  raw Embree's s_per_ray in the same swarm at rest (where the
+//     camera sees each body at rest, covering 30 % too): each body an instance of the mesh,
+//     rtcIntersect8 through blocks of 4 x 2 pixels, one thread, nothing else. How the swarm's
+//     cost grows with N in a hand-written tracer.
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <tbb/global_control.h>
@@ -255,6 +259,36 @@ RawRay raw_ray(const CameraBasis& camera, const Vec3& eye, int x, int y) {
   return {{float(eye.x), float(eye.y), float(eye.z)}, {float(u.x), float(u.y), float(u.z)}};
 }
 
+// rtcIntersect8 through the blocks of 4 x 2 pixels of rows y0 and y0 + 1 (width a multiple of
+// 4): the hits.
+long long raw_packet_rows(const RawEmbree& raw, const CameraBasis& camera, const Vec3& eye,
+                          int width, int y0) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  long long hits = 0;
+  for (int x0 = 0; x0 < width; x0 += 4) {
+    alignas(32) RTCRayHit8 rh{};
+    alignas(32) int valid[8];
+    for (int k = 0; k < 8; ++k) {
+      const RawRay r = raw_ray(camera, eye, x0 + k % 4, y0 + k / 4);
+      valid[k] = -1;
+      rh.ray.org_x[k] = r.org[0];
+      rh.ray.org_y[k] = r.org[1];
+      rh.ray.org_z[k] = r.org[2];
+      rh.ray.dir_x[k] = r.dir[0];
+      rh.ray.dir_y[k] = r.dir[1];
+      rh.ray.dir_z[k] = r.dir[2];
+      rh.ray.tfar[k] = INFINITY;
+      rh.ray.mask[k] = ~0u;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, raw.top, &context, &rh);
+    for (int k = 0; k < 8; ++k) hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  }
+  return hits;
+}
+
 // rtcIntersect1 per pixel (packets: false), or rtcIntersect8 per block of 4 x 2 pixels.
 void Throughput_raw_embree(benchmark::State& state, bool packets) {
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
@@ -267,49 +301,29 @@ void Throughput_raw_embree(benchmark::State& state, bool packets) {
   static_assert(kHeight % 2 == 0 && kWidth % 4 == 0);
   for (auto _ : state) {
     tbb::parallel_for(0, kHeight / 2, [&](int row_pair) {
+      if (packets) {
+        hits += raw_packet_rows(raw, camera, eye, kWidth, 2 * row_pair);
+        return;
+      }
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       long long row_hits = 0;
-      if (!packets) {
-        for (int y = 2 * row_pair; y < 2 * row_pair + 2; ++y)
-          for (int x = 0; x < kWidth; ++x) {
-            const RawRay r = raw_ray(camera, eye, x, y);
-            RTCRayHit rh{};
-            rh.ray.org_x = r.org[0];
-            rh.ray.org_y = r.org[1];
-            rh.ray.org_z = r.org[2];
-            rh.ray.dir_x = r.dir[0];
-            rh.ray.dir_y = r.dir[1];
-            rh.ray.dir_z = r.dir[2];
-            rh.ray.tfar = INFINITY;
-            rh.ray.mask = ~0u;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(raw.top, &context, &rh);
-            row_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-          }
-        hits += row_hits;
-        return;
-      }
-      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      for (int x0 = 0; x0 < kWidth; x0 += 4) {
-        alignas(32) RTCRayHit8 rh{};
-        alignas(32) int valid[8];
-        for (int k = 0; k < 8; ++k) {
-          const RawRay r = raw_ray(camera, eye, x0 + k % 4, 2 * row_pair + k / 4);
-          valid[k] = -1;
-          rh.ray.org_x[k] = r.org[0];
-          rh.ray.org_y[k] = r.org[1];
-          rh.ray.org_z[k] = r.org[2];
-          rh.ray.dir_x[k] = r.dir[0];
-          rh.ray.dir_y[k] = r.dir[1];
-          rh.ray.dir_z[k] = r.dir[2];
-          rh.ray.tfar[k] = INFINITY;
-          rh.ray.mask[k] = ~0u;
-          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      for (int y = 2 * row_pair; y < 2 * row_pair + 2; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+          const RawRay r = raw_ray(camera, eye, x, y);
+          RTCRayHit rh{};
+          rh.ray.org_x = r.org[0];
+          rh.ray.org_y = r.org[1];
+          rh.ray.org_z = r.org[2];
+          rh.ray.dir_x = r.dir[0];
+          rh.ray.dir_y = r.dir[1];
+          rh.ray.dir_z = r.dir[2];
+          rh.ray.tfar = INFINITY;
+          rh.ray.mask = ~0u;
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          rtcIntersect1(raw.top, &context, &rh);
+          row_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         }
-        rtcIntersect8(valid, raw.top, &context, &rh);
-        for (int k = 0; k < 8; ++k) row_hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-      }
       hits += row_hits;
     });
   }
@@ -325,13 +339,13 @@ void Throughput_lightcone(benchmark::State& state, bool moving) {
   set_rates(state, double(kWidth) * kHeight);
 }
 
-// The swarm's radius for which camera rays through pixel centres hit a body in `coverage` of a
-// 240 x 135 image (bisection: the coverage grows with the radius).
-double radius_covering(int count, double coverage) {
+// The radius of swarm(count, radius, max_speed) for which camera rays through pixel centres hit
+// a body in `coverage` of a 240 x 135 image (bisection: the coverage grows with the radius).
+double radius_covering(int count, double coverage, double max_speed) {
   double lo = 0.01 * std::sqrt(100.0 / count), hi = 5 * std::sqrt(100.0 / count);
   for (int i = 0; i < 12; ++i) {
     const double mid = std::sqrt(lo * hi);
-    Scene scene = swarm(count, mid, 0.99);
+    Scene scene = swarm(count, mid, max_speed);
     scene.camera.width = 240;
     scene.camera.height = 135;
     const ResolvedScene resolved = resolve_scene(scene);
@@ -348,7 +362,7 @@ double radius_covering(int count, double coverage) {
 void DenseSwarm(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
   const bool lit = state.range(1) == 1;
-  Scene scene = swarm(count, radius_covering(count, 0.3), 0.99);
+  Scene scene = swarm(count, radius_covering(count, 0.3, 0.99), 0.99);
   scene.camera.width = 960;
   scene.camera.height = 540;
   if (lit) {
@@ -382,6 +396,28 @@ void DenseSwarm(benchmark::State& state) {
   state.counters["s_per_ray"] = ray_seconds / (rays * static_cast<double>(state.iterations()));
 }
 
+// Raw Embree's own cost in a dense swarm: the same swarm at rest (at the places the camera
+// sees its bodies), each body an instance of the icosphere, covering 30 % of the image too;
+// rtcIntersect8 through blocks of 4 x 2 pixels, one thread, no shading.
+void DenseSwarm_raw_embree(benchmark::State& state) {
+  constexpr int kSwarmWidth = 960, kSwarmHeight = 540;
+  const int count = static_cast<int>(state.range(0));
+  Scene scene = swarm(count, radius_covering(count, 0.3, 0), 0);
+  scene.camera.width = kSwarmWidth;
+  scene.camera.height = kSwarmHeight;
+  const RawEmbree raw(scene);
+  const CameraBasis camera = camera_basis(scene.camera);
+  const Vec3 eye = scene.camera.world_line.position;
+  long long hits = 0;
+  for (auto _ : state)
+    for (int y0 = 0; y0 < kSwarmHeight; y0 += 2)
+      hits += raw_packet_rows(raw, camera, eye, kSwarmWidth, y0);
+  const double rays = double(kSwarmWidth) * kSwarmHeight;
+  state.counters["hit_fraction"] = double(hits) / (rays * static_cast<double>(state.iterations()));
+  state.counters["s_per_ray"] = benchmark::Counter(
+      rays, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 void cases_and_threads(benchmark::internal::Benchmark* b) {
   b->ArgNames({"case", "threads"});
   for (int c : {kGrid, kStreet, kSwarm})
@@ -398,5 +434,11 @@ BENCHMARK(DenseSwarm)
     ->ArgsProduct({{100, 1000, 10000}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime();
+BENCHMARK(DenseSwarm_raw_embree)
+    ->ArgNames({"bodies"})
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
