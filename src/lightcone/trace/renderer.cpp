@@ -28,12 +28,7 @@ static_assert(kBlockWidth * kBlockHeight == Tracer::kPacketSize);
 LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emission,
                          const Tracer& tracer, const Vec3& u, const Lighting* lighting,
                          const std::array<double, 2>& light_sample) {
-  return radiance_of(scene, emission, tracer.trace(u), u, lighting, light_sample);
-}
-
-LinearRgb radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
-                      const std::optional<Hit>& hit, const Vec3& u, const Lighting* lighting,
-                      const std::array<double, 2>& light_sample) {
+  const std::optional<Hit> hit = tracer.trace(u);
   LinearRgb out;
   radiance_of(scene, emission, std::span(&hit, 1), std::span(&u, 1), lighting,
               std::span(&light_sample, 1), std::span(&out, 1));

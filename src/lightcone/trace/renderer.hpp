@@ -54,12 +54,9 @@ LinearRgb radiance_along(const ResolvedScene& scene, const EmissionTable& emissi
                          const Tracer& tracer, const Vec3& u, const Lighting* lighting = nullptr,
                          const std::array<double, 2>& light_sample = {0.5, 0.5});
 
-// The same for a ray whose nearest hit (if any) is known.
-LinearRgb radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
-                      const std::optional<Hit>& hit, const Vec3& u, const Lighting* lighting,
-                      const std::array<double, 2>& light_sample);
-// The same for many rays (out[i] along directions[i], hits[i] its nearest hit, light_samples[i]
-// its sample; all of one size), whose lit points are shaded together (Lighting's batches).
+// The same for many rays whose nearest hits are known (out[i] along directions[i], hits[i] its
+// nearest hit, light_samples[i] its sample; all of one size), their lit points shaded together
+// (Lighting's batches).
 void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
                  std::span<const std::optional<Hit>> hits, std::span<const Vec3> directions,
                  const Lighting* lighting, std::span<const std::array<double, 2>> light_samples,

@@ -58,12 +58,12 @@ constexpr int kMaxSpinChords = 4096;
 // apart over the whole range loosen its inner nodes, and Embree's builder joins steps into
 // leaves whose linear bounds hold the bodies' curved paths loosely.
 constexpr unsigned kLabelParts = 8;
+constexpr unsigned kPointLightPartSteps = 3;
 // A camera packet's rays through a moving mesh go through the mesh's BVH as a packet where at
 // least kMinMeshPacket of them meet its ball there within kCoherentTriangles triangle sizes of
 // each other (rays farther apart take different paths down the BVH: one by one is faster).
 constexpr unsigned kMinMeshPacket = 4;
 constexpr double kCoherentTriangles = 4;
-constexpr unsigned kPointLightPartSteps = 3;
 
 // The surface a chord crossed, by which side of it a point is: positive on the side the chord
 // came from. A sphere |p|^2 = offset, or a plane normal . p = offset.
@@ -764,6 +764,11 @@ struct Tracer::Impl {
     float bary_u, bary_v, tfar;
   };
 
+  // The body of a camera ray's Embree hit: an instance's, or the one our callback recorded.
+  unsigned hit_body(unsigned geometry, unsigned instance) const {
+    return instance != RTC_INVALID_GEOMETRY_ID ? instance_body[instance] : geometry;
+  }
+
   std::optional<Hit> camera_hit(const Vec3& u, const EmbreeHit& found, TraceContext& context) const;
 };
 
@@ -786,9 +791,7 @@ std::optional<Hit> Tracer::trace(const Vec3& u) const {
   RTCRayHit rh = embree_ray({}, u, 0, kInfinity);
   rtcIntersect1(impl_->top, &context.embree, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  const unsigned index = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID
-                             ? impl_->instance_body[rh.hit.instID[0]]
-                             : rh.hit.geomID;
+  const unsigned index = impl_->hit_body(rh.hit.geomID, rh.hit.instID[0]);
   return impl_->camera_hit(u, {index, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar}, context);
 }
 
@@ -814,9 +817,7 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
       std::optional<Hit>& hit = hits[first + i];
       hit.reset();
       if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
-      const unsigned index = rh.hit.instID[0][i] != RTC_INVALID_GEOMETRY_ID
-                                 ? impl_->instance_body[rh.hit.instID[0][i]]
-                                 : rh.hit.geomID[i];
+      const unsigned index = impl_->hit_body(rh.hit.geomID[i], rh.hit.instID[0][i]);
       hit = impl_->camera_hit(directions[first + i],
                               {index, rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], rh.ray.tfar[i]},
                               context);
