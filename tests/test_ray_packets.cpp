@@ -1,11 +1,13 @@
 // The tracer's ray packets find what single rays find: for every kind of body (analytic shapes
 // and meshes, at rest and moving, spinning), seen from a camera at rest and one in flight and in
 // the simultaneous picture, trace(directions, hits) equals trace(u) ray by ray, in every lane of
-// full and partial packets.
+// full and partial packets. Camera rays through the image's bins find what the BVH alone finds.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <optional>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
@@ -106,6 +108,83 @@ TEST(RayPackets, FindWhatSingleRaysFind) {
     for (std::size_t b = 0; b < hits_per_body.size(); ++b)
       EXPECT_GT(hits_per_body[b], 10) << view.name << ", " << resolved.bodies[b].object->name;
   }
+}
+
+// Rays through the view and beyond it, and behind the camera (those the bins do not cover).
+std::vector<Vec3> view_and_beyond(const ResolvedScene& r) {
+  std::vector<Vec3> directions;
+  const CameraBasis& c = r.camera;
+  for (int j = -4; j < c.height + 4; ++j)
+    for (int i = -4; i < c.width + 4; ++i)
+      directions.push_back(look_direction(c, i + 0.5, j + 0.5));
+  for (int k = 0; k < 500; ++k) {
+    const double z = 1 - 2 * (k + 0.5) / 500, phi = 2.399963 * k;  // a spiral over the sphere
+    const double rho = std::sqrt(1 - z * z);
+    directions.push_back({rho * std::cos(phi), rho * std::sin(phi), z});
+  }
+  return directions;
+}
+
+// The bins and the BVH agree on the body met and where, for every ray; the still mesh is an
+// Embree instance in the BVH (a float transform), so its points agree to float rounding.
+void expect_bins_find_what_the_bvh_finds(const Scene& s, const std::string& name) {
+  const ResolvedScene resolved = resolve_scene(s);
+  const Tracer bins(resolved), bvh(resolved, ShadowBounds::kLabelled, CameraRays::kBvh);
+  const std::vector<Vec3> directions = view_and_beyond(resolved);
+  std::vector<std::optional<Hit>> by_bins(directions.size()), by_bvh(directions.size());
+  bins.trace(directions, by_bins);
+  bvh.trace(directions, by_bvh);
+  int hits = 0;
+  for (std::size_t r = 0; r < directions.size(); ++r) {
+    const std::string where = name + ", ray " + std::to_string(r);
+    ASSERT_EQ(by_bins[r].has_value(), by_bvh[r].has_value()) << where;
+    if (!by_bins[r]) continue;
+    ++hits;
+    EXPECT_EQ(by_bins[r]->body, by_bvh[r]->body) << where;
+    EXPECT_NEAR(by_bins[r]->s, by_bvh[r]->s, 1e-5 * by_bvh[r]->s) << where;
+    EXPECT_NEAR(by_bins[r]->proper_time, by_bvh[r]->proper_time,
+                1e-5 * (1 + std::abs(by_bvh[r]->proper_time)))
+        << where;
+  }
+  EXPECT_GT(hits, static_cast<int>(directions.size() / 4)) << name;
+}
+
+TEST(RayPackets, ImageBinsFindWhatTheBvhFinds) {
+  Scene s = mixed_scene();
+  expect_bins_find_what_the_bvh_finds(s, "camera at rest");
+  s.camera.world_line.velocity = {0.3, -0.1, -0.6};
+  expect_bins_find_what_the_bvh_finds(s, "camera in flight");
+  s.render.light_delay = false;
+  expect_bins_find_what_the_bvh_finds(s, "simultaneous picture");
+}
+
+// A crowd about the camera: bodies beside and behind it, fast ones, and near ones covering
+// most of the image, too many to list cell by cell (the BVH takes those).
+TEST(RayPackets, ImageBinsFindWhatTheBvhFindsInACrowdAboutTheCamera) {
+  Scene s;
+  s.camera.width = 48;
+  s.camera.height = 32;
+  s.camera.fov_degrees = 100;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 at{4 * uniform(random), 4 * uniform(random), 4 * uniform(random)};
+    if (length(at) < 1.5) continue;
+    const Vec3 v{0.6 * uniform(random), 0.6 * uniform(random), 0.6 * uniform(random)};
+    const Shape shape = k % 3 == 0   ? Shape{Sphere{0.3 + 0.9 * std::abs(uniform(random))}}
+                        : k % 3 == 1 ? Shape{Box{{1.5, 1.2, 1.6}}}
+                                     : Shape{MeshShape{octahedron()}};
+    s.objects.push_back(make_object("body " + std::to_string(k), shape, at, v, solid({1, 1, 1})));
+  }
+  // Large balls farther off, each covering most of the image.
+  for (int k = 0; k < 40; ++k)
+    s.objects.push_back(make_object("large " + std::to_string(k), Sphere{3},
+                                    {uniform(random), uniform(random), -7 - uniform(random)},
+                                    {0.6 * uniform(random), 0, 0}, solid({1, 1, 1})));
+  // A wall from behind the camera to before it, at the image's right.
+  s.objects.push_back(make_object("wall", Box{{0.2, 3, 8}}, {1.2, 0, 0}, {}, solid({1, 1, 1})));
+  for (Object& o : s.objects) o.world_line.time = -length(o.world_line.position);
+  expect_bins_find_what_the_bvh_finds(s, "crowd");
 }
 
 }  // namespace

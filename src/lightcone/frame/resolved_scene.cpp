@@ -53,19 +53,24 @@ Bounds3 empty_bounds() {
 // [-radius, radius]: from where the centre crosses the past light cone of the event
 // (-radius, 0) to where it crosses that of (radius, 0) (retarded_delay, closed form). On the
 // simultaneity hyperplane the body is the (contracted) ball around its centre.
-Bounds3 trace_bounds(double ray_time, const AffineMap4& trace_to_body, const Vec3& rest_centre,
-                     double radius) {
-  Bounds3 b = empty_bounds();
+Capsule trace_capsule(double ray_time, const AffineMap4& trace_to_body, const Vec3& rest_centre,
+                      double radius) {
   const TraceWorldLine centre = trace_world_line(trace_to_body, rest_centre);
-  if (ray_time == 0) {
-    expand(b, centre.position_at_zero, radius);
-    return b;
-  }
-  for (const double apex : {-radius, radius}) {
+  if (ray_time == 0) return {centre.position_at_zero, centre.position_at_zero, radius};
+  Vec3 ends[2];
+  for (int k = 0; k < 2; ++k) {
+    const double apex = k == 0 ? -radius : radius;
     const Vec3 at_apex = centre.position_at_zero + centre.velocity * apex;
     const double t = apex - retarded_delay(at_apex, centre.velocity);
-    expand(b, centre.position_at_zero + centre.velocity * t, radius);
+    ends[k] = centre.position_at_zero + centre.velocity * t;
   }
+  return {ends[0], ends[1], radius};
+}
+
+Bounds3 capsule_bounds(const Capsule& capsule) {
+  Bounds3 b = empty_bounds();
+  expand(b, capsule.from, capsule.radius);
+  expand(b, capsule.to, capsule.radius);
   return b;
 }
 
@@ -291,7 +296,8 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
         body.spin >= 0 ? r.spins[body.spin].radius : extent.scaled_radius * (1 + 1e-9);
     const Vec3 rest_centre =
         body.spin >= 0 ? Vec3{} : object.rotation * component_mul(object.scale, centre);
-    body.trace_bounds = trace_bounds(r.ray_time, trace_to_body, rest_centre, radius);
+    body.trace_capsule = trace_capsule(r.ray_time, trace_to_body, rest_centre, radius);
+    body.trace_bounds = capsule_bounds(body.trace_capsule);
     body.velocity = trace_world_line(trace_to_body, rest_centre).velocity;
     body.proper_time_origin = object.world_line.proper_time + trace_to_body.offset.t;
     body.proper_time_row = {

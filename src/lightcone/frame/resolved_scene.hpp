@@ -28,6 +28,12 @@ struct Bounds3 {
   Vec3 lower, upper;
 };
 
+// The points within `radius` of the segment from `from` to `to`.
+struct Capsule {
+  Vec3 from, to;
+  double radius = 0;
+};
+
 // A spinning body's rotation, for the exact intersection of rays with it: the ray is carried
 // into its rest frame (rest_from_shape of its shape coordinates, which are those of the shape
 // frozen at the angle `frozen_angle` its origin shows the camera), where at proper time tau
@@ -61,7 +67,10 @@ struct ResolvedBody {
   Vec3 time_column;
   Vec3 ray_offset;  // time_column * ray_time
   Mat3 spatial;
-  // Conservative bounds in F of every point where a camera ray can meet the body.
+  // Conservative bounds in F of every point where a camera ray can meet the body: a capsule
+  // (the ball that holds it, along its centre's path while camera rays can meet it), and the
+  // capsule's box.
+  Capsule trace_capsule;
   Bounds3 trace_bounds;
   // Shadow rays are traced in the world frame W, where scenes usually keep most bodies at rest
   // (so their bounds need no sweep): shape coordinates of the W event (t, x) are

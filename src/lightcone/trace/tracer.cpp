@@ -265,12 +265,32 @@ struct Tracer::Impl {
   std::vector<unsigned> user_trace_bodies;  // the bodies camera rays meet through callbacks
   std::vector<unsigned> instance_body;      // geometry ID in `top` -> body, for instances
   BodiesRef trace_bodies{this, false, &user_trace_bodies}, shadow_bodies{this, true, nullptr};
+  // Camera rays in the view: the bodies before the camera, binned by the rectangle their trace
+  // bounds project to in the image plane (a, c) = (u.right, u.up) / u.forward. Each cell lists
+  // those whose rectangle meets it, nearest first; a ray needs only its own cell's list.
+  struct ImageBins {
+    struct Entry {
+      float a_lo, a_hi, c_lo, c_hi;  // the projected bounds, rounded outwards
+      float near;                    // the bounds' distance from the camera, rounded down
+      unsigned body;
+    };
+    double half_a = 0, half_c = 0;  // the plane's range in the view, a little enlarged
+    int cells_a = 0, cells_c = 0;
+    std::vector<unsigned> cell_start;  // cells_a cells_c + 1: entries of cell k from [k]
+    std::vector<Entry> entries;
+  } bins;
+  bool use_bins = false;
+  // Bodies the bins do not hold but rays in the view may meet: their bounds reach beside or
+  // behind the camera, or cover too much of the image to list cell by cell.
+  std::vector<unsigned> unbinned_bodies;
+  BodiesRef unbinned_ref{this, false, &unbinned_bodies};
+  RTCScene unbinned = nullptr;
   // Per light: the scenes of its parts of the labels in order, or none if it is not labelled.
   std::vector<std::vector<RTCScene>> labelled_shadows;
   std::deque<BodiesRef> labelled_bodies;  // their user data
   std::atomic<long long> embree_bytes{0};
 
-  Impl(const ResolvedScene& s, ShadowBounds shadow_bounds) : scene(s) {
+  Impl(const ResolvedScene& s, ShadowBounds shadow_bounds, CameraRays camera_rays) : scene(s) {
     device = rtcNewDevice(nullptr);
     if (!device) throw std::runtime_error("cannot create the Embree device");
     rtcSetDeviceMemoryMonitorFunction(
@@ -299,6 +319,7 @@ struct Tracer::Impl {
     if (!user_trace_bodies.empty())
       attach_bodies(top, trace_bodies, static_cast<unsigned>(user_trace_bodies.size()));
     rtcCommitScene(top);
+    if (camera_rays == CameraRays::kImageBins) build_image_bins();
     // Labels matter only where a body moves in W: bodies at rest there have the same bounds at
     // every label.
     const bool moving = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const auto& b) {
@@ -347,6 +368,7 @@ struct Tracer::Impl {
     for (const auto& parts : labelled_shadows)
       for (RTCScene s : parts) rtcReleaseScene(s);
     if (top) rtcReleaseScene(top);
+    if (unbinned) rtcReleaseScene(unbinned);
     if (shadows) rtcReleaseScene(shadows);
     if (device) rtcReleaseDevice(device);
   }
@@ -396,6 +418,171 @@ struct Tracer::Impl {
       ball.triangle_size = std::sqrt(area / static_cast<double>(mesh.triangles.size()));
     mesh_balls.emplace(&mesh, ball);
     return s;
+  }
+
+  // The image plane's point of look direction u, and its cell; false outside the bins' range
+  // (behind the camera, or out of the view).
+  bool bin_point(const Vec3& u, float& a, float& c, unsigned& cell) const {
+    const CameraBasis& view = scene.camera;
+    const double f = dot(u, view.forward);
+    if (!(f > 0)) return false;
+    const double pa = dot(u, view.right) / f, pc = dot(u, view.up) / f;
+    if (!(std::abs(pa) <= bins.half_a && std::abs(pc) <= bins.half_c)) return false;
+    a = static_cast<float>(pa);
+    c = static_cast<float>(pc);
+    const int ia = std::min(
+        bins.cells_a - 1, static_cast<int>((pa + bins.half_a) / (2 * bins.half_a) * bins.cells_a));
+    const int ic = std::min(
+        bins.cells_c - 1, static_cast<int>((pc + bins.half_c) / (2 * bins.half_c) * bins.cells_c));
+    cell = static_cast<unsigned>(ic * bins.cells_a + ia);
+    return true;
+  }
+
+  // The range of (p.e) / (p.f) over the end balls of a capsule before the camera (e and f
+  // orthonormal): a plane through the camera with e.p = a f.p meets a ball (centre C, radius R)
+  // where (e.C - a f.C)^2 <= R^2 (1 + a^2), a quadratic in a.
+  static std::pair<double, double> ball_image(const Capsule& capsule, const Vec3& e,
+                                              const Vec3& f) {
+    double lo = kInfinity, hi = -kInfinity;
+    for (const Vec3& centre : {capsule.from, capsule.to}) {
+      const double x = dot(centre, e), z = dot(centre, f), r2 = capsule.radius * capsule.radius;
+      const double root = capsule.radius * std::sqrt(x * x + z * z - r2), scale = z * z - r2;
+      lo = std::min(lo, (x * z - root) / scale);
+      hi = std::max(hi, (x * z + root) / scale);
+    }
+    return {lo, hi};
+  }
+
+  // The distance from the camera to the segment from a to b.
+  static double distance_to_segment(const Vec3& a, const Vec3& b) {
+    const Vec3 d = b - a;
+    const double dd = dot(d, d);
+    const double t = dd > 0 ? std::clamp(-dot(a, d) / dd, 0.0, 1.0) : 0.0;
+    return length(a + d * t);
+  }
+
+  void build_image_bins() {
+    const CameraBasis& view = scene.camera;
+    // Sample points reach the image's edges; the margin keeps them inside the range.
+    bins.half_c = view.tan_half_fov * (1 + 1e-3);
+    bins.half_a = bins.half_c * view.aspect;
+    if (!(std::isfinite(bins.half_a) && std::isfinite(bins.half_c) && bins.half_a > 0 &&
+          bins.half_c > 0))
+      return;
+    struct Rect {
+      double a_lo, a_hi, c_lo, c_hi, near;
+      unsigned body;
+      std::size_t cells = 0;  // how many it covers
+    };
+    std::vector<Rect> rects;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Bounds3& b = scene.bodies[i].trace_bounds;
+      const auto index = static_cast<unsigned>(i);
+      if (!(b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.z <= b.upper.z)) continue;
+      double f_lo = kInfinity, f_hi = -kInfinity, reach = 0;
+      Rect r{kInfinity, -kInfinity, kInfinity, -kInfinity, 0, index};
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 p{(k & 1) ? b.upper.x : b.lower.x, (k & 2) ? b.upper.y : b.lower.y,
+                     (k & 4) ? b.upper.z : b.lower.z};
+        const double f = dot(p, view.forward);
+        f_lo = std::min(f_lo, f);
+        f_hi = std::max(f_hi, f);
+        reach = std::max(reach, length(p));
+        r.a_lo = std::min(r.a_lo, dot(p, view.right) / f);
+        r.a_hi = std::max(r.a_hi, dot(p, view.right) / f);
+        r.c_lo = std::min(r.c_lo, dot(p, view.up) / f);
+        r.c_hi = std::max(r.c_hi, dot(p, view.up) / f);
+      }
+      if (f_hi < 0) continue;  // wholly behind the camera: no ray in the view meets it
+      if (!(f_lo > 1e-9 * reach) || !std::isfinite(reach)) {
+        unbinned_bodies.push_back(index);
+        continue;
+      }
+      if (r.a_hi < -bins.half_a || r.a_lo > bins.half_a || r.c_hi < -bins.half_c ||
+          r.c_lo > bins.half_c)
+        continue;  // out of the view
+      Vec3 nearest;
+      for (int k = 0; k < 3; ++k) nearest[k] = std::clamp(0.0, b.lower[k], b.upper[k]);
+      r.near = length(nearest);
+      // The capsule's own image is tighter: the hull of its end balls' images, so within the
+      // union of their rectangles.
+      const Capsule& capsule = scene.bodies[i].trace_capsule;
+      const double ra = capsule.radius;
+      if (dot(capsule.from, view.forward) > ra * (1 + 1e-6) &&
+          dot(capsule.to, view.forward) > ra * (1 + 1e-6)) {
+        const auto [a_lo, a_hi] = ball_image(capsule, view.right, view.forward);
+        const auto [c_lo, c_hi] = ball_image(capsule, view.up, view.forward);
+        r.a_lo = std::max(r.a_lo, a_lo);
+        r.a_hi = std::min(r.a_hi, a_hi);
+        r.c_lo = std::max(r.c_lo, c_lo);
+        r.c_hi = std::min(r.c_hi, c_hi);
+        r.near = std::max(r.near, distance_to_segment(capsule.from, capsule.to) - ra);
+      }
+      r.near *= 1 - 1e-9;
+      rects.push_back(r);
+    }
+    // About two cells a body, none smaller than 4 x 4 pixels (a packet's rays share a cell).
+    const double pixels = static_cast<double>(view.width) * view.height;
+    const double cells =
+        std::clamp(2.0 * static_cast<double>(rects.size()), 1.0, std::max(1.0, pixels / 16));
+    bins.cells_a = std::max(1, static_cast<int>(std::lround(std::sqrt(cells * view.aspect))));
+    bins.cells_c = std::max(1, static_cast<int>(cells / bins.cells_a));
+    const auto cell_range = [&](double lo, double hi, double half, int count) {
+      const auto at = [&](double x) {
+        return std::clamp(static_cast<int>(std::floor((x + half) / (2 * half) * count)), 0,
+                          count - 1);
+      };
+      return std::pair{at(lo), at(hi)};
+    };
+    std::size_t total = 0;
+    for (Rect& r : rects) {
+      const auto [a0, a1] = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
+      const auto [c0, c1] = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
+      r.cells = std::size_t(a1 - a0 + 1) * std::size_t(c1 - c0 + 1);
+      total += r.cells;
+    }
+    // The lists' size is held to a few entries a cell and a body: bodies that cover the most
+    // cells go to the BVH instead.
+    const std::size_t cell_count = std::size_t(bins.cells_a) * std::size_t(bins.cells_c);
+    const std::size_t budget = 8 * (cell_count + rects.size());
+    if (total > budget) {
+      std::stable_sort(rects.begin(), rects.end(),
+                       [](const Rect& x, const Rect& y) { return x.cells < y.cells; });
+      std::size_t kept = 0;
+      for (total = 0; kept < rects.size() && total + rects[kept].cells <= budget; ++kept)
+        total += rects[kept].cells;
+      for (std::size_t k = kept; k < rects.size(); ++k) unbinned_bodies.push_back(rects[k].body);
+      rects.resize(kept);
+    }
+    std::sort(rects.begin(), rects.end(), [](const Rect& x, const Rect& y) {
+      return x.near < y.near || (x.near == y.near && x.body < y.body);
+    });
+    bins.cell_start.assign(cell_count + 1, 0);
+    const auto each_cell = [&](const Rect& r, auto&& visit) {
+      const auto [a0, a1] = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
+      const auto [c0, c1] = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
+      for (int c = c0; c <= c1; ++c)
+        for (int a = a0; a <= a1; ++a) visit(std::size_t(c) * bins.cells_a + a);
+    };
+    for (const Rect& r : rects) each_cell(r, [&](std::size_t k) { ++bins.cell_start[k + 1]; });
+    for (std::size_t k = 0; k < cell_count; ++k) bins.cell_start[k + 1] += bins.cell_start[k];
+    bins.entries.resize(total);
+    std::vector<unsigned> filled(bins.cell_start.begin(), bins.cell_start.end() - 1);
+    const auto down = [](double x) { return std::nextafter(static_cast<float>(x), -INFINITY); };
+    const auto up = [](double x) { return std::nextafter(static_cast<float>(x), INFINITY); };
+    // In order of distance, so each cell's list is nearest first.
+    for (const Rect& r : rects) {
+      const ImageBins::Entry e{down(r.a_lo), up(r.a_hi),   down(r.c_lo),
+                               up(r.c_hi),   down(r.near), r.body};
+      each_cell(r, [&](std::size_t k) { bins.entries[filled[k]++] = e; });
+    }
+    if (!unbinned_bodies.empty()) {
+      std::sort(unbinned_bodies.begin(), unbinned_bodies.end());
+      unbinned = rtcNewScene(device);
+      attach_bodies(unbinned, unbinned_ref, static_cast<unsigned>(unbinned_bodies.size()));
+      rtcCommitScene(unbinned);
+    }
+    use_bins = true;
   }
 
   // Camera rays meet shape coordinates shape_origin + s spatial u: the instance's transform,
@@ -667,24 +854,58 @@ struct Tracer::Impl {
   // are to be intersected.
   static void intersect_callback(const RTCIntersectFunctionNArguments* args) {
     const auto* ref = static_cast<const BodiesRef*>(args->geometryUserPtr);
-    auto* context = reinterpret_cast<TraceContext*>(args->context);
-    const unsigned body = ref->body(args->primID), n = args->N;
-    RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, n);
-    RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
-    if (n == kPacketSize && ref->impl->body_mesh_scene[body] &&
-        ref->impl->scene.bodies[body].spin < 0) {
-      ref->impl->intersect_mesh_packet(body, ref->shadow, *context, args->valid, rays, hits);
+    ref->impl->intersect_rays(ref->body(args->primID), ref->shadow,
+                              *reinterpret_cast<TraceContext*>(args->context), args->valid, args->N,
+                              args->rayhit);
+  }
+
+  // The `valid` ones of n rays against one body, each hit nearer than its ray's tfar recorded.
+  void intersect_rays(unsigned body, bool shadow, TraceContext& context, const int* valid,
+                      unsigned n, RTCRayHitN* rayhit) const {
+    RTCRayN* rays = RTCRayHitN_RayN(rayhit, n);
+    RTCHitN* hits = RTCRayHitN_HitN(rayhit, n);
+    if (n == kPacketSize && body_mesh_scene[body] && scene.bodies[body].spin < 0) {
+      intersect_mesh_packet(body, shadow, context, valid, rays, hits);
       return;
     }
     for (unsigned i = 0; i < n; ++i) {
-      if (!args->valid[i]) continue;
+      if (!valid[i]) continue;
       float& tfar = RTCRayN_tfar(rays, n, i);
-      const ExactRay& ray = context->rays[RTCRayN_id(rays, n, i)];
-      const ShapeHit hit = ref->impl->intersect(body, ref->shadow, ray.origin, ray.direction,
-                                                RTCRayN_tnear(rays, n, i), tfar, args->context);
+      const ExactRay& ray = context.rays[RTCRayN_id(rays, n, i)];
+      const ShapeHit hit = intersect(body, shadow, ray.origin, ray.direction,
+                                     RTCRayN_tnear(rays, n, i), tfar, &context.embree);
       if (!(hit.s < tfar)) continue;
       tfar = static_cast<float>(hit.s);
       record_hit(hits, n, i, body, hit.prim, hit.bary_u, hit.bary_v);
+    }
+  }
+
+  // The packet's rays in the bins (in_bins, with their plane points and cells) against the
+  // bodies of their cells, nearest first, until a cell's next body lies beyond every hit.
+  void trace_bins(const int* in_bins, const float* a, const float* c, const unsigned* cell,
+                  TraceContext& context, RTCRayHit8& packet) const {
+    constexpr unsigned n = kPacketSize;
+    bool done[n] = {};
+    for (unsigned i = 0; i < n; ++i) {
+      if (!in_bins[i] || done[i]) continue;
+      bool lanes[n] = {};
+      for (unsigned j = i; j < n; ++j)
+        if (in_bins[j] && cell[j] == cell[i]) lanes[j] = done[j] = true;
+      const ImageBins::Entry* e = bins.entries.data() + bins.cell_start[cell[i]];
+      const ImageBins::Entry* end = bins.entries.data() + bins.cell_start[cell[i] + 1];
+      for (; e != end; ++e) {
+        alignas(32) int meets[n] = {};
+        bool nearer = false, any = false;
+        for (unsigned j = i; j < n; ++j) {
+          if (!lanes[j] || !(packet.ray.tfar[j] > e->near)) continue;
+          nearer = true;
+          if (a[j] >= e->a_lo && a[j] <= e->a_hi && c[j] >= e->c_lo && c[j] <= e->c_hi)
+            meets[j] = -1, any = true;
+        }
+        if (!nearer) break;
+        if (any)
+          intersect_rays(e->body, false, context, meets, n, reinterpret_cast<RTCRayHitN*>(&packet));
+      }
     }
   }
 
@@ -776,8 +997,8 @@ struct Tracer::Impl {
 
 namespace lightcone {
 
-Tracer::Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds)
-    : impl_(std::make_unique<Impl>(scene, shadow_bounds)) {}
+Tracer::Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds, CameraRays camera_rays)
+    : impl_(std::make_unique<Impl>(scene, shadow_bounds, camera_rays)) {}
 Tracer::~Tracer() = default;
 
 std::size_t Tracer::acceleration_bytes() const {
@@ -785,14 +1006,9 @@ std::size_t Tracer::acceleration_bytes() const {
 }
 
 std::optional<Hit> Tracer::trace(const Vec3& u) const {
-  TraceContext context;
-  rtcInitIntersectContext(&context.embree);
-  context.rays[0] = {{}, {impl_->scene.ray_time, u}};
-  RTCRayHit rh = embree_ray({}, u, 0, kInfinity);
-  rtcIntersect1(impl_->top, &context.embree, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  const unsigned index = impl_->hit_body(rh.hit.geomID, rh.hit.instID[0]);
-  return impl_->camera_hit(u, {index, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar}, context);
+  std::optional<Hit> hit;
+  trace(std::span(&u, 1), std::span(&hit, 1));
+  return hit;
 }
 
 void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit>> hits) const {
@@ -802,17 +1018,30 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
     rtcInitIntersectContext(&context.embree);
     context.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(32) RTCRayHit8 rh{};
-    alignas(32) int valid[kPacketSize];
+    // Rays in the view go through the bins (and the bodies they do not hold), the rest through
+    // the BVH over all bodies.
+    alignas(32) int in_bins[kPacketSize] = {}, elsewhere[kPacketSize] = {};
+    float a[kPacketSize], c[kPacketSize];
+    unsigned cell[kPacketSize];
+    bool any_in_bins = false, any_elsewhere = false;
     for (unsigned i = 0; i < kPacketSize; ++i) {
       // Lanes past the last ray repeat it, unused.
       const Vec3& u = directions[first + std::min<std::size_t>(i, count - 1)];
-      valid[i] = i < count ? -1 : 0;
       context.rays[i] = {{}, {impl_->scene.ray_time, u}};
       RTCRayHit one = embree_ray({}, u, 0, kInfinity);
       one.ray.id = i;
       put_lane(rh, i, one);
+      if (i >= count) continue;
+      if (impl_->use_bins && impl_->bin_point(u, a[i], c[i], cell[i]))
+        in_bins[i] = -1, any_in_bins = true;
+      else
+        elsewhere[i] = -1, any_elsewhere = true;
     }
-    rtcIntersect8(valid, impl_->top, &context.embree, &rh);
+    if (any_elsewhere) rtcIntersect8(elsewhere, impl_->top, &context.embree, &rh);
+    if (any_in_bins) {
+      if (impl_->unbinned) rtcIntersect8(in_bins, impl_->unbinned, &context.embree, &rh);
+      impl_->trace_bins(in_bins, a, c, cell, context, rh);
+    }
     for (std::size_t i = 0; i < count; ++i) {
       std::optional<Hit>& hit = hits[first + i];
       hit.reset();

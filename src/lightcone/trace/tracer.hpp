@@ -1,13 +1,18 @@
 // Nearest-hit queries of camera rays against a resolved scene, on Embree.
 //
-// The top level is an Embree BVH over one user geometry per body, bounded by the body's
-// conservative trace bounds in F. Shadow rays of a labelled light (ShadowLight) traverse the
-// motion-blur BVH of the part of its labels theirs lies in, whose time is the label, with bounds
-// at evenly spaced labels interpolated linearly between them; the others traverse bounds swept
-// over the shadow window. Rays asked together go through Embree in packets. The callback carries
-// each ray into the body's shape coordinates, where the body is static, and intersects there:
-// analytically for spheres, boxes and planes (double precision), or through the mesh's own
-// Embree BVH, which is built once per mesh however many bodies use it.
+// Camera rays in the view go through the image's bins: every body whose conservative trace
+// bounds in F lie before the camera is listed, nearest first, in the cells of the image plane
+// that their projection covers, and a ray tests the bodies of its cell whose projected bounds
+// hold its point, until the next is farther than its hit. Every camera ray leaves the camera's
+// event, so these lists replace a tree's traversal, whose cost grows with the crowd a ray passes.
+// Other camera rays, and bodies beside or behind the camera, go through an Embree BVH over one
+// user geometry per body, bounded by its trace bounds. Shadow rays of a labelled light
+// (ShadowLight) traverse the motion-blur BVH of the part of its labels theirs lies in, whose time
+// is the label, with bounds at evenly spaced labels interpolated linearly between them; the others
+// traverse bounds swept over the shadow window. Rays asked together go through Embree in packets.
+// The callback carries each ray into the body's shape coordinates, where the body is static, and
+// intersects there: analytically for spheres, boxes and planes (double precision), or through the
+// mesh's own Embree BVH, which is built once per mesh however many bodies use it.
 #pragma once
 
 #include <array>
@@ -26,9 +31,16 @@ namespace lightcone {
 // shadow window that unlabelled rays use (to test the first against).
 enum class ShadowBounds { kLabelled, kSwept };
 
+// How camera rays find their bodies: through the image's bins (ImageBins in tracer.cpp: the
+// bodies whose trace bounds cover a cell of the image plane, nearest first), falling back to the
+// BVH for rays outside the view and bodies the bins cannot hold; or through the BVH alone (to
+// test the first against).
+enum class CameraRays { kImageBins, kBvh };
+
 class Tracer : public ShadowQuery {
  public:
-  explicit Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds = ShadowBounds::kLabelled);
+  explicit Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds = ShadowBounds::kLabelled,
+                  CameraRays camera_rays = CameraRays::kImageBins);
   ~Tracer() override;
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
