@@ -11,6 +11,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -224,6 +225,72 @@ std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
   return {0.5 + rel.x, 0.5 - rel.y};
 }
 
+// Bodies listed by the cells of a grid over the directions from one point (the image plane for
+// camera rays), each cell's list nearest first.
+struct CellLists {
+  struct Entry {
+    float a_lo, a_hi, c_lo, c_hi;  // the body's rectangle in the grid's plane, rounded outwards
+    float near;                    // its bounds' distance from the rays' common point, rounded down
+    unsigned body;
+  };
+  std::vector<unsigned> start;  // cell k's entries are [start[k], start[k + 1])
+  std::vector<Entry> entries;
+};
+
+// A body's rectangle in a grid's plane, and the cells it covers: columns a0..a1 of rows c0..c1
+// of the grid whose rows are `columns` long.
+struct BinnedRect {
+  double a_lo, a_hi, c_lo, c_hi, near;
+  unsigned body;
+  int columns = 1, a0 = 0, a1 = 0, c0 = 0, c1 = 0;
+  std::size_t cells() const { return std::size_t(a1 - a0 + 1) * std::size_t(c1 - c0 + 1); }
+};
+
+// The cells of a grid `count` cells wide over [-half, half] from lo to hi, clamped to it.
+std::pair<int, int> cell_range(double lo, double hi, double half, int count) {
+  const auto at = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x + half) / (2 * half) * count)), 0, count - 1);
+  };
+  return {at(lo), at(hi)};
+}
+
+// The point of box b nearest to p.
+Vec3 nearest_point(const Bounds3& b, const Vec3& p) {
+  Vec3 q;
+  for (int k = 0; k < 3; ++k) q[k] = std::clamp(p[k], b.lower[k], b.upper[k]);
+  return q;
+}
+
+// The cell of such a grid that holds x, |x| <= half.
+int cell_of(double x, double half, int count) {
+  return std::min(count - 1, static_cast<int>((x + half) / (2 * half) * count));
+}
+
+CellLists cell_lists(std::vector<BinnedRect>& rects, std::size_t cell_count) {
+  std::sort(rects.begin(), rects.end(), [](const BinnedRect& x, const BinnedRect& y) {
+    return x.near < y.near || (x.near == y.near && x.body < y.body);
+  });
+  CellLists lists;
+  lists.start.assign(cell_count + 1, 0);
+  const auto each_cell = [](const BinnedRect& r, auto&& visit) {
+    for (int c = r.c0; c <= r.c1; ++c)
+      for (int a = r.a0; a <= r.a1; ++a) visit(std::size_t(c) * r.columns + a);
+  };
+  for (const BinnedRect& r : rects) each_cell(r, [&](std::size_t k) { ++lists.start[k + 1]; });
+  for (std::size_t k = 0; k < cell_count; ++k) lists.start[k + 1] += lists.start[k];
+  lists.entries.resize(lists.start[cell_count]);
+  std::vector<unsigned> filled(lists.start.begin(), lists.start.end() - 1);
+  const auto down = [](double x) { return std::nextafter(static_cast<float>(x), -INFINITY); };
+  const auto up = [](double x) { return std::nextafter(static_cast<float>(x), INFINITY); };
+  // In order of distance, so each cell's list is nearest first.
+  for (const BinnedRect& r : rects) {
+    const CellLists::Entry e{down(r.a_lo), up(r.a_hi),   down(r.c_lo),
+                             up(r.c_hi),   down(r.near), r.body};
+    each_cell(r, [&](std::size_t k) { lists.entries[filled[k]++] = e; });
+  }
+  return lists;
+}
+
 }  // namespace
 
 struct Tracer::Impl {
@@ -269,15 +336,9 @@ struct Tracer::Impl {
   // bounds project to in the image plane (a, c) = (u.right, u.up) / u.forward. Each cell lists
   // those whose rectangle meets it, nearest first; a ray needs only its own cell's list.
   struct ImageBins {
-    struct Entry {
-      float a_lo, a_hi, c_lo, c_hi;  // the projected bounds, rounded outwards
-      float near;                    // the bounds' distance from the camera, rounded down
-      unsigned body;
-    };
     double half_a = 0, half_c = 0;  // the plane's range in the view, a little enlarged
-    int cells_a = 0, cells_c = 0;
-    std::vector<unsigned> cell_start;  // cells_a cells_c + 1: entries of cell k from [k]
-    std::vector<Entry> entries;
+    int cells_a = 0, cells_c = 0;   // row c's cells are c cells_a + a
+    CellLists lists;
   } bins;
   bool use_bins = false;
   // Bodies the bins do not hold but rays in the view may meet: their bounds reach beside or
@@ -430,11 +491,8 @@ struct Tracer::Impl {
     if (!(std::abs(pa) <= bins.half_a && std::abs(pc) <= bins.half_c)) return false;
     a = static_cast<float>(pa);
     c = static_cast<float>(pc);
-    const int ia = std::min(
-        bins.cells_a - 1, static_cast<int>((pa + bins.half_a) / (2 * bins.half_a) * bins.cells_a));
-    const int ic = std::min(
-        bins.cells_c - 1, static_cast<int>((pc + bins.half_c) / (2 * bins.half_c) * bins.cells_c));
-    cell = static_cast<unsigned>(ic * bins.cells_a + ia);
+    cell = static_cast<unsigned>(cell_of(pc, bins.half_c, bins.cells_c) * bins.cells_a +
+                                 cell_of(pa, bins.half_a, bins.cells_a));
     return true;
   }
 
@@ -469,18 +527,13 @@ struct Tracer::Impl {
     if (!(std::isfinite(bins.half_a) && std::isfinite(bins.half_c) && bins.half_a > 0 &&
           bins.half_c > 0))
       return;
-    struct Rect {
-      double a_lo, a_hi, c_lo, c_hi, near;
-      unsigned body;
-      std::size_t cells = 0;  // how many it covers
-    };
-    std::vector<Rect> rects;
+    std::vector<BinnedRect> rects;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Bounds3& b = scene.bodies[i].trace_bounds;
       const auto index = static_cast<unsigned>(i);
       if (!(b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.z <= b.upper.z)) continue;
       double f_lo = kInfinity, f_hi = -kInfinity, reach = 0;
-      Rect r{kInfinity, -kInfinity, kInfinity, -kInfinity, 0, index};
+      BinnedRect r{kInfinity, -kInfinity, kInfinity, -kInfinity, 0, index};
       for (int k = 0; k < 8; ++k) {
         const Vec3 p{(k & 1) ? b.upper.x : b.lower.x, (k & 2) ? b.upper.y : b.lower.y,
                      (k & 4) ? b.upper.z : b.lower.z};
@@ -501,9 +554,7 @@ struct Tracer::Impl {
       if (r.a_hi < -bins.half_a || r.a_lo > bins.half_a || r.c_hi < -bins.half_c ||
           r.c_lo > bins.half_c)
         continue;  // out of the view
-      Vec3 nearest;
-      for (int k = 0; k < 3; ++k) nearest[k] = std::clamp(0.0, b.lower[k], b.upper[k]);
-      r.near = length(nearest);
+      r.near = length(nearest_point(b, {}));
       // The capsule's own image is tighter: the hull of its end balls' images, so within the
       // union of their rectangles.
       const Capsule& capsule = scene.bodies[i].trace_capsule;
@@ -527,55 +578,28 @@ struct Tracer::Impl {
         std::clamp(2.0 * static_cast<double>(rects.size()), 1.0, std::max(1.0, pixels / 16));
     bins.cells_a = std::max(1, static_cast<int>(std::lround(std::sqrt(cells * view.aspect))));
     bins.cells_c = std::max(1, static_cast<int>(cells / bins.cells_a));
-    const auto cell_range = [&](double lo, double hi, double half, int count) {
-      const auto at = [&](double x) {
-        return std::clamp(static_cast<int>(std::floor((x + half) / (2 * half) * count)), 0,
-                          count - 1);
-      };
-      return std::pair{at(lo), at(hi)};
-    };
     std::size_t total = 0;
-    for (Rect& r : rects) {
-      const auto [a0, a1] = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
-      const auto [c0, c1] = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
-      r.cells = std::size_t(a1 - a0 + 1) * std::size_t(c1 - c0 + 1);
-      total += r.cells;
+    for (BinnedRect& r : rects) {
+      r.columns = bins.cells_a;
+      std::tie(r.a0, r.a1) = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
+      std::tie(r.c0, r.c1) = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
+      total += r.cells();
     }
     // The lists' size is held to a few entries a cell and a body: bodies that cover the most
     // cells go to the BVH instead.
     const std::size_t cell_count = std::size_t(bins.cells_a) * std::size_t(bins.cells_c);
     const std::size_t budget = 8 * (cell_count + rects.size());
     if (total > budget) {
-      std::stable_sort(rects.begin(), rects.end(),
-                       [](const Rect& x, const Rect& y) { return x.cells < y.cells; });
+      std::stable_sort(rects.begin(), rects.end(), [](const BinnedRect& x, const BinnedRect& y) {
+        return x.cells() < y.cells();
+      });
       std::size_t kept = 0;
-      for (total = 0; kept < rects.size() && total + rects[kept].cells <= budget; ++kept)
-        total += rects[kept].cells;
+      for (total = 0; kept < rects.size() && total + rects[kept].cells() <= budget; ++kept)
+        total += rects[kept].cells();
       for (std::size_t k = kept; k < rects.size(); ++k) unbinned_bodies.push_back(rects[k].body);
       rects.resize(kept);
     }
-    std::sort(rects.begin(), rects.end(), [](const Rect& x, const Rect& y) {
-      return x.near < y.near || (x.near == y.near && x.body < y.body);
-    });
-    bins.cell_start.assign(cell_count + 1, 0);
-    const auto each_cell = [&](const Rect& r, auto&& visit) {
-      const auto [a0, a1] = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
-      const auto [c0, c1] = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
-      for (int c = c0; c <= c1; ++c)
-        for (int a = a0; a <= a1; ++a) visit(std::size_t(c) * bins.cells_a + a);
-    };
-    for (const Rect& r : rects) each_cell(r, [&](std::size_t k) { ++bins.cell_start[k + 1]; });
-    for (std::size_t k = 0; k < cell_count; ++k) bins.cell_start[k + 1] += bins.cell_start[k];
-    bins.entries.resize(total);
-    std::vector<unsigned> filled(bins.cell_start.begin(), bins.cell_start.end() - 1);
-    const auto down = [](double x) { return std::nextafter(static_cast<float>(x), -INFINITY); };
-    const auto up = [](double x) { return std::nextafter(static_cast<float>(x), INFINITY); };
-    // In order of distance, so each cell's list is nearest first.
-    for (const Rect& r : rects) {
-      const ImageBins::Entry e{down(r.a_lo), up(r.a_hi),   down(r.c_lo),
-                               up(r.c_hi),   down(r.near), r.body};
-      each_cell(r, [&](std::size_t k) { bins.entries[filled[k]++] = e; });
-    }
+    bins.lists = cell_lists(rects, cell_count);
     if (!unbinned_bodies.empty()) {
       std::sort(unbinned_bodies.begin(), unbinned_bodies.end());
       unbinned = rtcNewScene(device);
@@ -891,8 +915,8 @@ struct Tracer::Impl {
       bool lanes[n] = {};
       for (unsigned j = i; j < n; ++j)
         if (in_bins[j] && cell[j] == cell[i]) lanes[j] = done[j] = true;
-      const ImageBins::Entry* e = bins.entries.data() + bins.cell_start[cell[i]];
-      const ImageBins::Entry* end = bins.entries.data() + bins.cell_start[cell[i] + 1];
+      const CellLists::Entry* e = bins.lists.entries.data() + bins.lists.start[cell[i]];
+      const CellLists::Entry* end = bins.lists.entries.data() + bins.lists.start[cell[i] + 1];
       for (; e != end; ++e) {
         alignas(32) int meets[n] = {};
         bool nearer = false, any = false;
