@@ -34,12 +34,6 @@ void expand(Bounds3& b, const Vec3& p, double r) {
   }
 }
 
-// Corner i (bit 0: x, bit 1: y, bit 2: z upper) of a box.
-Vec3 corner(const Bounds3& b, int i) {
-  return {(i & 1) ? b.upper.x : b.lower.x, (i & 2) ? b.upper.y : b.lower.y,
-          (i & 4) ? b.upper.z : b.lower.z};
-}
-
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 Bounds3 empty_bounds() {

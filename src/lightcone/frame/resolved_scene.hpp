@@ -28,6 +28,12 @@ struct Bounds3 {
   Vec3 lower, upper;
 };
 
+// Corner i (bit 0: x, bit 1: y, bit 2: z upper) of a box.
+inline Vec3 corner(const Bounds3& b, int i) {
+  return {(i & 1) ? b.upper.x : b.lower.x, (i & 2) ? b.upper.y : b.lower.y,
+          (i & 4) ? b.upper.z : b.lower.z};
+}
+
 // The points within `radius` of the segment from `from` to `to`.
 struct Capsule {
   Vec3 from, to;

@@ -116,11 +116,7 @@ std::array<Vec3, 5> view_sides(const CameraBasis& camera) {
 bool may_be_in_view(const CameraBasis& camera, const Bounds3& b) {
   for (const Vec3& inward : view_sides(camera)) {
     bool all_beyond = true;
-    for (int corner = 0; corner < 8 && all_beyond; ++corner) {
-      const Vec3 p{corner & 1 ? b.upper.x : b.lower.x, corner & 2 ? b.upper.y : b.lower.y,
-                   corner & 4 ? b.upper.z : b.lower.z};
-      all_beyond = dot(p, inward) < 0;
-    }
+    for (int k = 0; k < 8 && all_beyond; ++k) all_beyond = dot(corner(b, k), inward) < 0;
     if (all_beyond) return false;
   }
   return true;

@@ -237,12 +237,11 @@ struct CellLists {
   std::vector<Entry> entries;
 };
 
-// A body's rectangle in a grid's plane, and the cells it covers: columns a0..a1 of rows c0..c1
-// of the grid whose rows are `columns` long.
+// A body's rectangle in a grid's plane, and the cells it covers: columns a0..a1 of rows c0..c1.
 struct BinnedRect {
   double a_lo, a_hi, c_lo, c_hi, near;
   unsigned body;
-  int columns = 1, a0 = 0, a1 = 0, c0 = 0, c1 = 0;
+  int a0 = 0, a1 = 0, c0 = 0, c1 = 0;
   std::size_t cells() const { return std::size_t(a1 - a0 + 1) * std::size_t(c1 - c0 + 1); }
 };
 
@@ -266,15 +265,17 @@ int cell_of(double x, double half, int count) {
   return std::min(count - 1, static_cast<int>((x + half) / (2 * half) * count));
 }
 
-CellLists cell_lists(std::vector<BinnedRect>& rects, std::size_t cell_count) {
+// The lists of a grid of `rows` rows of `columns` cells (row c's cells are c columns + a).
+CellLists cell_lists(std::vector<BinnedRect>& rects, int columns, int rows) {
+  const std::size_t cell_count = std::size_t(columns) * std::size_t(rows);
   std::sort(rects.begin(), rects.end(), [](const BinnedRect& x, const BinnedRect& y) {
     return x.near < y.near || (x.near == y.near && x.body < y.body);
   });
   CellLists lists;
   lists.start.assign(cell_count + 1, 0);
-  const auto each_cell = [](const BinnedRect& r, auto&& visit) {
+  const auto each_cell = [&](const BinnedRect& r, auto&& visit) {
     for (int c = r.c0; c <= r.c1; ++c)
-      for (int a = r.a0; a <= r.a1; ++a) visit(std::size_t(c) * r.columns + a);
+      for (int a = r.a0; a <= r.a1; ++a) visit(std::size_t(c) * columns + a);
   };
   for (const BinnedRect& r : rects) each_cell(r, [&](std::size_t k) { ++lists.start[k + 1]; });
   for (std::size_t k = 0; k < cell_count; ++k) lists.start[k + 1] += lists.start[k];
@@ -535,8 +536,7 @@ struct Tracer::Impl {
       double f_lo = kInfinity, f_hi = -kInfinity, reach = 0;
       BinnedRect r{kInfinity, -kInfinity, kInfinity, -kInfinity, 0, index};
       for (int k = 0; k < 8; ++k) {
-        const Vec3 p{(k & 1) ? b.upper.x : b.lower.x, (k & 2) ? b.upper.y : b.lower.y,
-                     (k & 4) ? b.upper.z : b.lower.z};
+        const Vec3 p = corner(b, k);
         const double f = dot(p, view.forward);
         f_lo = std::min(f_lo, f);
         f_hi = std::max(f_hi, f);
@@ -580,7 +580,6 @@ struct Tracer::Impl {
     bins.cells_c = std::max(1, static_cast<int>(cells / bins.cells_a));
     std::size_t total = 0;
     for (BinnedRect& r : rects) {
-      r.columns = bins.cells_a;
       std::tie(r.a0, r.a1) = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
       std::tie(r.c0, r.c1) = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
       total += r.cells();
@@ -599,7 +598,7 @@ struct Tracer::Impl {
       for (std::size_t k = kept; k < rects.size(); ++k) unbinned_bodies.push_back(rects[k].body);
       rects.resize(kept);
     }
-    bins.lists = cell_lists(rects, cell_count);
+    bins.lists = cell_lists(rects, bins.cells_a, bins.cells_c);
     if (!unbinned_bodies.empty()) {
       std::sort(unbinned_bodies.begin(), unbinned_bodies.end());
       unbinned = rtcNewScene(device);
