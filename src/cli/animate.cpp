@@ -12,6 +12,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <unordered_map>
 
 #include "cli_common.hpp"
 #include "lightcone/frame/tone_map.hpp"
@@ -28,7 +29,7 @@ namespace fs = std::filesystem;
 
 namespace lightcone {
 
-FramePattern::FramePattern(const std::string& option, const std::string& pattern) {
+FramePattern::FramePattern(const std::string& option, const std::string& pattern) : text_(pattern) {
   const InputError error(option + " " + pattern +
                          ": a frame file name needs one frame number conversion, like "
                          "frames/shot-%04d.png");
@@ -60,6 +61,23 @@ FramePattern::FramePattern(const std::string& option, const std::string& pattern
   }
   if (!found) throw error;
   after_ = text;
+}
+
+std::optional<long long> FramePattern::frame_of(const std::string& name) const {
+  if (name.size() <= before_.size() + after_.size() || name.compare(0, before_.size(), before_) ||
+      name.compare(name.size() - after_.size(), after_.size(), after_))
+    return std::nullopt;
+  const std::string digits =
+      name.substr(before_.size(), name.size() - before_.size() - after_.size());
+  std::size_t start = 0;
+  while (!zero_ && start < digits.size() && digits[start] == ' ') ++start;
+  if (start == digits.size() || digits.size() - start > 15 ||
+      !std::all_of(digits.begin() + static_cast<std::ptrdiff_t>(start), digits.end(),
+                   [](unsigned char c) { return std::isdigit(c); }))
+    return std::nullopt;
+  const long long frame = std::stoll(digits.substr(start));
+  if (this->name(frame) != name) return std::nullopt;
+  return frame;
 }
 
 std::string FramePattern::name(long long frame) const {
@@ -98,6 +116,67 @@ double proper_time_at_world_time(const Camera& camera, double time) {
       .proper_time;
 }
 
+// Every file the run writes, checked before the first frame: under each pattern, each frame's
+// name is a regular file or absent, in a folder that exists and is writable, and no file is
+// named by two patterns (`-o x%d.exr --exr x1%d.exr` both name x11.exr).
+void check_frame_targets(const std::vector<std::pair<std::string, const FramePattern*>>& patterns,
+                         long long first, long long last) {
+  std::unordered_map<std::string, fs::path> folders;  // as named -> resolved, once checked
+  std::unordered_map<std::string, std::pair<std::string, long long>> claimed;
+  for (std::size_t k = 0; k < patterns.size(); ++k) {
+    const auto& [option, pattern] = patterns[k];
+    for (long long i = first; i <= last; ++i) {
+      const std::string name = pattern->name(i);
+      const fs::path absolute = fs::absolute(name);
+      const std::string parent = absolute.parent_path().string();
+      auto folder = folders.find(parent);
+      if (folder == folders.end()) {
+        require_writable_target(option, name);
+        std::error_code ec;
+        folder = folders.emplace(parent, fs::weakly_canonical(parent, ec)).first;
+      }
+      fs::path file = folder->second / absolute.filename();
+      std::error_code ec;
+      const fs::file_status link = fs::symlink_status(file, ec);
+      if (fs::is_symlink(link)) file = fs::weakly_canonical(file, ec);
+      const fs::file_status status = fs::is_symlink(link) ? fs::status(file, ec) : link;
+      if (fs::is_directory(status))
+        throw InputError(fmt::format("{} {}: frame {}, {}, is a folder, not a file", option,
+                                     pattern->text(), i, name));
+      if (fs::exists(status) && !fs::is_regular_file(status))
+        throw InputError(fmt::format(
+            "{} {}: frame {}, {}, is not a regular file (a device, a FIFO or a socket); it is "
+            "not replaced",
+            option, pattern->text(), i, name));
+      if (patterns.size() < 2) continue;  // names of one pattern differ in their digits
+      const auto [other, fresh] = claimed.emplace(file.string(), std::pair{option, i});
+      if (!fresh)
+        throw InputError(fmt::format("{} and {}: frame {} of {} and frame {} of {} are both {}",
+                                     other->second.first, option, other->second.second,
+                                     other->second.first, i, option, name));
+    }
+  }
+}
+
+// Why a frame already on disk cannot be kept by --resume (nullopt if it can): every output
+// must decode and have the run's size. `kept` receives the first output's image.
+std::optional<std::string> unusable_frame(const std::vector<ImageOutput>& outputs, int width,
+                                          int height, std::shared_ptr<Image>& kept) {
+  for (const ImageOutput& o : outputs) {
+    std::shared_ptr<Image> image;
+    try {
+      image = load_image_file(o.path);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    if (image->width != width || image->height != height)
+      return fmt::format("{} is {}x{}, not {}x{}", o.path.string(), image->width, image->height,
+                         width, height);
+    if (!kept) kept = image;
+  }
+  return std::nullopt;
+}
+
 std::string describe_frames(long long first, long long last) {
   return first == last ? fmt::format("frame {}", first)
                        : fmt::format("frames {} to {}", first, last);
@@ -106,6 +185,7 @@ std::string describe_frames(long long first, long long last) {
 }  // namespace
 
 int run_animate(const AnimateArgs& a) {
+  const StopSignals stop_signals;
   std::vector<std::string> overrides = a.overrides;
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
@@ -130,26 +210,31 @@ int run_animate(const AnimateArgs& a) {
           fmt::format("--duration {} at --fps {}: {} frames", *a.duration, a.fps, count));
     last = static_cast<long long>(count) - 1;
   }
+  if (last - first + 1 > kMaxFramesPerRun)
+    throw InputError(
+        fmt::format("{}: {} frames; one run renders at most {} (split it with --frames A-B)",
+                    a.frames ? "--frames " + *a.frames : fmt::format("--duration {}", *a.duration),
+                    last - first + 1, kMaxFramesPerRun));
   if (!a.output && !a.exr && !a.video)
     throw InputError("nothing to write: give -o PATTERN, --exr PATTERN or --video FILE");
   std::optional<FramePattern> output, exr;
   std::optional<ImageFormat> format;
+  std::vector<std::pair<std::string, const FramePattern*>> patterns;
   if (a.output) {
     output.emplace("-o", *a.output);
     format = image_format_of(output->name(first));
     if (!format)
       throw InputError("-o " + *a.output +
                        ": unknown image format (the name must end in .png, .jpg or .exr)");
-    require_writable_target("-o", output->name(first));
+    patterns.emplace_back("-o", &*output);
   }
   if (a.exr) {
     exr.emplace("--exr", *a.exr);
     if (image_format_of(exr->name(first)) != ImageFormat::kExr)
       throw InputError("--exr " + *a.exr + ": the name must end in .exr");
-    require_writable_target("--exr", exr->name(first));
-    if (output && same_file(output->name(first), exr->name(first)))
-      throw InputError("--exr " + *a.exr + ": is the same file as -o");
+    patterns.emplace_back("--exr", &*exr);
   }
+  check_frame_targets(patterns, first, last);
   const bool raster = a.renderer == "raster";
 
   const Scene scene = load(a.scene, overrides);
@@ -183,27 +268,35 @@ int run_animate(const AnimateArgs& a) {
     video = std::make_unique<VideoWriter>(*a.video, camera.width, camera.height, a.fps, a.crf);
 
   const long long count = last - first + 1;
-  long long rendered = 0, skipped = 0;
+  long long rendered = 0, skipped = 0, redone = 0;
   const auto start = std::chrono::steady_clock::now();
   ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
   constexpr std::size_t kSteps = 1000;  // progress units a frame
   // Frame i is tone-mapped, encoded and written while frame i + 1 renders: one writer, so
-  // files and video frames go out in order; its failure stops the run at the next frame.
+  // files and video frames go out in order; its failure stops the run at the next frame. A
+  // frame's files are whole or absent whatever stops it, so after a stop signal its failure
+  // (ffmpeg killed by the same signal) is not the run's error.
   std::future<void> writing;
   const auto wait_for_writer = [&] {
-    if (writing.valid()) writing.get();
+    if (!writing.valid()) return;
+    try {
+      writing.get();
+    } catch (const std::exception&) {
+      if (!interrupted) throw;
+    }
   };
   const auto in_frame = [](long long i, const std::function<void()>& work) {
     try {
       work();
+    } catch (const Stopped&) {
+      throw;
     } catch (const InputError& e) {
       throw InputError(fmt::format("frame {}: {}", i, e.what()));
     } catch (const std::exception& e) {
       throw std::runtime_error(fmt::format("frame {}: {}", i, e.what()));
     }
   };
-  std::signal(SIGINT, on_interrupt);
-  for (long long i = first; i <= last; ++i) {
+  for (long long i = first; i <= last && !interrupted; ++i) {
     const std::size_t frames_done = static_cast<std::size_t>(i - first);
     std::vector<ImageOutput> outputs;
     if (output) outputs.push_back({output->name(i), *format});
@@ -213,18 +306,27 @@ int run_animate(const AnimateArgs& a) {
                            return fs::is_regular_file(o.path);
                          });
     if (present) {
-      ++skipped;
-      wait_for_writer();
-      if (video)
-        in_frame(i, [&] {
-          // The video gets the frame as its file holds it.
-          const std::shared_ptr<Image> saved = load_image_file(outputs.front().path);
-          video->add(outputs.front().format == ImageFormat::kExr
-                         ? tone_map(*saved, scene.render.tonemap)
-                         : *saved);
-        });
-      bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
-      continue;
+      // A kept frame must be one this run would have written: it decodes and has its size.
+      std::shared_ptr<Image> saved;
+      const std::optional<std::string> unusable =
+          unusable_frame(outputs, camera.width, camera.height, saved);
+      if (unusable) {
+        std::fprintf(stderr, "lightcone: --resume: frame %lld: %s; rendering it again\n", i,
+                     unusable->c_str());
+        ++redone;
+      } else {
+        ++skipped;
+        wait_for_writer();
+        if (video)
+          in_frame(i, [&] {
+            // The video gets the frame as its file holds it.
+            video->add(outputs.front().format == ImageFormat::kExr
+                           ? tone_map(*saved, scene.render.tonemap)
+                           : *saved);
+          });
+        bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
+        continue;
+      }
     }
     bool cancelled = false;
     auto image = std::make_shared<Image>();
@@ -260,7 +362,7 @@ int run_animate(const AnimateArgs& a) {
                       [](float v) { return !std::isfinite(v); }))
         throw std::runtime_error("the render has non-finite values (NaN or infinity)");
     });
-    if (cancelled) break;
+    if (cancelled || interrupted) break;
     wait_for_writer();
     const ToneMap curve = s.render.tonemap;
     writing = std::async(std::launch::async, [=, &video] {
@@ -273,12 +375,14 @@ int run_animate(const AnimateArgs& a) {
     ++rendered;
     bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
   }
-  std::signal(SIGINT, SIG_DFL);
   wait_for_writer();
   if (interrupted) {
-    std::fprintf(stderr, "lightcone: interrupted after %lld of %lld frames%s\n", rendered + skipped,
-                 count, video ? "; no video written" : "");
-    return kInterrupted;
+    video.reset();  // its temporary file goes with it
+    std::fprintf(stderr,
+                 "lightcone: stopped by %s after %lld of %lld frames (whole frames kept%s)\n",
+                 StopSignals::name().c_str(), rendered + skipped, count,
+                 a.video ? "; no video written" : "");
+    return StopSignals::exit_status();
   }
   if (video) video->finish();
   if (!a.quiet) {
@@ -291,37 +395,90 @@ int run_animate(const AnimateArgs& a) {
   return 0;
 }
 
+namespace {
+
+// The frame numbers whose files exist under `pattern`, in order, from a listing of its folder.
+std::vector<long long> frames_on_disk(const FramePattern& pattern) {
+  if (!pattern.number_in_file_name())
+    throw InputError("encode " + pattern.text() +
+                     ": the frame number is in a folder's name: give the frames with --frames A-B");
+  const std::string prefix = pattern.folder_prefix();
+  const fs::path folder = prefix.empty() ? fs::path(".") : fs::path(prefix);
+  std::error_code ec;
+  fs::directory_iterator it(folder, ec);
+  if (ec)
+    throw InputError(fmt::format("encode {}: cannot list {}: {}", pattern.text(), folder.string(),
+                                 ec.message()));
+  std::vector<long long> frames;
+  for (const fs::directory_entry& entry : it)
+    if (const std::optional<long long> frame =
+            pattern.frame_of(prefix + entry.path().filename().string()))
+      frames.push_back(*frame);
+  std::sort(frames.begin(), frames.end());
+  return frames;
+}
+
+}  // namespace
+
 int run_encode(const EncodeArgs& a) {
+  const StopSignals stop_signals;
   const FramePattern pattern("encode", a.pattern);
-  long long first = 0, last = -1;
-  if (a.frames) std::tie(first, last) = parse_frame_range("--frames", *a.frames);
-  if (!fs::is_regular_file(pattern.name(first)))
-    throw InputError(fmt::format("encode {}: the first frame, {}, does not exist", a.pattern,
-                                 pattern.name(first)));
-  const std::shared_ptr<Image> opening = load_image_file(pattern.name(first));
+  // The frames to encode: --frames A-B, or every frame from the first to the last on disk. A
+  // missing frame between them (a failed cluster task) is an error unless --allow-gaps.
+  std::vector<long long> frames;
+  long long span = 0;  // frames from the first to the last asked for
+  if (a.frames) {
+    const auto [first, last] = parse_frame_range("--frames", *a.frames);
+    span = last - first + 1;
+    if (last - first + 1 > kMaxFramesPerRun)
+      throw InputError(
+          fmt::format("--frames {}: more than {} frames", *a.frames, kMaxFramesPerRun));
+    for (long long i = first; i <= last; ++i)
+      if (fs::is_regular_file(pattern.name(i)))
+        frames.push_back(i);
+      else if (!a.allow_gaps)
+        throw InputError(fmt::format(
+            "encode {}: frame {} ({}) is missing (--allow-gaps encodes the frames there are)",
+            a.pattern, i, pattern.name(i)));
+  } else {
+    frames = frames_on_disk(pattern);
+    if (frames.size() > static_cast<std::size_t>(kMaxFramesPerRun))
+      throw InputError(fmt::format("encode {}: more than {} frames", a.pattern, kMaxFramesPerRun));
+    for (std::size_t k = 1; k < frames.size() && !a.allow_gaps; ++k)
+      if (frames[k] != frames[k - 1] + 1)
+        throw InputError(fmt::format(
+            "encode {}: frame {} ({}) is missing between frames {} and {} (--allow-gaps "
+            "encodes the frames there are)",
+            a.pattern, frames[k - 1] + 1, pattern.name(frames[k - 1] + 1), frames.front(),
+            frames.back()));
+    if (!frames.empty()) span = frames.back() - frames.front() + 1;
+  }
+  if (frames.empty())
+    throw InputError(fmt::format("encode {}: no frame files match it", a.pattern));
+  const long long missing = span - static_cast<long long>(frames.size());
+  if (missing > 0)
+    std::fprintf(stderr,
+                 "lightcone: warning: encode %s: %lld frames missing; encoding the %zu there are\n",
+                 a.pattern.c_str(), missing, frames.size());
+  const std::string opening_name = pattern.name(frames.front());
+  const std::shared_ptr<Image> opening = load_image_file(opening_name);
   check_video("-o", a.output, opening->width, opening->height, a.fps, a.crf);
-  // Every frame is read before encoding, so that a missing or odd one writes nothing.
-  long long end = first;
-  while ((a.frames ? end <= last : true) && fs::is_regular_file(pattern.name(end))) ++end;
-  if (a.frames && end <= last)
-    throw InputError(
-        fmt::format("encode {}: frame {} ({}) is missing", a.pattern, end, pattern.name(end)));
   VideoWriter video(a.output, opening->width, opening->height, a.fps, a.crf);
   ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
-  for (long long i = first; i < end; ++i) {
-    const std::shared_ptr<Image> frame = i == first ? opening : load_image_file(pattern.name(i));
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const std::string name = pattern.name(frames[k]);
+    const std::shared_ptr<Image> frame = k == 0 ? opening : load_image_file(name);
     if (frame->width != opening->width || frame->height != opening->height)
-      throw InputError(fmt::format("encode: {} is {}x{}, the first frame {}x{}", pattern.name(i),
-                                   frame->width, frame->height, opening->width, opening->height));
-    video.add(image_format_of(pattern.name(i)) == ImageFormat::kExr
-                  ? tone_map(*frame, ToneMap::kClamp)
-                  : *frame);
-    bar.update(static_cast<std::size_t>(i - first + 1), static_cast<std::size_t>(end - first));
+      throw InputError(fmt::format("encode: {} is {}x{}, the first frame {}x{}", name, frame->width,
+                                   frame->height, opening->width, opening->height));
+    video.add(image_format_of(name) == ImageFormat::kExr ? tone_map(*frame, ToneMap::kClamp)
+                                                         : *frame);
+    bar.update(k + 1, frames.size());
   }
   video.finish();
   if (!a.quiet)
-    std::fprintf(stderr, "lightcone: %s: %lld frames at %g fps\n", a.output.c_str(), end - first,
-                 a.fps);
+    std::fprintf(stderr, "lightcone: %s: %zu frames (%s) at %g fps\n", a.output.c_str(),
+                 frames.size(), describe_frames(frames.front(), frames.back()).c_str(), a.fps);
   return 0;
 }
 

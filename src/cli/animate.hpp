@@ -28,9 +28,12 @@ struct EncodeArgs {
   std::optional<std::string> frames;
   double fps = 30;
   int crf = 18;
-  bool quiet = false;
+  bool quiet = false, allow_gaps = false;
 };
 int run_encode(const EncodeArgs& args);
+
+// The most frames one `animate` run renders (longer animations are split with --frames).
+inline constexpr long long kMaxFramesPerRun = 1'000'000;
 
 // A printf-style frame file name with one integer conversion (%d, %04d, ...; %% is a percent
 // sign), checked: InputError naming `option` otherwise.
@@ -38,9 +41,16 @@ class FramePattern {
  public:
   FramePattern(const std::string& option, const std::string& pattern);
   std::string name(long long frame) const;
+  // The frame number whose name this is, if any (name(n) == name).
+  std::optional<long long> frame_of(const std::string& name) const;
+  const std::string& text() const { return text_; }
+  // Whether the frame number is in the file's name (not a folder's), and the folder part of
+  // every name ("frames/" for frames/shot-%04d.png; empty for a name without a folder).
+  bool number_in_file_name() const { return after_.find('/') == std::string::npos; }
+  std::string folder_prefix() const { return before_.substr(0, before_.rfind('/') + 1); }
 
  private:
-  std::string before_, after_;
+  std::string text_, before_, after_;
   int width_ = 0;
   bool zero_ = false;
 };

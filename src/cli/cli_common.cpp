@@ -15,8 +15,46 @@ namespace fs = std::filesystem;
 namespace lightcone {
 
 std::atomic<bool> interrupted{false};
-extern "C" void on_interrupt(int) {
+
+namespace {
+
+volatile std::sig_atomic_t first_stop_signal = 0;
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+extern "C" void on_stop_signal(int signal) {
+  if (first_stop_signal == 0) first_stop_signal = signal;
   interrupted = true;
+}
+
+}  // namespace
+
+StopSignals::StopSignals() {
+  for (const int s : kStopSignals) std::signal(s, on_stop_signal);
+}
+
+StopSignals::~StopSignals() {
+  for (const int s : kStopSignals) std::signal(s, SIG_DFL);
+}
+
+int StopSignals::received() {
+  return first_stop_signal;
+}
+
+std::string StopSignals::name() {
+  switch (first_stop_signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return "a signal";
+  }
+}
+
+int StopSignals::exit_status() {
+  return 128 + (first_stop_signal != 0 ? static_cast<int>(first_stop_signal) : SIGINT);
 }
 
 Scene load(const std::string& file, const std::vector<std::string>& overrides) {
@@ -52,6 +90,14 @@ bool same_file(const std::string& a, const std::string& b) {
   const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
   const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
   return pa == pb;
+}
+
+std::string partial_name(const std::string& path) {
+  const fs::path p(path);
+  fs::path partial = p.parent_path() / p.stem();
+  partial += ".partial";
+  partial += p.extension();
+  return partial.string();
 }
 
 RasterTessellation tessellation_mode(const std::string& name) {

@@ -1,8 +1,10 @@
 // What the commands share: loading a scene with its warnings, checking output targets, the
-// interrupt flag and the exit statuses.
+// stop signals and the exit statuses.
 #pragma once
 
 #include <atomic>
+#include <csignal>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,11 +14,30 @@
 namespace lightcone {
 
 constexpr int kBadInput = 2;
-constexpr int kInterrupted = 130;  // 128 + SIGINT, as shells report it
 
-// Set by the SIGINT handler on_interrupt while a render runs.
+// Set when SIGINT (Ctrl-C), SIGTERM (`timeout`, Slurm's scancel) or SIGHUP (a closed terminal)
+// arrives while StopSignals is installed; a render then stops at its next tile.
 extern std::atomic<bool> interrupted;
-extern "C" void on_interrupt(int);
+
+// Thrown where work ends early because a stop signal arrived.
+struct Stopped : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// While alive, the three stop signals set `interrupted` instead of ending the process, so that
+// a command can keep its whole frames, remove its temporaries and say what it kept.
+class StopSignals {
+ public:
+  StopSignals();
+  ~StopSignals();
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  // The first stop signal received (0 if none), its name ("SIGTERM") and the exit status a
+  // shell reports for it (128 + its number: 130, 143, 129).
+  static int received();
+  static std::string name();
+  static int exit_status();
+};
 
 // Loads a scene file with --set overrides, printing its warnings (and the tangent
 // approximation's) to stderr. Throws InputError.
@@ -28,6 +49,9 @@ void require_writable_target(const std::string& option, const std::string& path)
 
 // Whether two paths name the same file.
 bool same_file(const std::string& a, const std::string& b);
+
+// Where an interrupted render's image goes, beside its target: out.png -> out.partial.png.
+std::string partial_name(const std::string& path);
 
 RasterTessellation tessellation_mode(const std::string& name);
 

@@ -140,6 +140,7 @@ std::vector<Aov> parse_aovs(const std::string& text) {
 }
 
 int run_render(const RenderArgs& a) {
+  const StopSignals stop_signals;
   std::vector<std::string> overrides = a.overrides;
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
@@ -159,11 +160,13 @@ int run_render(const RenderArgs& a) {
       throw InputError("-o " + a.output +
                        ": unknown image format (the name must end in .png, .jpg or .exr)");
     require_writable_target("-o", a.output);
+    require_writable_target("-o", partial_name(a.output));
   }
   if (a.exr) {
     if (image_format_of(*a.exr) != ImageFormat::kExr)
       throw InputError("--exr " + *a.exr + ": the name must end in .exr");
     require_writable_target("--exr", *a.exr);
+    require_writable_target("--exr", partial_name(*a.exr));
     if (!to_stdout && same_file(a.output, *a.exr))
       throw InputError("--exr " + *a.exr + ": is the same file as -o");
   }
@@ -252,11 +255,11 @@ int run_render(const RenderArgs& a) {
       stats.exposure = raster_stats.exposure;
       stats.rays = static_cast<std::uint64_t>(image.width) * image.height * scene.camera.samples;
     } else {
-      std::signal(SIGINT, on_interrupt);
       image = render_image(scene, options, &stats);
-      std::signal(SIGINT, SIG_DFL);
     }
   }
+  // A stopped render never replaces a finished image: what it has goes beside the target.
+  const bool stopped = stats.cancelled || interrupted;
 
   // A picture with non-finite values is wrong, not merely dark or bright: say so, write nothing.
   const auto non_finite =
@@ -275,35 +278,43 @@ int run_render(const RenderArgs& a) {
   } else {
     display = tone_map(image, scene.render.tonemap);
   }
+  if (stopped && to_stdout) {
+    std::fprintf(stderr, "lightcone: stopped by %s: nothing written to standard output\n",
+                 StopSignals::name().c_str());
+    return StopSignals::exit_status();
+  }
   if (to_stdout) {
     const std::vector<unsigned char> png = encode_png(display);
     if (std::fwrite(png.data(), 1, png.size(), stdout) != png.size() || std::fflush(stdout) != 0)
       throw std::runtime_error("cannot write the PNG to standard output");
   }
+  const auto target = [&](const std::string& path) { return stopped ? partial_name(path) : path; };
   std::vector<ImageOutput> outputs;
-  if (!to_stdout) outputs.push_back({a.output, *format});
-  if (a.exr) outputs.push_back({*a.exr, ImageFormat::kExr});
+  if (!to_stdout) outputs.push_back({target(a.output), *format});
+  if (a.exr) outputs.push_back({target(*a.exr), ImageFormat::kExr});
   write_images(display, image, outputs);
 
-  const std::string written = to_stdout ? std::string("standard output") : a.output;
-  if (stats.cancelled) {
+  const std::string written = to_stdout ? std::string("standard output") : target(a.output);
+  const std::string also = a.exr ? " and " + target(*a.exr) : std::string();
+  if (stopped) {
     std::fprintf(stderr,
-                 "lightcone: interrupted: wrote the %zu of %zu tiles finished to %s (the rest "
-                 "is black)\n",
-                 static_cast<std::size_t>(tiles_done), static_cast<std::size_t>(tiles_total),
-                 written.c_str());
-    return kInterrupted;
+                 "lightcone: stopped by %s: wrote the %zu of %zu tiles finished to %s%s (the rest "
+                 "is black); %s is untouched\n",
+                 StopSignals::name().c_str(), static_cast<std::size_t>(tiles_done),
+                 static_cast<std::size_t>(tiles_total), written.c_str(), also.c_str(),
+                 a.output.c_str());
+    return StopSignals::exit_status();
   }
   const double mrays = stats.rays / std::max(stats.seconds, 1e-9) / 1e6;
   if (!a.quiet && raster)
     std::fprintf(stderr,
                  "lightcone: %dx%d, %d samples (raster, %zu triangles): %.2f s; wrote %s%s\n",
                  image.width, image.height, scene.camera.samples, raster_triangles, stats.seconds,
-                 written.c_str(), a.exr ? (" and " + *a.exr).c_str() : "");
+                 written.c_str(), also.c_str());
   else if (!a.quiet)
     std::fprintf(stderr, "lightcone: %dx%d, %d samples: %.2f s, %.2f Mrays/s; wrote %s%s\n",
                  image.width, image.height, scene.camera.samples, stats.seconds, mrays,
-                 written.c_str(), a.exr ? (" and " + *a.exr).c_str() : "");
+                 written.c_str(), also.c_str());
   if (a.stats) {
     const nlohmann::ordered_json line = {
         {"seconds", stats.seconds}, {"rays", stats.rays}, {"mrays_per_s", mrays}};
@@ -578,7 +589,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"proper", "world"}));
   animate_cmd->add_option("--crf", animate.crf,
                           "Video quality, lower is better (default 18; 0 to 63)");
-  animate_cmd->add_flag("--resume", animate.resume, "Keep frames whose files exist");
+  animate_cmd->add_flag("--resume", animate.resume,
+                        "Keep frames whose files exist, decode and have the run's size; render "
+                        "the rest");
   animate_cmd->add_option("--renderer", animate.renderer, "trace (the default) or raster")
       ->check(CLI::IsMember({"trace", "raster"}));
   animate_cmd->add_option("--tessellation", animate.tessellation, "raster: cpu, gpu or auto")
@@ -601,8 +614,11 @@ int main(int argc, char** argv) {
       ->required();
   encode_cmd->add_option("--fps", encode.fps, "Frames per second (default 30)");
   encode_cmd->add_option("--frames", encode.frames,
-                         "Frames A-B (default: from 0 while the files exist)");
+                         "Frames A-B (default: from the first to the last frame file there is)");
   encode_cmd->add_option("--crf", encode.crf, "Quality, lower is better (default 18)");
+  encode_cmd->add_flag("--allow-gaps", encode.allow_gaps,
+                       "Encode the frames there are when some between the first and last are "
+                       "missing (default: refuse, naming the first missing one)");
   encode_cmd->add_flag("--quiet", encode.quiet, "No progress bar and no summary line");
 
   if (argc > 1 && argv[1][0] != '-') {
@@ -634,6 +650,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     print_error(e.what());
     return kBadInput;
+  } catch (const Stopped& e) {
+    print_error(std::string(e.what()) + " by " + StopSignals::name() + "; nothing written");
+    return StopSignals::exit_status();
   } catch (const std::exception& e) {
     print_error(std::string("error: ") + e.what());
     return 1;
