@@ -1618,24 +1618,42 @@ TEST_F(CliTest, LocateBehindTheCameraHasNoPixel) {
   EXPECT_TRUE(aside["pixel"].is_null());
 }
 
-TEST_F(CliTest, InterruptWritesThePartialImageAndExits130) {
-  // A render that takes seconds: interrupted after a moment it writes the tiles finished.
+TEST_F(CliTest, AStoppedRenderWritesItsTilesBesideAnUntouchedTarget) {
+  // A render that takes seconds, stopped after a moment by Ctrl-C, `timeout`/`scancel`
+  // (SIGTERM) or a closed terminal (SIGHUP): the tiles finished go to out.partial.png and
+  // .partial.exr, the finished image already there is untouched, and the status is the
+  // shell's for that signal.
   const fs::path scene = write_scene(edited(kMovingScene, "\"samples\": 4", "\"samples\": 4096"));
-  const std::string command = std::string("'") + LIGHTCONE_BINARY + "' render " + quoted(scene) +
-                              " -o " + quoted(png()) + " --threads 1 2>" +
-                              quoted(out_ / "err.txt") + " & pid=$!; sleep 1; kill -INT $pid; " +
-                              "wait $pid; echo $? > " + quoted(out_ / "status.txt");
-  test::write_text(dir_ / "interrupt.sh", command + "\n");
-  ASSERT_EQ(std::system(("bash " + quoted(dir_ / "interrupt.sh")).c_str()), 0);
-  std::ifstream status_file(out_ / "status.txt");
-  int status = -1;
-  status_file >> status;
-  EXPECT_EQ(status, 130);
-  std::ifstream err_file(out_ / "err.txt");
-  const std::string err((std::istreambuf_iterator<char>(err_file)), {});
-  EXPECT_NE(err.find("interrupted: wrote the "), std::string::npos) << err;
-  const auto image = load_image_file(png());  // a PNG that decodes
-  EXPECT_EQ(image->width, 64);
+  for (const auto& [signal, status_expected] :
+       {std::pair{"INT", 130}, std::pair{"TERM", 143}, std::pair{"HUP", 129}}) {
+    test::write_text(png(), "a finished image");
+    const fs::path exr = this->exr();
+    fs::remove(exr);
+    const std::string command = std::string("'") + LIGHTCONE_BINARY + "' render " + quoted(scene) +
+                                " -o " + quoted(png()) + " --exr " + quoted(exr) +
+                                " --threads 1 2>" + quoted(out_ / "err.txt") +
+                                " & pid=$!; sleep 1; kill -" + signal +
+                                " $pid; wait $pid; echo $? > " + quoted(out_ / "status.txt");
+    test::write_text(dir_ / "interrupt.sh", command + "\n");
+    ASSERT_EQ(std::system(("bash " + quoted(dir_ / "interrupt.sh")).c_str()), 0);
+    std::ifstream status_file(out_ / "status.txt");
+    int status = -1;
+    status_file >> status;
+    EXPECT_EQ(status, status_expected) << signal;
+    std::ifstream err_file(out_ / "err.txt");
+    const std::string err((std::istreambuf_iterator<char>(err_file)), {});
+    EXPECT_NE(err.find(std::string("stopped by SIG") + signal + ": wrote the "), std::string::npos)
+        << err;
+    std::ifstream target(png());
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(target)), {}), "a finished image");
+    EXPECT_FALSE(fs::exists(exr)) << signal;
+    const auto image = load_image_file(out_ / "image.partial.png");  // a PNG that decodes
+    EXPECT_EQ(image->width, 64);
+    EXPECT_EQ(load_image_file(out_ / "image.partial.exr")->width, 64);
+    for (const fs::directory_entry& e : fs::directory_iterator(out_))
+      EXPECT_EQ(e.path().filename().string().find(".lightcone-"), std::string::npos)
+          << "a temporary file left: " << e.path();
+  }
 }
 
 TEST_F(CliTest, AovChannelsGoIntoTheExrByName) {
