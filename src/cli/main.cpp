@@ -220,6 +220,7 @@ int run_render(const RenderArgs& a) {
     scene.camera.height = std::max(1, scene.camera.height / 4);
   }
 
+  if (interrupted) throw Stopped("stopped before rendering");
   RenderOptions options;
   options.threads = a.threads;
   options.seed = a.seed;
