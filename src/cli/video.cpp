@@ -70,9 +70,19 @@ Child spawn(const std::string& program, std::vector<std::string> args, bool pipe
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // This process ignores SIGPIPE (a dying ffmpeg must make writes fail, not kill it); the
+  // child gets the default back.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
   Child child;
   const int spawned =
-      posix_spawn(&child.pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+      posix_spawn(&child.pid, program.c_str(), &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   for (const int fd : {in[0], out[1]})
     if (fd >= 0) ::close(fd);
@@ -287,7 +297,6 @@ VideoWriter::VideoWriter(const fs::path& file, int width, int height, double fps
                              "-f", "gif"});
   }
   args.push_back(temp_.string());
-  // A dying ffmpeg must make writes fail, not kill this process.
   std::signal(SIGPIPE, SIG_IGN);
   const Child child = spawn(require_program("ffmpeg", "--video"), args, true, false);
   child_ = child.pid;
