@@ -500,7 +500,7 @@ int main(int argc, char** argv) {
   render_cmd
       ->add_option("--tessellation", render.tessellation,
                    "raster: cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), "
-                   "or auto (the faster, the default)")
+                   "or auto (gpu on a hardware OpenGL 4 driver, else cpu; the default)")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   render_cmd->add_option("--width", render.width, "Override camera.width");
   render_cmd->add_option("--height", render.height, "Override camera.height");
@@ -563,7 +563,7 @@ int main(int argc, char** argv) {
   view_cmd
       ->add_option("--tessellation", view.tessellation,
                    "Cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), or auto "
-                   "(the faster after one frame of each, the default)")
+                   "(gpu on a hardware OpenGL 4 driver, else cpu; the default)")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   view_cmd->add_option("--benchmark", view.benchmark,
                        "Render this many frames of a scripted flight offscreen and print one "

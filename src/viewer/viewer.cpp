@@ -120,7 +120,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
 
   {
     RasterRenderer renderer;
-    TessellationChoice choice(options.tessellation, renderer.gpu_tessellation_available());
+    const bool on_gpu = tessellate_on_gpu(options.tessellation, renderer.driver());
     const DisplayPass display_pass;
     std::unique_ptr<FloatTarget> relativistic, classical;
     Flight flight(scene.camera);
@@ -182,16 +182,12 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
       frame.camera = flight.camera;
       frame.camera.width = width;
       frame.camera.height = height;
-      const auto drawing = std::chrono::steady_clock::now();
-      drawn = draw_scene(renderer, frame, *relativistic, choice.on_gpu());
+      drawn = draw_scene(renderer, frame, *relativistic, on_gpu);
       if (split) {
         Scene still = frame;
         still.render.relativity = false;
-        draw_scene(renderer, still, *classical, choice.on_gpu());
+        draw_scene(renderer, still, *classical, on_gpu);
       }
-      glFinish();
-      choice.frame_took(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count());
 
       // F12: the view as a PNG, as `lightcone render` would write it (no panel).
       if (screenshot) {
@@ -227,7 +223,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         ImGui::Text("beta %.4f   gamma %.3f", flight.speed, gamma);
         ImGui::Text("Doppler on screen %.3g to %.3g", drawn.doppler_min, drawn.doppler_max);
         ImGui::Text("%.1f fps, %zu triangles (%s)", fps, drawn.triangles,
-                    choice.on_gpu() ? "cut on the GPU" : "tessellated on the CPU");
+                    on_gpu ? "cut on the GPU" : "tessellated on the CPU");
         float speed = static_cast<float>(flight.speed);
         if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
         ImGui::Checkbox("relativity", &scene.render.relativity);
@@ -264,7 +260,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
 int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellation) {
   const HeadlessGlContext context;
   RasterRenderer renderer;
-  TessellationChoice choice(tessellation, renderer.gpu_tessellation_available());
+  const bool on_gpu = tessellate_on_gpu(tessellation, renderer.driver());
   const FloatTarget target(scene.camera.width, scene.camera.height);
   // The scripted flight: from the scene's camera, up to 0.9c along the view within the first
   // third, turning a little each frame.
@@ -277,11 +273,8 @@ int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellatio
     flight.advance(1.0 / 30);
     Scene frame = scene;
     frame.camera = flight.camera;
-    const auto drawing = std::chrono::steady_clock::now();
-    triangles += draw_scene(renderer, frame, target, choice.on_gpu()).triangles;
+    triangles += draw_scene(renderer, frame, target, on_gpu).triangles;
     glFinish();
-    choice.frame_took(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count());
   }
   glFinish();
   const double seconds =
@@ -293,7 +286,7 @@ int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellatio
       {"triangles", frames > 0 ? triangles / static_cast<std::size_t>(frames) : 0},
       {"width", scene.camera.width},
       {"height", scene.camera.height},
-      {"tessellation", choice.on_gpu() ? "gpu" : "cpu"},
+      {"tessellation", on_gpu ? "gpu" : "cpu"},
       {"gl", context.description()}};
   std::printf("%s\n", line.dump().c_str());
   return 0;

@@ -12,15 +12,12 @@ void check_gl(const char* what) {
     throw std::runtime_error(fmt::format("OpenGL error 0x{:x} while {}", error, what));
 }
 
-std::string gl_description() {
-  const auto text = [](GLenum name) {
-    const auto* s = reinterpret_cast<const char*>(glGetString(name));
-    return std::string(s != nullptr ? s : "?");
-  };
-  return fmt::format("OpenGL {}, {}", text(GL_VERSION), text(GL_RENDERER));
-}
-
 namespace {
+
+std::string gl_text(GLenum name) {
+  const auto* s = reinterpret_cast<const char*>(glGetString(name));
+  return std::string(s != nullptr ? s : "?");
+}
 
 const char* stage_name(GLenum stage) {
   switch (stage) {
@@ -82,6 +79,14 @@ GLuint link_program(const std::string& vertex, const std::string& fragment,
     throw std::runtime_error(fmt::format("shaders do not link: {}", log));
   }
   return program;
+}
+
+std::string gl_description() {
+  return fmt::format("OpenGL {}, {}", gl_text(GL_VERSION), gl_text(GL_RENDERER));
+}
+
+std::string gl_renderer() {
+  return gl_text(GL_RENDERER);
 }
 
 bool gl_has_tessellation_shaders() {

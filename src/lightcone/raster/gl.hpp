@@ -27,4 +27,7 @@ GLuint link_program(const std::string& vertex, const std::string& fragment,
 // Whether the current context is OpenGL 4 or later (tessellation shaders).
 bool gl_has_tessellation_shaders();
 
+// The current context's renderer (GL_RENDERER): "llvmpipe (LLVM 15.0.6, 256 bits)" and the like.
+std::string gl_renderer();
+
 }  // namespace lightcone

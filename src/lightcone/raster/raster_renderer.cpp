@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -129,7 +130,7 @@ struct RasterRenderer::Impl {
   GLuint body_programs[3] = {0, 0, 0}, sky_programs[2] = {0, 0};
   // The same with tessellation shaders (OpenGL 4), where the context has them.
   GLuint patch_programs[3] = {0, 0, 0};
-  bool gpu_tessellation_available = false;
+  GlDriver driver;
   bool gpu_tessellation = false;  // which path the frame is prepared for
   GLuint body_program = 0;        // the one in use
   GLuint patch_buffer = 0;
@@ -144,8 +145,9 @@ struct RasterRenderer::Impl {
                           v == kLit        ? "#define LIGHTCONE_LIT 1\n"
                           : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
                                            : ""));
-    gpu_tessellation_available = gl_has_tessellation_shaders();
-    if (gpu_tessellation_available) {
+    driver.tessellation_shaders = gl_has_tessellation_shaders();
+    driver.renderer = gl_renderer();
+    if (driver.tessellation_shaders) {
       const std::string common =
           version_line(true) + shader_sources::common_glsl + shader_sources::body_projection_glsl;
       for (int v = 0; v < 3; ++v)
@@ -279,7 +281,7 @@ struct RasterRenderer::Impl {
                            const TessellationLimits& limits, bool on_gpu) {
     scene = &resolved;
     // Spinning bodies' points each turn on their own world-line, which only the CPU path solves.
-    gpu_tessellation = on_gpu && gpu_tessellation_available && resolved.spins.empty();
+    gpu_tessellation = on_gpu && driver.tessellation_shaders && resolved.spins.empty();
     tessellation_limits = limits;
     const Scene& s = *resolved.scene;
     const RenderSettings& settings = s.render;
@@ -796,8 +798,25 @@ RasterFrameStats RasterRenderer::prepare(const ResolvedScene& scene, const Emiss
   return impl_->prepare(scene, emission, limits, on_gpu);
 }
 
-bool RasterRenderer::gpu_tessellation_available() const {
-  return impl_->gpu_tessellation_available;
+const GlDriver& RasterRenderer::driver() const {
+  return impl_->driver;
+}
+
+bool software_rasteriser(const std::string& renderer) {
+  std::string name = renderer;
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* software : {"llvmpipe", "softpipe", "swrast", "swiftshader",
+                               "basic render driver", "software renderer"})
+    if (name.find(software) != std::string::npos) return true;
+  return false;
+}
+
+bool tessellate_on_gpu(RasterTessellation mode, const GlDriver& driver) {
+  if (mode == RasterTessellation::kGpu && !driver.tessellation_shaders)
+    throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
+  if (mode != RasterTessellation::kAuto) return mode == RasterTessellation::kGpu;
+  return driver.tessellation_shaders && !software_rasteriser(driver.renderer);
 }
 
 void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
@@ -843,16 +862,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<double> sum(3 * pixels, 0.0);
   std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
-  // The tessellation path: as asked, or (auto) whichever draws the first pass faster.
-  TessellationChoice choice(mode, renderer.gpu_tessellation_available());
-  while (!choice.decided()) {
-    const auto t0 = std::chrono::steady_clock::now();
-    renderer.prepare(resolved, emission, limits, choice.on_gpu());
-    renderer.pass(0.5, 0.5);
-    glFinish();
-    choice.frame_took(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  const bool on_gpu = choice.on_gpu();
+  const bool on_gpu = tessellate_on_gpu(mode, renderer.driver());
   std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int k = 0; k < n; ++k) {

@@ -27,8 +27,25 @@ struct RasterFrameStats {
 };
 
 // Where edges are cut: on the CPU (any OpenGL 3.3), by tessellation shaders on the GPU
-// (OpenGL 4), or whichever draws the first pass of the frame faster.
+// (OpenGL 4), or (auto) by the GL driver, as tessellate_on_gpu says.
 enum class RasterTessellation { kCpu, kGpu, kAuto };
+
+// What the tessellation path is chosen by: facts of the GL driver, the same on every run.
+struct GlDriver {
+  bool tessellation_shaders = false;  // OpenGL 4 or later
+  std::string renderer;               // GL_RENDERER: "llvmpipe (LLVM 15.0.6, 256 bits)", ...
+};
+
+// Whether a GL_RENDERER string names a rasteriser that runs on the CPU: Mesa's llvmpipe and
+// softpipe (also under zink or the D3D12 driver), swrast, Google's SwiftShader, Microsoft's
+// WARP ("Basic Render Driver"), Apple's software renderer.
+bool software_rasteriser(const std::string& renderer);
+
+// Whether edges are cut on the GPU: as asked, or (auto) where the driver has tessellation
+// shaders and rasterises on a GPU; on a software rasteriser the CPU path is the faster
+// (docs/design/raster.md). No timing enters, so one command gives the same image every run.
+// Throws GlUnavailable for the GPU path without OpenGL 4.
+bool tessellate_on_gpu(RasterTessellation mode, const GlDriver& driver);
 
 // The GL programs and buffers of the renderer; needs a current OpenGL 3.3 core context.
 class RasterRenderer {
@@ -44,7 +61,8 @@ class RasterRenderer {
   // with equal pieces (docs/design/raster.md).
   RasterFrameStats prepare(const ResolvedScene& scene, const EmissionTable& emission,
                            const TessellationLimits& limits = {}, bool on_gpu = false);
-  bool gpu_tessellation_available() const;
+  // The current context's driver, for tessellate_on_gpu.
+  const GlDriver& driver() const;
   // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
   // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The
   // viewport must be the camera's image size.
@@ -56,33 +74,6 @@ class RasterRenderer {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-};
-
-// Which tessellation path draws: as asked, or (auto) the one whose first drawing took less
-// time, after one of each (CPU first). Throws GlUnavailable for the GPU path without OpenGL 4.
-class TessellationChoice {
- public:
-  TessellationChoice(RasterTessellation mode, bool gpu_available) : mode_(mode) {
-    if (mode == RasterTessellation::kGpu && !gpu_available)
-      throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
-    if (mode == RasterTessellation::kAuto && !gpu_available) mode_ = RasterTessellation::kCpu;
-  }
-  bool on_gpu() const {
-    if (mode_ != RasterTessellation::kAuto) return mode_ == RasterTessellation::kGpu;
-    return frames_ < 2 ? frames_ == 1 : seconds_[1] < seconds_[0];
-  }
-  // Whether the path is settled (auto: once both were timed).
-  bool decided() const { return mode_ != RasterTessellation::kAuto || frames_ >= 2; }
-  // Records how long the frame just drawn took.
-  void frame_took(double seconds) {
-    if (frames_ < 2) seconds_[frames_] = seconds;
-    ++frames_;
-  }
-
- private:
-  RasterTessellation mode_;
-  int frames_ = 0;
-  double seconds_[2] = {0, 0};
 };
 
 struct RasterStats {
