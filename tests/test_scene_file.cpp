@@ -220,10 +220,11 @@ TEST_F(SceneFileTest, BadCameraMotionIsLocated) {
   expect_error(with_motion(R"({"keyframes": []})"), 3, "camera.motion.keyframes",
                "must be a non-empty array");
   expect_error(with_motion(R"({"phases": 3})"), 3, "camera.motion.phases", "must be an array");
-  // So fast by then that double precision cannot hold it: tanh(100) rounds to 1.
+  // So fast by the phase's end that double precision cannot hold it: tanh(100) rounds to 1.
+  // (The whole world-line is held to the limit, not only the observation.)
   expect_error(with_motion(R"({"phases": [{"duration": 100, "acceleration": [1, 0, 0]}]},
     "proper_time": 50)"),
-               3, "camera.motion.phases", "too close to the speed of light");
+               3, "camera.motion.phases[0]", "too close to the speed of light");
   expect_error(
       "{\n  \"camera\": {\"position\": [0, 0, 0],\n    \"proper_time\": \"soon\"},\n"
       "  \"objects\": []\n}",

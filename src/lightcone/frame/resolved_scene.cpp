@@ -257,7 +257,9 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
       spin.shape_of_rest = to_shape;
       spin.axis = object.spin->axis;
       spin.rate = object.spin->rate;
-      spin.radius = origin_radius(object.shape, object.scale) * (1 + 1e-9);
+      const double radius = origin_radius(object.shape, object.scale);
+      spin.radius = radius * (1 + 1e-9);
+      spin.rim_speed = std::abs(spin.rate) * radius;
       const RayEvent origin_seen = meet_world_line(r.ray_time, trace_world_line(trace_to_body, {}));
       const double seen_time =
           trace_to_body(Vec4{r.ray_time * origin_seen.s, origin_seen.position}).t +

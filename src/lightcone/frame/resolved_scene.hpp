@@ -51,7 +51,10 @@ struct ResolvedSpin {
   Vec3 axis;
   double rate = 0;          // radians per unit of proper time
   double frozen_angle = 0;  // rate times the proper time at which the camera sees the origin
-  double radius = 0;        // of the ball about the origin that holds the shape
+  double radius = 0;        // of the ball about the origin that holds the shape (padded)
+  // |rate| times the shape's own radius about the origin (not padded): the fastest point's
+  // speed relative to the centre, below 1.
+  double rim_speed = 0;
   // The proper time at the W event (t, x): shadow_proper_time_origin + row . (t, x).
   double shadow_proper_time_origin = 0;
   Vec4 shadow_proper_time_row;
@@ -59,9 +62,12 @@ struct ResolvedSpin {
 };
 
 // The rapidity of a spinning body's rim relative to its centre: the most any of its points'
-// Doppler factors differ from its centre's, in ln D.
+// Doppler factors differ from its centre's, in ln D. From the rim speed itself, not from the
+// padded radius: a rim within 1e-9 of the speed of light would round up to 1 there, and an
+// infinite rapidity would leave the colour tables covering D = 1 alone (they extrapolate past
+// their ends, to negative radiance).
 inline double spin_rapidity(const ResolvedSpin& spin) {
-  return std::atanh(std::min(std::abs(spin.rate) * spin.radius, 1.0));
+  return std::atanh(spin.rim_speed);
 }
 
 struct ResolvedBody {

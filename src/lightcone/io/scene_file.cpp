@@ -26,7 +26,9 @@
 #include "lightcone/io/mesh_file.hpp"
 #include "lightcone/io/scene_document.hpp"
 #include "lightcone/io/scene_overrides.hpp"
+#include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/world_line.hpp"
 
 namespace lightcone {
 namespace {
@@ -91,6 +93,35 @@ std::string join(Names words, Names more = {}) {
   return out;
 }
 
+// The Lorentz factor of the 4-velocity `u` relative to an observer of 4-velocity `observer`.
+double relative_gamma(const Vec4& observer, const Vec4& u) {
+  return observer.t * u.t - dot(observer.x, u.x);
+}
+
+Vec4 four_velocity(const Vec3& beta) {
+  const double gamma = lorentz_gamma(beta);
+  return {gamma, beta * gamma};
+}
+
+// The largest Lorentz factor, relative to `observer`, of a body that starts on `start` and moves
+// as `motion` says, anywhere on its world-line. On a phase of constant proper acceleration
+// the factor is A cosh(eta) + B sinh(eta), a convex function of the proper time (it equals its
+// second derivative and is positive), so its largest values are at the phases' ends; keyframes
+// have their own exact maximum.
+double max_relative_gamma(const WorldLine& start, const BodyMotion& motion, const Vec4& observer) {
+  if (!motion.keyframes.empty())
+    return KeyframeWorldLine(motion.keyframes).max_gamma(velocity_of(observer)).gamma;
+  double largest = relative_gamma(observer, four_velocity(start.velocity));
+  const AcceleratedWorldLine line(start.time, start.position, start.velocity, motion.phases);
+  double end = 0;
+  for (const AccelerationPhase& p : motion.phases) {
+    end += p.duration;
+    const double gamma = relative_gamma(observer, line.at_proper_time(end).four_velocity);
+    if (!(gamma <= largest)) largest = gamma;
+  }
+  return largest;
+}
+
 // Validates the document and builds the scene. Every check names the path of the offending
 // value; the line comes from the locator, or the message blames a --set override.
 class SceneReader {
@@ -112,7 +143,7 @@ class SceneReader {
     Scene scene;
     scene.speed_of_light = c_;
     scene.camera = camera(member(root, "camera"));
-    camera_velocity_ = scene.camera.world_line.velocity;
+    add_camera_observers(scene.camera);
     if (Node objects = member(root, "objects"); objects.value) read_objects(objects, scene);
     if (Node lights = member(root, "lights"); lights.value) read_lights(lights, scene);
     if (Node sky_node = member(root, "sky"); sky_node.value) scene.sky = sky(sky_node);
@@ -124,10 +155,19 @@ class SceneReader {
   }
 
  private:
+  // The one speed limit: every speed a body can reach (the camera, objects, lights, the sky, a
+  // spinning body's points), in W and relative to the camera, has gamma at most this; beyond
+  // it double precision cannot hold the physics (1 - v is below 5e-13).
   static constexpr double kMaxGamma = 1e6;
   double c_ = 1;  // the scene's speed of light, in its units
   std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
-  Vec3 camera_velocity_;  // set once the camera is read; relative speeds are checked against it
+  // The observers every speed is checked against: W, and once the camera is read, the camera
+  // at its observation and over its shutter. `relative` is how a message names it.
+  struct Observer {
+    Vec4 four_velocity;
+    std::string relative;
+  };
+  std::vector<Observer> observers_{{Vec4{1, {}}, ""}};
 
   // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
   // a typo near the end does not wait for large files to load first).
@@ -160,6 +200,15 @@ class SceneReader {
   [[noreturn]] void fail(const Node& n, const std::string& what) const {
     const std::string path = n.path();
     fail_at(path, lines_.value_line(path), what);
+  }
+
+  // The one wording of the speed limit: "SUBJECT[ relative to the camera] is too close to the
+  // speed of light (gamma G; at most 1e+06)".
+  void limit_gamma(const Node& n, double gamma, const std::string& subject,
+                   const Observer& observer) const {
+    if (!(gamma <= kMaxGamma))
+      fail(n, fmt::format("{}{} is too close to the speed of light (gamma {:.3g}; at most {:g})",
+                          subject, observer.relative, gamma, kMaxGamma));
   }
 
   // --- Typed values -----------------------------------------------------------------------
@@ -265,8 +314,8 @@ class SceneReader {
     return normalize(v / largest);
   }
 
-  // Below the speed of light, and not so close to it, for the body or relative to the camera,
-  // that double precision cannot hold the physics: gamma at most kMaxGamma.
+  // Below the speed of light, and not so close to it, in W or relative to the camera, that
+  // double precision cannot hold the physics: gamma at most kMaxGamma.
   Vec3 velocity(const Node& n) const {
     const Vec3 v = vec3(n);
     const Vec3 beta = v / c_;
@@ -275,16 +324,10 @@ class SceneReader {
     const double speed = length(beta);
     // (1 - v)(1 + v), not 1 - v^2: no cancellation near v = 1.
     const double gamma = 1 / std::sqrt((1 - speed) * (1 + speed));
-    if (!(gamma <= kMaxGamma))
-      fail(n,
-           fmt::format("speed {} is too close to the speed of light (gamma {:.3g}; at most {:g})",
-                       length(v), gamma, kMaxGamma));
-    const double relative =
-        gamma * lorentz_gamma(camera_velocity_) * (1 - dot(beta, camera_velocity_));
-    if (!(relative <= kMaxGamma))
-      fail(n, fmt::format("relative to the camera its speed is too close to the speed of light "
-                          "(gamma {:.3g}; at most {:g})",
-                          relative, kMaxGamma));
+    const Vec4 u{gamma, beta * gamma};
+    for (const Observer& o : observers_)
+      limit_gamma(n, o.relative.empty() ? gamma : relative_gamma(o.four_velocity, u),
+                  fmt::format("speed {}", length(v)), o);
     return beta;
   }
 
@@ -357,18 +400,16 @@ class SceneReader {
       c.motion.keyframes = moves.keyframes;
     }
     if (Node tau = member(n, "proper_time"); tau.value) c.motion.proper_time = time(tau);
-    // The observation: the camera's event and velocity at its proper time.
+    // The observation: the camera's event and velocity at its proper time. (Its whole
+    // world-line is within the limit already; this holds against rounding.)
     c.world_line = camera_observation(c.motion);
     {
       const double speed = length(c.world_line.velocity);
-      const double gamma = 1 / std::sqrt((1 - speed) * (1 + speed));
-      if (!(gamma <= kMaxGamma)) {
-        const Node where =
-            member(n, "motion").value ? member(n, "motion") : member(n, "proper_time");
-        fail(where, fmt::format("at proper time {} the camera's speed {} is too close to the "
-                                "speed of light (gamma {:.3g}; at most {:g})",
-                                c.motion.proper_time / c_, speed * c_, gamma, kMaxGamma));
-      }
+      const Node where = member(n, "motion").value ? member(n, "motion") : member(n, "proper_time");
+      limit_gamma(where, 1 / std::sqrt((1 - speed) * (1 + speed)),
+                  fmt::format("at proper time {} the camera's speed {}", c.motion.proper_time / c_,
+                              speed * c_),
+                  observers_.front());
     }
     if (Node f = member(n, "forward"); f.value) c.forward = direction(f);
     if (Node u = member(n, "up"); u.value) c.up = direction(u);
@@ -396,10 +437,39 @@ class SceneReader {
       // The observation at the shutter's close must be one double precision can hold.
       const WorldLine closing = observation_after(c, c.shutter);
       const double speed = length(closing.velocity);
-      if (!(1 / std::sqrt((1 - speed) * (1 + speed)) <= kMaxGamma))
-        fail(sh, "at the shutter's close the camera is too close to the speed of light");
+      limit_gamma(sh, 1 / std::sqrt((1 - speed) * (1 + speed)),
+                  fmt::format("at the shutter's close the camera's speed {}", speed * c_),
+                  observers_.front());
     }
     return c;
+  }
+
+  // The camera as an observer of every other speed: at its observation, and while its shutter
+  // is open at the shutter's close and at every phase's end in between (a phase's gamma relative
+  // to a body's phase is convex in each proper time, so the largest is at these ends), or every
+  // keyframe in between.
+  void add_camera_observers(const Camera& c) {
+    observers_.push_back({four_velocity(c.world_line.velocity), " relative to the camera"});
+    if (!(c.shutter > 0)) return;
+    const double open = c.motion.proper_time, close = open + c.shutter;
+    const std::string during = " relative to the camera while its shutter is open";
+    const auto add_at = [&](double tau) {
+      Camera::Motion m = c.motion;
+      m.proper_time = tau;
+      observers_.push_back({four_velocity(camera_observation(m).velocity), during});
+    };
+    double end = 0;
+    for (const AccelerationPhase& p : c.motion.phases)
+      if ((end += p.duration) > open && end < close) add_at(end);
+    if (!c.motion.keyframes.empty()) {
+      const KeyframeWorldLine line(c.motion.keyframes);
+      for (const Keyframe& key : c.motion.keyframes)
+        if (const WorldLinePoint p = line.at_world_time(key.time);
+            p.proper_time > open && p.proper_time < close)
+          observers_.push_back({p.four_velocity, during});
+    }
+    observers_.push_back({four_velocity(observation_after(c, c.shutter).velocity),
+                          " relative to the camera at its shutter's close"});
   }
 
   // A time in the scene's units, in the engine's.
@@ -464,7 +534,9 @@ class SceneReader {
   }
 
   // The motion of the body `n` whose world-line so far is `start`. Keyframes replace the
-  // world-line; phases start from its event and must not end too close to the speed of light.
+  // world-line; phases start from its event. Nowhere may the body come too close to the speed
+  // of light, in W or relative to the camera: between any two keyframes, or at any phase's end
+  // (the largest gamma of a phase is at one of its ends: max_relative_gamma).
   BodyMotion body_motion(const Node& n, const Node& m, WorldLine& start) const {
     BodyMotion motion = this->motion(m);
     if (!motion.keyframes.empty()) {
@@ -474,17 +546,26 @@ class SceneReader {
                "must not be given with motion.keyframes (the keyframes are "
                "where and when the body is)");
       start = {motion.keyframes.front().time, motion.keyframes.front().position, {}, 0};
+      const KeyframeWorldLine line(motion.keyframes);
+      const Node list = member(m, "keyframes");
+      for (const Observer& o : observers_) {
+        const KeyframeWorldLine::Fastest f = line.max_gamma(velocity_of(o.four_velocity));
+        const std::size_t i = f.segment;
+        limit_gamma(element(list, std::min(i + 1, motion.keyframes.size() - 1)), f.gamma,
+                    fmt::format("between keyframes {} and {} its speed", i, i + 1), o);
+      }
       return motion;
     }
     const AcceleratedWorldLine line(start.time, start.position, start.velocity, motion.phases);
+    const Node list = member(m, "phases");
     double end = 0;
-    for (const AccelerationPhase& p : motion.phases) end += p.duration;
-    const WorldLinePoint last = line.at_proper_time(end);
-    if (!(last.four_velocity.t <= kMaxGamma))
-      fail(member(m, "phases"),
-           fmt::format("after its phases the speed is too close to the speed of light (gamma "
-                       "{:.3g}; at most {:g})",
-                       last.four_velocity.t, kMaxGamma));
+    for (std::size_t i = 0; i < motion.phases.size(); ++i) {
+      end += motion.phases[i].duration;
+      const Vec4 u = line.at_proper_time(end).four_velocity;
+      for (const Observer& o : observers_)
+        limit_gamma(element(list, i), relative_gamma(o.four_velocity, u),
+                    fmt::format("at the end of phase {} its speed", i), o);
+    }
     return motion;
   }
 
@@ -900,8 +981,9 @@ class SceneReader {
     }
   }
 
-  // A spinning body's rim moves at rate times its radius about the origin, which needs the
-  // meshes loaded.
+  // A spinning body's rim moves at rate times its radius about the origin (which needs the
+  // meshes loaded): below the speed of light, and its fastest point, with the body's own motion
+  // added (relativistic velocity addition), within the one limit in W and relative to the camera.
   void check_spins(const Scene& scene) const {
     for (const auto& [index, path] : spins_) {
       const Object& o = scene.objects[index];
@@ -911,7 +993,36 @@ class SceneReader {
                 fmt::format("the rim speed {:.4g} (rate times the shape's radius {:.4g} about "
                             "the origin) must be below the speed of light ({})",
                             rim * c_, r, c_));
+      const double rim_gamma = 1 / std::sqrt((1 - rim) * (1 + rim));
+      for (const Observer& observer : observers_) {
+        const double gamma = rim_point_gamma(o, rim, rim_gamma, observer.four_velocity);
+        if (!(gamma <= kMaxGamma))
+          fail_at(path, lines_.value_line(path),
+                  fmt::format("the speed of the rim's fastest point (the rim speed {} added "
+                              "to the body's motion){} is too close to the speed of light "
+                              "(gamma {:.3g}; at most {:g})",
+                              rim * c_, observer.relative, gamma, kMaxGamma));
+      }
     }
+  }
+
+  // The largest Lorentz factor relative to `observer` of a point of the spinning body `o` (rim
+  // speed `rim`): a point moving at w relative to the body's centre, which moves at u relative
+  // to the observer, has gamma_u gamma_w (1 + u.w), u here the observer's velocity in the
+  // body's rest frame reversed. The rim's points move at `rim` in every direction across the
+  // spin axis, so the worst is gamma_w (U.t + rim |U across the axis|), U the observer's
+  // 4-velocity in the body's rest frame. For a body that is not inertial the axis turns with
+  // it: then the bound over every direction, gamma_w gamma_u (1 + rim u), at the body's largest
+  // gamma_u.
+  double rim_point_gamma(const Object& o, double rim, double rim_gamma,
+                         const Vec4& observer) const {
+    if (o.motion.inertial()) {
+      const Vec4 seen = boost(o.world_line.velocity) * observer;
+      const Vec3 across = seen.x - o.spin->axis * dot(o.spin->axis, seen.x);
+      return rim_gamma * (seen.t + rim * length(across));
+    }
+    const double g = max_relative_gamma(o.world_line, o.motion, observer);
+    return rim_gamma * (g + rim * std::sqrt(std::max(g - 1, 0.0) * (g + 1)));
   }
 
   // A lit material's texture is an albedo: every value in [0, 1] (PNG and JPEG always are; an

@@ -113,6 +113,55 @@ double max_squared_speed(const Vec3& v0, const Vec3& v1, const Vec3& v2) {
   return best;
 }
 
+// Polynomials by their coefficients, lowest degree first.
+using Polynomial = std::vector<double>;
+
+Polynomial operator*(const Polynomial& p, const Polynomial& q) {
+  Polynomial out(p.size() + q.size() - 1, 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = 0; j < q.size(); ++j) out[i + j] += p[i] * q[j];
+  return out;
+}
+
+Polynomial operator-(Polynomial p, const Polynomial& q) {
+  if (p.size() < q.size()) p.resize(q.size(), 0.0);
+  for (std::size_t i = 0; i < q.size(); ++i) p[i] -= q[i];
+  return p;
+}
+
+Polynomial derivative(const Polynomial& p) {
+  Polynomial out(p.size() > 1 ? p.size() - 1 : 1, 0.0);
+  for (std::size_t i = 1; i < p.size(); ++i) out[i - 1] = static_cast<double>(i) * p[i];
+  return out;
+}
+
+double evaluate(const Polynomial& p, double x) {
+  double value = 0;
+  for (std::size_t i = p.size(); i-- > 0;) value = value * x + p[i];
+  return value;
+}
+
+// The real roots of p strictly between lo and hi where it changes sign, each to the last bit:
+// p is monotonic between consecutive roots of its derivative (found the same way), so each
+// such interval holds at most one, bracketed for bisection.
+std::vector<double> sign_changes(const Polynomial& p, double lo, double hi) {
+  if (p.size() < 2) return {};
+  std::vector<double> ends{lo};
+  for (const double r : sign_changes(derivative(p), lo, hi)) ends.push_back(r);
+  ends.push_back(hi);
+  std::vector<double> roots;
+  for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+    double a = ends[k], b = ends[k + 1];
+    const double fa = evaluate(p, a), fb = evaluate(p, b);
+    if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0))) continue;
+    const bool rising = fa < 0;
+    for (double mid = 0.5 * (a + b); mid > a && mid < b; mid = 0.5 * (a + b))
+      ((evaluate(p, mid) < 0) == rising ? a : b) = mid;
+    roots.push_back(a);
+  }
+  return roots;
+}
+
 WorldLinePoint inertial_point(const Keyframe& key, const Vec3& velocity, double proper_time,
                               double t) {
   const double gamma = lorentz_gamma(velocity), dt = t - key.time;
@@ -236,6 +285,33 @@ void KeyframeWorldLine::add_knots(std::size_t i, double from, double to, double 
   }
   knots_.push_back({mid, knots_.back().proper_time + left, i});
   knots_.push_back({to, knots_.back().proper_time + right, i});
+}
+
+KeyframeWorldLine::Fastest KeyframeWorldLine::max_gamma(const Vec3& observer_velocity) const {
+  const Vec3& c = observer_velocity;
+  const double observer_gamma = lorentz_gamma(c);
+  Fastest fastest{observer_gamma, 0};
+  for (std::size_t i = 0; i < segments_.size(); ++i) {
+    const Segment& g = segments_[i];
+    // gamma (1 - c.v) = a / sqrt(b) with a = 1 - c.v(s) and b = 1 - |v(s)|^2; a > 0, so its
+    // extremes are those of a^2 / b, where 2 a' b - a b' = 0 (a quintic in s).
+    const Polynomial a{1 - dot(c, g.v0), -dot(c, g.v1), -dot(c, g.v2)};
+    const Polynomial b{1 - dot(g.v0, g.v0), -2 * dot(g.v0, g.v1),
+                       -(dot(g.v1, g.v1) + 2 * dot(g.v0, g.v2)), -2 * dot(g.v1, g.v2),
+                       -dot(g.v2, g.v2)};
+    const Polynomial critical = Polynomial{2.0} * derivative(a) * b - a * derivative(b);
+    std::vector<double> candidates = sign_changes(critical, 0, 1);
+    candidates.push_back(0);
+    candidates.push_back(1);
+    for (const double s : candidates) {
+      const Vec3 v = g.velocity(s);
+      const double speed = length(v);
+      // (1 - |v|)(1 + |v|), not 1 - |v|^2: no cancellation near the speed of light.
+      const double gamma = observer_gamma * (1 - dot(c, v)) / std::sqrt((1 - speed) * (1 + speed));
+      if (!(gamma <= fastest.gamma)) fastest = {gamma, i};
+    }
+  }
+  return fastest;
 }
 
 WorldLinePoint KeyframeWorldLine::on_segment(const Segment& segment, const Knot& knot,

@@ -47,6 +47,18 @@ class KeyframeWorldLine final : public TimelikeWorldLine {
   // feeds tolerates. Zero for one or two keys (a straight line).
   double max_proper_acceleration() const override { return max_proper_acceleration_; }
 
+  // The largest Lorentz factor of the body relative to an observer moving with
+  // `observer_velocity` (|observer_velocity| < 1), gamma_o gamma (1 - observer_velocity . v),
+  // anywhere on the world-line (the inertial tails move as the end keys do), and the segment
+  // (keys `segment` and `segment + 1`) where it is reached. Exact to rounding: the critical
+  // points of the quotient of polynomials are the roots of a quintic, isolated between the
+  // roots of its derivatives. One key alone is at rest (segment 0).
+  struct Fastest {
+    double gamma = 1;
+    std::size_t segment = 0;
+  };
+  Fastest max_gamma(const Vec3& observer_velocity = {}) const;
+
   const std::vector<Keyframe>& keys() const { return keys_; }
 
  private:
