@@ -360,6 +360,28 @@ TEST_F(SpeedLimitCliTest, SpinningRimPastTheLimitIsRefused) {
       "5: objects[0].spin.rate: the speed of the rim's fastest point");
 }
 
+TEST_F(SpeedLimitCliTest, AnimateHoldsTheLimitAtEveryFrame) {
+  // The camera accelerates along +x (gamma cosh(tau)); the ball comes the other way at gamma
+  // 100. At proper time 0 they are within the limit, and the file loads; by proper time 9 the
+  // ball's gamma relative to the camera is about 2 * 100 * cosh(9) = 1.6e6. The frames before
+  // are written, the frame past the limit is refused by number, and no video is made.
+  const fs::path file =
+      write("scene.json",
+            scene(", \"position\": [0, 0, 0], \"forward\": [0, 0, -1],\n               \"motion\": "
+                  "{\"phases\": [{\"duration\": 12, \"acceleration\": [1, 0, 0]}]}",
+                  ", \"position\": [5, 0, -5], \"velocity\": [-" + speed(100) + ", 0, 0]"));
+  const CommandResult r = run_lightcone("animate " + quoted(file) + " --fps 1 --frames 0-12 -o " +
+                                        quoted(dir_ / "f%02d.png") + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.err;
+  // acosh(1e6 / 200) = 9.2: frame 10 is the first past the limit.
+  EXPECT_NE(r.err.find("frame 10: by then ball moves too close to the speed of light relative "
+                       "to the camera (gamma 2.2e+06; at most 1e+06)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "f09.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "f10.png"));
+}
+
 // A ball whose rim is just inside the limit (and the review's rim, 1e-9 below c) renders
 // finite, non-negative radiance: once the colour tables covered D = 1 alone and extrapolated
 // to radiance of -7.9e5. Every pixel's luminance is >= 0; a channel may be negative only as

@@ -260,6 +260,18 @@ int run_animate(const AnimateArgs& a) {
     const double speed = length(s.camera.world_line.velocity);
     if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))
       throw InputError(fmt::format("frame {}: the camera is at the speed of light by then", i));
+    // The scene file's limits hold at its own moment; the camera's clock moves them. Checked
+    // at the frame's observation and, with a shutter, at its close.
+    for (const double later : {0.0, s.camera.shutter}) {
+      const Vec3 v =
+          later > 0 ? observation_after(s.camera, later).velocity : s.camera.world_line.velocity;
+      const Fastest fastest = fastest_relative_to(s, Vec4{lorentz_gamma(v), v * lorentz_gamma(v)});
+      if (!(fastest.gamma <= kMaxLorentzFactor))
+        throw InputError(fmt::format(
+            "frame {}: by then {} moves too close to the speed of light relative to the camera "
+            "(gamma {:.3g}; at most {:g})",
+            i, fastest.name, fastest.gamma, kMaxLorentzFactor));
+    }
     return s;
   };
 

@@ -93,33 +93,9 @@ std::string join(Names words, Names more = {}) {
   return out;
 }
 
-// The Lorentz factor of the 4-velocity `u` relative to an observer of 4-velocity `observer`.
-double relative_gamma(const Vec4& observer, const Vec4& u) {
-  return observer.t * u.t - dot(observer.x, u.x);
-}
-
 Vec4 four_velocity(const Vec3& beta) {
   const double gamma = lorentz_gamma(beta);
   return {gamma, beta * gamma};
-}
-
-// The largest Lorentz factor, relative to `observer`, of a body that starts on `start` and moves
-// as `motion` says, anywhere on its world-line. On a phase of constant proper acceleration
-// the factor is A cosh(eta) + B sinh(eta), a convex function of the proper time (it equals its
-// second derivative and is positive), so its largest values are at the phases' ends; keyframes
-// have their own exact maximum.
-double max_relative_gamma(const WorldLine& start, const BodyMotion& motion, const Vec4& observer) {
-  if (!motion.keyframes.empty())
-    return KeyframeWorldLine(motion.keyframes).max_gamma(velocity_of(observer)).gamma;
-  double largest = relative_gamma(observer, four_velocity(start.velocity));
-  const AcceleratedWorldLine line(start.time, start.position, start.velocity, motion.phases);
-  double end = 0;
-  for (const AccelerationPhase& p : motion.phases) {
-    end += p.duration;
-    const double gamma = relative_gamma(observer, line.at_proper_time(end).four_velocity);
-    if (!(gamma <= largest)) largest = gamma;
-  }
-  return largest;
 }
 
 // Validates the document and builds the scene. Every check names the path of the offending
@@ -158,7 +134,7 @@ class SceneReader {
   // The one speed limit: every speed a body can reach (the camera, objects, lights, the sky, a
   // spinning body's points), in W and relative to the camera, has gamma at most this; beyond
   // it double precision cannot hold the physics (1 - v is below 5e-13).
-  static constexpr double kMaxGamma = 1e6;
+  static constexpr double kMaxGamma = kMaxLorentzFactor;
   double c_ = 1;  // the scene's speed of light, in its units
   std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
   // The observers every speed is checked against: W, and once the camera is read, the camera
@@ -993,9 +969,8 @@ class SceneReader {
                 fmt::format("the rim speed {:.4g} (rate times the shape's radius {:.4g} about "
                             "the origin) must be below the speed of light ({})",
                             rim * c_, r, c_));
-      const double rim_gamma = 1 / std::sqrt((1 - rim) * (1 + rim));
       for (const Observer& observer : observers_) {
-        const double gamma = rim_point_gamma(o, rim, rim_gamma, observer.four_velocity);
+        const double gamma = rim_point_gamma(o, rim, observer.four_velocity);
         if (!(gamma <= kMaxGamma))
           fail_at(path, lines_.value_line(path),
                   fmt::format("the speed of the rim's fastest point (the rim speed {} added "
@@ -1004,25 +979,6 @@ class SceneReader {
                               rim * c_, observer.relative, gamma, kMaxGamma));
       }
     }
-  }
-
-  // The largest Lorentz factor relative to `observer` of a point of the spinning body `o` (rim
-  // speed `rim`): a point moving at w relative to the body's centre, which moves at u relative
-  // to the observer, has gamma_u gamma_w (1 + u.w), u here the observer's velocity in the
-  // body's rest frame reversed. The rim's points move at `rim` in every direction across the
-  // spin axis, so the worst is gamma_w (U.t + rim |U across the axis|), U the observer's
-  // 4-velocity in the body's rest frame. For a body that is not inertial the axis turns with
-  // it: then the bound over every direction, gamma_w gamma_u (1 + rim u), at the body's largest
-  // gamma_u.
-  double rim_point_gamma(const Object& o, double rim, double rim_gamma,
-                         const Vec4& observer) const {
-    if (o.motion.inertial()) {
-      const Vec4 seen = boost(o.world_line.velocity) * observer;
-      const Vec3 across = seen.x - o.spin->axis * dot(o.spin->axis, seen.x);
-      return rim_gamma * (seen.t + rim * length(across));
-    }
-    const double g = max_relative_gamma(o.world_line, o.motion, observer);
-    return rim_gamma * (g + rim * std::sqrt(std::max(g - 1, 0.0) * (g + 1)));
   }
 
   // A lit material's texture is an albedo: every value in [0, 1] (PNG and JPEG always are; an

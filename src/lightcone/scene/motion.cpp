@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -59,6 +60,64 @@ std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
     return std::make_unique<AcceleratedWorldLine>(start.time, start.position, start.velocity,
                                                   motion.phases);
   return nullptr;
+}
+
+double relative_gamma(const Vec4& observer, const Vec4& u) {
+  return observer.t * u.t - dot(observer.x, u.x);
+}
+
+// On a phase of constant proper acceleration the factor is A cosh(eta) + B sinh(eta), a convex
+// function of the proper time (it equals its second derivative and is positive), so its largest
+// values are at the phases' ends; keyframes have their own exact maximum.
+double max_relative_gamma(const WorldLine& start, const BodyMotion& motion, const Vec4& observer) {
+  if (!motion.keyframes.empty())
+    return KeyframeWorldLine(motion.keyframes).max_gamma(velocity_of(observer)).gamma;
+  const double gamma = lorentz_gamma(start.velocity);
+  double largest = relative_gamma(observer, {gamma, start.velocity * gamma});
+  const AcceleratedWorldLine line(start.time, start.position, start.velocity, motion.phases);
+  double end = 0;
+  for (const AccelerationPhase& p : motion.phases) {
+    end += p.duration;
+    const double g = relative_gamma(observer, line.at_proper_time(end).four_velocity);
+    if (!(g <= largest)) largest = g;
+  }
+  return largest;
+}
+
+// A point moving at w relative to the body's centre, which moves at u relative to the observer,
+// has gamma_u gamma_w (1 + u.w), u here the observer's velocity in the body's rest frame
+// reversed. The rim's points move at `rim` in every direction across the spin axis, so the
+// worst is gamma_w (U.t + rim |U across the axis|), U the observer's 4-velocity in the body's
+// rest frame. For a body that is not inertial the axis turns with it: then the bound over every
+// direction, gamma_w gamma_u (1 + rim u), at the body's largest gamma_u.
+double rim_point_gamma(const Object& o, double rim, const Vec4& observer) {
+  const double rim_gamma = 1 / std::sqrt((1 - rim) * (1 + rim));
+  if (o.motion.inertial()) {
+    const Vec4 seen = boost(o.world_line.velocity) * observer;
+    const Vec3 across = seen.x - o.spin->axis * dot(o.spin->axis, seen.x);
+    return rim_gamma * (seen.t + rim * length(across));
+  }
+  const double g = max_relative_gamma(o.world_line, o.motion, observer);
+  return rim_gamma * (g + rim * std::sqrt(std::max(g - 1, 0.0) * (g + 1)));
+}
+
+Fastest fastest_relative_to(const Scene& scene, const Vec4& observer) {
+  Fastest fastest;
+  const auto consider = [&](const std::string& name, double gamma) {
+    if (!(gamma <= fastest.gamma)) fastest = {name, gamma};
+  };
+  for (const Object& o : scene.objects) {
+    consider(o.name, max_relative_gamma(o.world_line, o.motion, observer));
+    if (o.spin) {
+      const double rim = std::abs(o.spin->rate) * origin_radius(o.shape, o.scale);
+      consider(o.name + "'s spin rim", rim < 1 ? rim_point_gamma(o, rim, observer) : HUGE_VAL);
+    }
+  }
+  for (const Light& l : scene.lights)
+    consider(l.name, max_relative_gamma(l.world_line, l.motion, observer));
+  const double sky = lorentz_gamma(scene.sky.velocity);
+  consider("the sky", relative_gamma(observer, {sky, scene.sky.velocity * sky}));
+  return fastest;
 }
 
 }  // namespace lightcone

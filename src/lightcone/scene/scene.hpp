@@ -296,6 +296,29 @@ WorldLine observation_after(const Camera& camera, double later);
 // The largest distance from an object's origin of a point of its (scaled) shape.
 double origin_radius(const Shape& shape, const Vec3& scale);
 
+// The one speed limit: no body, light, spin rim or camera may have a Lorentz factor above this,
+// in W or relative to the camera (double precision holds the physics up to it).
+inline constexpr double kMaxLorentzFactor = 1e6;
+
+// The Lorentz factor of the 4-velocity `u` relative to an observer of 4-velocity `observer`.
+double relative_gamma(const Vec4& observer, const Vec4& u);
+
+// The largest Lorentz factor, relative to `observer`, of a body that starts on `start` and moves
+// as `motion` says, anywhere on its world-line.
+double max_relative_gamma(const WorldLine& start, const BodyMotion& motion, const Vec4& observer);
+
+// The largest Lorentz factor relative to `observer` of a point of the spinning object `o`, whose
+// rim moves at `rim` (< 1) relative to its centre.
+double rim_point_gamma(const Object& o, double rim, const Vec4& observer);
+
+// The fastest thing relative to `observer` (objects, their spin rims, lights), over their whole
+// world-lines: its name and Lorentz factor.
+struct Fastest {
+  std::string name;
+  double gamma = 1;
+};
+Fastest fastest_relative_to(const Scene& scene, const Vec4& observer);
+
 // The inertial world-line tangent to `line` at `point` (its event, velocity and proper time).
 WorldLine tangent_line(const WorldLinePoint& point);
 
