@@ -13,15 +13,23 @@
 
 namespace lightcone::fuzz {
 
-inline std::filesystem::path input_file(const std::string& name, const std::uint8_t* data,
-                                        std::size_t size) {
+// This process's own folder, under the system's temporary folder.
+inline const std::filesystem::path& own_dir() {
   static const std::filesystem::path dir = [] {
     auto d =
         std::filesystem::temp_directory_path() / ("lightcone-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     return d;
   }();
-  const std::filesystem::path file = dir / name;
+  return dir;
+}
+
+// Writes the input to `name` (which may name a subfolder) in the own folder.
+inline std::filesystem::path input_file(const std::string& name, const std::uint8_t* data,
+                                        std::size_t size) {
+  const std::filesystem::path file = own_dir() / name;
+  std::error_code ec;
+  std::filesystem::create_directories(file.parent_path(), ec);
   std::FILE* f = std::fopen(file.c_str(), "wb");
   if (f) {
     std::fwrite(data, 1, size, f);

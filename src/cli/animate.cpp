@@ -237,7 +237,7 @@ int run_animate(const AnimateArgs& a) {
   check_frame_targets(patterns, first, last);
   const bool raster = a.renderer == "raster";
 
-  const Scene scene = load(a.scene, overrides);
+  const Scene scene = load(a.scene, overrides, a.scene_options);
   const Camera& camera = scene.camera;
   if (a.video) check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf);
   if (raster)

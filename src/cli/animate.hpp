@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/io/scene_file.hpp"
+
 namespace lightcone {
 
 struct AnimateArgs {
@@ -19,6 +21,7 @@ struct AnimateArgs {
   int threads = 0, crf = 18;
   std::uint64_t seed = 0;
   std::vector<std::string> overrides;
+  SceneLoadOptions scene_options;  // --allow-outside
   bool resume = false, quiet = false;
 };
 int run_animate(const AnimateArgs& args);

@@ -57,9 +57,10 @@ int StopSignals::exit_status() {
   return 128 + (first_stop_signal != 0 ? static_cast<int>(first_stop_signal) : SIGINT);
 }
 
-Scene load(const std::string& file, const std::vector<std::string>& overrides) {
+Scene load(const std::string& file, const std::vector<std::string>& overrides,
+           const SceneLoadOptions& options) {
   SceneLoadReport report;
-  Scene scene = load_scene_file(file, overrides, report);
+  Scene scene = load_scene_file(file, overrides, report, options);
   for (const std::string& w : tangent_warnings(scene)) report.warnings.push_back(w);
   for (const std::string& w : report.warnings)
     std::fprintf(stderr, "lightcone: warning: %s\n", w.c_str());

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/io/scene_file.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -41,7 +42,12 @@ class StopSignals {
 
 // Loads a scene file with --set overrides, printing its warnings (and the tangent
 // approximation's) to stderr. Throws InputError.
-Scene load(const std::string& file, const std::vector<std::string>& overrides);
+Scene load(const std::string& file, const std::vector<std::string>& overrides,
+           const SceneLoadOptions& options = {});
+
+// The help of --allow-outside, which sets SceneLoadOptions::mesh.allow_outside.
+inline constexpr const char* kAllowOutsideHelp =
+    "Let a mesh file (glTF) read files outside its own folder";
 
 // Checked before rendering: the target is a regular file or absent, and its folder exists and
 // is writable (InputError naming `option` otherwise).

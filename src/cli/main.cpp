@@ -109,6 +109,7 @@ struct RenderArgs {
   int threads = 0;
   std::uint64_t seed = 0;
   std::vector<std::string> overrides;
+  SceneLoadOptions scene_options;  // --allow-outside
   bool stats = false, quiet = false, preview = false;
 };
 
@@ -202,7 +203,7 @@ int run_render(const RenderArgs& a) {
 
   Scene scene = [&] {
     try {
-      return load(a.scene, overrides);
+      return load(a.scene, overrides, a.scene_options);
     } catch (const InputError& e) {
       // --width, --height and --samples travel as overrides; name the option the user typed.
       const std::string message = e.what();
@@ -324,15 +325,17 @@ int run_render(const RenderArgs& a) {
   return 0;
 }
 
-int run_check(const std::string& file, const std::vector<std::string>& overrides) {
-  const Scene scene = load(file, overrides);
+int run_check(const std::string& file, const std::vector<std::string>& overrides,
+              const SceneLoadOptions& options) {
+  const Scene scene = load(file, overrides, options);
   std::printf("%s: ok (%zu objects, %zu lights, %dx%d)\n", file.c_str(), scene.objects.size(),
               scene.lights.size(), scene.camera.width, scene.camera.height);
   return 0;
 }
 
-int run_info(const std::string& file, const std::vector<std::string>& overrides, bool json) {
-  const Scene scene = load(file, overrides);
+int run_info(const std::string& file, const std::vector<std::string>& overrides,
+             const SceneLoadOptions& options, bool json) {
+  const Scene scene = load(file, overrides, options);
   const SceneInfo info = scene_info(scene);
   if (json) {
     nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
@@ -373,6 +376,7 @@ struct LocateArgs {
   std::string scene;
   std::optional<std::string> object, point, world_point, direction;
   std::vector<std::string> overrides;
+  SceneLoadOptions scene_options;  // --allow-outside
 };
 
 int run_locate(const LocateArgs& a) {
@@ -398,7 +402,7 @@ int run_locate(const LocateArgs& a) {
     if (largest == 0) throw InputError("--direction: must not be zero");
     query.value = query.value / largest;
   }
-  const Scene scene = load(a.scene, a.overrides);
+  const Scene scene = load(a.scene, a.overrides, a.scene_options);
   LocateResult r;
   try {
     r = locate(scene, query);
@@ -440,6 +444,7 @@ int run_locate(const LocateArgs& a) {
 struct ViewArgs {
   std::string scene;
   std::vector<std::string> overrides;
+  SceneLoadOptions scene_options;  // --allow-outside
   std::optional<int> width, height, benchmark;
   bool split = false;
   double time_scale = 1;
@@ -450,7 +455,7 @@ int run_view(const ViewArgs& a) {
   std::vector<std::string> overrides = a.overrides;
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
-  const Scene scene = load(a.scene, overrides);
+  const Scene scene = load(a.scene, overrides, a.scene_options);
   for (const std::string& difference : raster_differences(scene))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());
@@ -520,6 +525,8 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--preview", render.preview,
                        "Quick look: a quarter of the size, 1 sample, automatic exposure");
   render_cmd->add_option("--set", render.overrides, "Override a scene value: key.path=value");
+  render_cmd->add_flag("--allow-outside", render.scene_options.mesh.allow_outside,
+                       kAllowOutsideHelp);
   render_cmd->add_flag("--stats", render.stats, "Print one JSON line of timing to stderr");
   render_cmd->add_flag("--quiet", render.quiet, "No progress bar and no summary line");
 
@@ -533,6 +540,7 @@ int main(int argc, char** argv) {
   locate_cmd->add_option("--direction", loc.direction,
                          "x,y,z of a direction at infinity, in the sky's rest frame");
   locate_cmd->add_option("--set", loc.overrides, "Override a scene value: key.path=value");
+  locate_cmd->add_flag("--allow-outside", loc.scene_options.mesh.allow_outside, kAllowOutsideHelp);
 
   std::string check_scene;
   std::vector<std::string> check_overrides;
@@ -540,6 +548,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("check", "Validate a scene file (status 0 or 2); render nothing");
   check_cmd->add_option("scene", check_scene, "Scene file (JSON)")->required();
   check_cmd->add_option("--set", check_overrides, "Override a scene value: key.path=value");
+  SceneLoadOptions check_options;
+  check_cmd->add_flag("--allow-outside", check_options.mesh.allow_outside, kAllowOutsideHelp);
 
   std::string info_scene;
   std::vector<std::string> info_overrides;
@@ -548,6 +558,8 @@ int main(int argc, char** argv) {
       "info", "Summarise a scene: speeds, Doppler range, time window, memory estimate");
   info_cmd->add_option("scene", info_scene, "Scene file (JSON)")->required();
   info_cmd->add_option("--set", info_overrides, "Override a scene value: key.path=value");
+  SceneLoadOptions info_options;
+  info_cmd->add_flag("--allow-outside", info_options.mesh.allow_outside, kAllowOutsideHelp);
   info_cmd->add_flag("--json", info_json, "One JSON object, for scripts");
 
   ViewArgs view;
@@ -555,6 +567,7 @@ int main(int argc, char** argv) {
       "view", "Fly through a scene in a window (the real-time renderer, OpenGL 3.3)");
   view_cmd->add_option("scene", view.scene, "Scene file (JSON)")->required();
   view_cmd->add_option("--set", view.overrides, "Override a scene value: key.path=value");
+  view_cmd->add_flag("--allow-outside", view.scene_options.mesh.allow_outside, kAllowOutsideHelp);
   view_cmd->add_option("--width", view.width, "Window width (default: camera.width)");
   view_cmd->add_option("--height", view.height, "Window height (default: camera.height)");
   view_cmd->add_flag("--split", view.split, "Start with the classical | relativistic split");
@@ -604,6 +617,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 4096));
   animate_cmd->add_option("--seed", animate.seed, "Seed of the sample pattern");
   animate_cmd->add_option("--set", animate.overrides, "Override a scene value: key.path=value");
+  animate_cmd->add_flag("--allow-outside", animate.scene_options.mesh.allow_outside,
+                        kAllowOutsideHelp);
   animate_cmd->add_flag("--quiet", animate.quiet, "No progress bar and no summary line");
 
   EncodeArgs encode;
@@ -642,8 +657,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (*render_cmd) return run_render(render);
-    if (*check_cmd) return run_check(check_scene, check_overrides);
-    if (*info_cmd) return run_info(info_scene, info_overrides, info_json);
+    if (*check_cmd) return run_check(check_scene, check_overrides, check_options);
+    if (*info_cmd) return run_info(info_scene, info_overrides, info_options, info_json);
     if (*view_cmd) return run_view(view);
     if (*animate_cmd) return run_animate(animate);
     if (*encode_cmd) return run_encode(encode);

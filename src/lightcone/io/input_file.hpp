@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace lightcone {
@@ -16,5 +17,10 @@ inline constexpr std::uintmax_t kMaxAssetFileBytes = std::uintmax_t{2} << 30;   
 // than max_bytes, or unreadable. `what` names what the file should be ("scene file").
 std::string read_input_file(const std::filesystem::path& file, const std::string& what,
                             std::uintmax_t max_bytes);
+
+// The same checks without the throw: the bytes, or nullopt with `reason` saying what is wrong
+// ("it is a directory", "it is not a regular file (...)", "N bytes, more than the limit ...").
+std::optional<std::string> try_read_input_file(const std::filesystem::path& file,
+                                               std::uintmax_t max_bytes, std::string& reason);
 
 }  // namespace lightcone

@@ -192,7 +192,8 @@ std::shared_ptr<Mesh> load_obj(const fs::path& file, MeshLoadReport& report) {
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  // Parsing from the string skips `mtllib`: materials are not needed.
+  // Parsing from the string (with an empty material text) skips `mtllib`: materials are not
+  // needed, and no file an OBJ names is ever opened.
   if (!reader.ParseFromString(text, "", config)) {
     const std::string& err = reader.Error();
     const std::size_t at = err.find("line ");
@@ -956,20 +957,174 @@ std::string one_line(std::string_view text) {
   return out;
 }
 
-std::shared_ptr<Mesh> load_gltf(const fs::path& file, bool binary, MeshLoadReport& report) {
+// The files a glTF names (buffer and image uris). tinygltf joins its base folder and the decoded
+// uri and asks the callbacks below whether that path exists and for its bytes, so every file it
+// would open passes through read(): each is resolved beneath the mesh file's folder (unless
+// the options allow more) and read as the mesh file itself is. The first refusal is kept, to be
+// reported for the mesh file whatever tinygltf makes of the failed read (a failed image is only
+// a warning to it).
+class GltfReferences {
+ public:
+  GltfReferences(const fs::path& file, const MeshLoadOptions& options)
+      : allow_outside_(options.allow_outside) {
+    std::error_code ec;
+    const fs::path folder = fs::absolute(file, ec).parent_path();
+    folder_ = fs::canonical(folder, ec);
+    if (ec) folder_ = folder.lexically_normal();
+    base_dir_ = folder_.string();
+    // The path tinygltf gives the callbacks: base, "/" unless the base ends in one, uri.
+    prefix_ = !base_dir_.empty() && base_dir_.back() == '/' ? base_dir_ : base_dir_ + "/";
+  }
+
+  const std::string& base_dir() const { return base_dir_; }
+  const std::optional<std::string>& refusal() const { return refusal_; }
+
+  tinygltf::FsCallbacks callbacks() {
+    tinygltf::FsCallbacks fs{};
+    fs.FileExists = &exists;
+    fs.ExpandFilePath = &expand;
+    fs.ReadWholeFile = &read;
+    fs.WriteWholeFile = &write;
+    fs.user_data = this;
+    return fs;
+  }
+
+ private:
+  // Every path under the base "exists": read() then decides, the same way whether or not the
+  // file is there. (tinygltf would next try the uri against the working folder: never reached.)
+  static bool exists(const std::string& path, void* self) {
+    return path.starts_with(static_cast<GltfReferences*>(self)->prefix_);
+  }
+
+  // No expansion (of `~` or variables): a uri is a path.
+  static std::string expand(const std::string& path, void*) { return path; }
+
+  static bool write(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                    void*) {
+    if (err) *err += "writing is not supported";
+    return false;
+  }
+
+  static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* self) {
+    return static_cast<GltfReferences*>(self)->read(*out, err, path);
+  }
+
+  bool read(std::vector<unsigned char>& out, std::string* err, const std::string& path) {
+    if (!path.starts_with(prefix_)) return refuse(path, "it is not under the glTF's folder", err);
+    const std::string uri = path.substr(prefix_.size());
+    if (uri.find('\0') != std::string::npos) return refuse(uri, "it contains a NUL byte", err);
+    std::string reason;
+    const std::optional<fs::path> target = resolve(uri, reason);
+    if (!target) return refuse(uri, reason, err);
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(*target, ec))) {
+      // A missing file is tinygltf's to report (an error for a buffer, a warning for an image).
+      if (err) *err += "no such file";
+      return false;
+    }
+    std::optional<std::string> bytes = try_read_input_file(*target, kMaxAssetFileBytes, reason);
+    if (!bytes) return refuse(uri, reason, err);
+    out.assign(bytes->begin(), bytes->end());
+    return true;
+  }
+
+  bool refuse(const std::string& uri, const std::string& reason, std::string* err) {
+    constexpr std::size_t max_uri = 160;
+    const std::string shown = uri.size() > max_uri ? uri.substr(0, max_uri) + "..." : uri;
+    std::string message = fmt::format("uri {:?}: {}", shown, reason);
+    if (err) *err += message;
+    if (!refusal_) refusal_ = std::move(message);
+    return false;
+  }
+
+  // The file `uri` names, or nullopt with `reason`. Unless outside files are allowed, the uri is
+  // resolved beneath the folder step by step, as the system would resolve it, and refused at
+  // the first step that leaves the folder: an absolute uri, a `..` above the folder, a symbolic
+  // link whose target leads out. Only paths inside the folder are ever looked at, so the answer
+  // for a uri that leads out is the same whether or not a file lies where it leads.
+  std::optional<fs::path> resolve(const std::string& uri, std::string& reason) const {
+    const fs::path given(uri);
+    if (allow_outside_) return given.is_absolute() ? given : folder_ / given;
+    const auto outside = [&]() -> std::optional<fs::path> {
+      reason = "it is outside the mesh file's folder (allow that with --allow-outside)";
+      return std::nullopt;
+    };
+    if (given.has_root_path()) return outside();
+    std::vector<fs::path> todo;  // the steps still to take, the next one last
+    const auto push = [&](const fs::path& p) {
+      const std::size_t at = todo.size();
+      for (const fs::path& step : p) todo.push_back(step);
+      std::reverse(todo.begin() + static_cast<std::ptrdiff_t>(at), todo.end());
+    };
+    push(given);
+    fs::path current = folder_;
+    std::size_t depth = 0;  // steps below the folder
+    int links = 0;
+    while (!todo.empty()) {
+      const fs::path step = std::move(todo.back());
+      todo.pop_back();
+      if (step.empty() || step == ".") continue;
+      if (step == "..") {
+        if (depth == 0) return outside();
+        current = current.parent_path();
+        --depth;
+        continue;
+      }
+      const fs::path next = current / step;
+      std::error_code ec;
+      if (!fs::is_symlink(fs::symlink_status(next, ec))) {
+        current = next;
+        ++depth;
+        continue;
+      }
+      if (++links > 40) {
+        reason = "too many levels of symbolic links";
+        return std::nullopt;
+      }
+      const fs::path target = fs::read_symlink(next, ec);
+      if (ec) {
+        reason = ec.message();
+        return std::nullopt;
+      }
+      if (target.has_root_path()) {
+        // Inside only if it names a place in the folder as written (the folder is canonical).
+        const fs::path within = target.lexically_normal().lexically_relative(folder_);
+        if (within.empty() || *within.begin() == "..") return outside();
+        current = folder_;
+        depth = 0;
+        push(within);
+      } else {
+        push(target);  // from the link's own folder, `current`
+      }
+    }
+    return current;
+  }
+
+  bool allow_outside_ = false;
+  fs::path folder_;  // canonical
+  std::string base_dir_, prefix_;
+  std::optional<std::string> refusal_;
+};
+
+std::shared_ptr<Mesh> load_gltf(const fs::path& file, bool binary, MeshLoadReport& report,
+                                const MeshLoadOptions& options) {
   const std::string data = read_whole_file(file);
   if (data.size() > std::numeric_limits<unsigned int>::max()) fail(file, "file too large");
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  GltfReferences references(file, options);
+  loader.SetFsCallbacks(references.callbacks());
   tinygltf::Model model;
   std::string err, warn;
-  const std::string base_dir = file.parent_path().string();
+  const std::string& base_dir = references.base_dir();
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
                                            reinterpret_cast<const unsigned char*>(data.data()),
                                            static_cast<unsigned int>(data.size()), base_dir)
              : loader.LoadASCIIFromString(&model, &err, &warn, data.data(),
                                           static_cast<unsigned int>(data.size()), base_dir);
+  if (references.refusal()) fail(file, *references.refusal());
   if (!ok) fail(file, err.empty() ? "cannot parse glTF file" : one_line(err));
 
   auto mesh = std::make_shared<Mesh>();
@@ -995,13 +1150,14 @@ std::string lower(std::string s) {
 
 }  // namespace
 
-std::shared_ptr<Mesh> load_mesh_file(const std::filesystem::path& file, MeshLoadReport& report) {
+std::shared_ptr<Mesh> load_mesh_file(const std::filesystem::path& file, MeshLoadReport& report,
+                                     const MeshLoadOptions& options) {
   report = {};
   const std::string ext = lower(file.extension().string());
   if (ext == ".obj") return load_obj(file, report);
   if (ext == ".ply") return load_ply(file, report);
-  if (ext == ".gltf") return load_gltf(file, false, report);
-  if (ext == ".glb") return load_gltf(file, true, report);
+  if (ext == ".gltf") return load_gltf(file, false, report, options);
+  if (ext == ".glb") return load_gltf(file, true, report, options);
   fail(file, fmt::format("unsupported mesh format '{}' (use .obj, .ply, .gltf or .glb)", ext));
 }
 

@@ -103,8 +103,12 @@ Vec4 four_velocity(const Vec3& beta) {
 class SceneReader {
  public:
   SceneReader(const fs::path& file, const JsonLineMap& lines, std::vector<std::string> overridden,
-              SceneLoadReport& report)
-      : file_(file), lines_(lines), overridden_(std::move(overridden)), report_(report) {}
+              SceneLoadReport& report, const SceneLoadOptions& options)
+      : file_(file),
+        lines_(lines),
+        overridden_(std::move(overridden)),
+        report_(report),
+        options_(options) {}
 
   Scene read(const json& document) {
     const Node root{&document};
@@ -936,7 +940,7 @@ class SceneReader {
         auto& mesh = meshes[key];
         if (!mesh) {
           MeshLoadReport mesh_report;
-          mesh = load(a, [&] { return load_mesh_file(a.file, mesh_report); });
+          mesh = load(a, [&] { return load_mesh_file(a.file, mesh_report, options_.mesh); });
           if (mesh_report.degenerate_triangles_dropped > 0)
             report_.warnings.push_back(fmt::format("{}: {} degenerate triangles dropped",
                                                    a.file.string(),
@@ -996,6 +1000,7 @@ class SceneReader {
   const JsonLineMap& lines_;
   std::vector<std::string> overridden_;  // readable paths that --set replaced
   SceneLoadReport& report_;
+  const SceneLoadOptions options_;
   std::vector<Asset> assets_;
 };
 
@@ -1119,7 +1124,7 @@ json parse_document(const fs::path& file, const std::string& text, bool& repeate
 }  // namespace
 
 Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
-                      SceneLoadReport& report) {
+                      SceneLoadReport& report, const SceneLoadOptions& options) {
   std::string text = read_text(file);
   const DocumentArena arena;  // for the document, which is gone when the scene is returned
   bool repeated_key = false;
@@ -1133,7 +1138,7 @@ Scene load_scene_file(const fs::path& file, const std::vector<std::string>& over
 
   std::vector<std::string> overridden;
   for (const std::string& o : overrides) overridden.push_back(apply_scene_override(document, o));
-  return SceneReader(file, lines, std::move(overridden), report).read(document);
+  return SceneReader(file, lines, std::move(overridden), report, options).read(document);
 }
 
 }  // namespace lightcone

@@ -5,9 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/io/mesh_file.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
+
+struct SceneLoadOptions {
+  MeshLoadOptions mesh;  // how the mesh files the scene names are read (allow_outside)
+};
 
 struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. degenerate triangles dropped from a mesh
@@ -17,9 +22,9 @@ struct SceneLoadReport {
 // the value is parsed as JSON (falling back to a plain string) and replaces the value at that
 // path before validation. Comments are allowed; unknown keys are errors. Relative mesh, texture
 // and sky image paths are resolved against the scene file's folder; a mesh file used by many
-// objects is loaded once. Throws InputError "FILE:LINE: PATH: what is wrong" (for a value that
-// came from --set: "--set PATH: what is wrong").
+// objects is loaded once, as `options` say. Throws InputError "FILE:LINE: PATH: what is wrong"
+// (for a value that came from --set: "--set PATH: what is wrong").
 Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
-                      SceneLoadReport& report);
+                      SceneLoadReport& report, const SceneLoadOptions& options = {});
 
 }  // namespace lightcone
