@@ -15,20 +15,10 @@ namespace lightcone {
 namespace {
 
 namespace fs = std::filesystem;
+using test::bytes_of;
+using test::have_program;
+using test::quoted;
 using test::run_lightcone;
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
-
-std::string bytes_of(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-bool have(const char* program) {
-  return std::system((std::string("command -v ") + program + " >/dev/null 2>&1").c_str()) == 0;
-}
 
 class Animate : public test::TempDirTest {
  protected:
@@ -118,7 +108,8 @@ double psnr(const Image& a, const Image& b) {
 }
 
 TEST_F(Animate, VideosHaveTheCodecFramesSizeAndRateAskedForAndTheFrames) {
-  if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg") || !have_program("ffprobe"))
+    GTEST_SKIP() << "ffmpeg is not installed";
   const std::string rocket = quoted(scene("rocket.json"));
   struct Case {
     const char* file;

@@ -26,6 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::CommandResult;
+using test::quoted;
 using test::run_lightcone;
 
 // One key per line, so that every value has a known line:
@@ -69,13 +70,6 @@ std::string edited(const std::string& text, const std::string& from, const std::
   EXPECT_EQ(text.find(from, at + 1), std::string::npos) << "'" << from << "' is not unique";
   if (at == std::string::npos) return text;
   return text.substr(0, at) + to + text.substr(at + from.size());
-}
-
-std::string quoted(const fs::path& p) {
-  std::string q = "'";
-  q += p.string();
-  q += "'";
-  return q;
 }
 
 std::string read_text(const fs::path& file) {

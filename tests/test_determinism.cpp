@@ -17,16 +17,9 @@ namespace lightcone {
 namespace {
 
 namespace fs = std::filesystem;
+using test::bytes_of;
+using test::quoted;
 using test::run_lightcone;
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
-
-std::string bytes_of(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 bool have_gl() {
   try {

@@ -17,21 +17,11 @@ namespace lightcone {
 namespace {
 
 namespace fs = std::filesystem;
+using test::bytes_of;
+using test::have_program;
+using test::quoted;
 using test::run_command;
 using test::run_lightcone;
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
-
-std::string bytes_of(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-bool have(const char* program) {
-  return std::system((std::string("command -v ") + program + " >/dev/null 2>&1").c_str()) == 0;
-}
 
 // Frames in `ffprobe`'s reading of a video, or -1 if it cannot read it.
 int frames_in(const fs::path& video) {
@@ -62,7 +52,7 @@ class HostileInput : public test::TempDirTest {
 };
 
 TEST_F(HostileInput, AVideoOnAFullDiskIsAbsentAndTheRunFails) {
-  if (!have("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
   const fs::path full = dir_ / "full";
   fs::create_directory(full);
   // 16 KiB: the trial frame fits, the whole lossless video does not.
@@ -105,7 +95,8 @@ fs::path fake_ffmpeg(const fs::path& folder, const std::string& behaviour) {
 }
 
 TEST_F(HostileInput, AnFfmpegThatLiesAboutSuccessLeavesTheOldVideoAlone) {
-  if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg") || !have_program("ffprobe"))
+    GTEST_SKIP() << "ffmpeg is not installed";
   // It reads every frame, writes a stub in place of the video, and exits 0.
   const fs::path bin = fake_ffmpeg(
       dir_ / "lying", "cat > /dev/null; for last; do :; done; printf 'stub' > \"$last\"; exit 0");
@@ -121,7 +112,8 @@ TEST_F(HostileInput, AnFfmpegThatLiesAboutSuccessLeavesTheOldVideoAlone) {
 }
 
 TEST_F(HostileInput, AStuckFfmpegIsStoppedByTheWatchdog) {
-  if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg") || !have_program("ffprobe"))
+    GTEST_SKIP() << "ffmpeg is not installed";
   // It stops reading: frames fill the pipe, then nothing moves.
   const fs::path bin = fake_ffmpeg(dir_ / "stuck", "exec sleep 600");
   // Under `timeout`, so that a watchdog that fails cannot hang the suite.
@@ -166,7 +158,8 @@ TEST_F(HostileInput, EveryFrameNameIsCheckedBeforeTheFirstFrame) {
 }
 
 TEST_F(HostileInput, EncodeRefusesAGapUnlessAllowed) {
-  if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg") || !have_program("ffprobe"))
+    GTEST_SKIP() << "ffmpeg is not installed";
   const std::string pattern = quoted(dir_ / "f-%04d.png");
   ASSERT_EQ(run_lightcone("animate " + terrell() + " --frames 0-5 -o " + pattern + small()).status,
             0);
@@ -217,7 +210,7 @@ TEST_F(HostileInput, ResumeRendersAgainTheFramesItCannotKeep) {
 }
 
 TEST_F(HostileInput, SigtermKeepsWholeFramesAndRemovesTemporaries) {
-  if (!have("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
   // As `timeout` and Slurm's scancel do: the signal goes to the whole process group (ffmpeg
   // too). setsid gives the run its own group.
   const fs::path video = dir_ / "v.mp4";
@@ -246,7 +239,8 @@ TEST_F(HostileInput, SigtermKeepsWholeFramesAndRemovesTemporaries) {
 }
 
 TEST_F(HostileInput, VideoSettingsAreRefusedBeforeTheFirstFrame) {
-  if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "ffmpeg is not installed";
+  if (!have_program("ffmpeg") || !have_program("ffprobe"))
+    GTEST_SKIP() << "ffmpeg is not installed";
   const std::string frames = " --frames 0-3 -o " + quoted(dir_ / "f-%d.png");
   struct Case {
     std::string arguments, message;

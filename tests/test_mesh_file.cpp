@@ -20,6 +20,7 @@ namespace lightcone {
 namespace {
 
 namespace fs = std::filesystem;
+using test::base64;
 
 using MeshFileTest = test::TempDirTest;
 
@@ -310,21 +311,6 @@ TEST_F(MeshFileTest, PlyBinaryIndexOutOfRange) {
 
 // ----------------------------------------------------------------------------------------------
 // glTF
-
-std::string base64(const std::string& data) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < data.size(); i += 3) {
-    std::uint32_t n = std::uint8_t(data[i]) << 16;
-    if (i + 1 < data.size()) n |= std::uint8_t(data[i + 1]) << 8;
-    if (i + 2 < data.size()) n |= std::uint8_t(data[i + 2]);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < data.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < data.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
 
 // One triangle: float positions, float texcoords and unsigned short indices.
 std::string triangle_buffer(std::uint16_t last_index = 2) {

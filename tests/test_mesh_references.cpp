@@ -27,6 +27,8 @@ namespace lightcone {
 namespace {
 
 namespace fs = std::filesystem;
+using test::base64;
+using test::quoted;
 
 // ---------------------------------------------------------------------------------------------
 // A one-triangle glTF and its buffer
@@ -80,21 +82,6 @@ std::string glb(std::string json, const std::string& bin) {
   return out + bin;
 }
 
-std::string base64(const std::string& data) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < data.size(); i += 3) {
-    std::uint32_t n = std::uint8_t(data[i]) << 16;
-    if (i + 1 < data.size()) n |= std::uint8_t(data[i + 1]) << 8;
-    if (i + 2 < data.size()) n |= std::uint8_t(data[i + 2]);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < data.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < data.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
-
 // A small scene: the mesh in front of the camera.
 std::string scene_with_mesh(const std::string& mesh) {
   return R"({
@@ -104,10 +91,6 @@ std::string scene_with_mesh(const std::string& mesh) {
   "sky": {"color": [0, 0, 1]},
   "render": {"exposure": 0}
 })";
-}
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
 }
 
 // ---------------------------------------------------------------------------------------------

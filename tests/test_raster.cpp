@@ -32,6 +32,7 @@ namespace lightcone {
 namespace {
 
 namespace fs = std::filesystem;
+using test::quoted;
 
 // ---------------------------------------------------------------------------------------------
 // The GLSL functions against the C++ kernels, through transform feedback.
@@ -275,10 +276,6 @@ TEST_F(GlslKernels, ReceiveLegMatchesTheFourMomentumKernel) {
 
 // ---------------------------------------------------------------------------------------------
 // Agreement with the ray tracer, through `lightcone render` with and without --renderer raster.
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
 
 // The 8-bit value a PNG holds for a pixel read back as linear.
 int level(float linear) {

@@ -24,6 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::CommandResult;
+using test::quoted;
 using test::run_lightcone;
 
 constexpr double kLimit = 1e6;
@@ -39,10 +40,6 @@ std::string number(double x) {
 // The spin rate in degrees per unit time of a rim of radius 1 whose gamma is `gamma`.
 std::string rim_rate(double gamma) {
   return number(std::sqrt(1 - 1 / (gamma * gamma)) * 180 / std::numbers::pi);
-}
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
 }
 
 // A scene: the camera's members, then the objects' (the ball's members are on line 4).

@@ -174,4 +174,32 @@ CommandResult run_lightcone_on_terminal(const std::string& arguments) {
   return r;
 }
 
+std::string quoted(const std::filesystem::path& p) {
+  return "'" + p.string() + "'";
+}
+
+std::string bytes_of(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+bool have_program(const char* program) {
+  return std::system((std::string("command -v ") + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+std::string base64(const std::string& data) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < data.size(); i += 3) {
+    std::uint32_t n = std::uint8_t(data[i]) << 16;
+    if (i + 1 < data.size()) n |= std::uint8_t(data[i + 1]) << 8;
+    if (i + 2 < data.size()) n |= std::uint8_t(data[i + 2]);
+    out += table[(n >> 18) & 63];
+    out += table[(n >> 12) & 63];
+    out += i + 1 < data.size() ? table[(n >> 6) & 63] : '=';
+    out += i + 2 < data.size() ? table[n & 63] : '=';
+  }
+  return out;
+}
+
 }  // namespace lightcone::test

@@ -54,6 +54,18 @@ Scene scene_from_json(const std::string& json);
 // A scene file from the repository's scenes/ folder.
 Scene load_repository_scene(const std::string& name);
 
+// A path in single quotes, for a shell command line.
+std::string quoted(const std::filesystem::path& p);
+
+// A file's bytes ("" if it cannot be read).
+std::string bytes_of(const std::filesystem::path& file);
+
+// Whether `program` is on the PATH.
+bool have_program(const char* program);
+
+// Base64 (RFC 4648, padded): data URIs in test meshes.
+std::string base64(const std::string& data);
+
 struct CommandResult {
   int status = -1;
   std::string out, err;
