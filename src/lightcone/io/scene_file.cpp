@@ -3,11 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <initializer_list>
 #include <iterator>
 #include <map>
@@ -15,17 +12,16 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <span>
-#include <sstream>
 #include <string_view>
 #include <unordered_map>
 
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
-#include "lightcone/io/input_file.hpp"
 #include "lightcone/io/json_locator.hpp"
 #include "lightcone/io/mesh_file.hpp"
 #include "lightcone/io/scene_document.hpp"
 #include "lightcone/io/scene_overrides.hpp"
+#include "lightcone/io/scene_parse.hpp"
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/world_line.hpp"
@@ -1004,131 +1000,14 @@ class SceneReader {
   std::vector<Asset> assets_;
 };
 
-// A scene file is text: a NUL byte (which JSON never needs) would end the parser's input early
-// while the line map read on.
-std::string read_text(const fs::path& file) {
-  std::string text = read_input_file(file, "scene file", kMaxSceneFileBytes);
-  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
-    throw InputError(fmt::format("{}:{}: (syntax): a NUL byte: this is not a text file",
-                                 file.string(),
-                                 1 + std::count(text.begin(), text.begin() + nul, '\n')));
-  return text;
-}
-
-// Builds nlohmann's DOM from the events of its parser, as its own json_sax_dom_parser does, and
-// records the position of the first error: parsing through this hook, rather than catching
-// json::parse_error, also gives a position to errors that nlohmann throws without one (a number
-// too large for a double, 1e400, is an out_of_range error). It also notes whether a key repeats
-// within an object, which the DOM hides (it keeps the last one), so that the slower scan that
-// names the repeats runs only then.
-class DomBuilder {
- public:
-  explicit DomBuilder(json& root) : root_(root) {}
-
-  bool null() { return add(nullptr); }
-  bool boolean(bool b) { return add(b); }
-  bool number_integer(json::number_integer_t i) { return add(i); }
-  bool number_unsigned(json::number_unsigned_t u) { return add(u); }
-  bool number_float(json::number_float_t d, const std::string& /*text*/) { return add(d); }
-  bool string(std::string& s) { return add(std::move(s)); }
-  bool binary(json::binary_t& b) { return add(std::move(b)); }
-
-  // Nesting deeper than any scene needs is refused as it is read (each level costs memory
-  // and stack in the DOM and the line map).
-  bool start_object(std::size_t /*elements*/) { return open(json::value_t::object); }
-  bool start_array(std::size_t /*elements*/) { return open(json::value_t::array); }
-  bool end_object() { return close(); }
-  bool end_array() { return close(); }
-
-  bool key(std::string& k) {
-    const auto [it, added] = open_.back()->get_ref<json::object_t&>().try_emplace(std::move(k));
-    repeated_key |= !added;
-    member_ = &it->second;
-    return true;
-  }
-
-  template <class Exception>
-  bool parse_error(std::size_t byte, const std::string& /*token*/, const Exception& e) {
-    error_byte = byte;
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error while
-    // parsing ...": the line is reported our way, so keep only the description.
-    error = e.what();
-    if (const std::size_t tag = error.find("] "); tag != std::string::npos) error.erase(0, tag + 2);
-    if (error.rfind("parse error", 0) == 0) error.erase(0, error.find(": ") + 2);
-    return false;
-  }
-
-  static constexpr int kMaxDepth = 64;
-  std::size_t error_byte = 0;  // 1-based offset of the last character read
-  std::string error;
-  bool repeated_key = false;
-
- private:
-  // Places a value: the root, the next element of the open array, or the member just keyed.
-  template <class Value>
-  json* place(Value&& v) {
-    if (open_.empty()) {
-      root_ = json(std::forward<Value>(v));
-      return &root_;
-    }
-    if (json& parent = *open_.back(); parent.is_array()) {
-      auto& array = parent.get_ref<json::array_t&>();
-      array.emplace_back(std::forward<Value>(v));
-      return &array.back();
-    }
-    *member_ = json(std::forward<Value>(v));
-    return member_;
-  }
-  template <class Value>
-  bool add(Value&& v) {
-    place(std::forward<Value>(v));
-    return true;
-  }
-  bool open(json::value_t type) {
-    if (open_.size() >= kMaxDepth) {
-      error = fmt::format("nested more than {} levels deep", kMaxDepth);
-      return false;
-    }
-    json* value = place(type);
-    // Most arrays of a scene are vectors and colours: room for 3 at once, not for 1, 2 and 4 in
-    // turn (the arena keeps what a vector outgrows).
-    if (type == json::value_t::array) value->get_ref<json::array_t&>().reserve(3);
-    open_.push_back(value);
-    return true;
-  }
-  bool close() {
-    open_.pop_back();
-    return true;
-  }
-
-  json& root_;
-  std::vector<json*> open_;  // the arrays and objects being read, innermost last
-  json* member_ = nullptr;   // the value of the key just read
-};
-
-// The document, and whether a key repeats in one of its objects.
-json parse_document(const fs::path& file, const std::string& text, bool& repeated_key) {
-  json document;
-  DomBuilder builder(document);
-  if (json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true,
-                      /*ignore_comments=*/true)) {
-    repeated_key = builder.repeated_key;
-    return document;
-  }
-  const std::size_t end =
-      std::min(builder.error_byte > 0 ? builder.error_byte - 1 : 0, text.size());
-  const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
-  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, builder.error));
-}
-
 }  // namespace
 
 Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report, const SceneLoadOptions& options) {
-  std::string text = read_text(file);
+  std::string text = read_scene_text(file);
   const DocumentArena arena;  // for the document, which is gone when the scene is returned
   bool repeated_key = false;
-  json document = parse_document(file, text, repeated_key);
+  json document = parse_scene_document(file, text, repeated_key);
   const JsonLineMap lines(std::move(text));
   if (repeated_key && !lines.duplicate_keys().empty()) {
     const auto& d = lines.duplicate_keys().front();
