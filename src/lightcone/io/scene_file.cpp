@@ -6,12 +6,10 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
-#include <iterator>
 #include <map>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <span>
 #include <string_view>
 #include <unordered_map>
 
@@ -22,72 +20,19 @@
 #include "lightcone/io/scene_document.hpp"
 #include "lightcone/io/scene_overrides.hpp"
 #include "lightcone/io/scene_parse.hpp"
+#include "lightcone/io/scene_value_reader.hpp"
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/world_line.hpp"
 
-namespace lightcone {
+namespace lightcone::scene_io {
 namespace {
 
-using json = SceneJson;
 namespace fs = std::filesystem;
 
 constexpr int kMaxImageSide = 16384;
 constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
 constexpr int kMaxSamples = 65536;
-
-// A value in the document and where it is: its parent and its key or index. The readable path
-// is spelled out only for a message, so that reading a valid file builds no path strings. `value`
-// is null when the key is absent, so optional keys keep the scene model's defaults (which are the
-// format's defaults). A node refers to its parent and its key: both must outlive it.
-struct Node {
-  const json* value;
-  const Node* parent = nullptr;  // null for the root
-  std::string_view key = {};     // of a member
-  std::size_t index = 0;         // of an element
-  bool element = false;
-
-  std::string path() const {
-    if (!parent) return "";
-    const std::string up = parent->path();
-    return element ? json_element_path(up, index) : json_member_path(up, key);
-  }
-};
-
-Node member(const Node& object, std::string_view key) {
-  const auto it = object.value->find(key);
-  return {it == object.value->end() ? nullptr : &*it, &object, key};
-}
-
-Node element(const Node& array, std::size_t index) {
-  return {&(*array.value)[index], &array, {}, index, true};
-}
-
-std::string describe(const json& v) {
-  if (v.is_object()) return "an object";
-  if (v.is_array()) return fmt::format("an array of {} elements", v.size());
-  if (v.is_null()) return "null";
-  // Invalid UTF-8 (from a --set value) is shown replaced, not thrown.
-  std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return fmt::format("{} {}", v.type_name(), text);
-}
-
-// Key names, from a braced list or a vector, without copying them.
-struct Names : std::span<const std::string_view> {
-  using span::span;
-  Names(std::initializer_list<std::string_view> names) : span(names.begin(), names.size()) {}
-};
-
-std::string join(Names words, Names more = {}) {
-  std::string out;
-  for (const Names list : {words, more})
-    for (const std::string_view w : list) {
-      if (!out.empty()) out += ", ";
-      out += w;
-    }
-  return out;
-}
 
 Vec4 four_velocity(const Vec3& beta) {
   const double gamma = lorentz_gamma(beta);
@@ -96,15 +41,11 @@ Vec4 four_velocity(const Vec3& beta) {
 
 // Validates the document and builds the scene. Every check names the path of the offending
 // value; the line comes from the locator, or the message blames a --set override.
-class SceneReader {
+class SceneReader : public SceneValueReader {
  public:
   SceneReader(const fs::path& file, const JsonLineMap& lines, std::vector<std::string> overridden,
               SceneLoadReport& report, const SceneLoadOptions& options)
-      : file_(file),
-        lines_(lines),
-        overridden_(std::move(overridden)),
-        report_(report),
-        options_(options) {}
+      : SceneValueReader(file, lines, std::move(overridden)), report_(report), options_(options) {}
 
   Scene read(const json& document) {
     const Node root{&document};
@@ -131,20 +72,6 @@ class SceneReader {
   }
 
  private:
-  // The one speed limit: every speed a body can reach (the camera, objects, lights, the sky, a
-  // spinning body's points), in W and relative to the camera, has gamma at most this; beyond
-  // it double precision cannot hold the physics (1 - v is below 5e-13).
-  static constexpr double kMaxGamma = kMaxLorentzFactor;
-  double c_ = 1;  // the scene's speed of light, in its units
-  std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
-  // The observers every speed is checked against: W, and once the camera is read, the camera
-  // at its observation and over its shutter. `relative` is how a message names it.
-  struct Observer {
-    Vec4 four_velocity;
-    std::string relative;
-  };
-  std::vector<Observer> observers_{{Vec4{1, {}}, ""}};
-
   // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
   // a typo near the end does not wait for large files to load first).
   struct Asset {
@@ -153,207 +80,6 @@ class SceneReader {
     fs::path file;
     std::string path;
   };
-
-  // --- Messages ---------------------------------------------------------------------------
-
-  // An error inside (or around) a value that came from --set is the override's fault, not the
-  // file's; the line of the file would point at the value that was replaced.
-  bool overridden(const std::string& path) const {
-    auto within = [](const std::string& inner, const std::string& outer) {
-      return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
-             (inner[outer.size()] == '.' || inner[outer.size()] == '[');
-    };
-    return std::any_of(overridden_.begin(), overridden_.end(), [&](const std::string& o) {
-      return o == path || within(path, o) || within(o, path);
-    });
-  }
-
-  [[noreturn]] void fail_at(const std::string& path, int line, const std::string& what) const {
-    const std::string shown = path.empty() ? "(top level)" : path;
-    if (overridden(path)) throw InputError(fmt::format("--set {}: {}", shown, what));
-    throw InputError(fmt::format("{}:{}: {}: {}", file_.string(), line, shown, what));
-  }
-  [[noreturn]] void fail(const Node& n, const std::string& what) const {
-    const std::string path = n.path();
-    fail_at(path, lines_.value_line(path), what);
-  }
-
-  // The one wording of the speed limit: "SUBJECT[ relative to the camera] is too close to the
-  // speed of light (gamma G; at most 1e+06)".
-  void limit_gamma(const Node& n, double gamma, const std::string& subject,
-                   const Observer& observer) const {
-    if (!(gamma <= kMaxGamma))
-      fail(n, fmt::format("{}{} is too close to the speed of light (gamma {:.3g}; at most {:g})",
-                          subject, observer.relative, gamma, kMaxGamma));
-  }
-
-  // --- Typed values -----------------------------------------------------------------------
-
-  const json& need(const Node& n) const {
-    if (!n.value) fail(n, "required key is missing");
-    return *n.value;
-  }
-
-  // Checks that `n` is an object whose keys are all in `allowed` or `more`; `context` (" for a
-  // point light") qualifies the message about an unknown key.
-  void object(const Node& n, Names allowed, Names more = {}, std::string_view context = "") const {
-    const json& v = need(n);
-    if (!v.is_object()) fail(n, fmt::format("must be an object, got {}", describe(v)));
-    for (const auto& [key, value] : v.get_ref<const json::object_t&>()) {
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end() ||
-          std::find(more.begin(), more.end(), key) != more.end())
-        continue;
-      const std::string path = json_member_path(n.path(), key);
-      fail_at(path, lines_.key_line(path),
-              fmt::format("unknown key \"{}\"{} (expected one of: {})", json_member_path("", key),
-                          context, join(allowed, more)));
-    }
-  }
-
-  // An object with exactly one of `choices` (plus any of `others`); returns the chosen key.
-  std::string_view one_of(const Node& n, Names choices, Names others = {}) const {
-    object(n, choices, others);
-    const auto has = [&](std::string_view c) { return n.value->contains(c); };
-    if (std::count_if(choices.begin(), choices.end(), has) != 1) {
-      std::vector<std::string_view> present;
-      std::copy_if(choices.begin(), choices.end(), std::back_inserter(present), has);
-      fail(n, fmt::format("must have exactly one of: {} (found {})", join(choices),
-                          present.empty() ? "none" : join(present)));
-    }
-    return *std::find_if(choices.begin(), choices.end(), has);
-  }
-
-  double number(const Node& n) const {
-    const json& v = need(n);
-    if (!v.is_number()) fail(n, fmt::format("must be a number, got {}", describe(v)));
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(n, "must be a finite number");
-    return d;
-  }
-
-  double non_negative(const Node& n) const {
-    const double d = number(n);
-    if (!(d >= 0)) fail(n, fmt::format("must be >= 0, got {}", d));
-    return d;
-  }
-
-  double positive(const Node& n) const {
-    const double d = number(n);
-    if (!(d > 0)) fail(n, fmt::format("must be greater than 0, got {}", d));
-    return d;
-  }
-
-  int integer(const Node& n, int lo, int hi) const {
-    const double d = number(n);
-    if (d != std::floor(d) || d < lo || d > hi)
-      fail(n, fmt::format("must be an integer from {} to {}, got {}", lo, hi, n.value->dump()));
-    return static_cast<int>(d);
-  }
-
-  bool boolean(const Node& n) const {
-    const json& v = need(n);
-    if (!v.is_boolean()) fail(n, fmt::format("must be true or false, got {}", describe(v)));
-    return v.get<bool>();
-  }
-
-  std::string string(const Node& n) const {
-    const json& v = need(n);
-    if (!v.is_string()) fail(n, fmt::format("must be a string, got {}", describe(v)));
-    return v.get<std::string>();
-  }
-
-  // Checks that `n` is an array of `count` finite numbers.
-  void numbers(const Node& n, std::size_t count) const {
-    const json& v = need(n);
-    if (!v.is_array() || v.size() != count)
-      fail(n, fmt::format("must be an array of {} numbers, got {}", count, describe(v)));
-    for (std::size_t i = 0; i < count; ++i) number(element(n, i));
-  }
-
-  Vec3 vec3(const Node& n) const {
-    numbers(n, 3);
-    const json& v = *n.value;
-    return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
-  }
-
-  Vec3 positive_vec3(const Node& n) const {
-    vec3(n);  // shape and types first, so that the messages below are about values
-    return {positive(element(n, 0)), positive(element(n, 1)), positive(element(n, 2))};
-  }
-
-  // A unit direction. Scaled by its largest component before normalizing, so that tiny or huge
-  // (but finite) vectors neither underflow to zero nor overflow to infinity.
-  Vec3 direction(const Node& n) const {
-    const Vec3 v = vec3(n);
-    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    if (largest == 0) fail(n, "must not be the zero vector");
-    return normalize(v / largest);
-  }
-
-  // Below the speed of light, and not so close to it, in W or relative to the camera, that
-  // double precision cannot hold the physics: gamma at most kMaxGamma.
-  Vec3 velocity(const Node& n) const {
-    const Vec3 v = vec3(n);
-    const Vec3 beta = v / c_;
-    if (!(dot(beta, beta) < 1))
-      fail(n, fmt::format("speed {} must be below the speed of light ({})", length(v), c_));
-    const double speed = length(beta);
-    // (1 - v)(1 + v), not 1 - v^2: no cancellation near v = 1.
-    const double gamma = 1 / std::sqrt((1 - speed) * (1 + speed));
-    const Vec4 u{gamma, beta * gamma};
-    for (const Observer& o : observers_)
-      limit_gamma(n, o.relative.empty() ? gamma : relative_gamma(o.four_velocity, u),
-                  fmt::format("speed {}", length(v)), o);
-    return beta;
-  }
-
-  Rgb color(const Node& n) const {
-    vec3(n);
-    float c[3];
-    for (std::size_t i = 0; i < 3; ++i) {
-      const Node component = element(n, i);
-      const double d = number(component);
-      c[i] = static_cast<float>(d);
-      if (d < 0) fail(component, fmt::format("must be >= 0, got {}", d));
-      if (!std::isfinite(c[i]))
-        fail(component, fmt::format("is too large for a colour, got {}", d));
-    }
-    return {c[0], c[1], c[2]};
-  }
-
-  // The colour of a lit surface: the fraction of the light it reflects, each component in
-  // [0, 1].
-  Rgb albedo(const Node& n) const {
-    const Rgb c = color(n);
-    for (std::size_t i = 0; i < 3; ++i) {
-      const Node component = element(n, i);
-      if (const double d = number(component); d > 1)
-        fail(component, fmt::format("must be at most 1 for a lit material (an albedo), got {}", d));
-    }
-    return c;
-  }
-
-  // A number in [lo, hi], or in (lo, hi] when `open_below`.
-  double in_range(const Node& n, double lo, double hi, bool open_below = false) const {
-    const double d = number(n);
-    if (open_below ? !(d > lo && d <= hi) : !(d >= lo && d <= hi))
-      fail(n, fmt::format("must be {} {} and at most {}, got {}",
-                          open_below ? "greater than" : "at least", lo, hi, d));
-    return d;
-  }
-
-  Mat3 rotation(const Node& n) const {
-    object(n, {"axis", "degrees"});
-    const Vec3 axis = direction(member(n, "axis"));
-    return Mat3::rotation(axis, number(member(n, "degrees")) * std::numbers::pi / 180);
-  }
-
-  fs::path file_path(const Node& n) const {
-    const std::string text = string(n);
-    if (text.empty()) fail(n, "must not be empty");
-    const fs::path p(text);
-    return p.is_relative() ? file_.parent_path() / p : p;
-  }
 
   // --- Sections ---------------------------------------------------------------------------
 
@@ -447,9 +173,6 @@ class SceneReader {
     observers_.push_back({four_velocity(observation_after(c, c.shutter).velocity),
                           " relative to the camera at its shutter's close"});
   }
-
-  // A time in the scene's units, in the engine's.
-  double time(const Node& n) const { return number(n) * c_; }
 
   // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]} or
   // {"keyframes": [{"time": t, "position": [x, y, z]}, ...]}.
@@ -891,19 +614,6 @@ class SceneReader {
     return r;
   }
 
-  // One of a fixed set of names; `noun` names what they are in the message.
-  template <class T>
-  T choice(const Node& n, const std::vector<std::pair<std::string, T>>& names,
-           const char* noun = "model") const {
-    const std::string given = string(n);
-    std::vector<std::string_view> known;
-    for (const auto& [name, value] : names) {
-      if (name == given) return value;
-      known.push_back(name);
-    }
-    fail(n, fmt::format("unknown {} \"{}\" (expected one of: {})", noun, given, join(known)));
-  }
-
   // --- Files ------------------------------------------------------------------------------
 
   // Meshes and images are cached by canonical path, so objects naming one file through
@@ -992,22 +702,23 @@ class SceneReader {
                           a.file.string(), *lo, *hi));
   }
 
-  const fs::path& file_;
-  const JsonLineMap& lines_;
-  std::vector<std::string> overridden_;  // readable paths that --set replaced
+  std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
   SceneLoadReport& report_;
   const SceneLoadOptions options_;
   std::vector<Asset> assets_;
 };
 
 }  // namespace
+}  // namespace lightcone::scene_io
 
-Scene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
+namespace lightcone {
+
+Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report, const SceneLoadOptions& options) {
   std::string text = read_scene_text(file);
   const DocumentArena arena;  // for the document, which is gone when the scene is returned
   bool repeated_key = false;
-  json document = parse_scene_document(file, text, repeated_key);
+  SceneJson document = parse_scene_document(file, text, repeated_key);
   const JsonLineMap lines(std::move(text));
   if (repeated_key && !lines.duplicate_keys().empty()) {
     const auto& d = lines.duplicate_keys().front();
@@ -1017,7 +728,7 @@ Scene load_scene_file(const fs::path& file, const std::vector<std::string>& over
 
   std::vector<std::string> overridden;
   for (const std::string& o : overrides) overridden.push_back(apply_scene_override(document, o));
-  return SceneReader(file, lines, std::move(overridden), report, options).read(document);
+  return scene_io::SceneReader(file, lines, std::move(overridden), report, options).read(document);
 }
 
 }  // namespace lightcone
