@@ -1,0 +1,83 @@
+// Null geodesics of one Schwarzschild black hole, in closed form (PHYSICS.md, "Curved
+// spacetime"): G = c = 1, M the gravitational radius, f = 1 - 2M/r, u = 1/r, impact parameter
+// b = L/E, and the orbit equation (du/dphi)^2 = 1/b^2 - u^2 (1 - 2Mu). No step size anywhere:
+// the turning points are the roots of a cubic (trigonometric form), the swept angle is
+// Carlson's R_F (Carlson 1995; Boost.Math), so the answers are exact to rounding, also near the
+// critical impact parameter b_c = 3 sqrt(3) M, where the angle diverges logarithmically.
+#pragma once
+
+namespace lightcone {
+
+// b_c = 3 sqrt(3) M: rays with b < b_c that come from outside the photon sphere r = 3M fall
+// into the hole; rays with b > b_c turn at a periapsis outside it.
+double critical_impact_parameter(double mass);
+
+// The turning points of the rays of impact parameter b about mass M. In w = b/r the orbit
+// equation is (dw/dphi)^2 = 1 - w^2 + 2 (M/b) w^3; in v = r/b its roots solve the depressed cubic
+// v^3 - v + 2M/b = 0, whose three real roots (b > b_c) are
+//   v = (2/sqrt 3) cos(pi/3 - a), (2/sqrt 3) cos(pi/3 + a), -(2/sqrt 3) cos(a),
+// with 3a = arccos(b_c/b); for b < b_c its one real root is -(2/sqrt 3) cosh(h) with
+// 3h = arccosh(b_c/b). Both angles are taken from 1 - b_c/b, which keeps the roots and their
+// gaps accurate as b -> b_c.
+struct PhotonOrbit {
+  double mass = 0;
+  double impact = 0;  // b >= 0
+  // b > b_c (every b > 0 when M = 0): rays outside r >= periapsis and rays inside
+  // r <= inner_turning, nothing between. b <= b_c: every radius is reached.
+  bool turning = false;
+  double periapsis = 0;      // r_p in (3M, b] when turning, else 0
+  double inner_turning = 0;  // r_3 in (2M, 3M) when turning (0 when M = 0), else 0
+  bool critical = false;     // b = b_c exactly
+  // The integrals' constants, in w = b/r (see schwarzschild.cpp).
+  double w_neg = 0;  // -w_1 > 0: the negative root w_1 of 1 - w^2 + 2 (M/b) w^3
+  double v_pos = 0;  // turning: r_p / b
+  double v_gap = 0;  // turning: (r_p - r_3) / b, accurate as b -> b_c
+  double scale = 0;  // turning: (r_p / b) (-1 / w_1); b <= b_c: 2M/b (the cubic's leading term)
+  double quad_a = 0, modulus_c2 = 0;  // b <= b_c: A and k'^2 of Byrd & Friedman 239.00
+};
+
+PhotonOrbit photon_orbit(double mass, double impact);
+
+// The angle (>= 0) swept about the hole by a ray of this orbit between radii r_a and r_b
+// (either may be infinity), along a stretch on which r is monotonic: the two radii lie in one
+// allowed region, and a turning point may be either end. A radius in the forbidden gap
+// (inner_turning, periapsis) whose orbit equation fails only by rounding counts as the nearer
+// turning point (a ray sent tangentially); any other there gives NaN. Infinity if b = b_c
+// exactly and the stretch reaches the photon sphere r = 3M.
+double swept_angle(const PhotonOrbit& orbit, double r_a, double r_b);
+
+// Where a ray that passes radius r0 (> 2M) goes, and the angle it sweeps on the way.
+enum class RayFate {
+  kEscapes,       // to r = infinity
+  kCaptured,      // to the horizon r = 2M
+  kPhotonSphere,  // b = b_c exactly: it winds onto r = 3M forever
+};
+struct RayCourse {
+  RayFate fate = RayFate::kEscapes;
+  double turning_radius = 0;  // where dr/dphi changes sign on the way, 0 if it does not
+  double angle_to_turn = 0;   // swept from r0 to the turning point (0 without one)
+  double angle_total = 0;     // swept from r0 to infinity or to the horizon (infinity for
+                              // kPhotonSphere)
+};
+// outward: whether r increases at r0. NaN angles if no ray of this b passes r0.
+RayCourse ray_course(const PhotonOrbit& orbit, double r0, bool outward);
+
+// The total deflection of a ray from infinity that escapes again, b > b_c: 2 phi(r_p -> inf)
+// - pi, which is Darwin's (1959) elliptic integral of the first kind in the periapsis. It is
+// more than 2 pi n for rays that wind n times. Infinity for b <= b_c (no such ray).
+double deflection_angle(double mass, double impact);
+
+// A static observer at r > 2M sees a ray arrive (or sends one) at angle alpha from the outward
+// radial direction: b = r sin(alpha) / sqrt(f(r)).
+double static_impact_parameter(double mass, double r, double sin_alpha);
+
+// The angular radius of the hole's shadow for a static observer at r > 2M, measured from the
+// direction of the hole: sin(alpha_sh) = 3 sqrt(3) M sqrt(f(r)) / r (Synge 1966), above 90
+// degrees inside the photon sphere (r < 3M).
+double static_shadow_angle(double mass, double r);
+
+// g = nu_received / nu_emitted between two static observers: sqrt(f(r_emitter) /
+// f(r_observer)).
+double static_frequency_shift(double mass, double r_emitter, double r_observer);
+
+}  // namespace lightcone

@@ -1,0 +1,284 @@
+// Null geodesics of a Schwarzschild black hole (schwarzschild.hpp) against derivations made
+// here, independently of the kernel's closed forms: the orbit equation u'' = 3 M u^2 - u
+// integrated step by step (classical Runge-Kutta in long double), the quadrature of
+// dphi = du / sqrt(1/b^2 - u^2 (1 - 2Mu)), turning points by bisection, Darwin's (1959)
+// deflection formula, the weak-field series, the logarithmic limit at the photon sphere, and
+// the shadow's edge found by following rays either side of it. Units: G = c = 1, M = 1 unless
+// a test says otherwise.
+#include <gtest/gtest.h>
+
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <cmath>
+#include <initializer_list>
+#include <numbers>
+
+#include "lightcone/physics/schwarzschild.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const double kBc = 3 * std::sqrt(3.0);  // b_c for M = 1
+
+// --- Independent helpers (none of them calls the kernel) ---
+
+// The turning radii: roots of r^3 - b^2 (r - 2M) = 0 (dr/dphi = 0), by bisection on an
+// interval where the cubic changes sign.
+long double bisect_turning(long double m, long double b, long double lo, long double hi) {
+  const auto g = [&](long double r) { return r * r * r - b * b * (r - 2 * m); };
+  const bool lo_positive = g(lo) > 0;
+  for (int i = 0; i < 200; ++i) {
+    const long double mid = (lo + hi) / 2;
+    ((g(mid) > 0) == lo_positive ? lo : hi) = mid;
+  }
+  return (lo + hi) / 2;
+}
+long double periapsis_by_bisection(double m, double b) {
+  return bisect_turning(m, b, 3 * m, b);
+}
+long double inner_turning_by_bisection(double m, double b) {
+  return bisect_turning(m, b, 2 * m, 3 * m);
+}
+
+// The angle swept from a turning point u_turn (where du/dphi = 0) until u reaches u_target,
+// integrating u'' = 3 M u^2 - u with classical RK4 in long double; the last step is cut to
+// land on u_target (secant iterations on the step length).
+double ode_angle(long double m, long double u_turn, long double u_target) {
+  struct State {
+    long double u, du;
+  };
+  const auto deriv = [m](State s) { return State{s.du, 3 * m * s.u * s.u - s.u}; };
+  const auto step = [&](State s, long double h) {
+    const State k1 = deriv(s);
+    const State k2 = deriv({s.u + h / 2 * k1.u, s.du + h / 2 * k1.du});
+    const State k3 = deriv({s.u + h / 2 * k2.u, s.du + h / 2 * k2.du});
+    const State k4 = deriv({s.u + h * k3.u, s.du + h * k3.du});
+    return State{s.u + h / 6 * (k1.u + 2 * k2.u + 2 * k3.u + k4.u),
+                 s.du + h / 6 * (k1.du + 2 * k2.du + 2 * k3.du + k4.du)};
+  };
+  const long double h = 2e-4L;
+  const long double sign = u_target < u_turn ? -1 : 1;  // which way u goes
+  State s{u_turn, 0};
+  long double phi = 0;
+  for (;;) {
+    const State next = step(s, h);
+    if (sign * (next.u - u_target) >= 0) {
+      long double h0 = 0, f0 = s.u - u_target, h1 = h, f1 = next.u - u_target;
+      for (int i = 0; i < 60 && f1 != f0; ++i) {
+        const long double h2 = h1 - f1 * (h1 - h0) / (f1 - f0);
+        h0 = h1, f0 = f1, h1 = h2, f1 = step(s, h2).u - u_target;
+        if (std::fabs(f1) < 1e-19L) break;
+      }
+      return static_cast<double>(phi + h1);
+    }
+    s = next;
+    phi += h;
+  }
+}
+
+// The same by Simpson's rule on dphi = du / sqrt(1/b^2 - u^2 (1 - 2Mu)) between two u where
+// the root is smooth (no turning point in [u_a, u_b]).
+double quadrature_angle(long double m, long double b, long double u_a, long double u_b) {
+  const auto f = [&](long double u) {
+    return 1 / std::sqrt(1 / (b * b) - u * u * (1 - 2 * m * u));
+  };
+  const int n = 200000;
+  const long double h = (u_b - u_a) / n;
+  long double sum = f(u_a) + f(u_b);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(u_a + i * h);
+  return static_cast<double>(std::fabs(sum * h / 3));
+}
+
+// Darwin (1959): with the periapsis P, Q^2 = (P - 2M)(P + 6M), k^2 = (Q - P + 6M) / 2Q,
+// sin^2(z) = (Q - P + 2M) / (Q - P + 6M), the deflection is 4 sqrt(P/Q) (K(k) - F(z, k)) - pi.
+double darwin_deflection(double m, long double p) {
+  const long double q = std::sqrt((p - 2 * m) * (p + 6 * m));
+  const double k = static_cast<double>(std::sqrt((q - p + 6 * m) / (2 * q)));
+  const double z = static_cast<double>(std::asin(std::sqrt((q - p + 2 * m) / (q - p + 6 * m))));
+  return static_cast<double>(4 * std::sqrt(p / q)) *
+             (boost::math::ellint_1(k) - boost::math::ellint_1(k, z)) -
+         kPi;
+}
+
+// --- Orbits and deflection ---
+
+TEST(Schwarzschild, PeriapsisAndInnerTurningPointAreTheCubicsRoots) {
+  for (double b : {5.2, 5.3, 6.0, 10.0, 100.0, 1e4}) {
+    const PhotonOrbit o = photon_orbit(1, b);
+    ASSERT_TRUE(o.turning) << b;
+    EXPECT_NEAR(o.periapsis, static_cast<double>(periapsis_by_bisection(1, b)), 1e-13 * b) << b;
+    EXPECT_NEAR(o.inner_turning, static_cast<double>(inner_turning_by_bisection(1, b)), 1e-13) << b;
+  }
+}
+
+TEST(Schwarzschild, DeflectionMatchesTheIntegratedOrbitEquation) {
+  // From the periapsis outwards to u = 0 is half the path: deflection = 2 phi - pi.
+  for (double b : {5.3, 6.0, 10.0, 100.0}) {
+    const long double up = 1 / periapsis_by_bisection(1, b);
+    const double expected = 2 * ode_angle(1, up, 0) - kPi;
+    EXPECT_NEAR(deflection_angle(1, b), expected, 1e-10) << b;
+  }
+}
+
+TEST(Schwarzschild, DeflectionMatchesDarwinsEllipticIntegral) {
+  for (double b : {5.2, 5.3, 6.0, 10.0, 100.0, kBc * (1 + 1e-6)}) {
+    EXPECT_NEAR(deflection_angle(1, b), darwin_deflection(1, periapsis_by_bisection(1, b)), 1e-10)
+        << b;
+  }
+}
+
+TEST(Schwarzschild, DeflectionFarOutIsTheWeakFieldSeries) {
+  // Keeton & Petters (2005, Phys. Rev. D 72, 104006), Schwarzschild: 4 x + (15 pi / 4) x^2 +
+  // (128/3) x^3 + (3465 pi / 64) x^4 + (3584/5) x^5 + ..., x = M/b (the first two terms are
+  // Epstein & Shapiro 1980). Four terms, and twice the fifth as the truncation error.
+  for (double b : {30.0, 100.0, 1e3, 1e4, 1e5, 1e8}) {
+    const double x = 1 / b;
+    const double series = x * (4 + x * (15 * kPi / 4 + x * (128.0 / 3 + x * (3465 * kPi / 64))));
+    const double truncation = 2 * 3584.0 / 5 * std::pow(x, 5);
+    EXPECT_NEAR(deflection_angle(1, b), series, truncation + 1e-14) << b;
+  }
+  // A mass scales every length: the deflection depends on M/b only.
+  EXPECT_NEAR(deflection_angle(2.5, 25.0), deflection_angle(1, 10.0), 1e-14);
+}
+
+TEST(Schwarzschild, DeflectionNearTheCriticalImpactParameterDivergesLogarithmically) {
+  // Darwin (1959), Bozza (2002): deflection = -ln(b/b_c - 1) + ln(216 (7 - 4 sqrt 3)) - pi
+  // + O(b/b_c - 1); in the periapsis r_p/3M - 1 = sqrt(2 (b/b_c - 1) / 3) + O(b/b_c - 1).
+  const double constant = std::log(216 * (7 - 4 * std::sqrt(3.0))) - kPi;
+  double previous = 0, previous_log = 0;
+  for (double eps : {1e-6, 1e-9, 1e-12}) {
+    const double b = kBc * (1 + eps);
+    const double actual = (b - kBc) / kBc;  // the b that double precision holds
+    const double deflection = deflection_angle(1, b);
+    ASSERT_TRUE(std::isfinite(deflection)) << eps;
+    EXPECT_NEAR(deflection, -std::log(actual) + constant, 10 * eps + 1e-9) << eps;
+    const PhotonOrbit o = photon_orbit(1, b);
+    EXPECT_NEAR(o.periapsis / 3 - 1, std::sqrt(2 * actual / 3), 2 * actual + 1e-12) << eps;
+    if (previous_log != 0) {
+      EXPECT_NEAR((deflection - previous) / (std::log(actual) - previous_log), -1, 2e-6) << eps;
+    }
+    previous = deflection, previous_log = std::log(actual);
+  }
+}
+
+TEST(Schwarzschild, DeflectionVanishesFarOutAndInTheFlatLimit) {
+  EXPECT_NEAR(deflection_angle(1, 1e12), 4e-12, 1e-14);
+  EXPECT_NEAR(deflection_angle(1, 1e300), 0, 1e-14);
+  // M -> 0: a straight line, with its periapsis at b and pi swept from infinity to infinity.
+  for (double b : {0.5, 3.0, 1e6}) {
+    EXPECT_NEAR(deflection_angle(0, b), 0, 4e-15) << b;
+    const PhotonOrbit o = photon_orbit(0, b);
+    EXPECT_NEAR(o.periapsis, b, 4e-15 * b);
+    EXPECT_NEAR(2 * swept_angle(o, kInf, o.periapsis), kPi, 4e-15);
+    for (double r : {1.0001 * b, 2 * b, 10 * b})
+      EXPECT_NEAR(swept_angle(o, r, kInf), std::asin(b / r), 1e-13) << b << " " << r;
+  }
+  EXPECT_NEAR(deflection_angle(1e-12, 1), 4e-12, 4e-15);
+}
+
+// --- Angles between radii, capture ---
+
+TEST(Schwarzschild, SweptAngleBetweenRadiiMatchesTheOrbitEquation) {
+  const double b = 6;
+  const PhotonOrbit o = photon_orbit(1, b);
+  const long double up = 1 / periapsis_by_bisection(1, b);
+  // Outer region: periapsis to 20M, and 20M to 50M (through the quadrature too).
+  EXPECT_NEAR(swept_angle(o, o.periapsis, 20), ode_angle(1, up, 1 / 20.0L), 1e-10);
+  EXPECT_NEAR(swept_angle(o, 50, o.periapsis), ode_angle(1, up, 1 / 50.0L), 1e-10);
+  EXPECT_NEAR(swept_angle(o, 20, 50), quadrature_angle(1, b, 1 / 20.0L, 1 / 50.0L), 1e-10);
+  // Inner region (r <= r_3 < 3M): from its turning point in to the horizon, and between radii.
+  const long double u3 = 1 / inner_turning_by_bisection(1, b);
+  EXPECT_NEAR(swept_angle(o, o.inner_turning, 2), ode_angle(1, u3, 0.5L), 1e-10);
+  EXPECT_NEAR(swept_angle(o, 2.2, 2), quadrature_angle(1, b, 1 / 2.2L, 0.5L), 1e-10);
+  // The forbidden gap between the two turning points.
+  EXPECT_TRUE(std::isnan(swept_angle(o, 3.0, 20)));
+}
+
+TEST(Schwarzschild, RaysBelowTheCriticalImpactParameterAreCaptured) {
+  for (double b : {0.5, 2.0, 5.0, 5.19, kBc * (1 - 1e-6), kBc * (1 - 1e-12)}) {
+    const PhotonOrbit o = photon_orbit(1, b);
+    EXPECT_FALSE(o.turning) << b;
+    const RayCourse in = ray_course(o, 50, false);
+    EXPECT_EQ(in.fate, RayFate::kCaptured) << b;
+    EXPECT_EQ(in.turning_radius, 0) << b;
+    ASSERT_TRUE(std::isfinite(in.angle_total)) << b;
+    if (b < 5.195) {  // away from b_c the quadrature is accurate
+      EXPECT_NEAR(in.angle_total, quadrature_angle(1, b, 1 / 50.0L, 0.5L), 1e-10) << b;
+    }
+    const RayCourse out = ray_course(o, 50, true);
+    EXPECT_EQ(out.fate, RayFate::kEscapes) << b;
+    EXPECT_NEAR(out.angle_total, quadrature_angle(1, b, 1 / 50.0L, 0), 1e-10) << b;
+    // Sent outward from inside the photon sphere it escapes too.
+    EXPECT_EQ(ray_course(o, 2.5, true).fate, RayFate::kEscapes) << b;
+  }
+  // Just above b_c it turns, close to the photon sphere, and escapes.
+  const RayCourse above = ray_course(photon_orbit(1, kBc * (1 + 1e-12)), 50, false);
+  EXPECT_EQ(above.fate, RayFate::kEscapes);
+  EXPECT_NEAR(above.turning_radius, 3, 1e-5);
+  // Exactly b_c: onto the photon sphere, from either side.
+  const PhotonOrbit critical = photon_orbit(1, kBc);
+  EXPECT_EQ(ray_course(critical, 50, false).fate, RayFate::kPhotonSphere);
+  EXPECT_EQ(ray_course(critical, 2.5, true).fate, RayFate::kPhotonSphere);
+  EXPECT_EQ(ray_course(critical, 2.5, false).fate, RayFate::kCaptured);
+  // b = 0: radial, no angle.
+  EXPECT_EQ(ray_course(photon_orbit(1, 0), 10, false).fate, RayFate::kCaptured);
+  EXPECT_EQ(ray_course(photon_orbit(1, 0), 10, false).angle_total, 0);
+}
+
+TEST(Schwarzschild, RayInsideThePhotonSphereAboveTheCriticalImpactParameterTurnsAndFalls) {
+  const PhotonOrbit o = photon_orbit(1, 6);
+  const RayCourse c = ray_course(o, 2.2, true);
+  EXPECT_EQ(c.fate, RayFate::kCaptured);
+  EXPECT_EQ(c.turning_radius, o.inner_turning);
+  const long double u3 = 1 / inner_turning_by_bisection(1, 6);
+  EXPECT_NEAR(c.angle_to_turn, ode_angle(1, u3, 1 / 2.2L), 1e-10);
+  EXPECT_NEAR(c.angle_total, c.angle_to_turn + ode_angle(1, u3, 0.5L), 1e-10);
+}
+
+TEST(Schwarzschild, TangentialRayOfAStaticObserverTurnsWhereItIs) {
+  // b = r / sqrt(f) rounds to a periapsis (or inner turning point) a few ulps off r.
+  for (double r : {2.1, 2.5, 2.9, 3.1, 4.0, 10.0, 123.456, 1e5}) {
+    const PhotonOrbit o = photon_orbit(1, static_impact_parameter(1, r, 1.0));
+    const RayCourse c = ray_course(o, r, r < 3);  // inward to a periapsis, outward inside
+    ASSERT_TRUE(std::isfinite(c.angle_total)) << r;
+    EXPECT_NEAR(c.turning_radius, r, 1e-12 * r) << r;
+    EXPECT_NEAR(c.angle_to_turn, 0, 1e-6) << r;
+  }
+}
+
+// --- Static observers ---
+
+TEST(Schwarzschild, SyngeShadowEdgeIsTheCriticalImpactParameter) {
+  for (double r : {2.2, 2.5, 2.9, 3.5, 6.0, 10.0, 1000.0}) {
+    const double alpha = static_shadow_angle(1, r);
+    EXPECT_NEAR(static_impact_parameter(1, r, std::sin(alpha)), kBc, 1e-12) << r;
+    EXPECT_EQ(alpha > kPi / 2, r < 3) << r;
+    // Follow rays back from just inside and just outside the edge (psi from the hole's direction,
+    // the ray travelling away from the direction looked in): inside is the hole.
+    for (double side : {-1.0, 1.0}) {
+      const double psi = alpha * (1 + side * 1e-6);
+      const double b = static_impact_parameter(1, r, std::sin(psi));
+      const RayCourse c = ray_course(photon_orbit(1, b), r, psi > kPi / 2);
+      EXPECT_EQ(c.fate, side < 0 ? RayFate::kCaptured : RayFate::kEscapes) << r << " " << side;
+    }
+  }
+  // Far away the shadow is b_c / r, shrunk by sqrt(f) ~ 1 - M/r.
+  EXPECT_NEAR(static_shadow_angle(1, 1e6), kBc / 1e6, 2e-6 * kBc / 1e6);
+  // The photon sphere sees half the sky dark.
+  EXPECT_NEAR(static_shadow_angle(1, 3), kPi / 2, 1e-7);
+}
+
+TEST(Schwarzschild, StaticToStaticFrequencyShift) {
+  // PHYSICS.md: a star whose escape speed is 0.5c (2M/r = 1/4), seen far away: sqrt(3)/2.
+  EXPECT_NEAR(static_frequency_shift(1, 8, 1e300), std::sqrt(0.75), 1e-15);
+  // Blue-shifted going down; shifts compose; weak field: 1 - M/r_e + M/r_o (Pound-Rebka).
+  EXPECT_GT(static_frequency_shift(1, 100, 10), 1);
+  EXPECT_NEAR(static_frequency_shift(1, 3, 10) * static_frequency_shift(1, 10, 50),
+              static_frequency_shift(1, 3, 50), 1e-15);
+  EXPECT_NEAR(static_frequency_shift(1, 1e6, 2e6) - 1, -1e-6 + 0.5e-6, 1e-11);
+  EXPECT_EQ(static_frequency_shift(0, 3, 50), 1);
+}
+
+}  // namespace
+}  // namespace lightcone
