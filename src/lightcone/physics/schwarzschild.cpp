@@ -1,7 +1,10 @@
 #include "lightcone/physics/schwarzschild.hpp"
 
 #include <algorithm>
+#include <boost/math/special_functions/ellint_rc.hpp>
+#include <boost/math/special_functions/ellint_rd.hpp>
 #include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -15,6 +18,15 @@ constexpr double kSqrt3 = std::numbers::sqrt3;
 
 double rf(double x, double y, double z) {
   return boost::math::ellint_rf(x, y, z);
+}
+double rd(double x, double y, double z) {
+  return boost::math::ellint_rd(x, y, z);
+}
+double rj(double x, double y, double z, double p) {
+  return boost::math::ellint_rj(x, y, z, p);
+}
+double rc(double x, double y) {
+  return boost::math::ellint_rc(x, y);
 }
 
 // Carlson's reduction of int_y^x dt / sqrt(prod_i (a_i + b_i t)) for three real linear factors
@@ -91,6 +103,197 @@ double snap_to_turning_point(const PhotonOrbit& o, double r) {
   return r - o.inner_turning < o.periapsis - r ? o.inner_turning : o.periapsis;
 }
 
+// --- Coordinate time along a ray ---
+//
+// With w = b/r, dt/dphi = r^2 / (b f) and dphi = dw / sqrt(P(w)), P = 1 - w^2 + e w^3, e = 2M/b:
+//   t = b int dw / (w^2 (1 - e w) sqrt(P)),  1 / (w^2 (1 - e w)) = 1/w^2 + e/w + e^2/(1 - e w),
+// and d/dw (sqrt(P) / w) = -1 / (w^2 sqrt(P)) + (e/2) w / sqrt(P) turns the double pole into a
+// boundary term. Between w_lo < w_hi (radii r_lo = b/w_lo > r_hi = b/w_hi):
+//   t = r_lo sqrt(P(w_lo)) - r_hi sqrt(P(w_hi)) + M J1 + 2M J2 + (4M^2/b) J3,
+//   J1 = int w dw / sqrt(P),  J2 = int dw / (w sqrt(P)),  J3 = int dw / ((1 - e w) sqrt(P)):
+// a second-kind integral and two of the third kind, with poles at infinity (w = 0) and at the
+// horizon (w = 1/e), where P = 1.
+
+// Carlson (1989, "A table of elliptic integrals of the third kind", cubic case) for three real
+// linear factors L_i = a_i + b_i w positive between the limits y < x: the factors' values at
+// x and y (fx, fy), d_ij = a_i b_j - a_j b_i, dx = x - y.
+struct RealCubic {
+  double x1, x2, x3, y1, y2, y3;  // sqrt(L_i) at x and y
+  double u1s, u2s, u3s;           // U_1^2 = ((X1 Y2 Y3 + Y1 X2 X3) / dx)^2 and its cyclic shifts
+  double d12, d13, b1;
+  double rf;  // R_F(U1^2, U2^2, U3^2)
+};
+RealCubic real_cubic(double dx, const Factors& fx, const Factors& fy, double d12, double d13,
+                     double b1) {
+  RealCubic c{};
+  c.x1 = std::sqrt(fx.f1), c.x2 = std::sqrt(fx.f2), c.x3 = std::sqrt(fx.f3);
+  c.y1 = std::sqrt(fy.f1), c.y2 = std::sqrt(fy.f2), c.y3 = std::sqrt(fy.f3);
+  const double u1 = (c.x1 * c.y2 * c.y3 + c.y1 * c.x2 * c.x3) / dx;
+  const double u2 = (c.x2 * c.y1 * c.y3 + c.y2 * c.x1 * c.x3) / dx;
+  const double u3 = (c.x3 * c.y1 * c.y2 + c.y3 * c.x1 * c.x2) / dx;
+  c.u1s = u1 * u1, c.u2s = u2 * u2, c.u3s = u3 * u3;
+  c.d12 = d12, c.d13 = d13, c.b1 = b1;
+  c.rf = rf(c.u1s, c.u2s, c.u3s);
+  return c;
+}
+// int_y^x dw / sqrt(L1 L2 L3) = 2 R_F.
+double first_kind(const RealCubic& c) {
+  return 2 * c.rf;
+}
+// int_y^x sqrt(L1) dw / sqrt(L2 L3) = (2/3) d12 d13 R_D(U3^2, U2^2, U1^2) + 2 X1 Y1 / U1.
+double second_kind(const RealCubic& c) {
+  return 2.0 / 3 * c.d12 * c.d13 * rd(c.u3s, c.u2s, c.u1s) + 2 * c.x1 * c.y1 / std::sqrt(c.u1s);
+}
+
+// A pole factor L4 = a4 + b4 w (positive between the limits), its values at x and y and
+// d_i4 = a_i b4 - a4 b_i.
+struct Pole {
+  double b4, l4x, l4y, d14, d24, d34;
+};
+
+// 2 R_C(P^2, Q^2), Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, or, when `regular` (Y4 = 0: the pole at the
+// lower limit), its finite part 2 R_C + ln(Y4^2) / P as Y4 -> 0, which is
+// (2/P) (ln 2P - ln |X4 W / (X1 Y1)|) with P^2 = pq (Q^2 -> 0); both signs of W^2 alike (a
+// negative Q^2 is R_C's Cauchy principal value, DLMF 19.2.20, with the same limit).
+double pole_rc(double w2, double x4s, double y4s, double x1y1s, double pq, bool regular) {
+  if (regular) {
+    const double p = std::sqrt(pq);
+    return 2 / p * (std::log(2 * p) - 0.5 * std::log(x4s * std::abs(w2) / x1y1s));
+  }
+  const double q2 = x4s * y4s / x1y1s * w2;
+  return 2 * rc(q2 + pq, q2);
+}
+
+// int_y^x dw / (L4 sqrt(L1 L2 L3)) (Carlson 1989): with W^2 = U1^2 - b4 d12
+// d13 / d14, Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, P^2 = Q^2 + b4 d24 d34 / d14,
+//   I3 = 2 R_C(P^2, Q^2) - (2 b1 d12 d13 / 3 d14) R_J(U3^2, U2^2, U1^2, W^2)
+// is int (L1 / L4) / sqrt(L1 L2 L3), and the integral is (b4 I3 - b1 I1) / d14. `regular`: the
+// pole is at y (L4(y) = 0, only used with L4 = w at w = 0, where the integrand is 1/w + O(1)), and
+// what comes back is the finite limit of the integral + ln(L4(y)) (see pole_rc: the factor
+// b4 / (d14 P) in front of the logarithm is 1 there, since P(w = 0) = 1).
+double third_kind(const RealCubic& c, const Pole& p, bool regular) {
+  const double w2 = c.u1s - p.b4 * c.d12 * c.d13 / p.d14;
+  const double x1y1s = c.x1 * c.x1 * c.y1 * c.y1;
+  const double i3 = pole_rc(w2, p.l4x, p.l4y, x1y1s, p.b4 * p.d24 * p.d34 / p.d14, regular) -
+                    2 * c.b1 * c.d12 * c.d13 / (3 * p.d14) * rj(c.u3s, c.u2s, c.u1s, w2);
+  return (p.b4 * i3 - c.b1 * first_kind(c)) / p.d14;
+}
+
+// Carlson (1991, "A table of elliptic integrals: one quadratic factor", cubic case) for L1 = z
+// (a1 = 0, b1 = 1) and the quadratic q = (z - c)^2 + n^2 (f = A^2, g = -2c, h = 1, A^2 = c^2 +
+// n^2), between 0 <= y < x.
+struct QuadraticCubic {
+  double x1, y1, xi, eta;  // sqrt(z), sqrt(q) at x and y
+  double m2, lm2, lp2;     // M^2, L_-^2, L_+^2
+  double u;                // U = (X1 eta + Y1 xi) / dx
+  double a, c;
+  double rf;  // R_F(M^2, L_-^2, L_+^2)
+};
+QuadraticCubic quadratic_cubic(double x, double y, double c, double n) {
+  QuadraticCubic k{};
+  const double dx = x - y, a = std::hypot(c, n);
+  k.x1 = std::sqrt(x), k.y1 = std::sqrt(y);
+  const double xc = x - c, yc = y - c;
+  k.xi = std::sqrt(xc * xc + n * n), k.eta = std::sqrt(yc * yc + n * n);
+  // (xi + eta)^2 - dx^2 = 2 (xi eta + (x - c)(y - c) + n^2); when c lies between x and y the
+  // first two nearly cancel (b -> b_c), and xi eta - |(x-c)(y-c)| is written as a quotient.
+  const double prod = xc * yc;
+  const double sum =
+      prod >= 0 ? k.xi * k.eta + prod : n * n * (xc * xc + yc * yc + n * n) / (k.xi * k.eta - prod);
+  const double s = 2 * (sum + n * n);
+  k.m2 = (k.x1 + k.y1) * (k.x1 + k.y1) * s / (dx * dx);
+  // L_+-^2 = M^2 - beta1 +- sqrt(2h) c11 with beta1 = -2c, c11 = sqrt(2) A; A - c = n^2/(A + c).
+  k.lp2 = k.m2 + 2 * (a + c);
+  k.lm2 = k.m2 - 2 * n * n / (a + c);
+  k.u = (k.x1 * k.eta + k.y1 * k.xi) / dx;
+  k.a = a, k.c = c;
+  k.rf = rf(k.m2, k.lm2, k.lp2);
+  return k;
+}
+// int_y^x dz / sqrt(z q) = 4 R_F(M^2, L_-^2, L_+^2).
+double first_kind(const QuadraticCubic& k) {
+  return 4 * k.rf;
+}
+// int_y^x z^(-3/2) q^(-1/2) dz = (2/3) (sqrt(2h) / c11) (4 rho R_D(M^2, L_-^2, L_+^2) - 6 R_F +
+// 3 / U) + 2 / (X1 Y1 U), rho = sqrt(2h) c11 - beta1 = 2 (A + c) (Carlson 1991).
+double second_kind(const QuadraticCubic& k) {
+  const double rho = 2 * (k.a + k.c);
+  return 2.0 / 3 / k.a * (4 * rho * rd(k.m2, k.lm2, k.lp2) - 6 * k.rf + 3 / k.u) +
+         2 / (k.x1 * k.y1 * k.u);
+}
+// int_y^x dz / (L4 sqrt(z q)), L4 = a4 + b4 z (Carlson 1991): with d14 = -a4,
+// c44^2 = 2 (f b4^2 - g a4 b4 + h a4^2), c14^2 = 2 f b4 - g a4, W_+^2 = M^2 - (c14^2 + c11 c44) /
+// d14, W^2 = U^2 - c11^2 b4 / (2 d14), Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, P^2 = Q^2 + c44^2 b4 /
+// (2 d14),
+//   I3 = (2 c11 / 3 c44) ((-4 / d14)(c14^2 + c11 c44) R_J(M^2, L_-^2, L_+^2, W_+^2) - 6 R_F
+//        + 3 R_C(U^2, W^2)) + 2 R_C(P^2, Q^2),
+// and the integral is (b4 I3 - I1) / d14. `regular` as for the real case.
+double third_kind(const QuadraticCubic& k, double a4, double b4, double l4x, double l4y,
+                  bool regular) {
+  const double a = k.a, c = k.c, d14 = -a4;
+  const double c11 = std::sqrt(2.0) * a;
+  const double c44 = std::sqrt(2 * (a * a * b4 * b4 + 2 * c * a4 * b4 + a4 * a4));
+  const double c14s = 2 * a * a * b4 + 2 * c * a4;
+  const double wp2 = k.m2 - (c14s + c11 * c44) / d14;
+  const double w2 = k.u * k.u - c11 * c11 * b4 / (2 * d14);
+  const double x1y1s = k.x1 * k.x1 * k.y1 * k.y1;
+  const double i3 = 2 * c11 / (3 * c44) *
+                        (-4 / d14 * (c14s + c11 * c44) * rj(k.m2, k.lm2, k.lp2, wp2) - 6 * k.rf +
+                         3 * rc(k.u * k.u, w2)) +
+                    pole_rc(w2, l4x, l4y, x1y1s, c44 * c44 * b4 / (2 * d14), regular);
+  return (b4 * i3 - first_kind(k)) / d14;
+}
+
+// The radial tortoise coordinate r_* = r + 2M ln(r/2M - 1).
+double tortoise(double m, double r) {
+  return m == 0 ? r : r + 2 * m * std::log((r - 2 * m) / (2 * m));
+}
+
+// The time between w_lo < w_hi (r_lo > r_hi, both > 2M) on one stretch; `regular`: w_lo = 0
+// and the answer is lim [t - r_*(R)] as R -> infinity (see coordinate_time_to_infinity).
+double ray_time(const PhotonOrbit& o, double r_lo, double r_hi, bool inner, bool regular) {
+  const double m = o.mass, b = o.impact, e = 2 * m / b;
+  const double w_lo = w_of(o, r_lo), w_hi = w_of(o, r_hi), dx = w_hi - w_lo;
+  const double f_lo = regular ? 1.0 : 1 - 2 * m / r_lo, f_hi = 1 - 2 * m / r_hi;
+  double sqrt_p_lo = 1, sqrt_p_hi, j1, j2, j3;
+  if (o.turning) {
+    const Factors fx = turning_factors(o, r_hi, inner), fy = turning_factors(o, r_lo, inner);
+    const double w2 = 1 / o.v_pos, inv_w3 = o.inner_turning / b, s = inner ? -1.0 : 1.0;
+    // L1 = w + w_neg, L2 = s (w2 - w), L3 = s (1 - w / w3).
+    const double a1 = o.w_neg, a2 = s * w2, a3 = s;
+    const RealCubic c = real_cubic(dx, fx, fy, -s * (a1 + w2), -s * (a1 * inv_w3 + 1), 1);
+    const double root_scale = std::sqrt(o.scale);
+    sqrt_p_hi = root_scale * std::sqrt(fx.f1 * fx.f2 * fx.f3);
+    if (!regular) sqrt_p_lo = root_scale * std::sqrt(fy.f1 * fy.f2 * fy.f3);
+    j1 = (second_kind(c) - o.w_neg * first_kind(c)) / root_scale;
+    // The pole at infinity, L4 = w: d_i4 = a_i. At the horizon, L4 = 1 - e w: d_i4 = -e a_i -
+    // b_i, i.e. -(1 + e w_neg), s f(r_p), s (r_3 - 2M) / b.
+    j2 = third_kind(c, {1, w_hi, w_lo, a1, a2, a3}, regular) / root_scale;
+    j3 = third_kind(c,
+                    {-e, f_hi, f_lo, -(1 + e * a1), s * (1 - 2 * m / o.periapsis),
+                     s * (o.inner_turning - 2 * m) / b},
+                    false) /
+         root_scale;
+  } else {
+    // P = e z q(z), z = w + w_neg, q = (z - c)^2 + n^2.
+    const double c = o.pair_c, n = o.pair_n, z_hi = w_hi + o.w_neg, z_lo = w_lo + o.w_neg;
+    const QuadraticCubic k = quadratic_cubic(z_hi, z_lo, c, n);
+    const double root_e = std::sqrt(e);
+    sqrt_p_hi = root_e * k.x1 * k.xi;
+    if (!regular) sqrt_p_lo = root_e * k.y1 * k.eta;
+    // d/dw (sqrt(P) / z) = (e z - e A^2 / z) / (2 sqrt(P)) gives int z / sqrt(P).
+    const double i1 = first_kind(k);
+    j1 = 2 / root_e * (k.xi / k.x1 - k.eta / k.y1) +
+         (k.a * k.a * second_kind(k) - o.w_neg * i1) / root_e;
+    // w = z - w_neg; 1 - e w = (1 + e w_neg) - e z.
+    j2 = third_kind(k, -o.w_neg, 1, w_hi, w_lo, regular) / root_e;
+    j3 = third_kind(k, 1 + e * o.w_neg, -e, f_hi, f_lo, false) / root_e;
+  }
+  const double middle = m * j1 + 2 * m * j2 + 4 * m * m / b * j3;
+  if (regular) return -r_hi * sqrt_p_hi + middle + 2 * m * std::log(e);
+  return r_lo * sqrt_p_lo - r_hi * sqrt_p_hi + middle;
+}
+
 }  // namespace
 
 double critical_impact_parameter(double mass) {
@@ -129,6 +332,7 @@ PhotonOrbit photon_orbit(double mass, double impact) {
   o.w_neg = 1 / (2 * x);
   o.scale = 2 * mass / impact;
   const double c = o.w_neg + m;  // the z of the pair's real part, -(w_1 - m)
+  o.pair_c = c, o.pair_n = n;
   o.quad_a = std::hypot(c, n);
   o.modulus_c2 = n * n / (2 * o.quad_a * (o.quad_a + c));  // (A - c') / 2A, no cancellation
   return o;
@@ -208,6 +412,50 @@ double static_shadow_angle(double mass, double r) {
 
 double static_frequency_shift(double mass, double r_emitter, double r_observer) {
   return std::sqrt((1 - 2 * mass / r_emitter) / (1 - 2 * mass / r_observer));
+}
+
+double tortoise_coordinate(double mass, double r) {
+  return tortoise(mass, r);
+}
+
+double coordinate_time(const PhotonOrbit& o, double r_a, double r_b) {
+  const double m = o.mass, b = o.impact;
+  if (r_a == r_b) return 0;
+  if (!(r_a > 2 * m && r_b > 2 * m)) return kNaN;
+  if (std::isinf(r_a) || std::isinf(r_b)) return kInf;
+  if (b == 0) return std::abs(tortoise(m, r_a) - tortoise(m, r_b));
+  bool inner = false;
+  if (o.turning) {
+    r_a = snap_to_turning_point(o, r_a), r_b = snap_to_turning_point(o, r_b);
+    inner = r_a <= o.inner_turning;
+    const auto in_region = [&](double r) {
+      return inner ? r <= o.inner_turning : r >= o.periapsis;
+    };
+    if (!in_region(r_a) || !in_region(r_b)) return kNaN;
+  }
+  const double far = std::max(r_a, r_b), near = std::min(r_a, r_b);
+  if (m == 0) {  // a straight line: the Euclidean distance along it
+    const auto chord = [&](double r) {
+      return r == o.periapsis ? 0.0 : std::sqrt(std::max(0.0, (r - b) * (r + b)));
+    };
+    return chord(far) - chord(near);
+  }
+  if (o.critical && near <= 3 * m && far >= 3 * m) return kInf;
+  return ray_time(o, far, near, inner, false);
+}
+
+double coordinate_time_to_infinity(const PhotonOrbit& o, double r) {
+  const double m = o.mass, b = o.impact;
+  if (!(r > 2 * m)) return kNaN;
+  if (std::isinf(r)) return -kInf;
+  if (b == 0) return -tortoise(m, r);
+  if (o.turning) {
+    r = snap_to_turning_point(o, r);
+    if (r < o.periapsis) return kNaN;  // the inner region or the gap: no stretch to infinity
+  }
+  if (m == 0) return r == o.periapsis ? 0.0 : -std::sqrt(std::max(0.0, (r - b) * (r + b)));
+  if (o.critical && r <= 3 * m) return kInf;
+  return ray_time(o, kInf, r, false, true);
 }
 
 }  // namespace lightcone

@@ -2,8 +2,9 @@
 // spacetime"): G = c = 1, M the gravitational radius, f = 1 - 2M/r, u = 1/r, impact parameter
 // b = L/E, and the orbit equation (du/dphi)^2 = 1/b^2 - u^2 (1 - 2Mu). No step size anywhere:
 // the turning points are the roots of a cubic (trigonometric form), the swept angle is
-// Carlson's R_F (Carlson 1995; Boost.Math), so the answers are exact to rounding, also near the
-// critical impact parameter b_c = 3 sqrt(3) M, where the angle diverges logarithmically.
+// Carlson's R_F (Carlson 1995; Boost.Math) and the coordinate time his R_F, R_D, R_J and R_C,
+// so the answers are exact to rounding, also near the critical impact parameter
+// b_c = 3 sqrt(3) M, where the angle and the time diverge logarithmically.
 #pragma once
 
 namespace lightcone {
@@ -34,6 +35,8 @@ struct PhotonOrbit {
   double v_gap = 0;  // turning: (r_p - r_3) / b, accurate as b -> b_c
   double scale = 0;  // turning: (r_p / b) (-1 / w_1); b <= b_c: 2M/b (the cubic's leading term)
   double quad_a = 0, modulus_c2 = 0;  // b <= b_c: A and k'^2 of Byrd & Friedman 239.00
+  // b <= b_c: with z = w - w_1 the cubic is scale z ((z - pair_c)^2 + pair_n^2).
+  double pair_c = 0, pair_n = 0;
 };
 
 PhotonOrbit photon_orbit(double mass, double impact);
@@ -45,6 +48,31 @@ PhotonOrbit photon_orbit(double mass, double impact);
 // turning point (a ray sent tangentially); any other there gives NaN. Infinity if b = b_c
 // exactly and the stretch reaches the photon sphere r = 3M.
 double swept_angle(const PhotonOrbit& orbit, double r_a, double r_b);
+
+// The radial tortoise coordinate r_* = r + 2M ln(r/2M - 1) (r > 2M; r when M = 0): the
+// coordinate time of a radial ray is the difference of r_* at its ends.
+double tortoise_coordinate(double mass, double r);
+
+// The Schwarzschild coordinate time (>= 0) that light of this orbit takes between radii r_a and
+// r_b, both > 2M, on one stretch on which r is monotonic (the conditions of swept_angle; a
+// turning point may be either end). In closed form: dt/dphi = r^2 / (b f) is reduced to
+// elliptic integrals of the first, second and third kind (Carlson 1989, 1991; R_F, R_D, R_J,
+// R_C of Boost.Math, see schwarzschild.cpp and docs/physics.md). M = 0: the Euclidean length
+// of the segment; b = 0: the difference of r_*. NaN for a radius <= 2M or one no ray of this b
+// reaches on that stretch; infinity if a radius is infinite, or if b = b_c exactly and the
+// stretch reaches the photon sphere r = 3M.
+double coordinate_time(const PhotonOrbit& orbit, double r_a, double r_b);
+
+// A ray between radius r (> 2M, in the region from which this orbit reaches infinity without
+// turning: r >= periapsis when it turns) and infinity takes infinite coordinate time; its
+// regularised time is
+//   T_inf(r) = lim_{R -> inf} [ coordinate_time(r, R) - r_*(R) ],
+// finite, with coordinate_time(r, R) = T_inf(r) + r_*(R) - b^2 / 2R + O(1 / R^2). So a ray leaving
+// r at t_0 crosses a far radius R at t_0 + T_inf(r) + r_*(R), and the difference between two rays
+// arriving far away is the difference of their T_inf. Radial: -r_*(r); M = 0: -sqrt(r^2 - b^2).
+// NaN when no such stretch exists (inner region, forbidden gap, r <= 2M); infinity if b = b_c
+// exactly and r <= 3M.
+double coordinate_time_to_infinity(const PhotonOrbit& orbit, double r);
 
 // Where a ray that passes radius r0 (> 2M) goes, and the angle it sweeps on the way.
 enum class RayFate {
