@@ -68,8 +68,18 @@ void watch_outside() {
   const std::string fifo = (outside / "fifo").string();
   std::thread([notify, fifo] {
     for (;;) {
+      // Only a file in the folder counts: another process listing the temporary folder (a
+      // `find /tmp`) opens the folder itself, an event without a name.
       pollfd p{notify, POLLIN, 0};
-      if (::poll(&p, 1, 10) > 0) escaped("opened a file");
+      if (::poll(&p, 1, 10) > 0) {
+        alignas(inotify_event) char events[4096];
+        const ssize_t n = ::read(notify, events, sizeof events);
+        for (ssize_t at = 0; at < n;) {
+          const auto* e = reinterpret_cast<const inotify_event*>(events + at);
+          if (e->len > 0) escaped("opened a file");
+          at += static_cast<ssize_t>(sizeof(inotify_event) + e->len);
+        }
+      }
       const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
       if (writer >= 0) escaped("opened a FIFO");  // only a reader lets this open succeed
     }

@@ -71,9 +71,9 @@ Factors turning_factors(const PhotonOrbit& o, double r, bool inner) {
 }
 
 // Captured orbit (b <= b_c): one real root w_1 < 0, and 1 - w^2 + 2 (M/b) w^3 =
-// (2M/b) z ((z + c)^2 + n^2) with z = w - w_1 > 0. Byrd & Friedman (1971) 239.00 give
-// int_0^z = F(phi, k) / sqrt(A), cos(phi) = (A - z) / (A + z), A^2 = c^2 + n^2; written with
-// R_F (Carlson 1995, F = sin(phi) R_F(cos^2 phi, 1 - k^2 sin^2 phi, 1)) for z <= A (phi <=
+// (2M/b) z ((z - c)^2 + n^2) with z = w - w_1 > 0 (c, n: pair_c, pair_n). Byrd & Friedman (1971)
+// 239.00 give int_0^z = F(phi, k) / sqrt(A), cos(phi) = (A - z) / (A + z), A^2 = c^2 + n^2; written
+// with R_F (Carlson 1995, F = sin(phi) R_F(cos^2 phi, 1 - k^2 sin^2 phi, 1)) for z <= A (phi <=
 // pi/2) it is 2 sqrt(z) R_F((A - z)^2, (A - z)^2 + 4 k'^2 A z, (A + z)^2). Past A, phi -> pi -
 // phi is z -> A^2 / z, and F(pi - phi) = 2K - F(phi).
 double half_integral(const PhotonOrbit& o, double z) {
