@@ -97,9 +97,9 @@ fs::path fake_ffmpeg(const fs::path& folder, const std::string& behaviour) {
 TEST_F(HostileInput, AnFfmpegThatLiesAboutSuccessLeavesTheOldVideoAlone) {
   if (!have_program("ffmpeg") || !have_program("ffprobe"))
     GTEST_SKIP() << "ffmpeg is not installed";
-  // It reads every frame, writes a stub in place of the video, and exits 0.
+  // It reads every frame, writes four bytes that are no video in its place, and exits 0.
   const fs::path bin = fake_ffmpeg(
-      dir_ / "lying", "cat > /dev/null; for last; do :; done; printf 'stub' > \"$last\"; exit 0");
+      dir_ / "lying", "cat > /dev/null; for last; do :; done; printf 'junk' > \"$last\"; exit 0");
   const fs::path video = dir_ / "v.mp4";
   test::write_text(video, "the old video");
   const auto r =

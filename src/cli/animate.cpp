@@ -265,7 +265,7 @@ int run_animate(const AnimateArgs& a) {
     for (const double later : {0.0, s.camera.shutter}) {
       const Vec3 v =
           later > 0 ? observation_after(s.camera, later).velocity : s.camera.world_line.velocity;
-      const Fastest fastest = fastest_relative_to(s, Vec4{lorentz_gamma(v), v * lorentz_gamma(v)});
+      const Fastest fastest = fastest_relative_to(s, four_velocity(v));
       if (!(fastest.gamma <= kMaxLorentzFactor))
         throw InputError(fmt::format(
             "frame {}: by then {} moves too close to the speed of light relative to the camera "

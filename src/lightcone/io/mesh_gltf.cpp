@@ -421,19 +421,19 @@ class GltfReferences {
       return std::nullopt;
     };
     if (given.has_root_path()) return outside();
-    std::vector<fs::path> todo;  // the steps still to take, the next one last
+    std::vector<fs::path> steps_left;  // the steps still to take, the next one last
     const auto push = [&](const fs::path& p) {
-      const std::size_t at = todo.size();
-      for (const fs::path& step : p) todo.push_back(step);
-      std::reverse(todo.begin() + static_cast<std::ptrdiff_t>(at), todo.end());
+      const std::size_t at = steps_left.size();
+      for (const fs::path& step : p) steps_left.push_back(step);
+      std::reverse(steps_left.begin() + static_cast<std::ptrdiff_t>(at), steps_left.end());
     };
     push(given);
     fs::path current = folder_;
     std::size_t depth = 0;  // steps below the folder
     int links = 0;
-    while (!todo.empty()) {
-      const fs::path step = std::move(todo.back());
-      todo.pop_back();
+    while (!steps_left.empty()) {
+      const fs::path step = std::move(steps_left.back());
+      steps_left.pop_back();
       if (step.empty() || step == ".") continue;
       if (step == "..") {
         if (depth == 0) return outside();

@@ -33,11 +33,6 @@ constexpr int kMaxImageSide = 16384;
 constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
 constexpr int kMaxSamples = 65536;
 
-Vec4 four_velocity(const Vec3& beta) {
-  const double gamma = lorentz_gamma(beta);
-  return {gamma, beta * gamma};
-}
-
 }  // namespace
 
 Scene SceneReader::read(const json& document) {
@@ -430,12 +425,12 @@ void SceneReader::check_spins(const Scene& scene) const {
                           rim * c_, r, c_));
     for (const Observer& observer : observers_) {
       const double gamma = rim_point_gamma(o, rim, observer.four_velocity);
-      if (!(gamma <= kMaxGamma))
+      if (!(gamma <= kMaxLorentzFactor))
         fail_at(path, lines_.value_line(path),
                 fmt::format("the speed of the rim's fastest point (the rim speed {} added "
                             "to the body's motion){} is too close to the speed of light "
                             "(gamma {:.3g}; at most {:g})",
-                            rim * c_, observer.relative, gamma, kMaxGamma));
+                            rim * c_, observer.relative, gamma, kMaxLorentzFactor));
     }
   }
 }

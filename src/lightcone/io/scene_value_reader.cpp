@@ -61,9 +61,9 @@ void SceneValueReader::fail(const Node& n, const std::string& what) const {
 
 void SceneValueReader::limit_gamma(const Node& n, double gamma, const std::string& subject,
                                    const Observer& observer) const {
-  if (!(gamma <= kMaxGamma))
+  if (!(gamma <= kMaxLorentzFactor))
     fail(n, fmt::format("{}{} is too close to the speed of light (gamma {:.3g}; at most {:g})",
-                        subject, observer.relative, gamma, kMaxGamma));
+                        subject, observer.relative, gamma, kMaxLorentzFactor));
 }
 
 const json& SceneValueReader::need(const Node& n) const {

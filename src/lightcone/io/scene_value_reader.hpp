@@ -67,7 +67,6 @@ class SceneValueReader {
   // The one speed limit: every speed a body can reach (the camera, objects, lights, the sky, a
   // spinning body's points), in W and relative to the camera, has gamma at most this; beyond
   // it double precision cannot hold the physics (1 - v is below 5e-13).
-  static constexpr double kMaxGamma = kMaxLorentzFactor;
 
   // An observer a speed is checked against; `relative` is how a message names it.
   struct Observer {
@@ -114,7 +113,7 @@ class SceneValueReader {
   Vec3 direction(const Node& n) const;
 
   // Below the speed of light, and not so close to it, in W or relative to the camera, that
-  // double precision cannot hold the physics: gamma at most kMaxGamma.
+  // double precision cannot hold the physics: gamma at most kMaxLorentzFactor.
   Vec3 velocity(const Node& n) const;
 
   Rgb color(const Node& n) const;

@@ -65,6 +65,12 @@ BoostRotation decompose_lorentz(const Mat4& lorentz);
 // `beta_b` in a frame that itself moves with `beta_a` (both pure boosts). Exact formula.
 Vec3 velocity_addition(const Vec3& beta_a, const Vec3& beta_b);
 
+// The 4-velocity (gamma, gamma beta) of velocity `beta` (|beta| < 1).
+inline Vec4 four_velocity(const Vec3& beta) {
+  const double gamma = lorentz_gamma(beta);
+  return {gamma, beta * gamma};
+}
+
 // Velocity in the current frame of a world-line whose tangent 4-vector is u (u.t > 0).
 inline Vec3 velocity_of(const Vec4& u) {
   return u.x / u.t;

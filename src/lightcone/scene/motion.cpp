@@ -72,8 +72,7 @@ double relative_gamma(const Vec4& observer, const Vec4& u) {
 double max_relative_gamma(const WorldLine& start, const BodyMotion& motion, const Vec4& observer) {
   if (!motion.keyframes.empty())
     return KeyframeWorldLine(motion.keyframes).max_gamma(velocity_of(observer)).gamma;
-  const double gamma = lorentz_gamma(start.velocity);
-  double largest = relative_gamma(observer, {gamma, start.velocity * gamma});
+  double largest = relative_gamma(observer, four_velocity(start.velocity));
   const AcceleratedWorldLine line(start.time, start.position, start.velocity, motion.phases);
   double end = 0;
   for (const AccelerationPhase& p : motion.phases) {
@@ -115,8 +114,7 @@ Fastest fastest_relative_to(const Scene& scene, const Vec4& observer) {
   }
   for (const Light& l : scene.lights)
     consider(l.name, max_relative_gamma(l.world_line, l.motion, observer));
-  const double sky = lorentz_gamma(scene.sky.velocity);
-  consider("the sky", relative_gamma(observer, {sky, scene.sky.velocity * sky}));
+  consider("the sky", relative_gamma(observer, four_velocity(scene.sky.velocity)));
   return fastest;
 }
 
