@@ -269,6 +269,26 @@ struct RenderSettings {
   bool shadows = true;
 };
 
+// A thin accretion disk in the hole's equatorial plane about `normal` (unit; the gas orbits
+// counter-clockwise seen from its tip): gas on circular geodesics from `inner` (>= the ISCO,
+// 6M) to `outer`, each ring a blackbody at the Novikov-Thorne / Page-Thorne temperature, whose
+// peak over the disk is `temperature_k`. `luminance` is the CIE Y, at rest, of the hottest ring.
+struct AccretionDisk {
+  double inner = 6, outer = 20;  // Schwarzschild radii r, in the model's units (c = 1)
+  Vec3 normal{0, 1, 0};
+  double temperature_k = 10000;
+  double luminance = 1;
+};
+
+// One Schwarzschild black hole at rest in W (docs/design/black-hole.md, PHYSICS.md "Curved
+// spacetime"): W's time is then Schwarzschild coordinate time and positions are Schwarzschild r
+// and angles about `position`. `mass` is the gravitational radius GM/c^2, a length (> 0).
+struct BlackHole {
+  Vec3 position;
+  double mass = 1;
+  std::optional<AccretionDisk> disk;
+};
+
 struct Scene {
   // The speed of light in the scene file's units (length per unit of time). The model is in
   // units where c = 1: its times are the file's times c t, its speeds v / c.
@@ -277,6 +297,7 @@ struct Scene {
   std::vector<Object> objects;
   std::vector<Light> lights;
   Sky sky;
+  std::optional<BlackHole> black_hole;  // none: flat spacetime
   RenderSettings render;
 };
 
