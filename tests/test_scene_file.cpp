@@ -829,7 +829,7 @@ TEST_F(SceneFileTest, SyntaxErrors) {
 TEST_F(SceneFileTest, UnknownKeys) {
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"light\": []\n}", 3, "light",
                "unknown key \"light\" (expected one of: $schema, speed_of_light, camera, objects, "
-               "lights, sky, render)");
+               "lights, sky, render, black_hole)");
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n    \"fovy\": 60}\n}", 3, "camera.fovy",
                "expected one of: position, time");
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},

@@ -261,8 +261,11 @@ int run_animate(const AnimateArgs& a) {
     if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))
       throw InputError(fmt::format("frame {}: the camera is at the speed of light by then", i));
     // The scene file's limits hold at its own moment; the camera's clock moves them. Checked
-    // at the frame's observation and, with a shutter, at its close.
+    // at the frame's observation and, with a shutter, at its close. Not near a black hole,
+    // where the flat speed of a body relative to the camera means nothing (the loader held each
+    // body's speed, measured by the local static observers, to the limit instead).
     for (const double later : {0.0, s.camera.shutter}) {
+      if (s.black_hole) break;
       const Vec3 v =
           later > 0 ? observation_after(s.camera, later).velocity : s.camera.world_line.velocity;
       const Fastest fastest = fastest_relative_to(s, four_velocity(v));

@@ -37,7 +37,8 @@ constexpr int kMaxSamples = 65536;
 
 Scene SceneReader::read(const json& document) {
   const Node root{&document};
-  object(root, {"$schema", "speed_of_light", "camera", "objects", "lights", "sky", "render"});
+  object(root, {"$schema", "speed_of_light", "camera", "objects", "lights", "sky", "render",
+                "black_hole"});
   if (Node schema = member(root, "$schema"); schema.value) string(schema);
   // Every speed, time and acceleration in the file is in the scene's units; the engine's are
   // those where c = 1: times become c t, speeds v / c, accelerations a / c^2.
@@ -47,6 +48,9 @@ Scene SceneReader::read(const json& document) {
   }
   Scene scene;
   scene.speed_of_light = c_;
+  // The hole first: the camera, objects and lights are checked against it.
+  if (Node hole = member(root, "black_hole"); hole.value) hole_ = black_hole(hole);
+  scene.black_hole = hole_;
   scene.camera = camera(member(root, "camera"));
   add_camera_observers(scene.camera);
   if (Node objects = member(root, "objects"); objects.value) read_objects(objects, scene);
@@ -62,6 +66,7 @@ Scene SceneReader::read(const json& document) {
 Camera SceneReader::camera(const Node& n) const {
   object(n, {"position", "time", "velocity", "proper_time", "motion", "shutter", "forward", "up",
              "fov", "width", "height", "samples"});
+  if (hole_) check_camera_near_hole(n);
   Camera c;
   // Keyframes say where the camera is; otherwise its position is required.
   const Node motion_node = member(n, "motion");
@@ -123,6 +128,7 @@ Camera SceneReader::camera(const Node& n) const {
 }
 
 void SceneReader::add_camera_observers(const Camera& c) {
+  if (hole_) return;
   observers_.push_back({four_velocity(c.world_line.velocity), " relative to the camera"});
   if (!(c.shutter > 0)) return;
   const double open = c.motion.proper_time, close = open + c.shutter;
@@ -274,7 +280,11 @@ Object SceneReader::read_object(const Node& n, std::size_t index) {
   if (Node p = member(n, "position"); p.value) o.world_line.position = vec3(p);
   if (Node t = member(n, "time"); t.value) o.world_line.time = time(t);
   if (Node v = member(n, "velocity"); v.value) o.world_line.velocity = velocity(v);
-  if (Node m = member(n, "motion"); m.value) o.motion = body_motion(n, m, o.world_line);
+  if (Node m = member(n, "motion"); m.value) {
+    if (hole_) refuse_near_hole(m, "motion (phases or keyframes) of an object");
+    o.motion = body_motion(n, m, o.world_line);
+  }
+  if (hole_) check_line_near_hole(n, o.world_line, "object");
   if (Node r = member(n, "rotation"); r.value) o.rotation = rotation(r);
   if (Node s = member(n, "scale"); s.value) {
     if (s.value->is_number()) {
@@ -286,6 +296,7 @@ Object SceneReader::read_object(const Node& n, std::size_t index) {
   }
   if (Node m = member(n, "material"); m.value) o.material = material(m, index);
   if (Node sp = member(n, "spin"); sp.value) {
+    if (hole_) refuse_near_hole(sp, "spin");
     object(sp, {"axis", "rate"});
     const Node axis = member(sp, "axis"), rate = member(sp, "rate");
     if (!axis.value) fail(sp, "needs \"axis\" [x, y, z]");

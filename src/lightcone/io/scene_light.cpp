@@ -122,8 +122,11 @@ Light SceneReader::read_light(const Node& n) const {
   if (Node m = member(n, "motion"); m.value) {
     if (kind == "directional")
       fail(m, "a directional light is at infinity: it has a velocity but no motion");
+    if (hole_) refuse_near_hole(m, "motion (phases or keyframes) of a light");
     l.motion = body_motion(n, m, l.world_line);
   }
+  // A directional light is at infinity, where its velocity is its speed.
+  if (hole_ && kind != "directional") check_line_near_hole(n, l.world_line, "light");
 
   const Node color_node = member(n, "color"), blackbody = member(n, "blackbody");
   if (color_node.value && blackbody.value)

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -45,7 +46,10 @@ class SceneReader : public SceneValueReader {
   // The camera as an observer of every other speed: at its observation, and while its shutter
   // is open at the shutter's close and at every phase's end in between (a phase's gamma relative
   // to a body's phase is convex in each proper time, so the largest is at these ends), or every
-  // keyframe in between.
+  // keyframe in between. Not near a black hole: there the camera's velocity is measured by its
+  // local static observer and a body's far away by its own, and the flat relative speed of the
+  // two means nothing; each body's local speed is held to the limit instead
+  // (check_line_near_hole).
   void add_camera_observers(const Camera& c);
 
   // "motion": {"phases": [{"duration": tau, "acceleration": [ax, ay, az]}, ...]} or
@@ -79,6 +83,27 @@ class SceneReader : public SceneValueReader {
   EmissionSpectrum emission_spectrum(const Node& n) const;
   Sky sky(const Node& n);
 
+  // --- The black hole (scene_black_hole.cpp) ----------------------------------------------
+
+  // "black_hole": one Schwarzschild hole at rest in W, `mass` the length GM/c^2; its disk's
+  // radii, given in units of M, become lengths.
+  BlackHole black_hole(const Node& n) const;
+  AccretionDisk accretion_disk(const Node& n, double mass) const;
+
+  // Near a hole (in any scene with one), the camera `n` (before the rest of it is read): at
+  // r > 2M, where a static observer measures its velocity; no motion, no shutter open for a
+  // while and no proper time other than 0 (not yet supported).
+  void check_camera_near_hole(const Node& n) const;
+
+  // Refuses, near a hole, the key `n` (`what`: motion, spin, ...) that is not yet supported
+  // there: "WHAT is not yet supported near a black hole[MORE]".
+  void refuse_near_hole(const Node& n, std::string_view what, std::string_view more = "") const;
+
+  // The object or light `n` (`noun`) on the coordinate line `line`, near a hole: at rest at
+  // r > 2M, or moving on a line that stays outside r = 2M and on which the speed the static
+  // observers measure stays below c (and within the one speed limit).
+  void check_line_near_hole(const Node& n, const WorldLine& line, std::string_view noun) const;
+
   // --- Files ------------------------------------------------------------------------------
 
   // The loaders' own InputError names the file; prefix where the scene names it. Other errors
@@ -97,6 +122,7 @@ class SceneReader : public SceneValueReader {
   // EXR need not be).
   void check_albedo(const Asset& a, const Image& image) const;
 
+  std::optional<BlackHole> hole_;  // read before the camera, objects and lights
   std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
   SceneLoadReport& report_;
   const SceneLoadOptions options_;
