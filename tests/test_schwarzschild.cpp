@@ -248,6 +248,19 @@ TEST(Schwarzschild, TangentialRayOfAStaticObserverTurnsWhereItIs) {
   }
 }
 
+TEST(Schwarzschild, RadiusThatRoundsToATurningPointSweepsNothingToIt) {
+  // Just above b_c the gap between the turning points is a few 1e-8 wide, and r = 3M inside it
+  // counts as the nearer one: from there to that turning point is no stretch at all (this once
+  // handed R_F three zeros, which throws).
+  const PhotonOrbit o = photon_orbit(1, kBc * (1 + 1e-15));
+  ASSERT_GT(3.0, o.inner_turning);
+  ASSERT_LT(3.0, o.periapsis);
+  const double near = 3 - o.inner_turning < o.periapsis - 3 ? o.inner_turning : o.periapsis;
+  EXPECT_EQ(swept_angle(o, 3.0, near), 0);
+  EXPECT_EQ(coordinate_time(o, 3.0, near), 0);
+  EXPECT_EQ(ray_course(o, 3.0, near == o.inner_turning).angle_to_turn, 0);
+}
+
 // --- Static observers ---
 
 TEST(Schwarzschild, SyngeShadowEdgeIsTheCriticalImpactParameter) {

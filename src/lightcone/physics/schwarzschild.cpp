@@ -340,15 +340,16 @@ PhotonOrbit photon_orbit(double mass, double impact) {
 
 double swept_angle(const PhotonOrbit& o, double r_a, double r_b) {
   if (o.impact == 0 || r_a == r_b) return 0;
-  const double d = std::abs(w_of(o, r_a) - w_of(o, r_b));
   if (o.turning) {
     r_a = snap_to_turning_point(o, r_a), r_b = snap_to_turning_point(o, r_b);
+    if (r_a == r_b) return 0;  // both at one turning point
     const bool inner = r_a <= o.inner_turning;
     const auto in_region = [&](double r) {
       return inner ? r <= o.inner_turning : r >= o.periapsis;
     };
     if (!in_region(r_a) || !in_region(r_b)) return kNaN;
     const Factors x = turning_factors(o, r_a, inner), y = turning_factors(o, r_b, inner);
+    const double d = std::abs(w_of(o, r_a) - w_of(o, r_b));
     return cubic_integral(d, x.f1, x.f2, x.f3, y.f1, y.f2, y.f3) / std::sqrt(o.scale);
   }
   const double za = w_of(o, r_a) + o.w_neg, zb = w_of(o, r_b) + o.w_neg;
@@ -427,6 +428,7 @@ double coordinate_time(const PhotonOrbit& o, double r_a, double r_b) {
   bool inner = false;
   if (o.turning) {
     r_a = snap_to_turning_point(o, r_a), r_b = snap_to_turning_point(o, r_b);
+    if (r_a == r_b) return 0;  // both at one turning point
     inner = r_a <= o.inner_turning;
     const auto in_region = [&](double r) {
       return inner ? r <= o.inner_turning : r >= o.periapsis;
