@@ -7,11 +7,14 @@
 // a test says otherwise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <numbers>
 #include <utility>
+#include <vector>
 
 #include "lightcone/physics/schwarzschild.hpp"
 
@@ -246,6 +249,245 @@ TEST(Schwarzschild, TangentialRayOfAStaticObserverTurnsWhereItIs) {
     EXPECT_NEAR(c.turning_radius, r, 1e-12 * r) << r;
     EXPECT_NEAR(c.angle_to_turn, 0, 1e-6) << r;
   }
+}
+
+TEST(Schwarzschild, RadiusThatRoundsToATurningPointSweepsNothingToIt) {
+  // Just above b_c the gap between the turning points is a few 1e-8 wide, and r = 3M inside it
+  // counts as the nearer one: from there to that turning point is no stretch at all (this once
+  // handed R_F three zeros, which throws).
+  const PhotonOrbit o = photon_orbit(1, kBc * (1 + 1e-15));
+  ASSERT_GT(3.0, o.inner_turning);
+  ASSERT_LT(3.0, o.periapsis);
+  const double near = 3 - o.inner_turning < o.periapsis - 3 ? o.inner_turning : o.periapsis;
+  EXPECT_EQ(swept_angle(o, 3.0, near), 0);
+  EXPECT_EQ(coordinate_time(o, 3.0, near), 0);
+  EXPECT_EQ(ray_course(o, 3.0, near == o.inner_turning).angle_to_turn, 0);
+}
+
+// --- The radius after a swept angle (radius_after_angle) ---
+
+// The angle swept along the path of a ray leaving r0 until it is at r1, through its turning point
+// if r1 lies beyond it; NaN if the path never passes r1. From swept_angle and ray_course.
+double angle_along_path(const PhotonOrbit& o, double r0, bool outward, double r1) {
+  const RayCourse c = ray_course(o, r0, outward);
+  if (std::isnan(c.angle_total)) return c.angle_total;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto between = [](double x, double a, double b) {
+    return x >= std::min(a, b) && x <= std::max(a, b);
+  };
+  const double end = c.fate == RayFate::kEscapes ? kInf : 2.0 * o.mass;
+  if (c.turning_radius == 0) return between(r1, r0, end) ? swept_angle(o, r0, r1) : nan;
+  if (between(r1, r0, c.turning_radius)) return swept_angle(o, r0, r1);
+  if (between(r1, c.turning_radius, end)) {
+    return c.angle_to_turn + swept_angle(o, c.turning_radius, r1);
+  }
+  return nan;
+}
+
+// |d ln r / dphi| = sqrt(P(w)) / w, w = b/r, from the orbit equation: how much an error in the
+// angle moves the radius.
+double log_radius_slope(double m, double b, double r) {
+  const double w = b / r;
+  return std::sqrt(std::max(0.0, 1 - w * w + 2 * m / b * w * w * w)) / w;
+}
+
+TEST(SchwarzschildPath, RadiusAfterAngleInvertsTheSweptAngle) {
+  // Far, near b_c on both sides, below it, inside the photon sphere, both directions; radii along
+  // the whole path, through the turning points.
+  std::vector<double> impacts = {1e-6, 0.5, 2, 4, 5, 5.3, 6, 10, 100, 1e4};
+  for (double eps : {1e-3, 1e-6, 1e-8, 1e-10, 1e-12, 1e-15}) {
+    impacts.push_back(kBc * (1 - eps));
+    impacts.push_back(kBc * (1 + eps));
+  }
+  std::vector<double> radii;
+  for (double r = 2.01; r < 2e7; r *= 1.37) radii.push_back(r);
+  for (double r : {2.5, 2.9, 2.999, 3.0, 3.001, 3.1}) radii.push_back(r);
+  int checked = 0;
+  for (double b : impacts) {
+    const PhotonOrbit o = photon_orbit(1, b);
+    const bool near_critical = std::abs(b / kBc - 1) < 1e-3;
+    for (double r0 : {2.05, 2.5, 2.9, 3.0, 3.1, 4.0, 10.0, 50.0, 1e3, 1e6, kInf}) {
+      for (bool outward : {false, true}) {
+        if (std::isnan(ray_course(o, r0, outward).angle_total)) continue;
+        const AngleSweep sweep = prepare_sweep(o, r0, outward);
+        for (double r1 : radii) {
+          const double phi = angle_along_path(o, r0, outward, r1);
+          if (!std::isfinite(phi)) continue;
+          const double r = radius_after_angle(sweep, phi);
+          // A few ulps of the angle (and of the start's angle), through the slope of ln r.
+          const double tolerance = 2e-14 * (1 + phi) * (1 + log_radius_slope(1, b, r1)) * r1;
+          EXPECT_NEAR(r, r1, tolerance) << b << " " << r0 << " " << outward << " " << phi;
+          if (near_critical && r1 <= 1e3) {
+            EXPECT_NEAR(r, r1, 1e-10 * r1) << b << " " << r0 << " " << outward;
+          }
+          EXPECT_EQ(radius_after_angle(o, r0, outward, phi), r) << b << " " << r0 << " " << r1;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 3000);
+}
+
+// r(phi) by integrating u'' = 3 M u^2 - u (classical RK4 in long double, n steps) from u = 1/r0,
+// du/dphi = -+sqrt(1/b^2 - u^2 (1 - 2Mu)) (r increasing: u decreasing): independent of the
+// kernel's closed forms and of the cubic's roots.
+double ode_radius(long double m, long double b, long double r0, bool outward, long double phi) {
+  struct State {
+    long double u, du;
+  };
+  const auto deriv = [m](State s) { return State{s.du, 3 * m * s.u * s.u - s.u}; };
+  const long double u0 = 1 / r0, p0 = 1 / (b * b) - u0 * u0 * (1 - 2 * m * u0);
+  State s{u0, (outward ? -1 : 1) * std::sqrt(std::max(p0, 0.0L))};
+  const int n = static_cast<int>(std::ceil(phi / 1e-4L));
+  const long double h = phi / n;
+  for (int i = 0; i < n; ++i) {
+    const State k1 = deriv(s);
+    const State k2 = deriv({s.u + h / 2 * k1.u, s.du + h / 2 * k1.du});
+    const State k3 = deriv({s.u + h / 2 * k2.u, s.du + h / 2 * k2.du});
+    const State k4 = deriv({s.u + h * k3.u, s.du + h * k3.du});
+    s = {s.u + h / 6 * (k1.u + 2 * k2.u + 2 * k3.u + k4.u),
+         s.du + h / 6 * (k1.du + 2 * k2.du + 2 * k3.du + k4.du)};
+  }
+  return static_cast<double>(1 / s.u);
+}
+
+TEST(SchwarzschildPath, RadiusAfterAngleMatchesTheIntegratedOrbitEquation) {
+  struct Case {
+    double b, r0;
+    bool outward;
+  };
+  // In past the periapsis and out; far out; captured from outside; captured from inside the
+  // photon sphere sent outward (escapes); inside the photon sphere above b_c (turns at r_3 and
+  // falls); outward from the photon sphere's neighbourhood.
+  for (const Case& c :
+       {Case{6, 20, false}, Case{100, 1e3, false}, Case{4, 20, false}, Case{5, 2.5, true},
+        Case{6, 2.2, true}, Case{5.25, 3.4, true}, Case{5.3, 8, false}}) {
+    const PhotonOrbit o = photon_orbit(1, c.b);
+    const RayCourse course = ray_course(o, c.r0, c.outward);
+    for (double f : {0.05, 0.2, 0.4, 0.5, 0.6, 0.8, 0.95}) {
+      const double phi = f * course.angle_total;
+      const double expected = ode_radius(1, c.b, c.r0, c.outward, phi);
+      EXPECT_NEAR(radius_after_angle(o, c.r0, c.outward, phi), expected, 1e-10 * expected)
+          << c.b << " " << c.r0 << " " << f;
+    }
+  }
+}
+
+TEST(SchwarzschildPath, FlatSpaceIsAStraightLine) {
+  // M = 0: r = r_p / cos(psi), psi the angle from the periapsis r_p = b; the ray from r0 starts
+  // at psi_0 = -+acos(b / r0) and escapes at psi = pi/2.
+  for (double b : {0.5, 3.0, 1e6}) {
+    const PhotonOrbit o = photon_orbit(0, b);
+    for (double r0 : {1.5 * b, 10 * b, kInf}) {
+      for (bool outward : {false, true}) {
+        if (outward && std::isinf(r0)) continue;
+        const double psi0 = (outward ? 1 : -1) * (std::isinf(r0) ? kPi / 2 : std::acos(b / r0));
+        for (double psi = -1.2; psi <= 1.2; psi += 0.1) {
+          const double phi = psi - psi0;
+          if (phi < 0) continue;
+          EXPECT_NEAR(radius_after_angle(o, r0, outward, phi), b / std::cos(psi),
+                      4e-15 * (1 + phi) * b / std::pow(std::cos(psi), 2))
+              << b << " " << r0 << " " << outward << " " << psi;
+        }
+        // It escapes at psi = pi/2 (to rounding in the angle).
+        EXPECT_NEAR(ray_course(o, r0, outward).angle_total, kPi / 2 - psi0, 1e-15);
+        EXPECT_GT(radius_after_angle(o, r0, outward, kPi / 2 - psi0 - 1e-9), 1e8 * b);
+      }
+    }
+  }
+  // A tiny mass bends it by about 4M/b.
+  const double psi0 = std::acos(0.5);
+  EXPECT_NEAR(radius_after_angle(photon_orbit(1e-12, 2), 4, false, 2.0), 2 / std::cos(psi0 - 2),
+              1e-10);
+}
+
+TEST(SchwarzschildPath, RadiusIsMonotonicOnEachSideOfTheTurningPoint) {
+  struct Case {
+    double b, r0;
+    bool outward;
+  };
+  for (const Case& c :
+       {Case{6, 30, false}, Case{kBc * (1 + 1e-10), 30, false}, Case{kBc * (1 - 1e-10), 30, false},
+        Case{kBc * (1 + 1e-10), 2.5, true}, Case{kBc * (1 - 1e-10), 2.5, true},
+        Case{5.5, 2.3, true}, Case{2, 30, false}, Case{1e3, 1e4, false}}) {
+    const PhotonOrbit o = photon_orbit(1, c.b);
+    const RayCourse course = ray_course(o, c.r0, c.outward);
+    const AngleSweep sweep = prepare_sweep(o, c.r0, c.outward);
+    const int n = 20000;
+    double previous = c.r0, previous_phi = 0;
+    for (int i = 1; i < n; ++i) {
+      const double phi = course.angle_total * i / n, r = radius_after_angle(sweep, phi);
+      const bool turned = course.turning_radius != 0 && phi > course.angle_to_turn;
+      const bool straddles = turned && previous_phi < course.angle_to_turn;
+      const double slack = 4e-16 * r;  // rounding where r stands still, at the turning point
+      if (straddles) {
+        // Samples either side of the turning point: no order, but neither passes it.
+        if (c.outward) {
+          EXPECT_LE(r, course.turning_radius + slack) << c.b << " " << c.r0;
+        } else {
+          EXPECT_GE(r, course.turning_radius - slack) << c.b << " " << c.r0;
+        }
+      } else if (turned != c.outward) {
+        EXPECT_GE(r, previous - slack) << c.b << " " << c.r0 << " " << phi;
+      } else {
+        EXPECT_LE(r, previous + slack) << c.b << " " << c.r0 << " " << phi;
+      }
+      previous = r, previous_phi = phi;
+    }
+    if (course.turning_radius != 0) {
+      EXPECT_NEAR(radius_after_angle(sweep, course.angle_to_turn), course.turning_radius,
+                  1e-12 * course.turning_radius)
+          << c.b;
+    }
+  }
+}
+
+TEST(SchwarzschildPath, EndsOfThePath) {
+  // Escaped or captured once the whole angle is swept, and not before.
+  const PhotonOrbit o = photon_orbit(1, 6);
+  RayCourse c = ray_course(o, 10, false);
+  EXPECT_EQ(radius_after_angle(o, 10, false, c.angle_total), kInf);
+  EXPECT_GT(radius_after_angle(o, 10, false, c.angle_total * (1 - 1e-9)), 1e8);
+  c = ray_course(o, 2.2, true);  // inside r_3: turns and falls in
+  EXPECT_EQ(radius_after_angle(o, 2.2, true, c.angle_total), 2);
+  EXPECT_NEAR(radius_after_angle(o, 2.2, true, c.angle_total * (1 - 1e-9)), 2, 1e-6);
+  const PhotonOrbit captured = photon_orbit(1, 4);
+  c = ray_course(captured, 10, false);
+  EXPECT_EQ(radius_after_angle(captured, 10, false, 2 * c.angle_total), 2);
+  EXPECT_NEAR(radius_after_angle(captured, 10, false, c.angle_total * (1 - 1e-9)), 2, 1e-6);
+  // Arriving from infinity.
+  EXPECT_NEAR(radius_after_angle(o, kInf, false, ray_course(o, kInf, false).angle_to_turn),
+              o.periapsis, 1e-12);
+  // phi = 0 is the start; nothing for a negative angle, a start in the gap or inside 2M.
+  EXPECT_EQ(radius_after_angle(o, 10, true, 0), 10);
+  EXPECT_TRUE(std::isnan(radius_after_angle(o, 10, true, -1)));
+  EXPECT_TRUE(std::isnan(radius_after_angle(o, 3.5, true, 0.1)));
+  EXPECT_TRUE(std::isnan(radius_after_angle(o, 1.5, false, 0.1)));
+  // Radial (b = 0): no angle is swept, so any phi > 0 lies past the end of the path.
+  const PhotonOrbit radial = photon_orbit(1, 0);
+  EXPECT_EQ(radius_after_angle(radial, 10, true, 0), 10);
+  EXPECT_EQ(radius_after_angle(radial, 10, true, 0.1), kInf);
+  EXPECT_EQ(radius_after_angle(radial, 10, false, 0.1), 2);
+}
+
+TEST(SchwarzschildPath, CriticalRayWindsOntoThePhotonSphere) {
+  // b = b_c exactly: r -> 3M, and near it the orbit equation linearised about u = 1/3M,
+  // d^2(du)/dphi^2 = (6Mu - 1) du = du, leaves r - 3M ~ exp(-phi): from either side.
+  const PhotonOrbit o = photon_orbit(1, kBc);
+  for (auto [r0, outward] : {std::pair{50.0, false}, {2.5, true}}) {
+    EXPECT_EQ(ray_course(o, r0, outward).fate, RayFate::kPhotonSphere);
+    for (double phi : {10.0, 12.0, 14.0}) {
+      const double d0 = radius_after_angle(o, r0, outward, phi) - 3;
+      const double d1 = radius_after_angle(o, r0, outward, phi + 1) - 3;
+      EXPECT_EQ(d0 > 0, !outward) << r0 << " " << phi;
+      EXPECT_NEAR(d1 / d0, std::exp(-1.0), 1e-4) << r0 << " " << phi;
+    }
+    EXPECT_EQ(radius_after_angle(o, r0, outward, kInf), 3);
+  }
+  // On the photon sphere it stays.
+  EXPECT_EQ(radius_after_angle(o, 3, false, 100), 3);
+  EXPECT_EQ(radius_after_angle(o, 3, true, 1), 3);
 }
 
 // --- Static observers ---

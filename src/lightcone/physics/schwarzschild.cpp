@@ -5,7 +5,9 @@
 #include <boost/math/special_functions/ellint_rd.hpp>
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
+#include <boost/math/special_functions/jacobi_elliptic.hpp>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 
@@ -294,6 +296,76 @@ double ray_time(const PhotonOrbit& o, double r_lo, double r_hi, bool inner, bool
   return r_lo * sqrt_p_lo - r_hi * sqrt_p_hi + middle;
 }
 
+// --- The path r(phi): radius_after_angle ---
+//
+// In w = b/r, (dw/dphi)^2 = P(w) = 1 - w^2 + e w^3 (e = 2M/b). Each form measures its argument
+// from an end of the cubic's interval that the ray never reaches (w = w_1 < 0, or w = infinity),
+// so that the Jacobi functions it needs are never small where the radius depends on them, and the
+// argument at r0 is a Carlson integral from that end.
+//
+// b > b_c: P = e (w - w_1)(w - w_2)(w - w_3), w_1 < 0 < w_2 <= w_3. Outer region (the ray lives
+// on 0 <= w <= w_2): Byrd & Friedman (1971) 233.00, w = w_1 + (w_2 - w_1) sn^2(x, k) with
+// k^2 = (w_2 - w_1) / (w_3 - w_1) and dphi = dx / c, c = sqrt(e (w_3 - w_1)) / 2, x the angle from
+// w_1 times c; that is
+//   w = w_2 sn^2(x) - (-w_1) cn^2(x),  r = r_p / (sn^2 - (-w_1)(r_p / b) cn^2),
+// with the periapsis at x = K and the ray escaping where w = 0 on either side. M = 0: k = 0,
+// c = 1/2, w_1 = -1 and w = -cos(2x), the straight line r = r_p / cos(psi), psi = 2x - pi the angle
+// from the periapsis. Inner region (w >= w_3): with sn^2(x) = (w_3 - w_1) / (w - w_1) and the
+// same k, w - w_2 = (w_3 - w_1) dn^2 / sn^2 and w - w_3 = (w_3 - w_1) cn^2 / sn^2, so dphi = dx / c
+// again, x is c times the angle from w = infinity (r = 0), x = K at r_3, and
+//   w = w_3 + (-w_1) cn^2 / sn^2,  r = r_3 sn^2 / (1 + (-w_1)(r_3 / b) cn^2).
+// Both are even about x = K, so the argument runs straight through the turning point.
+//
+// b <= b_c: P = e z ((z - c')^2 + n^2), z = w - w_1 >= 0 (pair_c, pair_n): 239.00, cn(u, k) =
+// (A - z) / (A + z), k^2 = (A + c') / 2A, u = sqrt(e A) times the angle from z = 0, so
+//   z = A (1 - cn u) / (1 + cn u) = A sn^2 / (1 + cn)^2 = A (1 - cn)^2 / sn^2,
+// the form without cancellation taken by the sign of cn. From z = infinity instead (the ray
+// starting inside z > A, and b = b_c exactly, where u = infinity at the photon sphere z = A): the
+// same with cn -> -cn gives z, since the integral is symmetric under z -> A^2 / z.
+//
+// As b -> b_c, k -> 1 and K grows like ln(1/k'); Boost's sn, cn, dn take k alone and rebuild k'
+// from it, losing eps / k'^2 (k'^2 ~ sqrt(1 - b_c/b) above b_c, ~ (1 - b/b_c) below), which
+// shifts the path's phase by that much. So they are taken through descending Landen (Gauss)
+// transformations (DLMF 22.7.1-4) with k' from the roots' gaps: k_1 = (1 - k') / (1 + k'),
+// k_1' = 2 sqrt(k') / (1 + k'), and from the functions of (y = x / (1 + k_1), k_1), with
+// N = 1 + k_1 sn^2,
+//   sn(x, k) = (1 + k_1) sn / N,  cn(x, k) = cn dn / N,  dn(x, k) = (cn^2 + (1 - k_1) sn^2) / N
+// (the last is (1 - k_1 sn^2) / N without cancellation). Three steps: k'^2 = 1e-17 gives k_3'^2
+// ~ 0.1, so the rebuilt k_3' loses about 1e-15 and the phase no more (these are the first steps
+// of the arithmetic-geometric mean that Boost runs anyway, only started from the exact k').
+
+// Jacobi's functions, from Boost.Math in double (no promotion to long double).
+struct Jacobi {
+  double sn, cn, dn;
+};
+Jacobi jacobi(double k, double x) {
+  using Policy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+  Jacobi j{};
+  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, Policy());
+  return j;
+}
+// One Landen step up: from the functions of modulus k_1 (1 - k_1 = c_1) at x / (1 + k_1) to those
+// of k at x.
+Jacobi landen_up(const Jacobi& j, double k1, double c1) {
+  const double s2 = j.sn * j.sn, n = 1 + k1 * s2;
+  return {(1 + k1) * j.sn / n, j.cn * j.dn / n, (j.cn * j.cn + c1 * s2) / n};
+}
+
+// The orbit's Landen moduli from k^2, k'^2 (both computed without cancellation), and Boost's
+// argument rate from that of the functions of modulus k per radian.
+void set_jacobi(PhotonOrbit& o, double k2, double kc2, double rate) {
+  o.jacobi_kc2 = kc2;
+  double kc = std::sqrt(kc2);
+  for (int i = 0; i < PhotonOrbit::kLandenSteps; ++i) {
+    o.jacobi_k[i] = k2 / ((1 + kc) * (1 + kc));  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
+    o.jacobi_c[i] = 2 * kc / (1 + kc);
+    rate *= (1 + kc) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
+    k2 = o.jacobi_k[i] * o.jacobi_k[i];
+    kc = 2 * std::sqrt(kc) / (1 + kc);  // k_i'
+  }
+  o.jacobi_rate = rate;
+}
+
 }  // namespace
 
 double critical_impact_parameter(double mass) {
@@ -321,6 +393,11 @@ PhotonOrbit photon_orbit(double mass, double impact) {
     o.scale = o.v_pos * v_neg;
     o.periapsis = impact * o.v_pos;
     o.inner_turning = impact * v3;
+    // radius_after_angle: k^2 = (w_2 - w_1) / (w_3 - w_1), k'^2 = (w_3 - w_2) / (w_3 - w_1), the
+    // argument's rate sqrt((M/b)(w_3 - w_1) / 2) (schwarzschild.cpp, "The path r(phi)").
+    const double spread = 1 + o.w_neg * v3;  // (w_3 - w_1) / w_3
+    set_jacobi(o, (1 / o.v_pos + o.w_neg) * v3 / spread, o.v_gap / o.v_pos / spread,
+               std::sqrt(o.scale * spread) / 2);
     return o;
   }
   // One real root v_1 = -(2/sqrt 3) cosh(h), 3h = arccosh(b_c / b) = 2 asinh(sqrt(-gap / 2)),
@@ -335,20 +412,24 @@ PhotonOrbit photon_orbit(double mass, double impact) {
   o.pair_c = c, o.pair_n = n;
   o.quad_a = std::hypot(c, n);
   o.modulus_c2 = n * n / (2 * o.quad_a * (o.quad_a + c));  // (A - c') / 2A, no cancellation
+  // radius_after_angle: k^2 = (A + c) / 2A, and the argument of Byrd & Friedman 239.00 is
+  // sqrt(2 (M/b) A) per radian.
+  set_jacobi(o, (o.quad_a + c) / (2 * o.quad_a), o.modulus_c2, std::sqrt(o.scale * o.quad_a));
   return o;
 }
 
 double swept_angle(const PhotonOrbit& o, double r_a, double r_b) {
   if (o.impact == 0 || r_a == r_b) return 0;
-  const double d = std::abs(w_of(o, r_a) - w_of(o, r_b));
   if (o.turning) {
     r_a = snap_to_turning_point(o, r_a), r_b = snap_to_turning_point(o, r_b);
+    if (r_a == r_b) return 0;  // both at one turning point
     const bool inner = r_a <= o.inner_turning;
     const auto in_region = [&](double r) {
       return inner ? r <= o.inner_turning : r >= o.periapsis;
     };
     if (!in_region(r_a) || !in_region(r_b)) return kNaN;
     const Factors x = turning_factors(o, r_a, inner), y = turning_factors(o, r_b, inner);
+    const double d = std::abs(w_of(o, r_a) - w_of(o, r_b));
     return cubic_integral(d, x.f1, x.f2, x.f3, y.f1, y.f2, y.f3) / std::sqrt(o.scale);
   }
   const double za = w_of(o, r_a) + o.w_neg, zb = w_of(o, r_b) + o.w_neg;
@@ -427,6 +508,7 @@ double coordinate_time(const PhotonOrbit& o, double r_a, double r_b) {
   bool inner = false;
   if (o.turning) {
     r_a = snap_to_turning_point(o, r_a), r_b = snap_to_turning_point(o, r_b);
+    if (r_a == r_b) return 0;  // both at one turning point
     inner = r_a <= o.inner_turning;
     const auto in_region = [&](double r) {
       return inner ? r <= o.inner_turning : r >= o.periapsis;
@@ -456,6 +538,99 @@ double coordinate_time_to_infinity(const PhotonOrbit& o, double r) {
   if (m == 0) return r == o.periapsis ? 0.0 : -std::sqrt(std::max(0.0, (r - b) * (r + b)));
   if (o.critical && r <= 3 * m) return kInf;
   return ray_time(o, kInf, r, false, true);
+}
+
+AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
+  AngleSweep a;
+  a.r0 = r0;
+  const double horizon = 2 * o.mass;
+  if (!(r0 > horizon)) return a;  // kInvalid
+  const RayCourse course = ray_course(o, r0, outward);
+  if (std::isnan(course.angle_total)) return a;
+  a.angle_total = course.angle_total;
+  a.horizon = horizon;
+  a.end = course.fate == RayFate::kEscapes    ? kInf
+          : course.fate == RayFate::kCaptured ? horizon
+                                              : 3 * o.mass;  // the photon sphere, as phi -> inf
+  // On the photon sphere itself (b = b_c) the ray stays there; a radius off it by rounding would
+  // leave it, the orbit being unstable.
+  if (o.critical && r0 == 3 * o.mass) a.angle_total = 0;
+  if (o.impact == 0 || a.angle_total == 0) {
+    a.form = AngleSweep::Form::kAt;
+    return a;
+  }
+  std::copy(std::begin(o.jacobi_k), std::end(o.jacobi_k), a.k);
+  std::copy(std::begin(o.jacobi_c), std::end(o.jacobi_c), a.c);
+  a.impact = o.impact, a.w_neg = o.w_neg;
+  const double rate = o.jacobi_rate;
+  if (o.turning) {
+    // The argument is the angle from the far end (w = w_1 outside, r = 0 inside) times the rate;
+    // it grows as w grows outside (inward), and as w falls inside (outward).
+    r0 = snap_to_turning_point(o, r0);
+    const bool outer = r0 >= o.periapsis;
+    const double v3 = o.inner_turning / o.impact;
+    const Factors f = turning_factors(o, r0, !outer);
+    double from_end;
+    if (outer) {
+      // int_{w_1}^{w_0} dw / sqrt(P): Carlson's cubic integral with the factors at w_1.
+      from_end = cubic_integral(f.f1, f.f1, f.f2, f.f3, 0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3);
+    } else {
+      // int_{w_0}^inf dw / sqrt(P) = 2 sqrt(w_3) R_F(w_0 - w_1, w_0 - w_2, w_0 - w_3) / sqrt(scale)
+      // (the factor 1 - w / w_3 of P is -(w_0 - w_3) / w_3 here).
+      from_end = 2 * std::sqrt(1 / v3) * rf(f.f1, f.f2, f.f3 / v3);
+    }
+    a.phase = rate * from_end / std::sqrt(o.scale);
+    a.rate = outer == outward ? -rate : rate;
+    a.form = outer ? AngleSweep::Form::kOuter : AngleSweep::Form::kInner;
+    a.scale = outer ? o.periapsis : o.inner_turning;
+    a.coef = outer ? o.w_neg * o.v_pos : o.w_neg * v3;
+    return a;
+  }
+  // b <= b_c: the angle from z = 0, or (inside z > A) from z = infinity; z grows inward.
+  const double z0 = w_of(o, r0) + o.w_neg, big_a = o.quad_a, root_scale = std::sqrt(o.scale);
+  const bool far = z0 > big_a;
+  a.form = far ? AngleSweep::Form::kCapturedFar : AngleSweep::Form::kCaptured;
+  const double from_end = half_integral(o, far ? big_a * big_a / z0 : z0) / root_scale;
+  a.phase = rate * from_end;
+  a.rate = (outward != far) ? -rate : rate;
+  a.scale = big_a;
+  return a;
+}
+
+double radius_after_angle(const AngleSweep& a, double phi) {
+  using Form = AngleSweep::Form;
+  if (a.form == Form::kInvalid || !(phi >= 0)) return kNaN;
+  if (phi == 0) return a.r0;
+  if (phi >= a.angle_total) return a.end;  // kAt: angle_total is 0
+  constexpr int kSteps = PhotonOrbit::kLandenSteps;
+  Jacobi j = jacobi(a.k[kSteps - 1], a.phase + a.rate * phi);
+  for (int i = kSteps - 1; i >= 0; --i) j = landen_up(j, a.k[i], a.c[i]);
+  const double s2 = j.sn * j.sn, c2 = j.cn * j.cn;
+  double r = 0;
+  switch (a.form) {
+    case Form::kOuter: {  // r_p / (sn^2 - w_neg v_p cn^2)
+      const double den = s2 - a.coef * c2;
+      r = den > 0 ? a.scale / den : kInf;
+      break;
+    }
+    case Form::kInner:  // r_3 sn^2 / (1 + w_neg v_3 cn^2)
+      r = a.scale * s2 / (1 + a.coef * c2);
+      break;
+    default: {  // z = A (1 - cn) / (1 + cn), or with -cn from z = infinity
+      const double c = a.form == Form::kCaptured ? j.cn : -j.cn;
+      const double z =
+          c >= 0 ? a.scale * s2 / ((1 + c) * (1 + c)) : a.scale * (1 - c) * (1 - c) / s2;
+      const double w = z - a.w_neg;
+      r = w > 0 ? a.impact / w : kInf;
+      break;
+    }
+  }
+  // Rounding at the very end of the path cannot carry it past the horizon.
+  return std::max(r, a.horizon);
+}
+
+double radius_after_angle(const PhotonOrbit& o, double r0, bool outward, double phi) {
+  return radius_after_angle(prepare_sweep(o, r0, outward), phi);
 }
 
 }  // namespace lightcone

@@ -37,6 +37,15 @@ struct PhotonOrbit {
   double quad_a = 0, modulus_c2 = 0;  // b <= b_c: A and k'^2 of Byrd & Friedman 239.00
   // b <= b_c: with z = w - w_1 the cubic is scale z ((z - pair_c)^2 + pair_n^2).
   double pair_c = 0, pair_n = 0;
+  // The path r(phi) in Jacobi elliptic functions of modulus k (radius_after_angle), taken through
+  // three descending Landen steps k -> k_1 -> k_2 -> k_3, k_1 = (1 - k') / (1 + k'), with k' from
+  // the gaps above, so that k -> 1 (b -> b_c) loses no digits: Boost evaluates modulus k_3 at an
+  // argument that advances by jacobi_rate per radian swept. All 0 for b = 0.
+  static constexpr int kLandenSteps = 3;
+  double jacobi_kc2 = 0;               // k'^2
+  double jacobi_k[kLandenSteps] = {};  // k_1, k_2, k_3
+  double jacobi_c[kLandenSteps] = {};  // 1 - k_1, 1 - k_2, 1 - k_3
+  double jacobi_rate = 0;
 };
 
 PhotonOrbit photon_orbit(double mass, double impact);
@@ -89,6 +98,49 @@ struct RayCourse {
 };
 // outward: whether r increases at r0. NaN angles if no ray of this b passes r0.
 RayCourse ray_course(const PhotonOrbit& orbit, double r0, bool outward);
+
+// The radius that a ray reaches after sweeping angle phi >= 0 along its path, the inverse of
+// swept_angle: the ray passes r0 (> 2M; infinity with outward false for a ray arriving from
+// afar) with r increasing (outward) or decreasing, and goes on through its turning point if it
+// has one (as ray_course describes). +infinity once it has escaped (phi >= ray_course's
+// angle_total for an escaping ray), 2M once it has reached the horizon. For b = b_c exactly a ray
+// of fate kPhotonSphere tends to 3M (3M at phi = infinity), and one that starts at r0 = 3M stays
+// there. In closed form: r = b / w with w a rational function of Jacobi's sn and cn (Boost.Math)
+// at an argument linear in phi (see schwarzschild.cpp); no root-finding. Accurate to a few ulps
+// of the argument: the relative error of r is some eps (1 + phi) |d ln r / dphi| (which is
+// ~ r / b far out), plus the same from the start's angle, also near b_c. A radial ray (b = 0)
+// sweeps no angle: r0 for phi = 0, and its end (infinity outward, 2M inward) for any phi > 0.
+// NaN if no ray of this b passes r0 (r0 <= 2M, or in the forbidden gap), or phi < 0 or NaN.
+double radius_after_angle(const PhotonOrbit& orbit, double r0, bool outward, double phi);
+
+// The same, prepared once per ray (orbit, r0, direction) for many angles: prepare_sweep costs
+// ray_course and one more of Carlson's R_F; radius_after_angle(sweep, phi) one Jacobi evaluation
+// (Boost's arithmetic-geometric mean) and a few flops, no allocation. The function above is these
+// two composed.
+struct AngleSweep {
+  // Each form measures its argument from an end of the orbit equation's interval that the ray
+  // never reaches (schwarzschild.cpp, "The path r(phi)").
+  enum class Form : unsigned char {
+    kAt,           // r0 for phi = 0, `end` for any phi > 0 (b = 0, or nothing left to sweep)
+    kOuter,        // b > b_c, r >= periapsis: from w = w_1 < 0
+    kInner,        // b > b_c, r <= inner_turning: from r = 0
+    kCaptured,     // b <= b_c, starting at z = w - w_1 <= A: from z = 0 (w = w_1)
+    kCapturedFar,  // b <= b_c, starting at z > A: from z = infinity (r = 0)
+    kInvalid,      // NaN
+  };
+  Form form = Form::kInvalid;
+  double r0 = 0;
+  double angle_total = 0;      // ray_course's: the path ends here
+  double end = 0;              // the radius past angle_total: infinity, 2M (3M for b = b_c exactly)
+  double horizon = 0;          // 2M
+  double phase = 0, rate = 0;  // Boost's argument at phi: phase + rate phi
+  double k[PhotonOrbit::kLandenSteps] = {};  // the orbit's Landen moduli
+  double c[PhotonOrbit::kLandenSteps] = {};  // and their complements 1 - k_i
+  double scale = 0, coef = 0;                // the form's constants (schwarzschild.cpp)
+  double impact = 0, w_neg = 0;
+};
+AngleSweep prepare_sweep(const PhotonOrbit& orbit, double r0, bool outward);
+double radius_after_angle(const AngleSweep& sweep, double phi);
 
 // The total deflection of a ray from infinity that escapes again, b > b_c: 2 phi(r_p -> inf)
 // - pi, which is Darwin's (1959) elliptic integral of the first kind in the periapsis. It is
