@@ -67,6 +67,27 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides,
   return scene;
 }
 
+void require_drawable_near_black_hole(const Scene& scene, const std::string& file, bool raster,
+                                      const char* what) {
+  if (!scene.black_hole) return;
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(file + ": black_hole: " + why);
+  };
+  if (!scene.objects.empty() || !scene.lights.empty())
+    refuse(
+        "objects and lights near a black hole are not drawn yet (this version follows curved "
+        "rays to the sky, the accretion disk and the horizon); remove them, or the black hole");
+  if (!scene.render.relativity || !scene.render.light_delay)
+    refuse(
+        "render.relativity and render.light_delay must stay on: curved spacetime has no "
+        "classical picture");
+  if (raster)
+    refuse(
+        "the raster renderer and the viewer do not draw black holes yet; render with the ray "
+        "tracer (the default)");
+  if (what) refuse(std::string(what) + " is not available near a black hole yet");
+}
+
 // Checked before rendering: the target is a regular file or absent (a symbolic link counts as
 // the file it points to, which is then written and the link kept), and its folder exists and
 // is writable, so that nothing but a regular file is ever replaced and a render is never lost

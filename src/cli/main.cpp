@@ -123,7 +123,8 @@ PixelWindow parse_crop(const std::string& text, int width, int height) {
           static_cast<int>(v[3])};
 }
 
-constexpr const char* kAovNames = "doppler, emission_time, distance, object, depth, normal";
+constexpr const char* kAovNames =
+    "doppler, emission_time, distance, object, depth, normal, image_order";
 
 std::vector<Aov> parse_aovs(const std::string& text) {
   std::vector<Aov> aovs;
@@ -193,7 +194,8 @@ int run_render(const RenderArgs& a) {
     map = aov_from_name(*a.map);
     if (!map || *map == Aov::kNormal)
       throw InputError("--map " + *a.map +
-                       ": unknown quantity (use doppler, emission_time, distance, object, depth)");
+                       ": unknown quantity (use doppler, emission_time, distance, object, depth, "
+                       "image_order)");
     if (format == ImageFormat::kExr)
       throw InputError(
           "--map: the map is a picture: give -o NAME.png or NAME.jpg (the values "
@@ -216,6 +218,11 @@ int run_render(const RenderArgs& a) {
       throw;
     }
   }();
+  for (const Aov aov : aovs)
+    if (!aov_near_black_hole(aov))
+      require_drawable_near_black_hole(scene, a.scene, false,
+                                       ("the output variable " + aov_name(aov)).c_str());
+  require_drawable_near_black_hole(scene, a.scene, raster);
   if (a.preview) {  // a quarter of the size, the same view
     scene.camera.width = std::max(1, scene.camera.width / 4);
     scene.camera.height = std::max(1, scene.camera.height / 4);
@@ -318,8 +325,9 @@ int run_render(const RenderArgs& a) {
                  image.width, image.height, scene.camera.samples, stats.seconds, mrays,
                  written.c_str(), also.c_str());
   if (a.stats) {
-    const nlohmann::ordered_json line = {
+    nlohmann::ordered_json line = {
         {"seconds", stats.seconds}, {"rays", stats.rays}, {"mrays_per_s", mrays}};
+    if (scene.black_hole) line["mean_image_order"] = stats.mean_image_order;
     std::fprintf(stderr, "%s\n", line.dump().c_str());
   }
   return 0;
@@ -355,6 +363,16 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
         {"memory_bytes", info.memory_bytes}};
     if (info.emission_time_min)
       out["emission_time"] = {*info.emission_time_min, *info.emission_time_max};
+    if (const auto& h = info.hole)
+      out["black_hole"] = {{"mass", h->mass},
+                           {"horizon", h->horizon},
+                           {"photon_sphere", h->photon_sphere},
+                           {"isco", h->isco},
+                           {"camera_radius", h->camera_radius},
+                           {"shadow_degrees", h->shadow_degrees},
+                           {"shadow_static_degrees", h->shadow_static_degrees},
+                           {"shift", {h->shift_min, h->shift_max}},
+                           {"mean_image_order", h->mean_image_order}};
     std::printf("%s\n", out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
@@ -363,7 +381,22 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
   for (const BodyInfo& b : info.bodies)
     std::printf("  %-8s %-24s speed %.6g c, gamma %.6g\n", b.kind.c_str(), b.name.c_str(), b.speed,
                 b.gamma);
-  std::printf("Doppler factor over the image: %.4g to %.4g\n", info.doppler_min, info.doppler_max);
+  if (const auto& h = info.hole) {
+    std::printf(
+        "black hole: M = %.6g; horizon r = %.6g, photon sphere r = %.6g, innermost stable "
+        "circular orbit r = %.6g\n",
+        h->mass, h->horizon, h->photon_sphere, h->isco);
+    std::printf(
+        "  camera at r = %.6g (%.4g M): shadow %.4f degrees in radius (%.4f for the static "
+        "observer there)\n",
+        h->camera_radius, h->camera_radius / h->mass, h->shadow_degrees, h->shadow_static_degrees);
+    if (h->any_light)
+      std::printf("  shift g over the image: %.4g to %.4g; mean image order %.3g\n", h->shift_min,
+                  h->shift_max, h->mean_image_order);
+  } else {
+    std::printf("Doppler factor over the image: %.4g to %.4g\n", info.doppler_min,
+                info.doppler_max);
+  }
   if (info.emission_time_min)
     std::printf("light seen left the scene between t = %.6g and %.6g (observed at t = %.6g)\n",
                 *info.emission_time_min, *info.emission_time_max, info.observation_time);
@@ -403,6 +436,7 @@ int run_locate(const LocateArgs& a) {
     query.value = query.value / largest;
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
+  require_drawable_near_black_hole(scene, a.scene, false, "locate");
   LocateResult r;
   try {
     r = locate(scene, query);
@@ -456,6 +490,7 @@ int run_view(const ViewArgs& a) {
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   const Scene scene = load(a.scene, overrides, a.scene_options);
+  require_drawable_near_black_hole(scene, a.scene, true);
   for (const std::string& difference : raster_differences(scene))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());

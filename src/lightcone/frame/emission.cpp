@@ -47,7 +47,14 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
     range.hi = range.empty ? hi : std::max(range.hi, hi);
     range.empty = false;
   };
-  if (!lit) add(scene.sky_velocity);
+  if (scene.hole && !lit) {
+    // Near a hole the sky and the disk are seen along curved rays, with the shift g.
+    const LogShiftRange sky = sky_log_shift_range(*scene.hole);
+    range.lo = sky.lo, range.hi = sky.hi;
+    range.empty = false;
+  } else if (!lit) {
+    add(scene.sky_velocity);
+  }
   for (const ResolvedBody& b : scene.bodies)
     if (b.object->material.unlit != lit)
       add(b.velocity, b.spin >= 0 ? spin_rapidity(scene.spins[b.spin]) : 0.0);
@@ -78,12 +85,33 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved)
   }
   objects_.reserve(scene_.objects.size());
   for (const Object& o : scene_.objects) objects_.push_back(prepare(o.material));
+  if (resolved.hole && resolved.hole->disk) disk_ = thermal_disk(*resolved.hole);
   if (const auto* c = std::get_if<SolidColor>(&scene_.sky.pattern)) {
     sky_.colours[0] = fixed_rgb(c->color);
   } else if (const auto* g = std::get_if<SkyGrid>(&scene_.sky.pattern)) {
     sky_.colours[0] = fixed_rgb(g->background);
     sky_.colours[1] = fixed_rgb(g->line_color);
   }
+}
+
+// The disk's hottest ring, tabulated in every colour model (the others need its colour at rest
+// at each temperature): over the factors s = g T / T_peak it is read at, down to the floor below
+// which a blackbody gives no visible light worth a bit of the image.
+ThermalEmission EmissionTable::thermal_disk(const HoleView& hole) {
+  const AccretionDisk& disk = *hole.disk;
+  ThermalEmission t;
+  t.floor = std::min(kThermalFloorKelvin / disk.temperature_k, 1.0);
+  const LogShiftRange g = disk_log_shift_range(hole);
+  // s = tau g with tau in [floor, 1]; the non-spectral models read tau alone.
+  const DopplerGrid grid =
+      DopplerGrid::covering(std::log(t.floor) + std::min(g.lo, 0.0), std::max(g.hi, 0.0));
+  const BlackbodySpectrum peak =
+      BlackbodySpectrum::with_luminance(disk.temperature_k, disk.luminance);
+  t.peak.rest_rgb = linear_srgb_from_xyz(xyz_from_spectrum(peak));
+  t.peak.tables[0] = &fixed_tables_.emplace_back(DopplerXyzTable::of(peak, grid));
+  t.peak.weights[0] = 1;
+  t.peak.table_count = 1;
+  return t;
 }
 
 const DopplerXyzTable& EmissionTable::node_table(int node_case, int node) {

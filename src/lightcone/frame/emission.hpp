@@ -42,6 +42,16 @@ struct PointEmission {
   }
 };
 
+// A blackbody whose temperature varies over the emitter (the accretion disk): the emission of
+// its hottest part, tabulated against s from `floor` up, and the colour of a part at tau times
+// that temperature is received_thermal_colour's. Below the floor (tau g < floor, a blackbody at
+// under kThermalFloorKelvin) it is taken as black.
+inline constexpr double kThermalFloorKelvin = 300;
+struct ThermalEmission {
+  PointEmission peak;
+  double floor = 0;
+};
+
 // The range of ln D with which the camera sees the lit bodies (`lit`), or the emitters and the
 // sky, over every direction of its image, edges included (0 for the classical picture): exact,
 // from the directions where each velocity's D is extreme (view_extremes_along).
@@ -72,6 +82,8 @@ class EmissionTable {
     return objects_[object_index].colours[colour];
   }
   const PointEmission& sky_colour(int colour) const { return sky_.colours[colour]; }
+  // The black hole's accretion disk (a scene with one).
+  const ThermalEmission& disk() const { return disk_; }
   // The tables that colours looked up per hit combine (spectral model; the nodes are built
   // when the scene has textured emitters or a sky image): the RGB white's and node `node` of
   // emitter case `node_case` (RgbEmitterSpectrum).
@@ -86,6 +98,7 @@ class EmissionTable {
   };
   Fixed prepare(const Material& material);
   PointEmission fixed_rgb(const Rgb& rgb);
+  ThermalEmission thermal_disk(const HoleView& hole);
   template <class Spectrum>
   PointEmission fixed_spectrum(const Spectrum& spectrum);
   // Per lookup (textures, sky images): the white and node tables, weighted.
@@ -103,6 +116,7 @@ class EmissionTable {
   std::map<std::array<float, 3>, const DopplerXyzTable*> rgb_tables_;  // one per distinct colour
   std::vector<Fixed> objects_;
   Fixed sky_;
+  ThermalEmission disk_;
 };
 
 }  // namespace lightcone

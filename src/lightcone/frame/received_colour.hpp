@@ -17,4 +17,13 @@ double integrated_searchlight(double d, SearchlightModel model);
 // searchlight factor; at D = 1 exactly, the rest colour with no spectral work.
 LinearRgb received_colour(const PointEmission& emission, double d, const RenderSettings& settings);
 
+// The colour received from a blackbody at tau times the temperature of `thermal`'s hottest part,
+// seen with factor d. Planck's law scales: B_lambda(lambda; tau T) = tau^5 B_lambda(tau lambda; T),
+// so its colour at rest is tau^5 times the hottest part's seen with factor tau, and seen with d
+// it is tau^5 times the hottest part's seen with tau d, times the searchlight factor of d (with
+// the physical law, exactly a blackbody at tau d T). The other colour models shift its colour at
+// rest. Black below the table's floor.
+LinearRgb received_thermal_colour(const ThermalEmission& thermal, double tau, double d,
+                                  const RenderSettings& settings);
+
 }  // namespace lightcone

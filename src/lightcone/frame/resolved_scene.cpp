@@ -312,6 +312,7 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
   r.sky_time_column = to_pattern * time_column(trace_to_sky.linear);
   r.sky_spatial = to_pattern * trace_to_sky.linear.spatial();
   r.sky_velocity = trace_world_line(trace_to_sky, {}).velocity;
+  r.hole = hole_view(scene);
 
   // Shadow rays run between surface events (on camera rays, so inside the union of the trace
   // bounds, at F-times down to -s_far) and light events, which are at most the light's delay

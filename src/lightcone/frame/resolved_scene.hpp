@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/hole_view.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -198,6 +199,9 @@ struct ResolvedScene {
   // [shadow_time_min, shadow_time_max]; see resolve_scene.
   double shadow_time_min = 0, shadow_time_max = 0;
   std::vector<ShadowLight> shadow_lights;  // one per light of the scene
+  // The scene's black hole seen from the observation event: camera rays are then curved
+  // (trace/curved_ray.hpp) and the sky's fields above are not used.
+  std::optional<HoleView> hole;
 
   // Doppler factor nu_camera / nu_emitter for light arriving along look direction u from an
   // emitter moving with `velocity` in F (1 for the classical picture).

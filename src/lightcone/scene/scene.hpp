@@ -272,7 +272,8 @@ struct RenderSettings {
 // A thin accretion disk in the hole's equatorial plane about `normal` (unit; the gas orbits
 // counter-clockwise seen from its tip): gas on circular geodesics from `inner` (>= the ISCO,
 // 6M) to `outer`, each ring a blackbody at the Novikov-Thorne / Page-Thorne temperature, whose
-// peak over the disk is `temperature_k`. `luminance` is the CIE Y, at rest, of the hottest ring.
+// profile peaks at `temperature_k` at r = 9.55M (the hottest ring, when the disk spans it).
+// `luminance` is the CIE Y, at rest, of a ring at that peak temperature.
 struct AccretionDisk {
   double inner = 6, outer = 20;  // Schwarzschild radii r, in the model's units (c = 1)
   Vec3 normal{0, 1, 0};

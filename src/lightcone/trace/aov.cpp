@@ -2,15 +2,18 @@
 
 #include <limits>
 
+#include "lightcone/trace/curved_ray.hpp"
+
 namespace lightcone {
 namespace {
 
 constexpr struct {
   Aov aov;
   const char* name;
-} kNames[] = {{Aov::kDoppler, "doppler"},   {Aov::kEmissionTime, "emission_time"},
-              {Aov::kDistance, "distance"}, {Aov::kObject, "object"},
-              {Aov::kDepth, "depth"},       {Aov::kNormal, "normal"}};
+} kNames[] = {{Aov::kDoppler, "doppler"},       {Aov::kEmissionTime, "emission_time"},
+              {Aov::kDistance, "distance"},     {Aov::kObject, "object"},
+              {Aov::kDepth, "depth"},           {Aov::kNormal, "normal"},
+              {Aov::kImageOrder, "image_order"}};
 
 const char* name_of(Aov aov) {
   for (const auto& n : kNames)
@@ -26,15 +29,30 @@ std::optional<Aov> aov_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+std::string aov_name(Aov aov) {
+  return name_of(aov);
+}
+
 std::vector<std::string> aov_channel_names(Aov aov) {
   const std::string name = name_of(aov);
   if (aov == Aov::kNormal) return {name + ".X", name + ".Y", name + ".Z"};
   return {name};
 }
 
+bool aov_near_black_hole(Aov aov) {
+  return aov == Aov::kDoppler || aov == Aov::kObject || aov == Aov::kImageOrder;
+}
+
 void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
                 float* out) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
+  if (scene.hole) {
+    const CurvedRay ray = follow_curved_ray(*scene.hole, u);
+    out[0] = aov == Aov::kDoppler      ? static_cast<float>(ray.shift)
+             : aov == Aov::kImageOrder ? static_cast<float>(ray.order)
+                                       : -1.0f;
+    return;
+  }
   const auto hit = tracer.trace(u);
   if (!hit) {
     switch (aov) {
@@ -50,6 +68,9 @@ void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
         return;
       case Aov::kObject:
         out[0] = -1;
+        return;
+      case Aov::kImageOrder:  // flat space: every image is the primary
+        out[0] = 0;
         return;
       case Aov::kNormal:
         out[0] = out[1] = out[2] = 0;
@@ -71,6 +92,9 @@ void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
       return;
     case Aov::kObject:
       out[0] = static_cast<float>(hit->body);
+      return;
+    case Aov::kImageOrder:
+      out[0] = 0;
       return;
     case Aov::kDepth:
       out[0] = static_cast<float>(hit->s * dot(u, scene.camera.forward));

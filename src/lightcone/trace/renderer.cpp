@@ -12,6 +12,7 @@
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
+#include "lightcone/physics/accretion_disk.hpp"
 
 namespace lightcone {
 namespace {
@@ -74,6 +75,22 @@ void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
   }
 }
 
+LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emission,
+                          const CurvedRay& ray) {
+  const RenderSettings& settings = scene.scene->render;
+  switch (ray.end) {
+    case CurvedRayEnd::kSky:
+      return received_colour(emission.sky(ray.sky_direction), ray.shift, settings);
+    case CurvedRayEnd::kDisk:
+      return received_thermal_colour(emission.disk(),
+                                     disk_temperature_ratio(scene.hole->mass, ray.disk_radius),
+                                     ray.shift, settings);
+    case CurvedRayEnd::kHorizon:
+      break;
+  }
+  return {0, 0, 0};
+}
+
 namespace {
 
 // Everything one observation event needs: the scene seen from it and its tables.
@@ -125,6 +142,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   }
   std::atomic<std::size_t> done{0};
   std::atomic<bool> skipped{false};
+  std::atomic<std::uint64_t> image_orders{0};
   const bool light_samples =
       std::any_of(scene.lights.begin(), scene.lights.end(),
                   [](const Light& l) { return std::holds_alternative<SphereLight>(l.kind); });
@@ -156,6 +174,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         const int y0 = window.y0 + static_cast<int>(tile / tiles_x) * kTileSize;
         const int x_end = std::min(x0 + kTileSize, window.x1);
         const int y_end = std::min(y0 + kTileSize, window.y1);
+        std::uint64_t tile_orders = 0;  // the image orders of its curved rays, summed
         for (int by = y0; by < y_end; by += kBlockHeight)
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
@@ -179,11 +198,19 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                     look_direction(resolved.camera, pixel_i[l] + ps.x, pixel_j[l] + ps.y);
                 light[l] = ps.light;
               }
-              seen.tracer.trace(std::span(directions, lanes), std::span(hits, lanes));
               LinearRgb colours[Tracer::kPacketSize];
-              radiance_of(resolved, seen.emission, std::span(hits, lanes),
-                          std::span(directions, lanes), &seen.lighting, std::span(light, lanes),
-                          std::span(colours, lanes));
+              if (resolved.hole) {
+                for (std::size_t l = 0; l < lanes; ++l) {
+                  const CurvedRay ray = follow_curved_ray(*resolved.hole, directions[l]);
+                  colours[l] = curved_radiance(resolved, seen.emission, ray);
+                  tile_orders += ray.order;
+                }
+              } else {
+                seen.tracer.trace(std::span(directions, lanes), std::span(hits, lanes));
+                radiance_of(resolved, seen.emission, std::span(hits, lanes),
+                            std::span(directions, lanes), &seen.lighting, std::span(light, lanes),
+                            std::span(colours, lanes));
+              }
               for (std::size_t l = 0; l < lanes; ++l) {
                 sums[l][0] += colours[l].r;
                 sums[l][1] += colours[l].g;
@@ -211,6 +238,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
               }
             }
           }
+        if (tile_orders) image_orders += tile_orders;
         const std::size_t now = ++done;
         if (options.progress) options.progress(now, total);
       }
@@ -230,6 +258,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->rays = static_cast<std::uint64_t>(width) * height * n;
     stats->cancelled = skipped;
+    stats->mean_image_order = stats->rays ? static_cast<double>(image_orders) / stats->rays : 0;
   }
   return image;
 }

@@ -13,6 +13,7 @@
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/scene/scene.hpp"
 #include "lightcone/trace/aov.hpp"
+#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
@@ -45,6 +46,8 @@ struct RenderStats {
   std::uint64_t rays = 0;    // camera rays traced
   double exposure = 0;       // EV applied
   bool cancelled = false;    // some tiles were skipped (RenderOptions::cancel)
+  // Near a black hole: the mean image order of the camera rays (0 for flat scenes).
+  double mean_image_order = 0;
 };
 
 // Linear sRGB radiance arriving along look direction u (unit, in the camera's frame F). Lit
@@ -61,6 +64,11 @@ void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
                  std::span<const std::optional<Hit>> hits, std::span<const Vec3> directions,
                  const Lighting* lighting, std::span<const std::array<double, 2>> light_samples,
                  std::span<LinearRgb> out);
+
+// The radiance arriving along a curved camera ray near the scene's black hole: the sky and the
+// disk seen with the ray's shift g, through the same colour laws as every emitter.
+LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emission,
+                          const CurvedRay& ray);
 
 // Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB
 // triple per pixel. `stats->exposure` reports the EV used.

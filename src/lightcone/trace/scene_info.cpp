@@ -7,7 +7,11 @@
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/physics/aberration.hpp"
+#include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
+#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
@@ -20,7 +24,58 @@ BodyInfo body(const std::string& name, const char* kind, const Vec3& v) {
 // Embree's BVH over triangles, roughly, per triangle.
 constexpr std::uint64_t kBvhBytesPerTriangle = 64;
 
+constexpr double kDegrees = 180 / 3.14159265358979323846;
+
+HoleInfo hole_info(const ResolvedScene& resolved, const Vec3& camera_velocity) {
+  const HoleView& hole = *resolved.hole;
+  const double m = hole.mass;
+  HoleInfo h;
+  h.mass = m;
+  h.horizon = 2 * m;
+  h.photon_sphere = photon_sphere_radius(m);
+  h.isco = isco_radius(m);
+  h.camera_radius = hole.camera_radius;
+  h.shadow_static_degrees = static_shadow_angle(m, hole.camera_radius) * kDegrees;
+  h.shadow_degrees = shadow_angle_for_camera(hole, camera_velocity) * kDegrees;
+  constexpr int kRays = 48;
+  double orders = 0;
+  for (int j = 0; j < kRays; ++j)
+    for (int i = 0; i < kRays; ++i) {
+      const Vec3 u = look_direction(resolved.camera, (i + 0.5) * resolved.camera.width / kRays,
+                                    (j + 0.5) * resolved.camera.height / kRays);
+      const CurvedRay ray = follow_curved_ray(hole, u);
+      orders += ray.order;
+      if (ray.end == CurvedRayEnd::kHorizon) continue;
+      h.shift_min = h.any_light ? std::min(h.shift_min, ray.shift) : ray.shift;
+      h.shift_max = h.any_light ? std::max(h.shift_max, ray.shift) : ray.shift;
+      h.any_light = true;
+    }
+  h.mean_image_order = orders / (kRays * kRays);
+  return h;
+}
+
 }  // namespace
+
+double shadow_angle_for_camera(const HoleView& hole, const Vec3& beta) {
+  // The shadow's edge for the static observer: the cone of half-angle alpha about the hole's
+  // direction a. Aberration maps it to a circle; three of its points fix that circle.
+  const double alpha = static_shadow_angle(hole.mass, hole.camera_radius);
+  const Vec3 a = hole.outward * -1.0;
+  const Vec3 e =
+      std::abs(a.x) < 0.9 ? normalize(cross(a, {1, 0, 0})) : normalize(cross(a, {0, 1, 0}));
+  const Vec3 f = cross(a, e);
+  Vec3 q[3];
+  for (int k = 0; k < 3; ++k) {
+    const double theta = 2.0943951023931954923 * k;
+    const Vec3 p =
+        a * std::cos(alpha) + (e * std::cos(theta) + f * std::sin(theta)) * std::sin(alpha);
+    q[k] = aberrate_into_moving_frame(p, beta);
+  }
+  Vec3 centre = normalize(cross(q[1] - q[0], q[2] - q[0]));
+  // The shadow holds the image of its axis.
+  if (dot(centre, aberrate_into_moving_frame(a, beta)) < dot(centre, q[0])) centre = centre * -1.0;
+  return std::acos(std::clamp(dot(centre, q[0]), -1.0, 1.0));
+}
 
 SceneInfo scene_info(const Scene& scene) {
   SceneInfo info;
@@ -46,6 +101,14 @@ SceneInfo scene_info(const Scene& scene) {
     info.doppler_min = first ? std::exp(r.lo) : std::min(info.doppler_min, std::exp(r.lo));
     info.doppler_max = first ? std::exp(r.hi) : std::max(info.doppler_max, std::exp(r.hi));
     first = false;
+  }
+
+  if (resolved.hole) {
+    info.hole = hole_info(resolved, scene.camera.world_line.velocity);
+    if (info.hole->any_light) {
+      info.doppler_min = info.hole->shift_min;
+      info.doppler_max = info.hole->shift_max;
+    }
   }
 
   // Emission times of what a grid of rays meets.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/hole_view.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
@@ -16,6 +17,20 @@ struct BodyInfo {
   std::string kind;  // "object", "light", "camera", "sky"
   Vec3 velocity;     // in W
   double speed = 0, gamma = 1;
+};
+
+// The black hole as this camera sees it (lengths in the scene's units).
+struct HoleInfo {
+  double mass = 0;
+  double horizon = 0, photon_sphere = 0, isco = 0;  // 2M, 3M, 6M
+  double camera_radius = 0;
+  // The shadow's angular radius (degrees) for this camera: for its static observer Synge's
+  // (1966), aberrated by the camera's velocity (aberration maps circles on the sky to circles).
+  double shadow_static_degrees = 0, shadow_degrees = 0;
+  // The shift g over the image (sampled on a grid of rays; the shadow left out).
+  double shift_min = 1, shift_max = 1;
+  bool any_light = false;  // some sampled ray sees the sky or the disk
+  double mean_image_order = 0;
 };
 
 struct SceneInfo {
@@ -30,7 +45,12 @@ struct SceneInfo {
   double observation_time = 0;
   std::uint64_t triangles = 0;
   std::uint64_t memory_bytes = 0;  // estimate: meshes, their acceleration structure, images
+  std::optional<HoleInfo> hole;
 };
+
+// The angular radius (radians) in the camera's frame of the hole's shadow, for a camera at
+// `hole.camera_radius` moving relative to its static observer with velocity `beta`.
+double shadow_angle_for_camera(const HoleView& hole, const Vec3& beta);
 
 SceneInfo scene_info(const Scene& scene);
 

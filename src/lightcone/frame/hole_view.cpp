@@ -1,0 +1,48 @@
+#include "lightcone/frame/hole_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lightcone/physics/accretion_disk.hpp"
+
+namespace lightcone {
+
+std::optional<HoleView> hole_view(const Scene& scene) {
+  if (!scene.black_hole) return std::nullopt;
+  const BlackHole& hole = *scene.black_hole;
+  HoleView v;
+  v.mass = hole.mass;
+  v.centre = hole.position;
+  const Vec3 from_hole = scene.camera.world_line.position - hole.position;
+  v.camera_radius = length(from_hole);
+  v.outward = from_hole / v.camera_radius;
+  v.camera_lapse = std::sqrt(1 - 2 * hole.mass / v.camera_radius);
+  v.camera_rapidity = rapidity(scene.camera.world_line.velocity);
+  v.trace_to_static = lorentz_inverse(boost(scene.camera.world_line.velocity));
+  v.world_to_sky = boost(scene.sky.velocity);
+  v.to_pattern = scene.sky.rotation.transposed();
+  v.sky_rapidity = rapidity(scene.sky.velocity);
+  v.disk = hole.disk;
+  return v;
+}
+
+LogShiftRange sky_log_shift_range(const HoleView& hole) {
+  const double blueshift = -std::log(hole.camera_lapse);
+  const double spread = hole.camera_rapidity + hole.sky_rapidity;
+  return {blueshift - spread, blueshift + spread};
+}
+
+LogShiftRange disk_log_shift_range(const HoleView& hole) {
+  if (!hole.disk) return {};
+  const double m = hole.mass;
+  // ln of the energy the gas at r measures for light of unit energy far away: -ln sqrt(f(r))
+  // (the static observer's blueshift) plus its own Doppler term within +-atanh(v(r)).
+  const auto gravity = [&](double r) { return -0.5 * std::log1p(-2 * m / r); };
+  const double spin = std::atanh(circular_orbit_local_speed(m, hole.disk->inner));
+  const double emitted_lo = gravity(hole.disk->outer) - spin;
+  const double emitted_hi = gravity(hole.disk->inner) + spin;
+  const double camera = -std::log(hole.camera_lapse);
+  return {camera - hole.camera_rapidity - emitted_hi, camera + hole.camera_rapidity - emitted_lo};
+}
+
+}  // namespace lightcone

@@ -1,0 +1,48 @@
+// A scene's black hole seen from one observation event (docs/design/black-hole.md): what the
+// curved-ray walker (trace/curved_ray.hpp) and the colour tables need, once per frame.
+//
+// The camera's rest frame F is the boost, by the camera's velocity, of the orthonormal frame of
+// the static observer at its event, whose axes are W's (its radial axis is the unit vector from
+// the hole to the camera). Far away the static observers are W itself, so the sky's rest frame
+// is reached from W as in flat space.
+#pragma once
+
+#include <optional>
+
+#include "lightcone/color/doppler_table.hpp"
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+struct HoleView {
+  double mass = 0;
+  Vec3 centre;                 // in W
+  double camera_radius = 0;    // Schwarzschild r of the camera, > 2M
+  Vec3 outward;                // unit, from the hole toward the camera
+  double camera_lapse = 1;     // sqrt(1 - 2M / r) at the camera
+  double camera_rapidity = 0;  // of the camera relative to the static observer there
+  Mat4 trace_to_static;        // F to the static observer's orthonormal frame (Lorentz)
+  Mat4 world_to_sky;           // W (far away) to the sky's rest frame (Lorentz)
+  Mat3 to_pattern;             // the sky's rest frame to its pattern coordinates
+  double sky_rapidity = 0;     // of the sky relative to W
+  std::optional<AccretionDisk> disk;
+};
+
+std::optional<HoleView> hole_view(const Scene& scene);
+
+// The range of ln g, g = nu_camera / nu_emitter, with which the camera can see the sky, over
+// every direction: the camera's Doppler factor relative to its static observer (within
+// +-camera_rapidity), the blueshift 1 / sqrt(1 - 2M/r) of light falling to it, and the sky's
+// own Doppler factor far away (within +-sky_rapidity). Exact bounds, not attained in general.
+struct LogShiftRange {
+  double lo = 0, hi = 0;
+};
+LogShiftRange sky_log_shift_range(const HoleView& hole);
+
+// The same for the disk's gas: a ring at r, on its circular geodesic, is seen from far away with
+// ln g in -(-ln sqrt(f(r)) +- atanh(v(r))), v its speed relative to the static observer there
+// (both fall with r), shifted by the camera's terms.
+LogShiftRange disk_log_shift_range(const HoleView& hole);
+
+}  // namespace lightcone

@@ -1,0 +1,90 @@
+#include "lightcone/trace/curved_ray.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// A ray whose impact parameter is b_c to the last bit winds onto the photon sphere for ever;
+// after this many crossings of the disk's plane it is counted as captured (its radius is then
+// within rounding of 3M, inside every disk's inner edge of 6M or more).
+constexpr int kMaxDiskCrossings = 64;
+
+int image_order(double phi) {
+  return phi > 0 ? static_cast<int>(std::ceil(phi / kPi)) - 1 : 0;
+}
+
+// A unit vector perpendicular to n.
+Vec3 any_perpendicular(const Vec3& n) {
+  const Vec3 other = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  return normalize(cross(n, other));
+}
+
+}  // namespace
+
+CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
+  // The backward ray's direction in the static observer's frame: the F event (-1, u) maps to
+  // (t, x) with t < 0; the photon's energy there is -t times the camera's.
+  const Vec4 back = hole.trace_to_static * Vec4{-1, u};
+  const Vec3 d = back.x / -back.t;
+  // Photon energies in units of its conserved energy E (what a static observer far away
+  // measures): the static observer at the camera measures E / sqrt(f), the camera that over -t.
+  const double camera_energy = 1 / (hole.camera_lapse * -back.t);
+
+  // The ray's plane: e1 from the hole to the camera, e2 along the look direction's tangential
+  // part, so that the ray sweeps phi from e1 toward e2.
+  const Vec3& e1 = hole.outward;
+  const double cos_alpha = dot(d, e1);
+  const Vec3 tangential = d - e1 * cos_alpha;
+  const double sin_alpha = length(tangential);
+  const Vec3 e2 = sin_alpha > 0 ? tangential / sin_alpha : any_perpendicular(e1);
+  const double impact = static_impact_parameter(hole.mass, hole.camera_radius, sin_alpha);
+  const PhotonOrbit orbit = photon_orbit(hole.mass, impact);
+  const bool outward = cos_alpha > 0;
+  const AngleSweep sweep = prepare_sweep(orbit, hole.camera_radius, outward);
+
+  CurvedRay ray;
+  if (hole.disk) {
+    const AccretionDisk& disk = *hole.disk;
+    const double a = dot(e1, disk.normal), c = dot(e2, disk.normal);
+    // The plane holds the position cos(phi) e1 + sin(phi) e2 where a cos(phi) + c sin(phi) = 0:
+    // at phi0 + k pi. A ray in the disk's own plane (a = c = 0) sees it edge-on and misses it.
+    if (a != 0 || c != 0) {
+      double phi = std::atan2(-a, c);
+      if (phi <= 0) phi += kPi;
+      for (int k = 0; k < kMaxDiskCrossings && phi < sweep.angle_total; ++k, phi += kPi) {
+        const double r = radius_after_angle(sweep, phi);
+        if (!(r > 2 * hole.mass) || std::isinf(r)) break;
+        if (r < disk.inner || r > disk.outer) continue;
+        // The gas orbits about the disk's normal; the photon's angular momentum about it per unit
+        // energy is -b (e1 x e2) . normal (the backward ray sweeps from e1 toward e2).
+        const double lambda = -impact * dot(cross(e1, e2), disk.normal);
+        ray.end = CurvedRayEnd::kDisk;
+        ray.order = k;
+        ray.phi = phi;
+        ray.disk_radius = r;
+        // Cunningham's g is the shift to a static observer far away, whose energy unit this is.
+        ray.shift = camera_energy * circular_orbit_frequency_shift(hole.mass, r, lambda);
+        return ray;
+      }
+    }
+  }
+  ray.phi = sweep.angle_total;
+  ray.order = image_order(sweep.angle_total);
+  // Captured: the horizon, or (b = b_c to the last bit) the photon sphere for ever.
+  if (!std::isinf(sweep.end)) return ray;
+  // Far away the backward ray runs radially out along its position.
+  const Vec3 far = e1 * std::cos(sweep.angle_total) + e2 * std::sin(sweep.angle_total);
+  const Vec4 in_sky = hole.world_to_sky * Vec4{-1, far};
+  ray.end = CurvedRayEnd::kSky;
+  ray.sky_direction = hole.to_pattern * (in_sky.x / -in_sky.t);
+  ray.shift = camera_energy / -in_sky.t;
+  return ray;
+}
+
+}  // namespace lightcone
