@@ -13,6 +13,7 @@
 #include <string>
 
 #include "lightcone/frame/hole_view.hpp"
+#include "lightcone/frame/locate.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/trace/curved_ray.hpp"
@@ -225,6 +226,45 @@ TEST(BlackHoleRender, BundledSceneRendersTheShadowTheDiskAndItsImages) {
   EXPECT_GT(shift_at(40, 62), shift_at(152, 62));
 }
 
+// locate's images against where the tracer's rays go: each image's look direction, followed by
+// the walker, reaches the located sky direction, or meets the disk at the located point, with
+// the same image order and shift.
+TEST(BlackHoleLocate, ImagesAreWhereTheTracersRaysGo) {
+  Scene s = test::load_repository_scene("black-hole.json");
+  s.camera.world_line.velocity = {0.1, -0.2, -0.3};
+  const HoleView hole = *hole_view(s);
+  LocateQuery sky;
+  sky.kind = LocateQuery::Kind::SkyDirection;
+  sky.value = normalize(Vec3{0.3, 0.2, -1});
+  const LocateResult far = locate(s, sky);
+  ASSERT_EQ(far.images.size(), 3u);
+  for (const LocateImage& image : far.images) {
+    SCOPED_TRACE(image.order);
+    const CurvedRay ray = follow_curved_ray(hole, image.direction);
+    if (ray.end != CurvedRayEnd::kSky) continue;  // the disk is in front of this one
+    EXPECT_EQ(ray.order, image.order);
+    EXPECT_NEAR(length(ray.sky_direction - sky.value), 0, 1e-8);
+    EXPECT_NEAR(ray.shift, image.shift, 1e-12);
+  }
+  EXPECT_EQ(follow_curved_ray(hole, far.images[0].direction).end, CurvedRayEnd::kSky);
+  // A point on the disk's far side: its primary image is where the disk is drawn at that radius.
+  LocateQuery point;
+  point.kind = LocateQuery::Kind::WorldPoint;
+  point.value = {4, 0, -14};
+  const LocateResult near = locate(s, point);
+  ASSERT_FALSE(near.images.empty());
+  int matched = 0;
+  for (const LocateImage& image : near.images) {
+    const CurvedRay ray = follow_curved_ray(hole, image.direction);
+    if (ray.end != CurvedRayEnd::kDisk || ray.order != image.order) continue;
+    EXPECT_NEAR(ray.disk_radius, length(point.value), 1e-7);
+    ++matched;
+  }
+  EXPECT_GE(matched, 1);
+  EXPECT_TRUE(near.emission_time &&
+              *near.emission_time < -length(point.value - s.camera.world_line.position));
+}
+
 // What this version does not draw near a hole is refused by name, with status 2 and nothing
 // written; `info` reports the hole.
 TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
@@ -254,7 +294,7 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
                 "raster renderer"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
-           Case{"locate " + plain + " --direction 0,0,-1", "locate"},
+           Case{"locate " + with_body + " --direction 0,0,-1", "objects and lights"},
        }) {
     SCOPED_TRACE(c.arguments);
     const test::CommandResult r = test::run_lightcone(c.arguments);
@@ -267,6 +307,11 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
       test::run_lightcone("render " + plain + " -o " + test::quoted(out) + " --stats");
   EXPECT_EQ(rendered.status, 0) << rendered.err;
   EXPECT_NE(rendered.err.find("mean_image_order"), std::string::npos) << rendered.err;
+  const test::CommandResult located =
+      test::run_lightcone("locate " + plain + " --world-point 0,0,-20");
+  EXPECT_EQ(located.status, 0) << located.err;
+  EXPECT_NE(located.out.find(R"("images":[{"order":0,)"), std::string::npos) << located.out;
+  EXPECT_NE(located.out.find(R"({"order":1,)"), std::string::npos) << located.out;
   const test::CommandResult info = test::run_lightcone("info " + plain);
   EXPECT_EQ(info.status, 0) << info.err;
   EXPECT_NE(info.out.find("photon sphere r = 3"), std::string::npos) << info.out;

@@ -436,7 +436,7 @@ int run_locate(const LocateArgs& a) {
     query.value = query.value / largest;
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene, false, "locate");
+  require_drawable_near_black_hole(scene, a.scene, false);
   LocateResult r;
   try {
     r = locate(scene, query);
@@ -471,6 +471,23 @@ int run_locate(const LocateArgs& a) {
   if (r.emission_proper_time) out["emission_proper_time"] = *r.emission_proper_time / c;
   if (r.emission_position) out["emission_position"] = to_json(*r.emission_position);
   if (r.distance) out["distance"] = *r.distance;
+  if (scene.black_hole) {
+    // Every image, the primary first (whose pixel and direction are the fields above).
+    nlohmann::ordered_json images = nlohmann::ordered_json::array();
+    for (const LocateImage& image : r.images) {
+      nlohmann::ordered_json one = {{"order", image.order},
+                                    {"pixel", {image.pixel_x, image.pixel_y}},
+                                    {"direction", to_json(image.direction)},
+                                    {"emission_time", nullptr},
+                                    {"emission_position", out["emission_position"]},
+                                    {"in_view", image.in_view},
+                                    {"g", image.shift}};
+      if (!image.in_view) one["pixel"] = nullptr;
+      if (image.emission_time) one["emission_time"] = *image.emission_time / c;
+      images.push_back(one);
+    }
+    out["images"] = images;
+  }
   std::printf("%s\n", out.dump().c_str());
   return 0;
 }

@@ -26,6 +26,14 @@ std::optional<HoleView> hole_view(const Scene& scene) {
   return v;
 }
 
+double camera_photon_energy(const HoleView& hole, const Vec3& u) {
+  return 1 / (hole.camera_lapse * -(hole.trace_to_static * Vec4{-1, u}).t);
+}
+
+double sky_photon_energy(const HoleView& hole, const Vec3& far) {
+  return -(hole.world_to_sky * Vec4{-1, far}).t;
+}
+
 LogShiftRange sky_log_shift_range(const HoleView& hole) {
   const double blueshift = -std::log(hole.camera_lapse);
   const double spread = hole.camera_rapidity + hole.sky_rapidity;

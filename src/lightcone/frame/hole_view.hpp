@@ -31,6 +31,16 @@ struct HoleView {
 
 std::optional<HoleView> hole_view(const Scene& scene);
 
+// The energy the camera measures for a photon it receives along look direction u (unit, in its
+// rest frame F), in units of the photon's conserved energy (what a static observer far away
+// measures): 1 / sqrt(f) at the static observer, over -t for the static-frame event (t, x) that
+// the backward direction (-1, u) becomes.
+double camera_photon_energy(const HoleView& hole, const Vec3& u);
+
+// The energy the sky's rest frame measures for a photon that arrives from W's direction `far`
+// (unit, pointing away from the hole), in the same units: its flat Doppler factor far away.
+double sky_photon_energy(const HoleView& hole, const Vec3& far);
+
 // The range of ln g, g = nu_camera / nu_emitter, with which the camera can see the sky, over
 // every direction: the camera's Doppler factor relative to its static observer (within
 // +-camera_rapidity), the blueshift 1 / sqrt(1 - 2M/r) of light falling to it, and the sky's

@@ -1,8 +1,11 @@
 #include "lightcone/frame/locate.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/physics/aberration.hpp"
+#include "lightcone/physics/schwarzschild_lens.hpp"
 #include "lightcone/physics/world_line.hpp"
 
 namespace lightcone {
@@ -28,10 +31,70 @@ Vec3 direction_from_sky(const ResolvedScene& r, const Vec3& d_pattern) {
   return normalize(a * lambda - b);
 }
 
+// Near a black hole: the images of a point at rest in W or of a direction far away, each on its
+// exact ray (lens_image), carried into the camera's frame by the flat aberration law.
+LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
+                              const LocateQuery& query) {
+  if (query.kind == LocateQuery::Kind::ObjectPoint)
+    throw std::invalid_argument("objects near a black hole are not drawn yet");
+  const HoleView& hole = *r.hole;
+  const Vec3& e1 = hole.outward;
+  Vec3 toward;  // from the hole toward the point, or the direction far away
+  double r_e = std::numeric_limits<double>::infinity();
+  if (query.kind == LocateQuery::Kind::WorldPoint) {
+    const Vec3 rel = query.value - hole.centre;
+    r_e = length(rel);
+    if (!(r_e > 2 * hole.mass))
+      throw std::invalid_argument("the point is inside the black hole's horizon");
+    toward = rel / r_e;
+  } else {
+    toward = aberrate_out_of_moving_frame(scene.sky.rotation * normalize(query.value),
+                                          scene.sky.velocity);
+  }
+  const double psi = std::acos(std::clamp(dot(e1, toward), -1.0, 1.0));
+  // Exactly in line with the hole every image is a ring; its point toward any side stands for it.
+  const Vec3 side = toward - e1 * dot(e1, toward);
+  const Vec3 t = length(side) > 0
+                     ? normalize(side)
+                     : normalize(cross(e1, std::abs(e1.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 beta = scene.camera.world_line.velocity;
+  LocateResult result;
+  for (int order = 0; order <= 2; ++order) {
+    const auto image = lens_image(hole.mass, hole.camera_radius, r_e, psi, order);
+    if (!image) continue;
+    const Vec3 d = e1 * image->cos_alpha + t * ((order % 2 == 0 ? 1 : -1) * image->sin_alpha);
+    LocateImage out;
+    out.order = order;
+    out.direction = aberrate_into_moving_frame(d, beta);
+    const double camera_energy = camera_photon_energy(hole, out.direction);
+    if (query.kind == LocateQuery::Kind::WorldPoint) {
+      out.emission_time = scene.camera.world_line.time - image->time;
+      out.shift = camera_energy * std::sqrt(1 - 2 * hole.mass / r_e);  // a static emitter
+    } else {
+      out.shift = camera_energy / sky_photon_energy(hole, toward);
+    }
+    LocateResult one;
+    one.direction = out.direction;
+    set_pixel(r.camera, one);
+    out.pixel_x = one.pixel_x, out.pixel_y = one.pixel_y, out.in_view = one.in_view;
+    result.images.push_back(out);
+  }
+  if (result.images.empty()) return result;
+  const LocateImage& primary = result.images.front();
+  result.direction = primary.direction;
+  result.pixel_x = primary.pixel_x, result.pixel_y = primary.pixel_y;
+  result.in_view = primary.in_view;
+  result.doppler = primary.shift;
+  result.emission_time = primary.emission_time;
+  if (query.kind == LocateQuery::Kind::WorldPoint) result.emission_position = query.value;
+  return result;
+}
+
 }  // namespace
 
 LocateResult locate(const Scene& scene, const LocateQuery& query) {
   const ResolvedScene r = resolve_scene(scene);
+  if (r.hole) return locate_near_hole(scene, r, query);
   LocateResult result;
   if (query.kind == LocateQuery::Kind::SkyDirection) {
     result.direction =

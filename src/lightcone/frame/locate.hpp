@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/scene/scene.hpp"
@@ -16,6 +17,17 @@ struct LocateQuery {
   Vec3 value;          // point in the object's shape coordinates / point at rest in W / direction
 };
 
+// One image of the point near a black hole (orders 0, 1, 2: the primary, the one round the far
+// side, the next round the near side).
+struct LocateImage {
+  int order = 0;
+  double pixel_x = 0, pixel_y = 0;
+  bool in_view = false;
+  Vec3 direction;                       // look direction, camera rest frame
+  std::optional<double> emission_time;  // W (Schwarzschild coordinate) time; none at infinity
+  double shift = 1;                     // g = nu_camera / nu_emitter
+};
+
 struct LocateResult {
   double pixel_x = 0, pixel_y = 0;  // image point (pixel (i, j) has its centre at i+.5, j+.5)
   Vec3 direction;                   // apparent look direction, camera rest frame
@@ -27,6 +39,9 @@ struct LocateResult {
   std::optional<double> emission_proper_time;
   bool in_view = false;
   double doppler = 1;  // D = nu_camera / nu_emitter for light from the located point
+  // Near a black hole: every image of orders 0 to 2 that exists, the first of which the fields
+  // above describe (a point at rest in W, or a direction far away; no object yet).
+  std::vector<LocateImage> images;
 };
 
 // Throws std::invalid_argument when the named object does not exist.

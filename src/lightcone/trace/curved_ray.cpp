@@ -34,7 +34,7 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
   const Vec3 d = back.x / -back.t;
   // Photon energies in units of its conserved energy E (what a static observer far away
   // measures): the static observer at the camera measures E / sqrt(f), the camera that over -t.
-  const double camera_energy = 1 / (hole.camera_lapse * -back.t);
+  const double camera_energy = camera_photon_energy(hole, u);
 
   // The ray's plane: e1 from the hole to the camera, e2 along the look direction's tangential
   // part, so that the ray sweeps phi from e1 toward e2.
@@ -83,7 +83,7 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
   const Vec4 in_sky = hole.world_to_sky * Vec4{-1, far};
   ray.end = CurvedRayEnd::kSky;
   ray.sky_direction = hole.to_pattern * (in_sky.x / -in_sky.t);
-  ray.shift = camera_energy / -in_sky.t;
+  ray.shift = camera_energy / sky_photon_energy(hole, far);
   return ray;
 }
 
