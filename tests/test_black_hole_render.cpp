@@ -278,9 +278,8 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
     return test::quoted(p);
   };
   const std::string plain = scene_file("plain.json", "");
-  const std::string with_body =
-      scene_file("body.json", R"(, "objects": [{"name": "moon", "shape": {"sphere": {"radius": 1}},
-                                      "position": [10, 0, 0]}])");
+  const std::string with_light = scene_file(
+      "light.json", R"(, "lights": [{"name": "lamp", "type": "point", "position": [10, 0, 0]}])");
   const std::string classical =
       scene_file("classical.json", R"(, "render": {"relativity": false})");
   const std::filesystem::path out = dir / "out.png";
@@ -288,13 +287,13 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
     std::string arguments, message;
   };
   for (const Case& c : {
-           Case{"render " + with_body + " -o " + test::quoted(out), "objects and lights"},
+           Case{"render " + with_light + " -o " + test::quoted(out), "lights near a black hole"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
            Case{"render " + plain + " --renderer raster -o " + test::quoted(out),
                 "raster renderer"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
-           Case{"locate " + with_body + " --direction 0,0,-1", "objects and lights"},
+           Case{"locate " + with_light + " --direction 0,0,-1", "lights near a black hole"},
        }) {
     SCOPED_TRACE(c.arguments);
     const test::CommandResult r = test::run_lightcone(c.arguments);

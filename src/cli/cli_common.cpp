@@ -73,10 +73,11 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
   const auto refuse = [&](const std::string& why) {
     throw InputError(file + ": black_hole: " + why);
   };
-  if (!scene.objects.empty() || !scene.lights.empty())
+  if (!scene.lights.empty())
     refuse(
-        "objects and lights near a black hole are not drawn yet (this version follows curved "
-        "rays to the sky, the accretion disk and the horizon); remove them, or the black hole");
+        "lights near a black hole are not drawn yet (this version follows curved rays to the "
+        "sky, the accretion disk, emitting bodies and the horizon; lit bodies are black); remove "
+        "the lights, or the black hole");
   if (!scene.render.relativity || !scene.render.light_delay)
     refuse(
         "render.relativity and render.light_delay must stay on: curved spacetime has no "

@@ -47,14 +47,19 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
     range.hi = range.empty ? hi : std::max(range.hi, hi);
     range.empty = false;
   };
-  if (scene.hole && !lit) {
-    // Near a hole the sky and the disk are seen along curved rays, with the shift g.
-    const LogShiftRange sky = sky_log_shift_range(*scene.hole);
-    range.lo = sky.lo, range.hi = sky.hi;
-    range.empty = false;
-  } else if (!lit) {
-    add(scene.sky_velocity);
+  if (scene.hole) {
+    // Near a hole the sky, the disk and the bodies are seen along curved rays, with the shift g.
+    const auto include = [&](const LogShiftRange& r) {
+      range.lo = range.empty ? r.lo : std::min(range.lo, r.lo);
+      range.hi = range.empty ? r.hi : std::max(range.hi, r.hi);
+      range.empty = false;
+    };
+    if (!lit) include(sky_log_shift_range(*scene.hole));
+    for (const ResolvedBody& b : scene.bodies)
+      if (b.object->material.unlit != lit) include(body_log_shift_range(*scene.hole, *b.object));
+    return range;
   }
+  if (!lit) add(scene.sky_velocity);
   for (const ResolvedBody& b : scene.bodies)
     if (b.object->material.unlit != lit)
       add(b.velocity, b.spin >= 0 ? spin_rapidity(scene.spins[b.spin]) : 0.0);

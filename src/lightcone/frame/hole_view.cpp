@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/physics/schwarzschild_motion.hpp"
 
 namespace lightcone {
 
@@ -51,6 +53,27 @@ LogShiftRange disk_log_shift_range(const HoleView& hole) {
   const double emitted_hi = gravity(hole.disk->inner) + spin;
   const double camera = -std::log(hole.camera_lapse);
   return {camera - hole.camera_rapidity - emitted_hi, camera + hole.camera_rapidity - emitted_lo};
+}
+
+LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
+  const double m = hole.mass;
+  const Vec3 from_hole = object.world_line.position - hole.centre;
+  const Vec3& v = object.world_line.velocity;
+  const double reach = origin_radius(object.shape, object.scale);
+  // The nearest and farthest the body comes: its line's closest approach to the hole, less and
+  // more its reach (the farthest is unbounded for a moving body: f < 1 caps it).
+  const double vv = dot(v, v);
+  const double closest =
+      vv > 0 ? length(from_hole - v * (dot(from_hole, v) / vv)) : length(from_hole);
+  const double nearest = std::max(closest - reach, 2 * m * (1 + 1e-6));
+  const double farthest = vv > 0 ? std::numeric_limits<double>::infinity() : closest + reach;
+  const double spin =
+      vv > 0 ? std::atanh(std::min(peak_static_observer_speed(m, from_hole, v).speed, 1 - 1e-16))
+             : 0.0;
+  const auto gravity = [&](double r) { return std::isinf(r) ? 0.0 : 0.5 * std::log1p(-2 * m / r); };
+  const double camera = -std::log(hole.camera_lapse);
+  return {camera - hole.camera_rapidity + gravity(nearest) - spin,
+          camera + hole.camera_rapidity + gravity(farthest) + spin};
 }
 
 }  // namespace lightcone

@@ -44,13 +44,14 @@ bool aov_near_black_hole(Aov aov) {
 }
 
 void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
-                float* out) {
+                float* out, const CurvedBodies* bodies) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   if (scene.hole) {
-    const CurvedRay ray = follow_curved_ray(*scene.hole, u);
-    out[0] = aov == Aov::kDoppler      ? static_cast<float>(ray.shift)
-             : aov == Aov::kImageOrder ? static_cast<float>(ray.order)
-                                       : -1.0f;
+    const CurvedRay ray = follow_curved_ray(*scene.hole, u, bodies);
+    out[0] = aov == Aov::kDoppler             ? static_cast<float>(ray.shift)
+             : aov == Aov::kImageOrder        ? static_cast<float>(ray.order)
+             : ray.end == CurvedRayEnd::kBody ? static_cast<float>(ray.hit.body)
+                                              : -1.0f;
     return;
   }
   const auto hit = tracer.trace(u);

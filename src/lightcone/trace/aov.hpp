@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
@@ -33,8 +34,9 @@ std::vector<std::string> aov_channel_names(Aov aov);
 // (-1 for the sky, the disk and the shadow) and image_order.
 bool aov_near_black_hole(Aov aov);
 
-// The values of `aov` along the look direction u (as many as its channels).
+// The values of `aov` along the look direction u (as many as its channels); near a black hole
+// along the curved ray, meeting `bodies` when given.
 void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
-                float* out);
+                float* out, const CurvedBodies* bodies = nullptr);
 
 }  // namespace lightcone

@@ -5,6 +5,7 @@
 
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
+#include "lightcone/trace/curved_bodies.hpp"
 
 namespace lightcone {
 namespace {
@@ -27,27 +28,31 @@ Vec3 any_perpendicular(const Vec3& n) {
 
 }  // namespace
 
-CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
+CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
   // The backward ray's direction in the static observer's frame: the F event (-1, u) maps to
-  // (t, x) with t < 0; the photon's energy there is -t times the camera's.
+  // (t, x) with t < 0.
   const Vec4 back = hole.trace_to_static * Vec4{-1, u};
   const Vec3 d = back.x / -back.t;
-  // Photon energies in units of its conserved energy E (what a static observer far away
-  // measures): the static observer at the camera measures E / sqrt(f), the camera that over -t.
-  const double camera_energy = camera_photon_energy(hole, u);
-
-  // The ray's plane: e1 from the hole to the camera, e2 along the look direction's tangential
-  // part, so that the ray sweeps phi from e1 toward e2.
-  const Vec3& e1 = hole.outward;
-  const double cos_alpha = dot(d, e1);
-  const Vec3 tangential = d - e1 * cos_alpha;
+  CurvedPath p;
+  p.camera_energy = camera_photon_energy(hole, u);
+  // e1 from the hole to the camera, e2 along the look direction's tangential part.
+  p.e1 = hole.outward;
+  const double cos_alpha = dot(d, p.e1);
+  const Vec3 tangential = d - p.e1 * cos_alpha;
   const double sin_alpha = length(tangential);
-  const Vec3 e2 = sin_alpha > 0 ? tangential / sin_alpha : any_perpendicular(e1);
-  const double impact = static_impact_parameter(hole.mass, hole.camera_radius, sin_alpha);
-  const PhotonOrbit orbit = photon_orbit(hole.mass, impact);
-  const bool outward = cos_alpha > 0;
-  const AngleSweep sweep = prepare_sweep(orbit, hole.camera_radius, outward);
+  p.e2 = sin_alpha > 0 ? tangential / sin_alpha : any_perpendicular(p.e1);
+  p.impact = static_impact_parameter(hole.mass, hole.camera_radius, sin_alpha);
+  p.orbit = photon_orbit(hole.mass, p.impact);
+  p.outward = cos_alpha > 0;
+  p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
+  return p;
+}
 
+CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBodies* bodies) {
+  const CurvedPath path = curved_path(hole, u);
+  const Vec3 &e1 = path.e1, &e2 = path.e2;
+  const double impact = path.impact, camera_energy = path.camera_energy;
+  const AngleSweep& sweep = path.sweep;
   CurvedRay ray;
   if (hole.disk) {
     const AccretionDisk& disk = *hole.disk;
@@ -70,10 +75,19 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
         ray.disk_radius = r;
         // Cunningham's g is the shift to a static observer far away, whose energy unit this is.
         ray.shift = camera_energy * circular_orbit_frequency_shift(hole.mass, r, lambda);
-        return ray;
+        break;
       }
     }
   }
+  // A body met before the disk (or before the ray's end) is what the camera sees.
+  if (bodies) {
+    const double limit = ray.end == CurvedRayEnd::kDisk ? ray.phi : sweep.angle_total;
+    if (bodies->first_hit(hole, path, limit, ray)) {
+      ray.order = image_order(ray.phi);
+      return ray;
+    }
+  }
+  if (ray.end == CurvedRayEnd::kDisk) return ray;
   ray.phi = sweep.angle_total;
   ray.order = image_order(sweep.angle_total);
   // Captured: the horizon, or (b = b_c to the last bit) the photon sphere for ever.

@@ -7,12 +7,36 @@
 // tracer.hpp: scenes without a hole never come here.
 #pragma once
 
+#include <cmath>
+
 #include "lightcone/frame/hole_view.hpp"
+#include "lightcone/frame/surface_hit.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
 #include "lightcone/physics/vec.hpp"
 
 namespace lightcone {
 
-enum class CurvedRayEnd { kSky, kDisk, kHorizon };
+class CurvedBodies;
+
+// A camera ray's path about the hole: in the plane of the hole, the camera (along e1) and the
+// look direction (toward e2), its position after sweeping phi is
+// centre + r(phi) (cos(phi) e1 + sin(phi) e2), r(phi) = radius_after_angle(sweep, phi).
+struct CurvedPath {
+  Vec3 e1, e2;
+  double impact = 0;
+  bool outward = false;  // r grows at the camera
+  PhotonOrbit orbit;
+  AngleSweep sweep;
+  // The energy the camera measures for the photon, in units of its conserved energy.
+  double camera_energy = 1;
+
+  Vec3 offset(double phi, double r) const {
+    return e1 * (r * std::cos(phi)) + e2 * (r * std::sin(phi));
+  }
+};
+CurvedPath curved_path(const HoleView& hole, const Vec3& u);
+
+enum class CurvedRayEnd { kSky, kDisk, kHorizon, kBody };
 
 struct CurvedRay {
   CurvedRayEnd end = CurvedRayEnd::kHorizon;
@@ -25,9 +49,13 @@ struct CurvedRay {
   double shift = 0;
   Vec3 sky_direction;      // kSky: the look direction in the sky's pattern coordinates
   double disk_radius = 0;  // kDisk: the Schwarzschild r where the ray meets the disk
+  Hit hit;                 // kBody: the body and the point met (its s is phi)
+  Vec4 event;              // kBody: the event met, in W
 };
 
-// The ray with look direction u (unit, in the camera's rest frame F).
-CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u);
+// The ray with look direction u (unit, in the camera's rest frame F), meeting the scene's bodies
+// too when `bodies` is given (curved_bodies.hpp).
+CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u,
+                            const CurvedBodies* bodies = nullptr);
 
 }  // namespace lightcone

@@ -13,6 +13,7 @@
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/trace/curved_bodies.hpp"
 
 namespace lightcone {
 namespace {
@@ -85,6 +86,11 @@ LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emiss
       return received_thermal_colour(emission.disk(),
                                      disk_temperature_ratio(scene.hole->mass, ray.disk_radius),
                                      ray.shift, settings);
+    case CurvedRayEnd::kBody: {
+      // Lit materials are black: no light reaches them near a hole yet.
+      if (!scene.scene->objects[ray.hit.body].material.unlit) break;
+      return received_colour(emission.surface(ray.hit.body, ray.hit), ray.shift, settings);
+    }
     case CurvedRayEnd::kHorizon:
       break;
   }
@@ -99,11 +105,15 @@ struct Observation {
       : resolved(resolve_scene(scene)),
         tracer(resolved),
         emission(resolved),
-        lighting(resolved, &tracer) {}
+        lighting(resolved, &tracer) {
+    if (resolved.hole && !resolved.bodies.empty())
+      curved_bodies = std::make_unique<CurvedBodies>(resolved, tracer);
+  }
   ResolvedScene resolved;
   Tracer tracer;
   EmissionTable emission;
   Lighting lighting;
+  std::unique_ptr<CurvedBodies> curved_bodies;  // near a black hole
 };
 
 }  // namespace
@@ -201,7 +211,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
               LinearRgb colours[Tracer::kPacketSize];
               if (resolved.hole) {
                 for (std::size_t l = 0; l < lanes; ++l) {
-                  const CurvedRay ray = follow_curved_ray(*resolved.hole, directions[l]);
+                  const CurvedRay ray =
+                      follow_curved_ray(*resolved.hole, directions[l], seen.curved_bodies.get());
                   colours[l] = curved_radiance(resolved, seen.emission, ray);
                   tile_orders += ray.order;
                 }
@@ -231,7 +242,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
                 for (std::size_t a = 0; a < options.aovs.size(); ++a) {
                   float values[3];
-                  aov_values(resolved, seen.tracer, centre, options.aovs[a], values);
+                  aov_values(resolved, seen.tracer, centre, options.aovs[a], values,
+                             seen.curved_bodies.get());
                   for (std::size_t c = 0; c < aov_count[a]; ++c)
                     image.channels[aov_first[a] + c].values[at] = values[c];
                 }

@@ -225,6 +225,25 @@ std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
   return {0.5 + rel.x, 0.5 - rel.y};
 }
 
+// The texture coordinates and normal of an analytic shape's surface point. Points on flat faces
+// are put exactly on the face, so that procedural patterns (a checker boundary at the face) do
+// not flip with rounding.
+void analytic_surface(const Shape& shape, Hit& hit) {
+  if (std::holds_alternative<Sphere>(shape)) {
+    hit.uv = sphere_uv(hit.shape_point);
+    hit.shape_normal = hit.shape_point;
+  } else if (const auto* box = std::get_if<Box>(&shape)) {
+    const int axis = box_face_axis(*box, hit.shape_point);
+    hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
+    hit.uv = box_uv(*box, hit.shape_point, axis);
+    hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
+  } else if (const auto* plane = std::get_if<Plane>(&shape)) {
+    hit.shape_point.y = 0;
+    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
+    hit.shape_normal = {0, 1, 0};
+  }
+}
+
 // Bodies listed by the cells of a grid over the directions from one point (the image plane for
 // camera rays), each cell's list nearest first.
 struct CellLists {
@@ -1077,6 +1096,39 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
   }
 }
 
+void Tracer::surface_at(const Vec3& incoming, Hit& hit, unsigned prim) const {
+  const Object& object = *impl_->scene.bodies[hit.body].object;
+  if (const auto* m = std::get_if<MeshShape>(&object.shape)) {
+    // The point's barycentric coordinates in its triangle, for the texture coordinates.
+    const Mesh& mesh = *m->mesh;
+    const auto& tri = mesh.triangles[prim];
+    const Vec3 a = mesh.positions[tri[0]], e1 = mesh.positions[tri[1]] - a,
+               e2 = mesh.positions[tri[2]] - a, p = hit.shape_point - a;
+    const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+    const double p1 = dot(p, e1), p2 = dot(p, e2), det = d11 * d22 - d12 * d12;
+    const double bu = (d22 * p1 - d12 * p2) / det, bv = (d11 * p2 - d12 * p1) / det;
+    const double bw = 1 - bu - bv;
+    if (!mesh.uvs.empty())
+      for (int k = 0; k < 2; ++k)
+        hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
+    hit.shape_normal = cross(e1, e2);
+  } else {
+    analytic_surface(object.shape, hit);
+  }
+  hit.shape_normal = normalize(hit.shape_normal);
+  if (dot(hit.shape_normal, incoming) > 0) hit.shape_normal = -hit.shape_normal;
+}
+
+std::optional<Tracer::SegmentHit> Tracer::body_on_world_segment(int body, const Vec4& from,
+                                                                const Vec4& to) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  const ShapeHit hit =
+      impl_->intersect(static_cast<unsigned>(body), true, from, to - from, 0, 1, &context);
+  if (!(hit.s <= 1)) return std::nullopt;
+  return SegmentHit{hit.s, hit.prim, hit.bary_u, hit.bary_v};
+}
+
 // Embree chose the body (an instance's, or the one our callback recorded); an analytic hit is
 // recomputed in double precision.
 std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& found,
@@ -1113,21 +1165,7 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
     if (!spinning) exact = intersect(index, false, {}, direction, 0, kInfinity, &context.embree);
     hit.s = std::isfinite(exact.s) ? exact.s : found.tfar;
     hit.shape_point = spinning ? exact.shape_point : ray.origin + ray.direction * hit.s;
-    // Points on flat faces are put exactly on the face, so that procedural patterns (a checker
-    // boundary at the face) do not flip with rounding.
-    if (std::holds_alternative<Sphere>(body.object->shape)) {
-      hit.uv = sphere_uv(hit.shape_point);
-      hit.shape_normal = hit.shape_point;
-    } else if (const auto* box = std::get_if<Box>(&body.object->shape)) {
-      const int axis = box_face_axis(*box, hit.shape_point);
-      hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
-      hit.uv = box_uv(*box, hit.shape_point, axis);
-      hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
-    } else if (const auto* plane = std::get_if<Plane>(&body.object->shape)) {
-      hit.shape_point.y = 0;
-      hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
-      hit.shape_normal = {0, 1, 0};
-    }
+    analytic_surface(body.object->shape, hit);
   }
   Vec3 incoming = ray.direction;
   if (spinning) {

@@ -53,6 +53,19 @@ class Tracer : public ShadowQuery {
   static constexpr std::size_t kPacketSize = 8;
   void trace(std::span<const Vec3> directions, std::span<std::optional<Hit>> hits) const;
 
+  // Where body `body` is first met by the straight segment of W events from + s (to - from),
+  // s in [0, 1] (a chord of a curved ray near a black hole): s, and the mesh triangle met.
+  struct SegmentHit {
+    double s = 0;
+    unsigned prim = 0;
+    float bary_u = 0, bary_v = 0;
+  };
+  std::optional<SegmentHit> body_on_world_segment(int body, const Vec4& from, const Vec4& to) const;
+  // Completes `hit` (its body and shape_point set; `prim` the mesh triangle) with the texture
+  // coordinates and the normal facing `incoming` (a direction in shape coordinates), as the
+  // camera rays' hits have them; a point on a flat face is put exactly on it.
+  void surface_at(const Vec3& incoming, Hit& hit, unsigned prim) const;
+
   using ShadowQuery::occluded;
   void occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const override;
   // How many shadow rays occluded() sorts into packets at a time.
