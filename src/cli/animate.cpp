@@ -110,6 +110,7 @@ namespace {
 // The camera's proper time (in the model's units) at world time `time` on its world-line.
 double proper_time_at_world_time(const Camera& camera, double time) {
   const Camera::Motion& m = camera.motion;
+  if (m.geodesic) return geodesic_proper_time_at(*m.geodesic, time);
   if (!m.keyframes.empty()) return KeyframeWorldLine(m.keyframes).at_world_time(time).proper_time;
   return AcceleratedWorldLine(m.start.time, m.start.position, m.start.velocity, m.phases)
       .at_world_time(time)
@@ -257,6 +258,9 @@ int run_animate(const AnimateArgs& a) {
     s.camera.motion.proper_time = a.clock == "world"
                                       ? proper_time_at_world_time(camera, (world_start + step) * c)
                                       : (proper_start + step) * c;
+    // A falling camera reaches the horizon at a finite proper time: its view there is not
+    // drawn yet.
+    if (const auto why = geodesic_camera_refused(s.camera.motion, c)) throw InputError(*why);
     s.camera.world_line = camera_observation(s.camera.motion);
     const double speed = length(s.camera.world_line.velocity);
     if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))

@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -71,15 +74,22 @@ AccretionDisk SceneReader::accretion_disk(const Node& n, double mass) const {
 }
 
 void SceneReader::check_camera_near_hole(const Node& n) const {
-  if (Node m = member(n, "motion"); m.value)
-    refuse_near_hole(m, "motion (phases or keyframes) of the camera");
+  const Node m = member(n, "motion");
+  if (m.value) {
+    if (m.value->is_object() && (m.value->contains("phases") || m.value->contains("keyframes")))
+      refuse_near_hole(m, "motion (phases or keyframes) of the camera",
+                       ": near one the camera moves on a geodesic, \"orbit\" or \"fall\"");
+    one_of(m, {"orbit", "fall"});
+  }
   if (Node sh = member(n, "shutter"); sh.value && non_negative(sh) > 0)
     refuse_near_hole(sh, "a shutter open for a while (motion blur)");
-  if (Node tau = member(n, "proper_time"); tau.value && number(tau) != 0)
-    refuse_near_hole(tau, "a proper time other than 0",
-                     " (the camera's clock and path there are not modelled yet): give the "
-                     "observation's world time as \"time\"");
+  if (Node tau = member(n, "proper_time"); tau.value && number(tau) != 0 && !m.value)
+    refuse_near_hole(tau, "a proper time other than 0 without a camera motion",
+                     " (the clock of a camera on a straight coordinate line there is not "
+                     "modelled): give the observation's world time as \"time\", or a motion "
+                     "\"orbit\" or \"fall\"");
   const Node position = member(n, "position");
+  if (!position.value && m.value) return;  // an orbit, or a fall that says where it is
   const double r = length(vec3(position) - hole_->position), horizon = 2 * hole_->mass;
   if (!(r > horizon))
     fail(position,
@@ -87,6 +97,143 @@ void SceneReader::check_camera_near_hole(const Node& n) const {
                      "its velocity is measured by the local static observer, and there is none "
                      "inside the horizon",
                      r, horizon));
+}
+
+bool SceneReader::geodesic_motion(const Node& m) {
+  return m.value && m.value->is_object() &&
+         (m.value->contains("orbit") || m.value->contains("fall"));
+}
+
+CameraGeodesic SceneReader::camera_geodesic(const Node& n, const Node& m) const {
+  const std::string_view kind = one_of(m, {"orbit", "fall"});
+  const Node path = member(m, kind);
+  const bool orbit = kind == "orbit";
+  if (!hole_)
+    fail(path, fmt::format("{} needs a black hole (the top-level \"black_hole\"): without one the "
+                           "camera moves inertially, or as \"phases\" or \"keyframes\" say",
+                           orbit ? "a circular orbit about a black hole"
+                                 : "a free fall toward a black hole"));
+  const auto refuse = [&](const char* key, std::string_view why) {
+    if (Node k = member(n, key); k.value)
+      fail(k, fmt::format("must not be given with motion.{} ({})", kind, why));
+  };
+  if (orbit) {
+    for (const char* key : {"position", "time", "velocity"})
+      refuse(key,
+             "the orbit says where and when the camera is and how it moves: give its radius, "
+             "normal and phase");
+  } else {
+    refuse("time", "the coordinate time at the camera's proper time 0 is motion.fall.time");
+    refuse("velocity", "the camera falls freely from rest, and its velocity follows");
+  }
+  CameraGeodesic g;
+  g.hole = hole_->position;
+  g.mass = hole_->mass;
+  if (orbit)
+    g.path = camera_orbit(path);
+  else
+    g.path = camera_fall(n, path);
+  return g;
+}
+
+CameraOrbit SceneReader::camera_orbit(const Node& o) const {
+  object(o, {"radius", "normal", "phase"});
+  const double mass = hole_->mass;
+  const Node radius = member(o, "radius");
+  const double r = number(radius);
+  if (!(r > 3))
+    fail(radius, fmt::format("{} is not outside the photon sphere, 3M: a circular orbit's radius "
+                             "(in units of M) must be greater than 3 (and orbits inside 6M, the "
+                             "ISCO, are unstable)",
+                             r));
+  CameraOrbit orbit;
+  orbit.radius = r * mass;
+  if (!std::isfinite(orbit.radius))
+    fail(radius,
+         fmt::format("the radius {} M, with M = {}, is too large (not a finite number)", r, mass));
+  // Its speed measured by the static observer, sqrt(M / (r - 2M)): gamma = sqrt((r - 2) / (r - 3))
+  // in units of M, unbounded toward the photon sphere.
+  limit_gamma(radius, std::sqrt((r - 2) / (r - 3)),
+              fmt::format("on a circular orbit at r = {}M the camera's speed {} measured by the "
+                          "local static observer",
+                          r, std::sqrt(1 / (r - 2)) * c_),
+              observers_.front());
+  Vec3 normal{0, 1, 0};
+  if (Node nn = member(o, "normal"); nn.value) normal = direction(nn);
+  // The reference axis: W's +x projected on the plane, n x (x x n) = (ny^2 + nz^2, -nx ny,
+  // -nx nz); W's +z for a normal along x.
+  const double across = std::hypot(normal.y, normal.z);
+  orbit.axis_x = across == 0
+                     ? Vec3{0, 0, 1}
+                     : Vec3{across, -normal.x * normal.y / across, -normal.x * normal.z / across};
+  orbit.axis_y = cross(normal, orbit.axis_x);
+  if (Node phase = member(o, "phase"); phase.value)
+    orbit.phase = number(phase) * std::numbers::pi / 180;
+  return orbit;
+}
+
+CameraFall SceneReader::camera_fall(const Node& n, const Node& f) const {
+  object(f, {"from", "direction", "time"});
+  const double mass = hole_->mass;
+  const Node position = member(n, "position");
+  // Where the camera is at proper time 0, relative to the hole (outside the horizon:
+  // check_camera_near_hole), when given.
+  std::optional<Vec3> at;
+  double at_r = 0;
+  if (position.value) {
+    at = vec3(position) - hole_->position;
+    at_r = length(*at);
+  }
+  CameraFall fall;
+  const Node from = member(f, "from");
+  if (from.value && from.value->is_string()) {
+    if (string(from) != "infinity")
+      fail(from, fmt::format("must be a number (the radius r0 in units of M, > 2, where the camera "
+                             "falls from rest) or \"infinity\", got {}",
+                             describe(*from.value)));
+    if (!at)
+      fail(f,
+           "a fall from \"infinity\" needs camera.position: where the camera passes at its "
+           "proper time 0 (at coordinate time motion.fall.time)");
+    fall.from = std::numeric_limits<double>::infinity();
+    fall.reference = at_r;
+  } else if (from.value) {
+    const double r0 = number(from);
+    if (!(r0 > 2))
+      fail(from, fmt::format("{} is not outside the horizon, 2M: the radius (in units of M) where "
+                             "the camera falls from rest must be greater than 2, or \"infinity\"",
+                             r0));
+    fall.from = r0 * mass;
+    if (!std::isfinite(fall.from))
+      fail(from, fmt::format("the radius {} M, with M = {}, is too large (not a finite number)", r0,
+                             mass));
+    if (at && !(std::abs(at_r - fall.from) <= 1e-9 * fall.from))
+      fail(from, fmt::format("the fall from rest at r0 = {}M starts at r = {} from the black hole, "
+                             "but camera.position, where it is at proper time 0, is at r = {} "
+                             "({}M): give one of them",
+                             r0, fall.from, at_r, at_r / mass));
+  } else {
+    if (!at)
+      fail(f,
+           "needs \"from\": the radius r0 in units of M (> 2) where the camera falls from "
+           "rest, or \"infinity\" (or camera.position, to fall from rest there)");
+    fall.from = at_r;
+  }
+  if (Node d = member(f, "direction"); d.value) {
+    fall.direction = direction(d);
+    if (at && !(length(cross(fall.direction, *at / at_r)) <= 1e-9 && dot(fall.direction, *at) > 0))
+      fail(d,
+           "must point from the black hole toward camera.position, where the camera is at its "
+           "proper time 0 (or be left out: it defaults to that direction)");
+  } else {
+    if (!at)
+      fail(f,
+           "needs \"direction\" [x, y, z], from the black hole along which the camera falls "
+           "(or camera.position)");
+    fall.direction = *at / at_r;
+  }
+  if (Node t = member(f, "time"); t.value) fall.time = time(t);
+  return fall;
 }
 
 void SceneReader::refuse_near_hole(const Node& n, std::string_view what,

@@ -68,21 +68,28 @@ Camera SceneReader::camera(const Node& n) const {
              "fov", "width", "height", "samples"});
   if (hole_) check_camera_near_hole(n);
   Camera c;
-  // Keyframes say where the camera is; otherwise its position is required.
   const Node motion_node = member(n, "motion");
-  const bool keyframed = motion_node.value && motion_node.value->is_object() &&
-                         motion_node.value->contains("keyframes");
-  if (!keyframed || member(n, "position").value)
-    c.world_line.position = vec3(member(n, "position"));
-  if (Node t = member(n, "time"); t.value) c.world_line.time = time(t);
-  if (Node v = member(n, "velocity"); v.value) c.world_line.velocity = velocity(v);
-  c.motion.start = c.world_line;
-  if (Node m = member(n, "motion"); m.value) {
-    const BodyMotion moves = body_motion(n, m, c.motion.start);
-    c.motion.phases = moves.phases;
-    c.motion.keyframes = moves.keyframes;
+  if (geodesic_motion(motion_node)) {
+    // An orbit or a fall near the hole: it says where and when the camera is.
+    c.motion.geodesic = camera_geodesic(n, motion_node);
+  } else {
+    // Keyframes say where the camera is; otherwise its position is required.
+    const bool keyframed = motion_node.value && motion_node.value->is_object() &&
+                           motion_node.value->contains("keyframes");
+    if (!keyframed || member(n, "position").value)
+      c.world_line.position = vec3(member(n, "position"));
+    if (Node t = member(n, "time"); t.value) c.world_line.time = time(t);
+    if (Node v = member(n, "velocity"); v.value) c.world_line.velocity = velocity(v);
+    c.motion.start = c.world_line;
+    if (motion_node.value) {
+      const BodyMotion moves = body_motion(n, motion_node, c.motion.start);
+      c.motion.phases = moves.phases;
+      c.motion.keyframes = moves.keyframes;
+    }
   }
   if (Node tau = member(n, "proper_time"); tau.value) c.motion.proper_time = time(tau);
+  if (const auto why = geodesic_camera_refused(c.motion, c_))
+    fail(member(n, "proper_time").value ? member(n, "proper_time") : motion_node, *why);
   // The observation: the camera's event and velocity at its proper time. (Its whole
   // world-line is within the limit already; this holds against rounding.)
   c.world_line = camera_observation(c.motion);

@@ -91,9 +91,22 @@ class SceneReader : public SceneValueReader {
   AccretionDisk accretion_disk(const Node& n, double mass) const;
 
   // Near a hole (in any scene with one), the camera `n` (before the rest of it is read): at
-  // r > 2M, where a static observer measures its velocity; no motion, no shutter open for a
-  // while and no proper time other than 0 (not yet supported).
+  // r > 2M, where a static observer measures its velocity; no motion but a geodesic one, no
+  // shutter open for a while and no proper time other than 0 without a geodesic motion (not
+  // yet supported).
   void check_camera_near_hole(const Node& n) const;
+
+  // Whether the camera's `motion` node `m` is a geodesic about the hole: an object with "orbit"
+  // or "fall".
+  static bool geodesic_motion(const Node& m);
+
+  // The camera `n`'s geodesic motion `m` ({"orbit": {...}} or {"fall": {...}}), which needs a
+  // black hole. It says where and when the camera is: an orbit takes no position, time or
+  // velocity, a fall no time or velocity, and a fall's position, where given, is where it is at
+  // proper time 0 (its start from rest, or where it passes from infinity).
+  CameraGeodesic camera_geodesic(const Node& n, const Node& m) const;
+  CameraOrbit camera_orbit(const Node& o) const;
+  CameraFall camera_fall(const Node& n, const Node& f) const;
 
   // Refuses, near a hole, the key `n` (`what`: motion, spin, ...) that is not yet supported
   // there: "WHAT is not yet supported near a black hole[MORE]".

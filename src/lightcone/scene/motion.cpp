@@ -1,13 +1,92 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/schwarzschild_geodesics.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+RadialFall radial_fall(const CameraGeodesic& g, const CameraFall& fall) {
+  return std::isinf(fall.from) ? RadialFall::from_infinity(g.mass, fall.reference)
+                               : RadialFall::from_rest(g.mass, fall.from);
+}
+
+// The camera's event, its velocity measured by the local static observer, and its proper time.
+WorldLine geodesic_observation(const CameraGeodesic& g, double tau) {
+  if (const auto* orbit = std::get_if<CameraOrbit>(&g.path)) {
+    const CircularOrbitPoint p = circular_orbit_at_proper_time(g.mass, orbit->radius, tau);
+    const double phi = orbit->phase + p.angle, c = std::cos(phi), s = std::sin(phi);
+    return {p.coordinate_time, g.hole + (orbit->axis_x * c + orbit->axis_y * s) * orbit->radius,
+            (orbit->axis_y * c - orbit->axis_x * s) * p.local_speed, tau};
+  }
+  const CameraFall& fall = std::get<CameraFall>(g.path);
+  const RadialFallPoint p = radial_fall(g, fall).at_proper_time(tau);
+  return {fall.time + p.coordinate_time, g.hole + fall.direction * p.radius,
+          fall.direction * p.local_velocity, tau};
+}
+
+}  // namespace
+
+ProperTimeSpan drawn_proper_times(const CameraGeodesic& g) {
+  const auto* fall = std::get_if<CameraFall>(&g.path);
+  if (!fall) return {-kInf, kInf};
+  const double latest =
+      radial_fall(g, *fall).proper_time_at_radius(2 * g.mass * (1 + kCameraHorizonMargin));
+  return {std::isinf(fall->from) ? -kInf : -latest, latest};
+}
+
+std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion, double c) {
+  if (!motion.geodesic) return std::nullopt;
+  const CameraGeodesic& g = *motion.geodesic;
+  const ProperTimeSpan span = drawn_proper_times(g);
+  const double tau = motion.proper_time;
+  if (tau > span.earliest && tau < span.latest) {
+    const WorldLine w = geodesic_observation(g, tau);
+    if (std::isfinite(w.time) && std::isfinite(length(w.position - g.hole))) return std::nullopt;
+    return fmt::format(
+        "at proper time {} the camera's coordinate time or distance from the black hole is not a "
+        "finite number (it is too far along its {})",
+        tau / c, std::holds_alternative<CameraOrbit>(g.path) ? "orbit" : "fall");
+  }
+  const CameraFall& fall = std::get<CameraFall>(g.path);  // an orbit is drawn at every tau
+  const double r = radial_fall(g, fall).at_proper_time(tau).radius;
+  const std::string drawn =
+      !(span.latest > span.earliest) ? "it starts there, and is drawn at no proper time"
+      : std::isinf(span.earliest)
+          ? fmt::format("it is drawn at proper times below {}", span.latest / c)
+          : fmt::format("it is drawn at proper times between {} and {}, both excluded",
+                        span.earliest / c, span.latest / c);
+  const std::string where =
+      r < 2 * g.mass ? "inside the black hole's horizon"
+                     : fmt::format("at or within 2M (1 + {:g}) of the black hole's horizon",
+                                   kCameraHorizonMargin);
+  return fmt::format(
+      "at proper time {} the falling camera is at r = {:.12g}, {} r = 2M = {}: the camera's view "
+      "at and inside the horizon is not drawn yet ({})",
+      tau / c, r, where, 2 * g.mass, drawn);
+}
+
+double geodesic_proper_time_at(const CameraGeodesic& g, double t) {
+  if (const auto* orbit = std::get_if<CameraOrbit>(&g.path))
+    return circular_orbit_proper_time(g.mass, orbit->radius, t);
+  const CameraFall& fall = std::get<CameraFall>(g.path);
+  return radial_fall(g, fall).proper_time_at_coordinate_time(t - fall.time);
+}
 
 WorldLine camera_observation(const Camera::Motion& motion) {
+  if (motion.geodesic) {
+    if (const auto why = geodesic_camera_refused(motion, 1)) throw std::invalid_argument(*why);
+    return geodesic_observation(*motion.geodesic, motion.proper_time);
+  }
   if (!motion.keyframes.empty())
     return tangent_line(
         point_at_proper_time(KeyframeWorldLine(motion.keyframes), motion.proper_time));
@@ -38,7 +117,7 @@ double origin_radius(const Shape& shape, const Vec3& scale) {
 
 WorldLine observation_after(const Camera& camera, double later) {
   if (later == 0) return camera.world_line;
-  if (!camera.motion.phases.empty() || !camera.motion.keyframes.empty()) {
+  if (!camera.motion.phases.empty() || !camera.motion.keyframes.empty() || camera.motion.geodesic) {
     Camera::Motion motion = camera.motion;
     motion.proper_time += later;
     return camera_observation(motion);

@@ -193,6 +193,38 @@ struct Light {
   double intensity = 1;  // point, spot, sphere; rest frame
 };
 
+// A camera moving freely near the scene's black hole (docs/scene-format.md, "black_hole"), on a
+// geodesic given in closed form (physics/schwarzschild_geodesics.hpp); W's time is
+// Schwarzschild coordinate time there, and the camera's velocity is measured by the local
+// static observer.
+//
+// A circular geodesic at `radius` (> 3M) in the plane of the unit vectors axis_x and axis_y
+// (orthogonal), counter-clockwise about axis_x x axis_y: at coordinate time t it is at
+// hole + radius (cos phi axis_x + sin phi axis_y), phi = phase + Omega t; proper time 0 at t = 0.
+struct CameraOrbit {
+  double radius = 0;
+  Vec3 axis_x{1, 0, 0}, axis_y{0, 0, -1};
+  double phase = 0;  // radians
+};
+// A radial free fall along the unit vector `direction` from the hole: from rest at r = `from`
+// (> 2M; proper time 0 there, at coordinate time `time`), or, with `from` infinite, from rest
+// at infinity, passing r = `reference` (> 2M) at proper time 0 and coordinate time `time`.
+struct CameraFall {
+  double from = 0;
+  double reference = 0;  // from infinity only
+  Vec3 direction{0, 0, 1};
+  double time = 0;
+};
+struct CameraGeodesic {
+  Vec3 hole;        // the hole's position
+  double mass = 1;  // and its mass M
+  std::variant<CameraOrbit, CameraFall> path;
+};
+
+// The camera is drawn from outside r = 2M (1 + kCameraHorizonMargin) only: its view at and inside
+// the horizon is not drawn yet.
+inline constexpr double kCameraHorizonMargin = 1e-9;
+
 struct Camera {
   // The observation event is (world_line.time, world_line.position), and world_line.velocity
   // the camera's velocity there: what renderers read. A camera described by `motion` has them
@@ -205,6 +237,9 @@ struct Camera {
     WorldLine start;
     std::vector<AccelerationPhase> phases;
     std::vector<Keyframe> keyframes;  // instead of start and phases (proper time 0 at the first)
+    // Near a black hole, instead of start, phases and keyframes: a geodesic (proper time 0 as
+    // CameraOrbit and CameraFall say).
+    std::optional<CameraGeodesic> geodesic;
     double proper_time = 0;
   } motion;
   // In the camera's rest frame (axes: W's carried by the pure boost).
@@ -303,8 +338,27 @@ struct Scene {
 };
 
 // The observation event and velocity of a camera moving as `motion` says: its point at
-// motion.proper_time (throws std::invalid_argument for a motion the world-line refuses).
+// motion.proper_time (throws std::invalid_argument for a motion the world-line refuses, or for
+// a geodesic observation that geodesic_camera_refused refuses). On a geodesic near a black hole
+// the velocity is the one the local static observer measures.
 WorldLine camera_observation(const Camera::Motion& motion);
+
+// The proper times at which a camera on `geodesic` is outside r = 2M (1 + kCameraHorizonMargin):
+// the open interval (earliest, latest), either end infinite.
+struct ProperTimeSpan {
+  double earliest = 0, latest = 0;
+};
+ProperTimeSpan drawn_proper_times(const CameraGeodesic& geodesic);
+
+// Why a camera on a geodesic `motion` cannot be drawn at motion.proper_time (at or within
+// 2M (1 + kCameraHorizonMargin) of the horizon, or so far along that its coordinate time or
+// position is not a finite number), with times in the scene's units (`speed_of_light`); empty
+// when it can (always, off a geodesic).
+std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
+                                                   double speed_of_light);
+
+// The camera's proper time at coordinate (world) time t on its geodesic.
+double geodesic_proper_time_at(const CameraGeodesic& geodesic, double t);
 
 // The world-line of a body whose origin starts on `start` and moves as `motion` says; null for
 // an inertial one (then `start` is its world-line). Throws what the world-lines throw.
