@@ -18,17 +18,21 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kSqrt3 = std::numbers::sqrt3;
 
+// Carlson's integrals and Jacobi's functions evaluated in double: Boost's default policy promotes
+// double to long double (x87, several times slower), which the tests' tolerances do not need.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
 double rf(double x, double y, double z) {
-  return boost::math::ellint_rf(x, y, z);
+  return boost::math::ellint_rf(x, y, z, DoublePolicy());
 }
 double rd(double x, double y, double z) {
-  return boost::math::ellint_rd(x, y, z);
+  return boost::math::ellint_rd(x, y, z, DoublePolicy());
 }
 double rj(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p);
+  return boost::math::ellint_rj(x, y, z, p, DoublePolicy());
 }
 double rc(double x, double y) {
-  return boost::math::ellint_rc(x, y);
+  return boost::math::ellint_rc(x, y, DoublePolicy());
 }
 
 // Carlson's reduction of int_y^x dt / sqrt(prod_i (a_i + b_i t)) for three real linear factors
@@ -339,9 +343,8 @@ struct Jacobi {
   double sn, cn, dn;
 };
 Jacobi jacobi(double k, double x) {
-  using Policy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
   Jacobi j{};
-  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, Policy());
+  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, DoublePolicy());
   return j;
 }
 // One Landen step up: from the functions of modulus k_1 (1 - k_1 = c_1) at x / (1 + k_1) to those
