@@ -360,11 +360,12 @@ void set_jacobi(PhotonOrbit& o, double k2, double kc2, double rate) {
   o.jacobi_kc2 = kc2;
   double kc = std::sqrt(kc2);
   for (int i = 0; i < PhotonOrbit::kLandenSteps; ++i) {
-    o.jacobi_k[i] = k2 / ((1 + kc) * (1 + kc));  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
-    o.jacobi_c[i] = 2 * kc / (1 + kc);
+    const double inv = 1 / (1 + kc);
+    o.jacobi_k[i] = k2 * inv * inv;  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
+    o.jacobi_c[i] = 2 * kc * inv;
     rate *= (1 + kc) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
     k2 = o.jacobi_k[i] * o.jacobi_k[i];
-    kc = 2 * std::sqrt(kc) / (1 + kc);  // k_i'
+    kc = 2 * std::sqrt(kc) * inv;  // k_i'
   }
   o.jacobi_rate = rate;
 }
@@ -387,9 +388,12 @@ PhotonOrbit photon_orbit(double mass, double impact) {
     // arccos(b_c / b) = 2 arcsin(sqrt(gap / 2)), accurate as b -> b_c.
     const double a = 2 * std::asin(std::sqrt(gap / 2)) / 3;
     o.turning = true;
-    o.v_pos = 2 / kSqrt3 * std::cos(std::numbers::pi / 3 - a);
-    const double v_neg = 2 / kSqrt3 * std::cos(a);  // |v_1|
-    o.v_gap = 2 * std::sin(a);                      // v_p - v_3, by the cosines' difference
+    // a in [0, pi/6]: (2/sqrt 3) cos(pi/3 - a) = cos(a) / sqrt 3 + sin(a), a sum of positive terms,
+    // so one sine and cosine serve all three.
+    const double sin_a = std::sin(a), cos_a = std::cos(a);
+    o.v_pos = cos_a / kSqrt3 + sin_a;
+    const double v_neg = 2 / kSqrt3 * cos_a;  // |v_1|
+    o.v_gap = 2 * sin_a;                      // v_p - v_3, by the cosines' difference
     // v_3 from the roots' product v_p v_3 v_1 = -2M/b, accurate as M/b -> 0.
     const double v3 = 2 * mass / impact / (o.v_pos * v_neg);
     o.w_neg = 1 / v_neg;
