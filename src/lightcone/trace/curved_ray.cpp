@@ -31,7 +31,8 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
   // The backward ray's direction in the static observer's frame: the F event (-1, u) maps to
   // (t, x) with t < 0; the photon's energy there is -t times the camera's.
   const Vec4 back = hole.trace_to_static * Vec4{-1, u};
-  const Vec3 d = back.x / -back.t;
+  const double inv_t = -1 / back.t;
+  const Vec3 d = back.x * inv_t;
   // Photon energies in units of its conserved energy E (what a static observer far away
   // measures): the static observer at the camera measures E / sqrt(f), the camera that over -t.
   const double camera_energy = camera_photon_energy(hole, u);
@@ -42,8 +43,9 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
   const double cos_alpha = dot(d, e1);
   const Vec3 tangential = d - e1 * cos_alpha;
   const double sin_alpha = length(tangential);
-  const Vec3 e2 = sin_alpha > 0 ? tangential / sin_alpha : any_perpendicular(e1);
-  const double impact = static_impact_parameter(hole.mass, hole.camera_radius, sin_alpha);
+  const Vec3 e2 = sin_alpha > 0 ? tangential * (1 / sin_alpha) : any_perpendicular(e1);
+  // static_impact_parameter, with the camera's lapse sqrt(1 - 2M/r) computed once per frame.
+  const double impact = hole.camera_radius * sin_alpha / hole.camera_lapse;
   const PhotonOrbit orbit = photon_orbit(hole.mass, impact);
   const bool outward = cos_alpha > 0;
   const AngleSweep sweep = prepare_sweep(orbit, hole.camera_radius, outward);
@@ -54,7 +56,9 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
     const double a = dot(e1, disk.normal), c = dot(e2, disk.normal);
     // The plane holds the position cos(phi) e1 + sin(phi) e2 where a cos(phi) + c sin(phi) = 0:
     // at phi0 + k pi. A ray in the disk's own plane (a = c = 0) sees it edge-on and misses it.
-    if (a != 0 || c != 0) {
+    // A ray that turns outside the disk (r >= periapsis > outer all along) cannot meet it.
+    const bool beyond = orbit.turning && orbit.periapsis > disk.outer;
+    if ((a != 0 || c != 0) && !beyond) {
       double phi = std::atan2(-a, c);
       if (phi <= 0) phi += kPi;
       for (int k = 0; k < kMaxDiskCrossings && phi < sweep.angle_total; ++k, phi += kPi) {
@@ -81,8 +85,9 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u) {
   // Far away the backward ray runs radially out along its position.
   const Vec3 far = e1 * std::cos(sweep.angle_total) + e2 * std::sin(sweep.angle_total);
   const Vec4 in_sky = hole.world_to_sky * Vec4{-1, far};
+  const double inv_sky_t = -1 / in_sky.t;
   ray.end = CurvedRayEnd::kSky;
-  ray.sky_direction = hole.to_pattern * (in_sky.x / -in_sky.t);
+  ray.sky_direction = hole.to_pattern * (in_sky.x * inv_sky_t);
   ray.shift = camera_energy / sky_photon_energy(hole, far);
   return ray;
 }
