@@ -18,17 +18,80 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kSqrt3 = std::numbers::sqrt3;
 
+// Carlson's integrals and Jacobi's functions evaluated in double: Boost's default policy promotes
+// double to long double (x87, several times slower), which the tests' tolerances do not need.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
 double rf(double x, double y, double z) {
-  return boost::math::ellint_rf(x, y, z);
+  return boost::math::ellint_rf(x, y, z, DoublePolicy());
 }
 double rd(double x, double y, double z) {
-  return boost::math::ellint_rd(x, y, z);
+  return boost::math::ellint_rd(x, y, z, DoublePolicy());
 }
 double rj(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p);
+  return boost::math::ellint_rj(x, y, z, p, DoublePolicy());
 }
 double rc(double x, double y) {
-  return boost::math::ellint_rc(x, y);
+  return boost::math::ellint_rc(x, y, DoublePolicy());
+}
+
+// Up to kMaxBatch of Carlson's R_F at once: Boost's algorithm for double (ellint_rf_imp: the
+// duplication theorem until Q / 4^n < |A_n|, then its seventh-order series), operation for
+// operation, so the values are Boost's to the bit; run side by side, the independent chains of
+// square roots overlap instead of waiting on each other. Arguments that Boost treats apart (a
+// zero, two equal, anything not positive and finite) go to Boost itself.
+struct RfArgs {
+  double x, y, z;
+};
+constexpr int kMaxBatch = 4;
+void rf_batch(const RfArgs* args, double* out, int n) {
+  static const double kTolerance = std::pow(3 * std::numeric_limits<double>::epsilon(), -1.0 / 8);
+  double x[kMaxBatch], y[kMaxBatch], z[kMaxBatch], an[kMaxBatch], q[kMaxBatch], fn[kMaxBatch];
+  bool general[kMaxBatch], active[kMaxBatch];
+  bool any = false;
+  for (int i = 0; i < n; ++i) {
+    const RfArgs& a = args[i];
+    general[i] = a.x > 0 && a.y > 0 && a.z > 0 && std::isfinite(a.x) && std::isfinite(a.y) &&
+                 std::isfinite(a.z) && a.x != a.y && a.x != a.z && a.y != a.z;
+    active[i] = general[i];
+    any |= general[i];
+    if (!general[i]) {
+      out[i] = rf(a.x, a.y, a.z);
+      continue;
+    }
+    x[i] = a.x, y[i] = a.y, z[i] = a.z;
+    an[i] = (a.x + a.y + a.z) / 3;
+    q[i] = kTolerance *
+           std::max(std::max(std::abs(an[i] - a.x), std::abs(an[i] - a.y)), std::abs(an[i] - a.z));
+    fn[i] = 1;
+  }
+  while (any) {
+    any = false;
+    for (int i = 0; i < n; ++i) {
+      if (!active[i]) continue;
+      const double rx = std::sqrt(x[i]), ry = std::sqrt(y[i]), rz = std::sqrt(z[i]);
+      const double lambda = rx * ry + rx * rz + ry * rz;
+      an[i] = (an[i] + lambda) / 4;
+      x[i] = (x[i] + lambda) / 4;
+      y[i] = (y[i] + lambda) / 4;
+      z[i] = (z[i] + lambda) / 4;
+      q[i] /= 4;
+      fn[i] *= 4;
+      active[i] = !(q[i] < std::abs(an[i]));
+      any |= active[i];
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!general[i]) continue;
+    const RfArgs& a = args[i];
+    const double a0 = (a.x + a.y + a.z) / 3;
+    const double dx = (a0 - a.x) / (an[i] * fn[i]), dy = (a0 - a.y) / (an[i] * fn[i]);
+    const double dz = -dx - dy;
+    const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
+    out[i] = (1 + e3 * (1.0 / 14 + 3 * e3 / 104) +
+              e2 * (-1.0 / 10 + e2 / 24 - (3 * e3) / 44 - 5 * e2 * e2 / 208 + e2 * e3 / 16)) /
+             std::sqrt(an[i]);
+  }
 }
 
 // Carlson's reduction of int_y^x dt / sqrt(prod_i (a_i + b_i t)) for three real linear factors
@@ -36,14 +99,24 @@ double rc(double x, double y) {
 // factors' values X_i^2 at one end, Y_i^2 at the other and the distance d = |x - y|, it is
 // 2 R_F(U12^2, U13^2, U23^2) with U12 = (X1 X2 Y3 + Y1 Y2 X3) / d and so on. Every term is
 // positive, so nothing cancels, and a factor that vanishes at an end (a turning point) is fine.
+// The X_i (or Y_i): the factors' square roots at one end.
+struct Roots {
+  double s1, s2, s3;
+};
+Roots roots(double f1, double f2, double f3) {
+  return {std::sqrt(f1), std::sqrt(f2), std::sqrt(f3)};
+}
+// The arguments U12^2, U13^2, U23^2 (symmetric in the two ends); d > 0.
+RfArgs cubic_args(double d, const Roots& x, const Roots& y) {
+  const double u12 = (x.s1 * x.s2 * y.s3 + y.s1 * y.s2 * x.s3) / d;
+  const double u13 = (x.s1 * x.s3 * y.s2 + y.s1 * y.s3 * x.s2) / d;
+  const double u23 = (x.s2 * x.s3 * y.s1 + y.s2 * y.s3 * x.s1) / d;
+  return {u12 * u12, u13 * u13, u23 * u23};
+}
 double cubic_integral(double d, double x1, double x2, double x3, double y1, double y2, double y3) {
   if (d == 0) return 0;
-  x1 = std::sqrt(x1), x2 = std::sqrt(x2), x3 = std::sqrt(x3);
-  y1 = std::sqrt(y1), y2 = std::sqrt(y2), y3 = std::sqrt(y3);
-  const double u12 = (x1 * x2 * y3 + y1 * y2 * x3) / d;
-  const double u13 = (x1 * x3 * y2 + y1 * y3 * x2) / d;
-  const double u23 = (x2 * x3 * y1 + y2 * y3 * x1) / d;
-  return 2 * rf(u12 * u12, u13 * u13, u23 * u23);
+  const RfArgs u = cubic_args(d, roots(x1, x2, x3), roots(y1, y2, y3));
+  return 2 * rf(u.x, u.y, u.z);
 }
 
 // w = b / r, 0 at infinity.
@@ -78,20 +151,50 @@ Factors turning_factors(const PhotonOrbit& o, double r, bool inner) {
 // with R_F (Carlson 1995, F = sin(phi) R_F(cos^2 phi, 1 - k^2 sin^2 phi, 1)) for z <= A (phi <=
 // pi/2) it is 2 sqrt(z) R_F((A - z)^2, (A - z)^2 + 4 k'^2 A z, (A + z)^2). Past A, phi -> pi -
 // phi is z -> A^2 / z, and F(pi - phi) = 2K - F(phi).
-double half_integral(const PhotonOrbit& o, double z) {
+// That integral at n (<= kMaxBatch) values z, their R_F together.
+void half_integrals(const PhotonOrbit& o, const double* z, double* out, int n) {
   const double a = o.quad_a;
-  if (z == a && o.modulus_c2 == 0) return kInf;  // b = b_c: the double root r = 3M
-  const double d = (a - z) * (a - z);
-  return 2 * std::sqrt(z) * rf(d, d + 4 * o.modulus_c2 * a * z, (a + z) * (a + z));
+  RfArgs args[kMaxBatch] = {};
+  double rfs[kMaxBatch];
+  int lane[kMaxBatch], lanes = 0;
+  for (int i = 0; i < n; ++i) {
+    lane[i] = -1;
+    if (z[i] == a && o.modulus_c2 == 0) continue;  // b = b_c: the double root r = 3M
+    const double d = (a - z[i]) * (a - z[i]);
+    args[lanes] = {d, d + 4 * o.modulus_c2 * a * z[i], (a + z[i]) * (a + z[i])};
+    lane[i] = lanes++;
+  }
+  rf_batch(args, rfs, lanes);
+  for (int i = 0; i < n; ++i) out[i] = lane[i] < 0 ? kInf : 2 * std::sqrt(z[i]) * rfs[lane[i]];
 }
-double captured_integral(const PhotonOrbit& o, double za, double zb) {
+// int between za and zb, from two or three half-integrals. With half_at, also the half-integral
+// at z = at (in the same batch, or one of those terms when it is the same z).
+double captured_integral(const PhotonOrbit& o, double za, double zb, double* half_at = nullptr,
+                         double at = 0) {
   const double a = o.quad_a;
-  double lo = std::min(za, zb), hi = std::max(za, zb);
+  const double lo = std::min(za, zb), hi = std::max(za, zb);
+  double z[kMaxBatch], h[kMaxBatch];
+  int n = 0;
+  if (lo != hi) {
+    if (hi <= a) {
+      z[0] = hi, z[1] = lo, n = 2;
+    } else if (lo >= a) {
+      z[0] = a * a / lo, z[1] = a * a / hi, n = 2;
+    } else {
+      z[0] = a, z[1] = lo, z[2] = a * a / hi, n = 3;
+    }
+  }
+  int extra = -1;
+  if (half_at) {
+    for (int i = 0; i < n; ++i)
+      if (z[i] == at) extra = i;
+    if (extra < 0) z[extra = n++] = at;
+  }
+  half_integrals(o, z, h, n);
+  if (half_at) *half_at = h[extra];
   if (lo == hi) return 0;
-  if (hi <= a) return half_integral(o, hi) - half_integral(o, lo);
-  if (lo >= a) return half_integral(o, a * a / lo) - half_integral(o, a * a / hi);
-  const double full = half_integral(o, a);
-  return (full - half_integral(o, lo)) + (full - half_integral(o, a * a / hi));
+  if (hi <= a || lo >= a) return h[0] - h[1];
+  return (h[0] - h[1]) + (h[0] - h[2]);  // (K - F(lo)) + (K - F(A^2 / hi))
 }
 
 // A radius in the forbidden gap (r_3, r_p) whose orbit equation 1 - w^2 + 2 (M/b) w^3 fails
@@ -339,9 +442,8 @@ struct Jacobi {
   double sn, cn, dn;
 };
 Jacobi jacobi(double k, double x) {
-  using Policy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
   Jacobi j{};
-  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, Policy());
+  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, DoublePolicy());
   return j;
 }
 // One Landen step up: from the functions of modulus k_1 (1 - k_1 = c_1) at x / (1 + k_1) to those
@@ -357,11 +459,12 @@ void set_jacobi(PhotonOrbit& o, double k2, double kc2, double rate) {
   o.jacobi_kc2 = kc2;
   double kc = std::sqrt(kc2);
   for (int i = 0; i < PhotonOrbit::kLandenSteps; ++i) {
-    o.jacobi_k[i] = k2 / ((1 + kc) * (1 + kc));  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
-    o.jacobi_c[i] = 2 * kc / (1 + kc);
+    const double inv = 1 / (1 + kc);
+    o.jacobi_k[i] = k2 * inv * inv;  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
+    o.jacobi_c[i] = 2 * kc * inv;
     rate *= (1 + kc) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
     k2 = o.jacobi_k[i] * o.jacobi_k[i];
-    kc = 2 * std::sqrt(kc) / (1 + kc);  // k_i'
+    kc = 2 * std::sqrt(kc) * inv;  // k_i'
   }
   o.jacobi_rate = rate;
 }
@@ -384,9 +487,12 @@ PhotonOrbit photon_orbit(double mass, double impact) {
     // arccos(b_c / b) = 2 arcsin(sqrt(gap / 2)), accurate as b -> b_c.
     const double a = 2 * std::asin(std::sqrt(gap / 2)) / 3;
     o.turning = true;
-    o.v_pos = 2 / kSqrt3 * std::cos(std::numbers::pi / 3 - a);
-    const double v_neg = 2 / kSqrt3 * std::cos(a);  // |v_1|
-    o.v_gap = 2 * std::sin(a);                      // v_p - v_3, by the cosines' difference
+    // a in [0, pi/6]: (2/sqrt 3) cos(pi/3 - a) = cos(a) / sqrt 3 + sin(a), a sum of positive terms,
+    // so one sine and cosine serve all three.
+    const double sin_a = std::sin(a), cos_a = std::cos(a);
+    o.v_pos = cos_a / kSqrt3 + sin_a;
+    const double v_neg = 2 / kSqrt3 * cos_a;  // |v_1|
+    o.v_gap = 2 * sin_a;                      // v_p - v_3, by the cosines' difference
     // v_3 from the roots' product v_p v_3 v_1 = -2M/b, accurate as M/b -> 0.
     const double v3 = 2 * mass / impact / (o.v_pos * v_neg);
     o.w_neg = 1 / v_neg;
@@ -436,20 +542,59 @@ double swept_angle(const PhotonOrbit& o, double r_a, double r_b) {
   return captured_integral(o, za, zb) / std::sqrt(o.scale);
 }
 
-RayCourse ray_course(const PhotonOrbit& o, double r0, bool outward) {
+namespace {
+
+// ray_course for a turning orbit from r0 (snapped to a turning point) at or beyond the periapsis,
+// and with from_end also prepare_sweep's integral from w = w_1 to r0 (kOuter; not yet divided by
+// sqrt(scale)). The integrals are swept_angle's, term for term, but they share the factors' square
+// roots at r0 and at the periapsis, and their R_F run together.
+RayCourse outer_course(const PhotonOrbit& o, double r0, bool outward, double* from_end) {
+  RayCourse c;
+  c.fate = RayFate::kEscapes;
+  const double w0 = w_of(o, r0), w_p = w_of(o, o.periapsis);
+  const Factors f0 = turning_factors(o, r0, false);
+  const Factors fp = turning_factors(o, o.periapsis, false), fi = turning_factors(o, kInf, false);
+  const Roots at_r0 = roots(f0.f1, f0.f2, f0.f3), at_inf = roots(fi.f1, fi.f2, fi.f3);
+  // The integrals' R_F: outward r0 -> inf; inward r0 -> r_p and r_p -> inf; then from_end.
+  RfArgs args[3] = {};
+  double rfs[3];
+  int n = 0, to_turn = -1;
+  if (outward) {
+    if (w0 != 0) args[n++] = cubic_args(w0, at_r0, at_inf);
+  } else {
+    const Roots at_p = roots(fp.f1, fp.f2, fp.f3);
+    const double d = std::abs(w0 - w_p);
+    if (r0 != o.periapsis && d != 0) args[to_turn = n++] = cubic_args(d, at_r0, at_p);
+    args[n++] = cubic_args(w_p, at_p, at_inf);
+  }
+  const int beyond = n - 1;
+  if (from_end) {
+    const double v3 = o.inner_turning / o.impact;
+    args[n++] = cubic_args(f0.f1, at_r0, roots(0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3));
+  }
+  rf_batch(args, rfs, n);
+  const double root_scale = std::sqrt(o.scale);
+  if (from_end) *from_end = 2 * rfs[n - 1];
+  if (outward) {
+    c.angle_total = beyond < 0 ? 0.0 : 2 * rfs[beyond] / root_scale;
+  } else {
+    c.turning_radius = o.periapsis;
+    c.angle_to_turn = to_turn < 0 ? 0.0 : 2 * rfs[to_turn] / root_scale;
+    c.angle_total = c.angle_to_turn + 2 * rfs[beyond] / root_scale;
+  }
+  return c;
+}
+
+// ray_course, and what prepare_sweep needs besides: from_end, the integral from the end that
+// its form measures from, where that shares work with the course (NaN where it does not).
+RayCourse course_of(const PhotonOrbit& o, double r0, bool outward, double* from_end) {
   RayCourse c;
   const double horizon = 2 * o.mass;
+  if (from_end) *from_end = kNaN;
   if (o.turning) {
     r0 = snap_to_turning_point(o, r0);
     if (r0 >= o.periapsis) {
-      c.fate = RayFate::kEscapes;
-      if (outward) {
-        c.angle_total = swept_angle(o, r0, kInf);
-      } else {
-        c.turning_radius = o.periapsis;
-        c.angle_to_turn = swept_angle(o, r0, o.periapsis);
-        c.angle_total = c.angle_to_turn + swept_angle(o, o.periapsis, kInf);
-      }
+      return outer_course(o, r0, outward, from_end);
     } else if (r0 <= o.inner_turning) {
       c.fate = RayFate::kCaptured;
       if (outward) {
@@ -471,8 +616,24 @@ RayCourse ray_course(const PhotonOrbit& o, double r0, bool outward) {
     return c;
   }
   c.fate = outward ? RayFate::kEscapes : RayFate::kCaptured;
-  c.angle_total = swept_angle(o, r0, outward ? kInf : horizon);
+  const double r_end = outward ? kInf : horizon;
+  if (o.impact == 0 || r0 == r_end) {
+    c.angle_total = 0;
+    return c;
+  }
+  // swept_angle's captured integral; from_end is one of its half-integrals, or joins its batch.
+  const double za = w_of(o, r0) + o.w_neg, zb = w_of(o, r_end) + o.w_neg;
+  const double big_a = o.quad_a, at = za > big_a ? big_a * big_a / za : za;
+  double half = 0;
+  c.angle_total = captured_integral(o, za, zb, from_end ? &half : nullptr, at) / std::sqrt(o.scale);
+  if (from_end) *from_end = half;
   return c;
+}
+
+}  // namespace
+
+RayCourse ray_course(const PhotonOrbit& o, double r0, bool outward) {
+  return course_of(o, r0, outward, nullptr);
 }
 
 double deflection_angle(double mass, double impact) {
@@ -545,7 +706,8 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   a.r0 = r0;
   const double horizon = 2 * o.mass;
   if (!(r0 > horizon)) return a;  // kInvalid
-  const RayCourse course = ray_course(o, r0, outward);
+  double shared = kNaN;           // from_end, where the course computed it
+  const RayCourse course = course_of(o, r0, outward, &shared);
   if (std::isnan(course.angle_total)) return a;
   a.angle_total = course.angle_total;
   a.horizon = horizon;
@@ -572,8 +734,9 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
     const Factors f = turning_factors(o, r0, !outer);
     double from_end;
     if (outer) {
-      // int_{w_1}^{w_0} dw / sqrt(P): Carlson's cubic integral with the factors at w_1.
-      from_end = cubic_integral(f.f1, f.f1, f.f2, f.f3, 0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3);
+      // int_{w_1}^{w_0} dw / sqrt(P): Carlson's cubic integral with the factors at w_1 (computed
+      // with the course, outer_course).
+      from_end = shared;
     } else {
       // int_{w_0}^inf dw / sqrt(P) = 2 sqrt(w_3) R_F(w_0 - w_1, w_0 - w_2, w_0 - w_3) / sqrt(scale)
       // (the factor 1 - w / w_3 of P is -(w_0 - w_3) / w_3 here).
@@ -590,7 +753,13 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   const double z0 = w_of(o, r0) + o.w_neg, big_a = o.quad_a, root_scale = std::sqrt(o.scale);
   const bool far = z0 > big_a;
   a.form = far ? AngleSweep::Form::kCapturedFar : AngleSweep::Form::kCaptured;
-  const double from_end = half_integral(o, far ? big_a * big_a / z0 : z0) / root_scale;
+  // The half-integral at z0 (or A^2 / z0), computed with the course unless the ray winds onto
+  // the photon sphere (b = b_c exactly).
+  if (std::isnan(shared)) {
+    const double at = far ? big_a * big_a / z0 : z0;
+    half_integrals(o, &at, &shared, 1);
+  }
+  const double from_end = shared / root_scale;
   a.phase = rate * from_end;
   a.rate = (outward != far) ? -rate : rate;
   a.scale = big_a;

@@ -59,7 +59,9 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBod
     const double a = dot(e1, disk.normal), c = dot(e2, disk.normal);
     // The plane holds the position cos(phi) e1 + sin(phi) e2 where a cos(phi) + c sin(phi) = 0:
     // at phi0 + k pi. A ray in the disk's own plane (a = c = 0) sees it edge-on and misses it.
-    if (a != 0 || c != 0) {
+    // A ray that turns outside the disk (r >= periapsis > outer all along) cannot meet it.
+    const bool beyond = path.orbit.turning && path.orbit.periapsis > disk.outer;
+    if ((a != 0 || c != 0) && !beyond) {
       double phi = std::atan2(-a, c);
       if (phi <= 0) phi += kPi;
       for (int k = 0; k < kMaxDiskCrossings && phi < sweep.angle_total; ++k, phi += kPi) {
@@ -95,8 +97,9 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBod
   // Far away the backward ray runs radially out along its position.
   const Vec3 far = e1 * std::cos(sweep.angle_total) + e2 * std::sin(sweep.angle_total);
   const Vec4 in_sky = hole.world_to_sky * Vec4{-1, far};
+  const double inv_sky_t = -1 / in_sky.t;
   ray.end = CurvedRayEnd::kSky;
-  ray.sky_direction = hole.to_pattern * (in_sky.x / -in_sky.t);
+  ray.sky_direction = hole.to_pattern * (in_sky.x * inv_sky_t);
   ray.shift = camera_energy / sky_photon_energy(hole, far);
   return ray;
 }

@@ -189,11 +189,13 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
             int pixel_i[Tracer::kPacketSize], pixel_j[Tracer::kPacketSize];
-            PixelSampler samplers[Tracer::kPacketSize];
+            // Constructed in place: a sampler built aside and copied in was a store-forwarding
+            // stall per pixel (a twentieth of a black-hole render).
+            std::optional<PixelSampler> samplers[Tracer::kPacketSize];
             std::size_t lanes = 0;
             for (int j = by; j < std::min(by + kBlockHeight, y_end); ++j)
               for (int i = bx; i < std::min(bx + kBlockWidth, x_end); ++i) {
-                samplers[lanes] = PixelSampler(i, j, n, options.seed, light_samples);
+                samplers[lanes].emplace(i, j, n, options.seed, light_samples);
                 pixel_i[lanes] = i;
                 pixel_j[lanes++] = j;
               }
@@ -203,7 +205,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
             std::optional<Hit> hits[Tracer::kPacketSize];
             for (int k = first; k < first + count; ++k) {
               for (std::size_t l = 0; l < lanes; ++l) {
-                const PixelSample ps = samplers[l](k);
+                const PixelSample ps = (*samplers[l])(k);
                 directions[l] =
                     look_direction(resolved.camera, pixel_i[l] + ps.x, pixel_j[l] + ps.y);
                 light[l] = ps.light;
