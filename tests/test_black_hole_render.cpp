@@ -250,8 +250,8 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   for (const Case& c : {
            Case{"render " + with_body + " -o " + test::quoted(out), "objects and lights"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
-           Case{"render " + plain + " --renderer raster -o " + test::quoted(out),
-                "raster renderer"},
+           Case{"render " + with_body + " --renderer raster -o " + test::quoted(out),
+                "objects and lights"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
            Case{"locate " + plain + " --direction 0,0,-1", "locate"},
@@ -267,6 +267,10 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
       test::run_lightcone("render " + plain + " -o " + test::quoted(out) + " --stats");
   EXPECT_EQ(rendered.status, 0) << rendered.err;
   EXPECT_NE(rendered.err.find("mean_image_order"), std::string::npos) << rendered.err;
+  // The raster renderer draws it too (tests/test_raster_black_hole.cpp).
+  const test::CommandResult rastered =
+      test::run_lightcone("render " + plain + " --renderer raster -o " + test::quoted(out));
+  EXPECT_EQ(rastered.status, 0) << rastered.err;
   const test::CommandResult info = test::run_lightcone("info " + plain);
   EXPECT_EQ(info.status, 0) << info.err;
   EXPECT_NE(info.out.find("photon sphere r = 3"), std::string::npos) << info.out;

@@ -583,7 +583,11 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"fullscreen.vert", shader_sources::fullscreen_vert, false},
       {"display.frag", shader_sources::display_frag, true},
       {"sky.frag", shader_sources::sky_frag, true},
-      {"sky-image.frag", shader_sources::sky_frag, true, "", "#define LIGHTCONE_SKY_IMAGE 1\n"}};
+      {"sky-image.frag", shader_sources::sky_frag, true, "", "#define LIGHTCONE_SKY_IMAGE 1\n"},
+      {"sky-hole.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,
+       "#define LIGHTCONE_BLACK_HOLE 1\n"},
+      {"sky-hole-image.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,
+       "#define LIGHTCONE_BLACK_HOLE 1\n#define LIGHTCONE_SKY_IMAGE 1\n"}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;
     test::write_text(file, std::string("#version 300 es\nprecision highp float;\nprecision highp "

@@ -238,7 +238,7 @@ int run_animate(const AnimateArgs& a) {
   const bool raster = a.renderer == "raster";
 
   const Scene scene = load(a.scene, overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene, raster);
+  require_drawable_near_black_hole(scene, a.scene);
   const Camera& camera = scene.camera;
   if (a.video) check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf);
   if (raster)

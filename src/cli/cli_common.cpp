@@ -67,7 +67,7 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides,
   return scene;
 }
 
-void require_drawable_near_black_hole(const Scene& scene, const std::string& file, bool raster,
+void require_drawable_near_black_hole(const Scene& scene, const std::string& file,
                                       const char* what) {
   if (!scene.black_hole) return;
   const auto refuse = [&](const std::string& why) {
@@ -81,10 +81,6 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
     refuse(
         "render.relativity and render.light_delay must stay on: curved spacetime has no "
         "classical picture");
-  if (raster)
-    refuse(
-        "the raster renderer and the viewer do not draw black holes yet; render with the ray "
-        "tracer (the default)");
   if (what) refuse(std::string(what) + " is not available near a black hole yet");
 }
 

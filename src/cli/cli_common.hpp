@@ -40,11 +40,11 @@ class StopSignals {
   static int exit_status();
 };
 
-// What this version draws near a black hole: the ray tracer follows curved camera rays to the
-// sky, the accretion disk and the horizon. Everything else in a scene with `black_hole` is
-// refused with a message naming it (InputError): objects and lights, the classical picture, the
-// raster renderer and the viewer (`raster`), and what `what` names (a command or option).
-void require_drawable_near_black_hole(const Scene& scene, const std::string& file, bool raster,
+// What this version draws near a black hole: both renderers (and so the viewer) follow curved
+// camera rays to the sky, the accretion disk and the horizon. Everything else in a scene with
+// `black_hole` is refused with a message naming it (InputError): objects and lights, the
+// classical picture, and what `what` names (a command or option).
+void require_drawable_near_black_hole(const Scene& scene, const std::string& file,
                                       const char* what = nullptr);
 
 // Loads a scene file with --set overrides, printing its warnings (and the tangent

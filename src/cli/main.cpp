@@ -220,9 +220,9 @@ int run_render(const RenderArgs& a) {
   }();
   for (const Aov aov : aovs)
     if (!aov_near_black_hole(aov))
-      require_drawable_near_black_hole(scene, a.scene, false,
+      require_drawable_near_black_hole(scene, a.scene,
                                        ("the output variable " + aov_name(aov)).c_str());
-  require_drawable_near_black_hole(scene, a.scene, raster);
+  require_drawable_near_black_hole(scene, a.scene);
   if (a.preview) {  // a quarter of the size, the same view
     scene.camera.width = std::max(1, scene.camera.width / 4);
     scene.camera.height = std::max(1, scene.camera.height / 4);
@@ -436,7 +436,7 @@ int run_locate(const LocateArgs& a) {
     query.value = query.value / largest;
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene, false, "locate");
+  require_drawable_near_black_hole(scene, a.scene, "locate");
   LocateResult r;
   try {
     r = locate(scene, query);
@@ -490,7 +490,7 @@ int run_view(const ViewArgs& a) {
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   const Scene scene = load(a.scene, overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene, true);
+  require_drawable_near_black_hole(scene, a.scene);
   for (const std::string& difference : raster_differences(scene))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());
