@@ -174,8 +174,8 @@ TEST(HoleTables, BundledSceneAt1080pIsDisplacedByAFewHundredthsOfAPixel) {
   EXPECT_LT(e.other_end, 20u);
 }
 
-// Cameras elsewhere: inside the photon sphere, just above the disk's inner edge, falling fast,
-// and far away; each at 1920 x 1080.
+// Cameras elsewhere: inside the photon sphere, on it, just outside the horizon, just above the
+// disk's inner edge, falling fast, and far away; each at 1920 x 1080.
 TEST(HoleTables, OtherCamerasToo) {
   struct Case {
     const char* name;
@@ -187,6 +187,8 @@ TEST(HoleTables, OtherCamerasToo) {
            Case{"r = 7M above the disk", {0, 1, 6.9}, {}, {0, -0.2, -1}, 100},
            Case{"falling at 0.9c from 30M", {0, 5, 29.6}, {0, -0.15, -0.89}, {0, -0.17, -1}, 60},
            Case{"r = 1000M", {0, 100, 995}, {}, {0, -0.1, -1}, 3},
+           Case{"r = 3M, on the photon sphere", {0, 0.6, 2.9394}, {}, {1, -0.1, 0}, 120},
+           Case{"r = 2.02M, looking out", {0, 0.2, 2.01}, {}, {0, 0, 1}, 60},
        }) {
     Scene s = bundled_at_1080p();
     s.camera.world_line.position = c.position;
