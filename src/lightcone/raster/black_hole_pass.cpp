@@ -27,7 +27,6 @@ void BlackHolePass::prepare(const HoleView& hole) {
   tables_ = hole_ray_tables(hole);
   glActiveTexture(GL_TEXTURE0 + kRaysUnit);
   glBindTexture(GL_TEXTURE_2D, rays_);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, tables_.width, 2 * tables_.rows, 0, GL_RGBA, GL_FLOAT,
                tables_.texels.data());
   glActiveTexture(GL_TEXTURE0 + kTemperatureUnit);
