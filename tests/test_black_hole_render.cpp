@@ -278,6 +278,9 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
     return test::quoted(p);
   };
   const std::string plain = scene_file("plain.json", "");
+  const std::string with_body =
+      scene_file("body.json", R"(, "objects": [{"name": "moon", "shape": {"sphere": {"radius": 1}},
+                                      "position": [10, 0, 0]}])");
   const std::string with_light = scene_file(
       "light.json", R"(, "lights": [{"name": "lamp", "type": "point", "position": [10, 0, 0]}])");
   const std::string classical =
@@ -289,8 +292,8 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   for (const Case& c : {
            Case{"render " + with_light + " -o " + test::quoted(out), "lights near a black hole"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
-           Case{"render " + plain + " --renderer raster -o " + test::quoted(out),
-                "raster renderer"},
+           Case{"render " + with_body + " --renderer raster -o " + test::quoted(out),
+                "do not draw objects"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
            Case{"locate " + with_light + " --direction 0,0,-1", "lights near a black hole"},
@@ -311,6 +314,10 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   EXPECT_EQ(located.status, 0) << located.err;
   EXPECT_NE(located.out.find(R"("images":[{"order":0,)"), std::string::npos) << located.out;
   EXPECT_NE(located.out.find(R"({"order":1,)"), std::string::npos) << located.out;
+  // The raster renderer draws it too (tests/test_raster_black_hole.cpp).
+  const test::CommandResult rastered =
+      test::run_lightcone("render " + plain + " --renderer raster -o " + test::quoted(out));
+  EXPECT_EQ(rastered.status, 0) << rastered.err;
   const test::CommandResult info = test::run_lightcone("info " + plain);
   EXPECT_EQ(info.status, 0) << info.err;
   EXPECT_NE(info.out.find("photon sphere r = 3"), std::string::npos) << info.out;

@@ -258,6 +258,35 @@ TEST(ViewerBenchmark, RendersItsFramesWithoutADisplayAndPrintsOneJsonLine) {
   fs::remove_all(dir);
 }
 
+// Near a black hole the viewer draws the sky, the disk and the shadow along curved rays, every
+// frame's tables of rays built anew (the scripted flight moves the camera toward the hole).
+TEST(ViewerBenchmark, DrawsTheBlackHoleScene) {
+  const std::string scene = test::quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/black-hole.json");
+  const auto r = test::run_lightcone("view " + scene + " --benchmark 5 --width 160 --height 90",
+                                     "env -u DISPLAY -u WAYLAND_DISPLAY");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto line = nlohmann::json::parse(r.out);
+  EXPECT_EQ(line["frames"], 5);
+  EXPECT_GT(line["fps"].get<double>(), 0);
+  EXPECT_EQ(line["triangles"], 0);
+}
+
+// The scripted flight heads into the hole from r = 3.5M at up to 0.9c: the camera stops at
+// r = 2.01M, outside the horizon, and every frame is drawn.
+TEST(ViewerBenchmark, StopsOutsideTheHorizon) {
+  const fs::path dir = test::fresh_temp_dir("benchmark_hole");
+  test::write_text(dir / "scene.json", R"({
+    "camera": {"position": [0, 0, 3.5], "forward": [0, 0, -1], "fov": 120},
+    "black_hole": {"mass": 1, "disk": {}}
+  })");
+  const auto r = test::run_lightcone(
+      "view " + test::quoted(dir / "scene.json") + " --benchmark 90 --width 64 --height 36",
+      "env -u DISPLAY -u WAYLAND_DISPLAY");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["frames"], 90);
+  fs::remove_all(dir);
+}
+
 TEST(ViewerWithoutOpenGl, RasterRenderAndBenchmarkAreStatusTwoNamingOpenGl) {
   // No EGL driver at all (libglvnd is pointed at none): a clear error, nothing written.
   const fs::path dir = test::fresh_temp_dir("nogl");

@@ -82,10 +82,10 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
     refuse(
         "render.relativity and render.light_delay must stay on: curved spacetime has no "
         "classical picture");
-  if (raster)
+  if (raster && !scene.objects.empty())
     refuse(
-        "the raster renderer and the viewer do not draw black holes yet; render with the ray "
-        "tracer (the default)");
+        "the raster renderer and the viewer do not draw objects near a black hole yet; render "
+        "with the ray tracer (the default)");
   if (what) refuse(std::string(what) + " is not available near a black hole yet");
 }
 

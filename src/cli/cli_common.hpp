@@ -41,9 +41,10 @@ class StopSignals {
 };
 
 // What this version draws near a black hole: the ray tracer follows curved camera rays to the
-// sky, the accretion disk and the horizon. Everything else in a scene with `black_hole` is
-// refused with a message naming it (InputError): objects and lights, the classical picture, the
-// raster renderer and the viewer (`raster`), and what `what` names (a command or option).
+// sky, the accretion disk, emitting bodies and the horizon; the raster renderer (and so the
+// viewer) to the sky, the disk and the horizon. Everything else in a scene with `black_hole` is
+// refused with a message naming it (InputError): lights, objects for the raster renderer
+// (`raster`), the classical picture, and what `what` names (a command or option).
 void require_drawable_near_black_hole(const Scene& scene, const std::string& file, bool raster,
                                       const char* what = nullptr);
 

@@ -13,11 +13,17 @@ constexpr double kMaxSpeed = 0.999;
 
 Flight::Flight(const Camera& start) : camera(start), speed(length(start.world_line.velocity)) {}
 
-void Flight::advance(double proper_time) {
+bool Flight::advance(double proper_time, const BlackHole* hole) {
   WorldLine& w = camera.world_line;
   const double dt = proper_time * lorentz_gamma(w.velocity);
-  w.position = w.position + w.velocity * dt;
+  const Vec3 next = w.position + w.velocity * dt;
+  if (hole && length(next - hole->position) < kClosestToHole * hole->mass) {
+    set_speed(0);
+    return false;
+  }
+  w.position = next;
   w.time += dt;
+  return true;
 }
 
 void Flight::set_speed(double new_speed) {

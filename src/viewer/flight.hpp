@@ -12,8 +12,12 @@ struct Flight {
   double speed = 0;  // |velocity|
 
   explicit Flight(const Camera& start);
-  // Advances the camera along its world-line by `proper_time` of its own clock.
-  void advance(double proper_time);
+  // Advances the camera along its world-line by `proper_time` of its own clock. Near a black
+  // hole it stops (speed 0) rather than come within kClosestToHole M of it: its velocity is the
+  // one the static observer at its event measures, and there is none inside the horizon.
+  // Returns false when it stopped so.
+  static constexpr double kClosestToHole = 2.01;
+  bool advance(double proper_time, const BlackHole* hole = nullptr);
   // An instantaneous boost to `speed` (below 1) along the current view direction, through the
   // current event.
   void set_speed(double new_speed);

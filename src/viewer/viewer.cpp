@@ -124,7 +124,12 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     const DisplayPass display_pass;
     std::unique_ptr<FloatTarget> relativistic, classical;
     Flight flight(scene.camera);
-    bool split = options.split, hud = options.hud;
+    // Near a black hole there is no classical picture to show beside the relativistic one.
+    bool split = options.split && !scene.black_hole, hud = options.hud;
+    if (options.split && scene.black_hole)
+      std::fprintf(stderr,
+                   "lightcone: warning: --split: a scene with a black hole has no classical "
+                   "picture; the view is shown whole\n");
     double time_scale = options.time_scale;
     double exposure = scene.render.auto_exposure ? 0.0 : scene.render.exposure;
     auto last = std::chrono::steady_clock::now();
@@ -147,7 +152,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           if (key == GLFW_KEY_W) flight.change_speed(1);
           if (key == GLFW_KEY_S) flight.change_speed(-1);
           if (key == GLFW_KEY_SPACE) flight.set_speed(0);
-          if (key == GLFW_KEY_C) split = !split;
+          if (key == GLFW_KEY_C && !scene.black_hole) split = !split;
           if (key == GLFW_KEY_H) hud = !hud;
           if (key == GLFW_KEY_F12) screenshot = true;
           if (key == GLFW_KEY_W || key == GLFW_KEY_S || key == GLFW_KEY_SPACE)
@@ -169,7 +174,9 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         last_x = x;
         last_y = y;
       }
-      flight.advance(dt * time_scale);
+      if (!flight.advance(dt * time_scale, scene.black_hole ? &*scene.black_hole : nullptr))
+        std::fprintf(stderr, "lightcone: stopped at r = %gM, outside the black hole's horizon\n",
+                     Flight::kClosestToHole);
 
       int width = 0, height = 0;
       glfwGetFramebufferSize(window, &width, &height);
@@ -226,8 +233,15 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
                     on_gpu ? "cut on the GPU" : "tessellated on the CPU");
         float speed = static_cast<float>(flight.speed);
         if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
-        ImGui::Checkbox("relativity", &scene.render.relativity);
-        ImGui::Checkbox("light delay", &scene.render.light_delay);
+        if (scene.black_hole) {
+          // Curved spacetime has no classical picture to compare with.
+          const Vec3 from_hole = flight.camera.world_line.position - scene.black_hole->position;
+          ImGui::Text("black hole: camera at r = %.4gM",
+                      length(from_hole) / scene.black_hole->mass);
+        } else {
+          ImGui::Checkbox("relativity", &scene.render.relativity);
+          ImGui::Checkbox("light delay", &scene.render.light_delay);
+        }
         int doppler = index_of(kDopplerValues, scene.render.doppler);
         if (ImGui::Combo("colour", &doppler, kDopplerModels, 4))
           scene.render.doppler = kDopplerValues[doppler];
@@ -241,7 +255,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           scene.render.tonemap = kToneMapValues[curve];
         float scale = static_cast<float>(time_scale);
         if (ImGui::SliderFloat("time scale", &scale, 0.0f, 20.0f, "%.2f")) time_scale = scale;
-        ImGui::Checkbox("classical | relativistic (C)", &split);
+        if (!scene.black_hole) ImGui::Checkbox("classical | relativistic (C)", &split);
         ImGui::TextUnformatted("W/S speed, Space stop, drag or arrows look, F12 PNG, H panel");
         ImGui::End();
       }
@@ -270,7 +284,7 @@ int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellatio
   for (int i = 0; i < frames; ++i) {
     flight.set_speed(0.9 * std::min(1.0, 3.0 * i / std::max(frames, 1)));
     flight.turn(0.002, 0);
-    flight.advance(1.0 / 30);
+    flight.advance(1.0 / 30, scene.black_hole ? &*scene.black_hole : nullptr);
     Scene frame = scene;
     frame.camera = flight.camera;
     triangles += draw_scene(renderer, frame, target, on_gpu).triangles;

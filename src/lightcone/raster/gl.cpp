@@ -95,4 +95,27 @@ bool gl_has_tessellation_shaders() {
   return major >= 4;
 }
 
+GLint uniform(GLuint program, const char* name) {
+  return glGetUniformLocation(program, name);
+}
+
+void set_vec3(GLuint program, const char* name, const Vec3& v) {
+  glUniform3f(uniform(program, name), static_cast<float>(v.x), static_cast<float>(v.y),
+              static_cast<float>(v.z));
+}
+
+void set_mat3(GLuint program, const char* name, const Mat3& m) {
+  float values[9];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) values[3 * r + c] = static_cast<float>(m.m[r][c]);
+  glUniformMatrix3fv(uniform(program, name), 1, GL_TRUE, values);  // row-major
+}
+
+void set_mat4(GLuint program, const char* name, const Mat4& m) {
+  float values[16];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) values[4 * r + c] = static_cast<float>(m.m[r][c]);
+  glUniformMatrix4fv(uniform(program, name), 1, GL_TRUE, values);  // row-major
+}
+
 }  // namespace lightcone

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/gl_context.hpp"
 
 namespace lightcone {
@@ -29,5 +30,11 @@ bool gl_has_tessellation_shaders();
 
 // The current context's renderer (GL_RENDERER): "llvmpipe (LLVM 15.0.6, 256 bits)" and the like.
 std::string gl_renderer();
+
+// Uniforms of `program` (in use) by name, from double-precision values.
+GLint uniform(GLuint program, const char* name);
+void set_vec3(GLuint program, const char* name, const Vec3& v);
+void set_mat3(GLuint program, const char* name, const Mat3& m);
+void set_mat4(GLuint program, const char* name, const Mat4& m);  // on (t, x, y, z)
 
 }  // namespace lightcone

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "lightcone/color/sigmoid_polynomial.hpp"
@@ -18,6 +19,7 @@
 #include "lightcone/frame/shading.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/raster/black_hole_pass.hpp"
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
@@ -55,6 +57,8 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     differences.push_back(fmt::format("only the first {} lights light surfaces", kMaxLights));
   if (lit && scene.render.shadows && !scene.lights.empty())
     differences.push_back("no shadows are cast");
+  if (scene.black_hole && scene.black_hole->disk && scene.render.doppler == DopplerModel::kHue)
+    differences.push_back("the accretion disk under the hue colour model is drawn black");
   return differences;
 }
 
@@ -82,29 +86,6 @@ std::string fragment_shader(const char* source, const char* extra = "", const ch
          shader_sources::common_glsl + extra + source;
 }
 
-GLint uniform(GLuint program, const char* name) {
-  return glGetUniformLocation(program, name);
-}
-
-void set_vec3(GLuint program, const char* name, const Vec3& v) {
-  glUniform3f(uniform(program, name), static_cast<float>(v.x), static_cast<float>(v.y),
-              static_cast<float>(v.z));
-}
-
-void set_mat3(GLuint program, const char* name, const Mat3& m) {
-  float values[9];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) values[3 * r + c] = static_cast<float>(m.m[r][c]);
-  glUniformMatrix3fv(uniform(program, name), 1, GL_TRUE, values);  // row-major
-}
-
-void set_mat4(GLuint program, const char* name, const Mat4& m) {
-  float values[16];
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) values[4 * r + c] = static_cast<float>(m.m[r][c]);
-  glUniformMatrix4fv(uniform(program, name), 1, GL_TRUE, values);  // row-major
-}
-
 // Same emission, same row.
 using EmissionKey = std::tuple<float, float, float, const DopplerXyzTable*, const DopplerXyzTable*,
                                const DopplerXyzTable*, double, double, double, int>;
@@ -121,6 +102,14 @@ EmissionKey key_of(const PointEmission& e) {
           e.table_count};
 }
 
+// The sky program: 1 for a sky image the colour model draws, else 0 (one colour or a grid).
+int sky_variant(const Scene& scene) {
+  return std::holds_alternative<SkyImage>(scene.sky.pattern) &&
+                 scene.render.doppler != DopplerModel::kHue
+             ? 1
+             : 0;
+}
+
 }  // namespace
 
 struct RasterRenderer::Impl {
@@ -128,6 +117,12 @@ struct RasterRenderer::Impl {
   // image): small programs run faster than one with every branch.
   enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
   GLuint body_programs[3] = {0, 0, 0}, sky_programs[2] = {0, 0};
+  // The sky near a black hole (plain or grid, and image; the disk's colour model spectral or
+  // not): each built with the first frame that needs it.
+  GLuint hole_sky_programs[2][2] = {{0, 0}, {0, 0}};
+  std::unique_ptr<BlackHolePass> black_hole;
+  int disk_row = 0;
+  double disk_floor = 0;
   // The same with tessellation shaders (OpenGL 4), where the context has them.
   GLuint patch_programs[3] = {0, 0, 0};
   GlDriver driver;
@@ -194,6 +189,9 @@ struct RasterRenderer::Impl {
       if (program) glDeleteProgram(program);
     glDeleteBuffers(1, &patch_buffer);
     for (GLuint program : sky_programs) glDeleteProgram(program);
+    for (const auto& programs : hole_sky_programs)
+      for (GLuint program : programs)
+        if (program) glDeleteProgram(program);
   }
 
   void set_common(GLuint program, const ResolvedScene& scene, double first_log_doppler, double ox,
@@ -528,6 +526,28 @@ struct RasterRenderer::Impl {
         add_row([&sky0, &settings](double d) { return received_colour(sky0, d, settings); });
     add_row([&sky1, &settings](double d) { return received_colour(sky1, d, settings); });
 
+    // Near a black hole: the frame's rays, and the disk's row against ln s.
+    std::optional<LogRange> disk_range;
+    if (resolved.hole) {
+      if (!black_hole) black_hole = std::make_unique<BlackHolePass>();
+      GLuint& program = hole_sky_programs[sky_variant(s)][spectral ? 1 : 0];
+      if (!program) {
+        const std::string defines = std::string("#define LIGHTCONE_BLACK_HOLE 1\n") +
+                                    (sky_variant(s) == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : "") +
+                                    (spectral ? "#define LIGHTCONE_SPECTRAL_DISK 1\n" : "");
+        program = link_program(vertex_shader(shader_sources::fullscreen_vert),
+                               fragment_shader(shader_sources::sky_frag,
+                                               shader_sources::black_hole_glsl, defines.c_str()));
+      }
+      black_hole->prepare(*resolved.hole);
+      if (resolved.hole->disk) {
+        const ThermalEmission& disk = emission.disk();
+        disk_row = add_row([&disk](double s) { return disk_row_colour(disk, s); });
+        disk_range = disk_row_range(*resolved.hole, disk);
+        disk_floor = disk.floor;
+      }
+    }
+
     // The rows' nodes cover every factor a fragment can ask for: the camera's of emitters, the
     // sky and lit bodies, the lights' on their legs, and the glossy lobe's product of both.
     double lo = std::min(unlit.lo, lit_range.empty ? unlit.lo : lit_range.lo);
@@ -535,6 +555,10 @@ struct RasterRenderer::Impl {
     if (!lights.empty()) {
       lo = std::min(lo - reach, -reach);
       hi = std::max(hi + reach, reach);
+    }
+    if (disk_range) {
+      lo = std::min(lo, disk_range->lo);
+      hi = std::max(hi, disk_range->hi);
     }
     lo -= 2 * kLogDopplerStep;
     hi += 2 * kLogDopplerStep;
@@ -760,12 +784,14 @@ struct RasterRenderer::Impl {
     }
     check_gl("drawing the bodies");
 
-    const GLuint sky_program = sky_programs[std::holds_alternative<SkyImage>(s.sky.pattern) &&
-                                                    s.render.doppler != DopplerModel::kHue
-                                                ? 1
-                                                : 0];
+    const GLuint sky_program =
+        resolved.hole
+            ? hole_sky_programs[sky_variant(s)][s.render.doppler == DopplerModel::kSpectral ? 1 : 0]
+            : sky_programs[sky_variant(s)];
     glUseProgram(sky_program);
     set_common(sky_program, resolved, first_log_doppler, ox, oy);
+    if (resolved.hole)
+      black_hole->set_uniforms(sky_program, *resolved.hole, disk_floor, disk_row, s.render);
     set_vec3(sky_program, "sky_time_column", resolved.sky_time_column);
     set_mat3(sky_program, "sky_spatial", resolved.sky_spatial);
     set_doppler(sky_program, resolved, resolved.sky_velocity);

@@ -19,7 +19,8 @@
 namespace lightcone {
 
 // What the raster renderer cannot show as the ray tracer does, one line each (empty when it
-// shows the scene exactly): lit materials, textures and sky images, shadows.
+// shows the scene exactly): lit materials, textures and sky images, shadows, the accretion disk
+// under the hue model.
 std::vector<std::string> raster_differences(const Scene& scene);
 
 struct RasterFrameStats {

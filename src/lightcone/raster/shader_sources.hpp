@@ -15,5 +15,6 @@ extern const char* const lighting_glsl;
 extern const char* const fullscreen_vert;
 extern const char* const display_frag;
 extern const char* const sky_frag;
+extern const char* const black_hole_glsl;
 
 }  // namespace lightcone::shader_sources

@@ -1,6 +1,8 @@
 // The sky: each sample's look direction mapped into the sky's pattern coordinates through the
 // event (ray_time, u), as frame/resolved_scene.hpp's sky_direction does, and received with its
-// Doppler factor.
+// Doppler factor. Near a black hole (LIGHTCONE_BLACK_HOLE, with black_hole.glsl) the ray is
+// followed round the hole instead, to the sky (its direction far away and its shift g), the
+// accretion disk or the horizon, as the ray tracer's curved_radiance draws them.
 uniform vec3 sky_time_column;
 uniform mat3 sky_spatial;
 uniform vec3 doppler_velocity;
@@ -34,8 +36,15 @@ bool on_grid_line(vec3 d) {
 
 void main() {
   vec3 u = fragment_look_direction();
+#if defined(LIGHTCONE_BLACK_HOLE)
+  HoleRay ray = follow_hole_ray(u);
+  vec3 d = ray.sky_direction;
+  float doppler = ray.shift;
+#else
   vec3 d = sky_direction(u, sky_time_column, sky_spatial, ray_time);
   float doppler = doppler_factor(u, doppler_velocity, doppler_gamma);
+#endif
+  vec3 received;
 #if defined(LIGHTCONE_SKY_IMAGE)
   {
     // frame/shading.cpp, sky_image_colour: equirectangular, v from the north pole.
@@ -54,10 +63,16 @@ void main() {
       dy.x -= floor(dy.x + 0.5);
       rgb = textureGrad(sky_image, uv, dx, dy).rgb;
     }
-    colour = vec4(received_rgb(rgb, doppler), 1.0);
-    return;
+    received = received_rgb(rgb, doppler);
   }
-#endif
+#else
   int row = colour_row + (pattern == 1 && on_grid_line(d) ? 1 : 0);
-  colour = vec4(received_colour(row, doppler), 1.0);
+  received = received_colour(row, doppler);
+#endif
+#if defined(LIGHTCONE_BLACK_HOLE)
+  // Chosen after the sky is read everywhere, so that its gradients stay defined.
+  if (ray.end == kHoleDisk) received = disk_colour(ray.disk_radius, ray.shift);
+  if (ray.end == kHoleHorizon) received = vec3(0.0);
+#endif
+  colour = vec4(received, 1.0);
 }

@@ -1,0 +1,254 @@
+// Camera rays near a black hole: trace/curved_ray.cpp's follow_curved_ray, step for step, with
+// the exact kernel's answers read from the frame's tables (raster/hole_tables.cpp, whose C++
+// lookups these mirror; docs/design/black-hole.md, "The raster renderer").
+
+uniform sampler2D hole_rays;         // HoleRayTables::texels (RGBA)
+uniform sampler2D hole_temperature;  // HoleRayTables::temperature (R): tau^2 against ln r
+uniform mat4 hole_trace_to_static;   // F to the static observer's frame, on (t, x, y, z)
+uniform mat4 hole_world_to_sky;      // W far away to the sky's rest frame
+uniform mat3 hole_to_pattern;        // the sky's rest frame to its pattern coordinates
+uniform vec3 hole_outward;           // e1, from the hole to the camera
+uniform float hole_camera_lapse;     // sqrt(1 - 2M / r0)
+uniform float hole_camera_radius;    // r0
+uniform float hole_mass;
+uniform float hole_critical_alpha;
+uniform vec2 hole_side_width;
+uniform vec2 hole_x_first;
+uniform vec2 hole_x_step;
+uniform int hole_rows;   // per side
+uniform int hole_nodes;  // per leg; 0 without a disk
+uniform float hole_stop_radius;
+uniform vec3 disk_normal;
+uniform vec2 disk_radii;             // inner, outer
+uniform vec2 disk_temperature_grid;  // ln r of the first node, the step
+
+const float kHolePi = 3.141592653589793;
+const int kHoleSky = 0;
+const int kHoleDisk = 1;
+const int kHoleHorizon = 2;
+
+// raster/hole_tables.cpp, hole_row_position: (side, fractional row).
+vec2 hole_row_position(float sin_alpha, float cos_alpha) {
+  float alpha = atan(sin_alpha, cos_alpha);
+  float beta = atan(sin_alpha, -cos_alpha);
+  float side;
+  float delta;
+  if (hole_critical_alpha > 0.5 * kHolePi) {
+    side = beta > hole_side_width.y ? 0.0 : 1.0;
+    delta = abs(beta - hole_side_width.y);
+  } else {
+    side = alpha < hole_critical_alpha ? 0.0 : 1.0;
+    delta = abs(alpha - hole_critical_alpha);
+  }
+  float far_end = side == 0.0 ? alpha : beta;
+  float x = log(max(delta, 1e-30)) - log(far_end);
+  int s = int(side);
+  float p = (x - hole_x_first[s]) / hole_x_step[s];
+  float last = float(hole_rows - 1);
+  if (!(p < last)) p = last;
+  return vec2(side, p);
+}
+
+// raster/hole_tables.cpp, hole_row_weights: rows first .. first + 3 and their weights at p, for
+// the total angle (w) and for u (w_clamped: the first row's alone before it).
+struct HoleRowWeights {
+  int first;
+  vec4 w, w_clamped;
+};
+HoleRowWeights hole_row_weights(float p) {
+  HoleRowWeights r;
+  r.first = clamp(int(floor(p)) - 1, 0, hole_rows - 4);
+  float s = p - float(r.first);
+  vec4 cubic = vec4(-(s - 1.0) * (s - 2.0) * (s - 3.0) / 6.0, s * (s - 2.0) * (s - 3.0) / 2.0,
+                    -s * (s - 1.0) * (s - 3.0) / 2.0, s * (s - 1.0) * (s - 2.0) / 6.0);
+  bool before = p <= 0.0;  // then first is 0
+  r.w = before ? vec4(1.0 - p, p, 0.0, 0.0) : cubic;
+  r.w_clamped = before ? vec4(1.0, 0.0, 0.0, 0.0) : cubic;
+  return r;
+}
+
+vec4 hole_texel(int side, int row, int column) {
+  return texelFetch(hole_rays, ivec2(column, side * hole_rows + row), 0);
+}
+
+// raster/hole_tables.cpp, hermite: the leg from texel `column` (nodes in pairs), over
+// [0, leg_length], at phi clamped to it.
+float hole_hermite(int side, int row, int column, float leg_length, float phi) {
+  float p = leg_length > 0.0 ? clamp(phi / leg_length, 0.0, 1.0) * float(hole_nodes - 1) : 0.0;
+  int j = min(int(p), hole_nodes - 2);
+  float s = p - float(j);
+  float h = leg_length / float(hole_nodes - 1);
+  vec4 a = hole_texel(side, row, column + j);
+  float s2 = s * s;
+  float s3 = s2 * s;
+  return (2.0 * s3 - 3.0 * s2 + 1.0) * a.x + (s3 - 2.0 * s2 + s) * h * a.y +
+         (3.0 * s2 - 2.0 * s3) * a.z + (s3 - s2) * h * a.w;
+}
+
+// raster/hole_tables.cpp, row_u: u = M/r on one row, whose first texel is `head` (without
+// branches: the leg is read in every case, then the escaped and inside cases chosen).
+float hole_row_u(int side, int row, vec4 head, float phi, float psi, bool use_out) {
+  float leg_length = use_out ? head.z : head.y;
+  float at = use_out ? psi : phi;
+  bool whole = head.w != 0.0;
+  float u = hole_hermite(side, row, use_out ? hole_nodes : 1, leg_length, at);
+  bool escaped = use_out ? !(psi > 0.0) : (whole && phi > leg_length);
+  bool inside = at > leg_length && !whole;
+  return escaped ? 0.0 : (inside ? hole_mass / hole_stop_radius : u);
+}
+
+// The tables at one ray: its side, the weights of its rows and their first texels, and how far
+// their legs reach (the crossings between need no lookup: they are inside r_stop).
+struct HoleRows {
+  int side;
+  HoleRowWeights weights;
+  vec4 head[4];
+  float in_reach, out_reach;
+  bool whole;
+};
+HoleRows hole_rows_at(float sin_alpha, float cos_alpha) {
+  HoleRows r;
+  vec2 at = hole_row_position(sin_alpha, cos_alpha);
+  r.side = int(at.x);
+  r.weights = hole_row_weights(at.y);
+  for (int k = 0; k < 4; ++k) r.head[k] = hole_texel(r.side, r.weights.first + k, 0);
+  r.in_reach = max(max(r.head[0].y, r.head[1].y), max(r.head[2].y, r.head[3].y));
+  r.out_reach = max(max(r.head[0].z, r.head[1].z), max(r.head[2].z, r.head[3].z));
+  r.whole = r.head[0].w + r.head[1].w + r.head[2].w + r.head[3].w != 0.0;
+  return r;
+}
+
+// raster/hole_tables.cpp, tabulated_total_angle.
+float hole_total_angle(HoleRows r) {
+  return dot(r.weights.w, vec4(r.head[0].x, r.head[1].x, r.head[2].x, r.head[3].x));
+}
+
+// raster/hole_tables.cpp, tabulated_radius, given the total angle (infinity: a negative number).
+float hole_radius(HoleRows r, float total, float phi) {
+  bool use_out = r.side == 0 && phi > 0.5 * total;
+  float u = 0.0;
+  for (int k = 0; k < 4; ++k)
+    u += r.weights.w_clamped[k] *
+         hole_row_u(r.side, r.weights.first + k, r.head[k], phi, total - phi, use_out);
+  return u > 0.0 ? hole_mass / u : -1.0;
+}
+
+// raster/hole_tables.cpp, tabulated_temperature_ratio (physics/accretion_disk.cpp,
+// disk_temperature_ratio, from its table).
+float hole_temperature_ratio(float r) {
+  float last = float(textureSize(hole_temperature, 0).x - 1);
+  float p = clamp((log(r) - disk_temperature_grid.x) / disk_temperature_grid.y, 0.0, last);
+  int j = min(int(p), int(last) - 1);
+  float a = texelFetch(hole_temperature, ivec2(j, 0), 0).x;
+  float b = texelFetch(hole_temperature, ivec2(j + 1, 0), 0).x;
+  return sqrt(max(mix(a, b, p - float(j)), 0.0));
+}
+
+// physics/accretion_disk.cpp, circular_orbit_frequency_shift: g = sqrt(1 - 3M/r) / (1 - Omega
+// lambda) with Omega = sqrt(M / r^3), for r > 3M.
+float circular_orbit_frequency_shift(float mass, float r, float lambda) {
+  float omega = sqrt(mass / r) / r;
+  return sqrt(1.0 - 3.0 * mass / r) / (1.0 - omega * lambda);
+}
+
+// trace/curved_ray.cpp, any_perpendicular.
+vec3 hole_any_perpendicular(vec3 n) {
+  vec3 other = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+  return normalize(cross(n, other));
+}
+
+// trace/curved_ray.hpp, CurvedRay: the sky direction and the shift are set for every end (the
+// sky's where the ray does not reach it), so that a pass can read the sky everywhere.
+struct HoleRay {
+  int end;
+  int order;
+  float phi;
+  float shift;
+  vec3 sky_direction;
+  float disk_radius;
+};
+
+// trace/curved_ray.cpp, follow_curved_ray.
+HoleRay follow_hole_ray(vec3 u) {
+  vec4 back = hole_trace_to_static * vec4(-1.0, u);
+  vec3 d = back.yzw / -back.x;
+  float camera_energy = 1.0 / (hole_camera_lapse * -back.x);
+  vec3 e1 = hole_outward;
+  float cos_alpha = dot(d, e1);
+  vec3 tangential = d - e1 * cos_alpha;
+  float sin_alpha = length(tangential);
+  vec3 e2 = sin_alpha > 0.0 ? tangential / sin_alpha : hole_any_perpendicular(e1);
+  HoleRows rows = hole_rows_at(sin_alpha, cos_alpha);
+  float total = hole_total_angle(rows);
+
+  HoleRay ray;
+  ray.end = rows.side == 0 ? kHoleSky : kHoleHorizon;
+  ray.phi = total;
+  ray.order = total > 0.0 ? int(ceil(total / kHolePi)) - 1 : 0;
+  ray.disk_radius = 0.0;
+  vec3 far_direction = e1 * cos(total) + e2 * sin(total);
+  vec4 in_sky = hole_world_to_sky * vec4(-1.0, far_direction);
+  ray.sky_direction = hole_to_pattern * (in_sky.yzw / -in_sky.x);
+  ray.shift = camera_energy / -in_sky.x;
+  if (hole_nodes == 0) return ray;
+  float a = dot(e1, disk_normal);
+  float c = dot(e2, disk_normal);
+  if (a == 0.0 && c == 0.0) return ray;
+  float phi = atan(-a, c);
+  if (phi <= 0.0) phi += kHolePi;
+  // The crossings the in-legs serve, then those the out-legs serve; any between lie inside
+  // r_stop on every row (tabulated_radius would give r_stop there) and are passed over.
+  float in_end = rows.side == 0 ? 0.5 * total : total;
+  float out_start = rows.side == 0 ? 0.5 * total : total;
+  if (!rows.whole) {
+    in_end = min(in_end, rows.in_reach);
+    out_start = max(out_start, total - rows.out_reach);
+  }
+  for (int k = 0; k < 64 && phi < total; ++k, phi += kHolePi) {
+    if (phi > in_end && phi < out_start) {
+      float skipped = ceil((out_start - phi) / kHolePi);
+      k += int(skipped);
+      phi += skipped * kHolePi;
+      if (!(phi < total) || k >= 64) break;
+    }
+    float r = hole_radius(rows, total, phi);
+    if (r < disk_radii.x || r > disk_radii.y) continue;  // also infinity (negative)
+    float impact = hole_camera_radius * sin_alpha / hole_camera_lapse;
+    float lambda = -impact * dot(cross(e1, e2), disk_normal);
+    ray.end = kHoleDisk;
+    ray.order = k;
+    ray.phi = phi;
+    ray.disk_radius = r;
+    ray.shift = camera_energy * circular_orbit_frequency_shift(hole_mass, r, lambda);
+    return ray;
+  }
+  return ray;
+}
+
+#ifdef LIGHTCONE_FRAGMENT_STAGE
+// The disk's colour: frame/received_colour.cpp, received_thermal_colour, with the hottest ring's
+// colour read from row disk_row against ln s: s = tau g for the spectral model
+// (LIGHTCONE_SPECTRAL_DISK), tau for the others, which then take it through the primaries' rows
+// (they are linear in the colour). One program each: on a software rasteriser the branch not
+// taken still costs a fifth of the pass.
+uniform int disk_row;
+uniform float disk_floor;
+uniform int disk_searchlight;  // spectral_searchlight's model
+uniform int disk_drawn;        // 0 under the hue model (not linear in the colour)
+
+vec3 disk_colour(float r, float g) {
+  if (disk_drawn == 0) return vec3(0.0);
+  float tau = hole_temperature_ratio(r);
+  float tau5 = tau * tau * tau * tau * tau;
+#if defined(LIGHTCONE_SPECTRAL_DISK)
+  float s = tau * g;
+  if (!(s >= disk_floor)) return vec3(0.0);
+  return tau5 * spectral_searchlight(g, disk_searchlight) * received_colour(disk_row, s);
+#else
+  if (!(tau >= disk_floor)) return vec3(0.0);
+  vec3 c = tau5 * received_colour(disk_row, tau);
+  return c.r * received_colour(primary_rows[0], g) + c.g * received_colour(primary_rows[1], g) +
+         c.b * received_colour(primary_rows[2], g);
+#endif
+}
+#endif
