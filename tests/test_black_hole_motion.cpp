@@ -297,30 +297,7 @@ TEST(CircularOrbit, PeriodNormalisationAndTheIntegratedGeodesic) {
 // ---------------------------------------------------------------------------------------------
 // The scene format
 
-class BlackHoleMotion : public test::TempDirTest {
- protected:
-  Scene load(const std::string& text, const std::vector<std::string>& overrides = {}) {
-    SceneLoadReport report;
-    return load_scene_file(write("scene.json", text), overrides, report);
-  }
-  std::string error(const std::string& text, const std::vector<std::string>& overrides = {}) {
-    try {
-      load(text, overrides);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  }
-  // Expects "DIR/scene.json:LINE: PATH: ..." with `fragment` in the description.
-  void expect_error(const std::string& text, int line, const std::string& path,
-                    const std::string& fragment) {
-    const std::string message = error(text);
-    const std::string prefix =
-        fmt::format("{}:{}: {}: ", (dir_ / "scene.json").string(), line, path);
-    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
-    EXPECT_NE(message.find(fragment, prefix.size()), std::string::npos) << message;
-  }
-};
+using BlackHoleMotion = test::SceneFileTest;
 
 // The camera's keys on line 2, the hole `hole` on line 3.
 std::string camera_near(const std::string& camera, const std::string& hole = R"({"mass": 1})") {

@@ -98,7 +98,9 @@ TEST(BlackHoleRays, CameraFallingFromInfinitySeesTheShadowShrinkTo42DegreesAtThe
     const HoleView hole = view_of(hole_scene(r, {0, 0, -beta}));
     const double edge = shadow_edge(hole);
     EXPECT_NEAR(edge, aberrated(synge(r), beta), 1e-8);
-    if (r < 2.001) EXPECT_NEAR(edge * kDegrees, 42.10, 0.005);
+    if (r < 2.001) {
+      EXPECT_NEAR(edge * kDegrees, 42.10, 0.005);
+    }
   }
 }
 

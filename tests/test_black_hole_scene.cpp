@@ -24,33 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class BlackHoleScene : public test::TempDirTest {
- protected:
-  Scene load(const std::string& text, const std::vector<std::string>& overrides = {}) {
-    SceneLoadReport report;
-    return load_scene_file(write("scene.json", text), overrides, report);
-  }
-
-  // The message of the InputError that loading `text` throws, or "" when it loads.
-  std::string error(const std::string& text, const std::vector<std::string>& overrides = {}) {
-    try {
-      load(text, overrides);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  }
-
-  // Expects "DIR/scene.json:LINE: PATH: ..." with `fragment` in the description.
-  void expect_error(const std::string& text, int line, const std::string& path,
-                    const std::string& fragment) {
-    const std::string message = error(text);
-    const std::string prefix =
-        fmt::format("{}:{}: {}: ", (dir_ / "scene.json").string(), line, path);
-    EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
-    EXPECT_NE(message.find(fragment, prefix.size()), std::string::npos) << message;
-  }
-};
+using BlackHoleScene = test::SceneFileTest;
 
 // A scene with the hole `hole` (on line 3) and, from line 4 on, `rest` (keys after the camera).
 std::string with_hole(const std::string& hole,

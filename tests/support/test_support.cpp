@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
 
 namespace lightcone::test {
@@ -82,6 +83,30 @@ fs::path TempDirTest::write(const std::string& name, const std::string& content)
   const fs::path path = dir_ / name;
   write_text(path, content);
   return path;
+}
+
+Scene SceneFileTest::load(const std::string& text, const std::vector<std::string>& overrides) {
+  SceneLoadReport report;
+  return load_scene_file(write("scene.json", text), overrides, report);
+}
+
+std::string SceneFileTest::error(const std::string& text,
+                                 const std::vector<std::string>& overrides) {
+  try {
+    load(text, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void SceneFileTest::expect_error(const std::string& text, int line, const std::string& path,
+                                 const std::string& fragment) {
+  const std::string message = error(text);
+  const std::string prefix =
+      (dir_ / "scene.json").string() + ":" + std::to_string(line) + ": " + path + ": ";
+  EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
+  EXPECT_NE(message.find(fragment, prefix.size()), std::string::npos) << message;
 }
 
 fs::path fresh_temp_dir(const std::string& name) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "lightcone/scene/scene.hpp"
 
@@ -41,6 +42,17 @@ class TempDirTest : public testing::Test {
   std::filesystem::path write(const std::string& name, const std::string& content) const;
 
   std::filesystem::path dir_;
+};
+
+// A fixture that loads scene text written to DIR/scene.json, for tests of the scene format.
+class SceneFileTest : public TempDirTest {
+ protected:
+  Scene load(const std::string& text, const std::vector<std::string>& overrides = {});
+  // The message of the InputError that loading `text` throws, or "" when it loads.
+  std::string error(const std::string& text, const std::vector<std::string>& overrides = {});
+  // Expects "DIR/scene.json:LINE: PATH: ..." with `fragment` in the description.
+  void expect_error(const std::string& text, int line, const std::string& path,
+                    const std::string& fragment);
 };
 
 // A fresh, empty folder under the system's temporary folder.

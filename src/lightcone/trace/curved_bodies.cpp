@@ -159,6 +159,13 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
     const double centre = std::atan2(dot(cp, path.e2), dot(cp, path.e1));
     const double delta = everywhere || d <= rho ? kPi : std::asin(rho / d);
     const double r_min = everywhere ? floor : std::max(floor, d - rho);
+    // How far in the ray can meet the body (its line's closest approach for a moving one).
+    double near = std::max(d - rho, 2 * m);
+    if (moving) {
+      const double vv = dot(body.velocity, body.velocity);
+      const Vec3 closest = body.position - body.velocity * (dot(body.position, body.velocity) / vv);
+      near = std::max(length(closest) - body.radius, 2 * m);
+    }
     // Chords within kChordError R of the path: its curvature is 3 M u^5 / (1/b^2 + 2 M u^3)^1.5,
     // so a chord over dphi strays at most (3/8) M b dphi^2 / r_min from it.
     const double error = kChordError * body.radius;
@@ -173,8 +180,13 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
       double phi_a = lo, r_a;
       Vec4 a = events.event(phi_a, moving, &r_a);
       while (phi_a < hi && !met) {
-        // Past the body's reach on the way out, or at the horizon: nothing more to meet.
-        if (r_a > reach && (events.turned(phi_a) ? !path.outward : path.outward)) break;
+        // Past the body's reach on the way out, or inside it on the way in with no turning point
+        // ahead (toward the horizon): nothing more to meet.
+        const bool turned = events.turned(phi_a);
+        const bool growing = turned ? !path.outward : path.outward;
+        const bool turn_ahead = events.course.turning_radius > 0 && !turned;
+        if (growing && r_a > reach) break;
+        if (!growing && !turn_ahead && r_a < near) break;
         if (!(r_a > horizon)) break;
         // A chord ends where the path still has a finite radius outside the horizon (the path
         // leaves for infinity, or reaches the horizon, at its total angle).

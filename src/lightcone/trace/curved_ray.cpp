@@ -1,5 +1,6 @@
 #include "lightcone/trace/curved_ray.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -16,8 +17,11 @@ constexpr double kPi = std::numbers::pi;
 // within rounding of 3M, inside every disk's inner edge of 6M or more).
 constexpr int kMaxDiskCrossings = 64;
 
+// A ray at b_c to the last bit sweeps an infinite angle: its order is counted as this many.
+constexpr double kMaxImageOrder = 1e6;
+
 int image_order(double phi) {
-  return phi > 0 ? static_cast<int>(std::ceil(phi / kPi)) - 1 : 0;
+  return phi > 0 ? static_cast<int>(std::min(std::ceil(phi / kPi), kMaxImageOrder + 1)) - 1 : 0;
 }
 
 // A unit vector perpendicular to n.
