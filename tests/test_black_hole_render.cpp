@@ -115,6 +115,13 @@ TEST(BlackHoleRays, StaticCameraSeesTheStaticSkyBlueshiftedByOneOverSqrtF) {
   }
 }
 
+TEST(BlackHoleRays, ShadowOfAVanishingHoleSeenMovingIsFinite) {
+  const Vec3 beta{0.1, 0, 0};
+  const double angle = shadow_angle_for_camera(view_of(hole_scene(40, beta, 1e-300)), beta);
+  EXPECT_TRUE(std::isfinite(angle));
+  EXPECT_LT(angle, 1e-250);
+}
+
 TEST(BlackHoleRays, FlatLimitIsTheStraightRayAndNoShift) {
   const HoleView hole = view_of(hole_scene(10, {0.3, 0, -0.2}, 1e-12));
   for (const Vec3& u : {Vec3{0, 0, -1}, normalize(Vec3{1, 2, -3}), normalize(Vec3{-1, 0.5, 0.2})}) {
@@ -320,6 +327,18 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   const test::CommandResult rastered =
       test::run_lightcone("render " + plain + " --renderer raster -o " + test::quoted(out));
   EXPECT_EQ(rastered.status, 0) << rastered.err;
+  // A static camera animates in place, on its own clock; a moving one needs a geodesic motion.
+  const test::CommandResult animated =
+      test::run_lightcone("animate " + plain + " --fps 1 --frames 0-1 -o " +
+                          test::quoted(dir / "f%d.png") + " --quiet");
+  EXPECT_EQ(animated.status, 0) << animated.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "f1.png"));
+  const test::CommandResult refused = test::run_lightcone(
+      "animate " + plain + " --set camera.velocity=[0.1,0,0] --fps 1 --frames 0-1 -o " +
+      test::quoted(dir / "g%d.png"));
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("geodesic motion"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "g0.png"));
   const test::CommandResult info = test::run_lightcone("info " + plain);
   EXPECT_EQ(info.status, 0) << info.err;
   EXPECT_NE(info.out.find("photon sphere r = 3"), std::string::npos) << info.out;

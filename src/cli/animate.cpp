@@ -252,9 +252,26 @@ int run_animate(const AnimateArgs& a) {
   const double c = scene.speed_of_light;
   const double proper_start = camera.motion.proper_time / c,
                world_start = camera.world_line.time / c;
+  // Near a black hole a camera without a geodesic motion is a static one (a moving camera with no
+  // motion is not on a free path there): it stays where it is, and its clock runs at sqrt(f) of
+  // W's (Schwarzschild coordinate) time.
+  const bool static_near_hole = scene.black_hole && !camera.motion.geodesic;
+  if (static_near_hole && length(camera.world_line.velocity) > 0)
+    throw InputError(
+        a.scene +
+        ": camera: a camera that moves near a black hole is animated along a geodesic motion "
+        "(\"motion\": {\"orbit\": ...} or {\"fall\": ...}); a velocity alone is not a free path "
+        "there");
   const auto frame_scene = [&](long long i) {
     Scene s = scene;
     const double step = static_cast<double>(i) / a.fps;
+    if (static_near_hole) {
+      const double r = length(camera.world_line.position - scene.black_hole->position);
+      const double rate = std::sqrt(1 - 2 * scene.black_hole->mass / r);
+      s.camera.world_line.time =
+          (a.clock == "world" ? world_start + step : world_start + step / rate) * c;
+      return s;
+    }
     s.camera.motion.proper_time = a.clock == "world"
                                       ? proper_time_at_world_time(camera, (world_start + step) * c)
                                       : (proper_start + step) * c;

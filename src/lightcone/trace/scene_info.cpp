@@ -71,9 +71,13 @@ double shadow_angle_for_camera(const HoleView& hole, const Vec3& beta) {
         a * std::cos(alpha) + (e * std::cos(theta) + f * std::sin(theta)) * std::sin(alpha);
     q[k] = aberrate_into_moving_frame(p, beta);
   }
-  Vec3 centre = normalize(cross(q[1] - q[0], q[2] - q[0]));
+  const Vec3 axis = aberrate_into_moving_frame(a, beta);
+  const Vec3 normal = cross(q[1] - q[0], q[2] - q[0]);
+  // A shadow too small for the three points to fix a plane in double precision is centred on
+  // its axis's image to rounding.
+  Vec3 centre = length(normal) > 1e-200 ? normalize(normal) : axis;
   // The shadow holds the image of its axis.
-  if (dot(centre, aberrate_into_moving_frame(a, beta)) < dot(centre, q[0])) centre = centre * -1.0;
+  if (dot(centre, axis) < dot(centre, q[0])) centre = centre * -1.0;
   return std::acos(std::clamp(dot(centre, q[0]), -1.0, 1.0));
 }
 
