@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "lightcone/physics/schwarzschild_lens.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -16,34 +17,12 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // Follows the ray from the observer at r0 (static frame angle alpha from the outward radial) for
-// the angle phi, by classical RK4 in long double: its radius and coordinate time there.
-struct Followed {
-  double r, t;
-};
-Followed follow(double m, double r0, double cos_alpha, double sin_alpha, double phi) {
-  struct State {
-    long double u, du, t;
-  };
-  const long double f0 = 1 - 2 * m / r0;
-  const long double b = r0 * sin_alpha / std::sqrt(f0);
-  const auto deriv = [&](const State& s) {
-    const long double r = 1 / s.u;
-    return State{s.du, 3 * m * s.u * s.u - s.u, r * r / (b * (1 - 2 * m * s.u))};
-  };
-  // dr/dphi = r sqrt(f) cot(alpha) at the observer, so du/dphi = -sqrt(f0) cot(alpha) / r0.
-  State s{1 / static_cast<long double>(r0), -std::sqrt(f0) * cos_alpha / sin_alpha / r0, 0};
-  const int steps = 400000;
-  const long double h = phi / steps;
-  for (int i = 0; i < steps; ++i) {
-    const State k1 = deriv(s);
-    const State k2 = deriv({s.u + h / 2 * k1.u, s.du + h / 2 * k1.du, 0});
-    const State k3 = deriv({s.u + h / 2 * k2.u, s.du + h / 2 * k2.du, 0});
-    const State k4 = deriv({s.u + h * k3.u, s.du + h * k3.du, 0});
-    s = {s.u + h / 6 * (k1.u + 2 * k2.u + 2 * k3.u + k4.u),
-         s.du + h / 6 * (k1.du + 2 * k2.du + 2 * k3.du + k4.du),
-         s.t + h / 6 * (k1.t + 2 * k2.t + 2 * k3.t + k4.t)};
-  }
-  return {static_cast<double>(1 / s.u), static_cast<double>(s.t)};
+// the angle phi: dr/dphi = r sqrt(f) cot(alpha) at the observer, so du/dphi = -sqrt(f0) cot(alpha)
+// / r0.
+test::IntegratedOrbit follow(double m, double r0, double cos_alpha, double sin_alpha, double phi) {
+  const double f0 = 1 - 2 * m / r0;
+  return test::integrate_orbit(m, r0 * sin_alpha / std::sqrt(f0), 1 / r0,
+                               -std::sqrt(f0) * cos_alpha / sin_alpha / r0, phi, 400000);
 }
 
 TEST(SchwarzschildLens, EachImagesRayReachesThePointAfterItsSweepInItsTime) {
@@ -58,7 +37,8 @@ TEST(SchwarzschildLens, EachImagesRayReachesThePointAfterItsSweepInItsTime) {
       const auto image = lens_image(m, c.r0, c.r_e, c.psi, order);
       ASSERT_TRUE(image);
       EXPECT_NEAR(image->sweep, image_sweep(c.psi, order), 1e-11);
-      const Followed f = follow(m, c.r0, image->cos_alpha, image->sin_alpha, image->sweep);
+      const test::IntegratedOrbit f =
+          follow(m, c.r0, image->cos_alpha, image->sin_alpha, image->sweep);
       EXPECT_NEAR(f.r, c.r_e, 1e-7 * c.r_e);
       EXPECT_NEAR(f.t, image->time, 1e-7 * image->time);
     }

@@ -85,6 +85,29 @@ fs::path TempDirTest::write(const std::string& name, const std::string& content)
   return path;
 }
 
+IntegratedOrbit integrate_orbit(double m, double b, double u0, double du0, double phi, int steps) {
+  struct State {
+    long double u, du, t;
+  };
+  const auto deriv = [&](const State& s) {
+    const long double r = 1 / s.u;
+    return State{s.du, 3 * m * s.u * s.u - s.u, r * r / (b * (1 - 2 * m * s.u))};
+  };
+  const auto along = [](const State& s, const State& k, long double h) {
+    return State{s.u + h * k.u, s.du + h * k.du, 0};
+  };
+  State s{u0, du0, 0};
+  const long double h = static_cast<long double>(phi) / steps;
+  for (int i = 0; i < steps; ++i) {
+    const State k1 = deriv(s), k2 = deriv(along(s, k1, h / 2)), k3 = deriv(along(s, k2, h / 2)),
+                k4 = deriv(along(s, k3, h));
+    s = {s.u + h / 6 * (k1.u + 2 * k2.u + 2 * k3.u + k4.u),
+         s.du + h / 6 * (k1.du + 2 * k2.du + 2 * k3.du + k4.du),
+         s.t + h / 6 * (k1.t + 2 * k2.t + 2 * k3.t + k4.t)};
+  }
+  return {static_cast<double>(1 / s.u), static_cast<double>(s.t)};
+}
+
 Scene SceneFileTest::load(const std::string& text, const std::vector<std::string>& overrides) {
   SceneLoadReport report;
   return load_scene_file(write("scene.json", text), overrides, report);

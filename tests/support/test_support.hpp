@@ -44,6 +44,15 @@ class TempDirTest : public testing::Test {
   std::filesystem::path dir_;
 };
 
+// Light about a hole of mass m (G = c = 1): the orbit equation u'' = 3 M u^2 - u, and the
+// coordinate time dt/dphi = r^2 / (b f) along it, integrated step by step (classical RK4 in long
+// double, `steps` equal steps over the angle `phi`) from u0 = 1/r0 and du0 = du/dphi: the radius
+// and the time at the end. The independent check of the closed-form geodesics.
+struct IntegratedOrbit {
+  double r = 0, t = 0;
+};
+IntegratedOrbit integrate_orbit(double m, double b, double u0, double du0, double phi, int steps);
+
 // A fixture that loads scene text written to DIR/scene.json, for tests of the scene format.
 class SceneFileTest : public TempDirTest {
  protected:

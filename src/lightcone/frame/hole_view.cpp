@@ -28,12 +28,20 @@ std::optional<HoleView> hole_view(const Scene& scene) {
   return v;
 }
 
+double camera_photon_energy(const HoleView& hole, const Vec4& in_static) {
+  return 1 / (hole.camera_lapse * -in_static.t);
+}
+
 double camera_photon_energy(const HoleView& hole, const Vec3& u) {
-  return 1 / (hole.camera_lapse * -(hole.trace_to_static * Vec4{-1, u}).t);
+  return camera_photon_energy(hole, hole.trace_to_static * Vec4{-1, u});
+}
+
+double sky_photon_energy(const Vec4& in_sky) {
+  return -in_sky.t;
 }
 
 double sky_photon_energy(const HoleView& hole, const Vec3& far) {
-  return -(hole.world_to_sky * Vec4{-1, far}).t;
+  return sky_photon_energy(hole.world_to_sky * Vec4{-1, far});
 }
 
 LogShiftRange sky_log_shift_range(const HoleView& hole) {

@@ -34,11 +34,14 @@ std::optional<HoleView> hole_view(const Scene& scene);
 // The energy the camera measures for a photon it receives along look direction u (unit, in its
 // rest frame F), in units of the photon's conserved energy (what a static observer far away
 // measures): 1 / sqrt(f) at the static observer, over -t for the static-frame event (t, x) that
-// the backward direction (-1, u) becomes.
+// the backward direction (-1, u) becomes (`in_static`, for a caller that has it already).
+double camera_photon_energy(const HoleView& hole, const Vec4& in_static);
 double camera_photon_energy(const HoleView& hole, const Vec3& u);
 
 // The energy the sky's rest frame measures for a photon that arrives from W's direction `far`
-// (unit, pointing away from the hole), in the same units: its flat Doppler factor far away.
+// (unit, pointing away from the hole), in the same units: its flat Doppler factor far away, -t
+// for the sky-frame event (t, x) that (-1, far) becomes (`in_sky`).
+double sky_photon_energy(const Vec4& in_sky);
 double sky_photon_energy(const HoleView& hole, const Vec3& far);
 
 // The range of ln g, g = nu_camera / nu_emitter, with which the camera can see the sky, over

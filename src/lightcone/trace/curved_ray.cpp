@@ -38,7 +38,7 @@ CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
   const Vec4 back = hole.trace_to_static * Vec4{-1, u};
   const Vec3 d = back.x / -back.t;
   CurvedPath p;
-  p.camera_energy = camera_photon_energy(hole, u);
+  p.camera_energy = camera_photon_energy(hole, back);
   // e1 from the hole to the camera, e2 along the look direction's tangential part.
   p.e1 = hole.outward;
   const double cos_alpha = dot(d, p.e1);
@@ -104,7 +104,7 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBod
   const double inv_sky_t = -1 / in_sky.t;
   ray.end = CurvedRayEnd::kSky;
   ray.sky_direction = hole.to_pattern * (in_sky.x * inv_sky_t);
-  ray.shift = camera_energy / sky_photon_energy(hole, far);
+  ray.shift = camera_energy / sky_photon_energy(in_sky);
   return ray;
 }
 
