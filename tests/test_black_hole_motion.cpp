@@ -548,7 +548,7 @@ double synge_aberrated(double r, double beta) {
   return std::acos((std::cos(alpha) + beta) / (1 + beta * std::cos(alpha)));
 }
 
-TEST_F(BlackHoleMotion, CameraFallingFromInfinitySeesSyngesShadowAberratedBySqrt2MOverR) {
+TEST_F(BlackHoleMotion, HoleFallingFromInfinitySeesSyngesShadowAberratedBySqrt2MOverR) {
   const RadialFall fall = RadialFall::from_infinity(1, 50);
   for (const double fraction : {-1.0, 0.0, 0.5, 0.9, 0.999}) {
     const double tau = fraction * fall.horizon_proper_time();
@@ -667,7 +667,7 @@ std::vector<std::string> keys_of(const nlohmann::json& object) {
 TEST(BlackHoleMotionSchema, ListsTheKeysTheLoaderReads) {
   const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
   const auto& defs = schema.at("$defs");
-  EXPECT_EQ(defs.at("camera").at("properties").at("motion").at("$ref"), "#/$defs/cameraMotion");
+  EXPECT_EQ(defs.at("camera").at("properties").at("motion").at("$ref"), "#/$defs/bodyMotion");
   const auto& geodesic = defs.at("geodesicMotion").at("properties");
   EXPECT_EQ(keys_of(geodesic), (std::vector<std::string>{"fall", "orbit"}));
   EXPECT_EQ(keys_of(geodesic.at("orbit").at("properties")),

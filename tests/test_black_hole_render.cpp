@@ -89,7 +89,7 @@ TEST(BlackHoleRays, RadiallyBoostedCameraShadowIsSyngesAberrated) {
     }
 }
 
-TEST(BlackHoleRays, CameraFallingFromInfinitySeesTheShadowShrinkTo42DegreesAtTheHorizon) {
+TEST(BlackHoleRays, HoleFallingFromInfinitySeesTheShadowShrinkTo42DegreesAtTheHorizon) {
   // A camera falling from rest at infinity moves inward at sqrt(2M/r) relative to the static
   // observers; at the horizon its shadow is 42.10 degrees in radius.
   for (const double r : {2.000001, 2.5, 3.0, 10.0, 100.0}) {

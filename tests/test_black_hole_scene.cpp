@@ -230,6 +230,34 @@ TEST_F(BlackHoleScene, BodiesAtRestInsideTheHorizon) {
             "");
 }
 
+TEST_F(BlackHoleScene, BodiesOnGeodesics) {
+  // An orbit, and a fall held at rest at r0 until it is let go at its time.
+  const Scene orbit = load(with_object(R"("motion": {"orbit": {"radius": 8, "phase": 90}})"));
+  ASSERT_TRUE(orbit.objects[0].motion.geodesic);
+  EXPECT_NEAR(length(orbit.objects[0].world_line.position), 8, 1e-12);
+  const Scene fall =
+      load(with_object(R"("motion": {"fall": {"from": 10, "direction": [0, 2, 0], "time": 5}})"));
+  EXPECT_NEAR(fall.objects[0].world_line.position.y, 10, 1e-12);
+  EXPECT_EQ(fall.objects[0].world_line.velocity, Vec3{});
+  expect_error(with_object(R"("scale": 12, "motion": {"orbit": {"radius": 3.1}})"), 4,
+               "objects[0].motion.orbit.radius",
+               "the object reaches 1.2 from its origin, so on an orbit at r = 3.1 it crosses "
+               "the horizon r = 2M = 2: an orbit's radius must exceed 2M plus the object's reach");
+  expect_error(with_object(R"("position": [0, 0, 9], "motion": {"orbit": {"radius": 8}})"), 4,
+               "objects[0].position", "must not be given with motion.orbit");
+  expect_error(with_object(R"("velocity": [0, 0, 0.1], "motion": {"fall": {"from": 9}})"), 4,
+               "objects[0].velocity", "must not be given with motion.fall");
+  expect_error(with_object(R"("motion": {"fall": {"from": 1.5}})"), 4,
+               "objects[0].motion.fall.from", "");
+  // Without a hole, orbits and falls mean nothing.
+  expect_error(R"({
+  "camera": {"position": [0, 0, 50]},
+  "objects": [{"name": "a", "shape": {"sphere": {"radius": 0.1}}, "motion": {"orbit": {"radius": 8}}}]
+})",
+               3, "objects[0].motion.orbit",
+               "a circular orbit about a black hole needs a black hole");
+}
+
 TEST_F(BlackHoleScene, MovingBodiesWhoseLinesReachTheHorizon) {
   expect_error(with_object(R"("position": [-100, 1.9, 0], "velocity": [0.5, 0, 0])"), 4,
                "objects[0].velocity",

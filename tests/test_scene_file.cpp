@@ -1522,12 +1522,15 @@ TEST(SceneSchema, ListsTheMotionKeys) {
   EXPECT_TRUE(schema.at("properties").contains("speed_of_light"));
   EXPECT_EQ(keys_of(defs.at("motion").at("properties")),
             (std::vector<std::string>{"keyframes", "phases"}));
-  for (const char* owner : {"object", "pointLight", "spotLight", "sphereLight"})
+  for (const char* owner : {"pointLight", "spotLight", "sphereLight"})
     EXPECT_EQ(defs.at(owner).at("properties").at("motion").at("$ref"), "#/$defs/motion") << owner;
-  // The camera's: these, or near a black hole its geodesics (test_black_hole_motion.cpp).
-  EXPECT_EQ(defs.at("camera").at("properties").at("motion").at("$ref"), "#/$defs/cameraMotion");
+  // The camera's and an object's: these, or near a black hole geodesics
+  // (test_black_hole_motion.cpp).
+  for (const char* owner : {"camera", "object"})
+    EXPECT_EQ(defs.at(owner).at("properties").at("motion").at("$ref"), "#/$defs/bodyMotion")
+        << owner;
   EXPECT_EQ(
-      defs.at("cameraMotion").at("oneOf"),
+      defs.at("bodyMotion").at("oneOf"),
       nlohmann::json::parse(R"([{"$ref": "#/$defs/motion"}, {"$ref": "#/$defs/geodesicMotion"}])"));
   EXPECT_EQ(keys_of(defs.at("object").at("properties").at("spin").at("properties")),
             (std::vector<std::string>{"axis", "rate"}));

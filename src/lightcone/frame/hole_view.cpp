@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "lightcone/physics/accretion_disk.hpp"
-#include "lightcone/physics/schwarzschild_motion.hpp"
 
 namespace lightcone {
 
@@ -65,19 +64,19 @@ LogShiftRange disk_log_shift_range(const HoleView& hole) {
 
 LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
   const double m = hole.mass;
-  const Vec3 from_hole = object.world_line.position - hole.centre;
-  const Vec3& v = object.world_line.velocity;
+  const HoleWorldLine line = hole_world_line(object, BlackHole{hole.centre, m, std::nullopt});
   const double reach = origin_radius(object.shape, object.scale);
-  // The nearest and farthest the body comes: its line's closest approach to the hole, less and
-  // more its reach (the farthest is unbounded for a moving body: f < 1 caps it).
-  const double vv = dot(v, v);
-  const double closest =
-      vv > 0 ? length(from_hole - v * (dot(from_hole, v) / vv)) : length(from_hole);
-  const double nearest = std::max(closest - reach, 2 * m * (1 + 1e-6));
-  const double farthest = vv > 0 ? std::numeric_limits<double>::infinity() : closest + reach;
-  const double spin =
-      vv > 0 ? std::atanh(std::min(peak_static_observer_speed(m, from_hole, v).speed, 1 - 1e-16))
-             : 0.0;
+  // The nearest and farthest the body comes (the farthest unbounded for a moving one: f < 1
+  // caps it), and its fastest speed there. A fall reaches c at the horizon, where its light
+  // is shifted without bound: the range stops at 2M (1 + 1e-6), where it is 1 - f / 2E^2.
+  const double nearest = std::max(line.nearest() - reach, 2 * m * (1 + 1e-6));
+  const double farthest = line.farthest() + reach;
+  double speed = line.max_local_speed();
+  if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
+    const double f = 1 - 2 * m / nearest, e = fall->fall.energy();
+    speed = std::sqrt(1 - f / (e * e));
+  }
+  const double spin = std::atanh(std::min(speed, 1 - 1e-16));
   const auto gravity = [&](double r) { return std::isinf(r) ? 0.0 : 0.5 * std::log1p(-2 * m / r); };
   const double camera = -std::log(hole.camera_lapse);
   return {camera - hole.camera_rapidity + gravity(nearest) - spin,

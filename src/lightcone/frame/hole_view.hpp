@@ -58,9 +58,9 @@ LogShiftRange sky_log_shift_range(const HoleView& hole);
 // (both fall with r), shifted by the camera's terms.
 LogShiftRange disk_log_shift_range(const HoleView& hole);
 
-// The same for an object (at rest or on a straight coordinate line; its ball about its origin
-// kept outside the horizon): a static emitter at r is seen from far away with g = sqrt(f(r)),
-// and its motion, at a local speed up to the line's peak, moves ln g by its rapidity at most.
+// The same for an object (at rest, on a straight coordinate line or on a geodesic): a static
+// emitter at r is seen from far away with g = sqrt(f(r)), and its motion, at a local speed up
+// to its world-line's peak, moves ln g by its rapidity at most.
 LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object);
 
 }  // namespace lightcone

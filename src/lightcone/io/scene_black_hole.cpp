@@ -104,39 +104,42 @@ bool SceneReader::geodesic_motion(const Node& m) {
          (m.value->contains("orbit") || m.value->contains("fall"));
 }
 
-CameraGeodesic SceneReader::camera_geodesic(const Node& n, const Node& m) const {
+HoleGeodesic SceneReader::geodesic(const Node& n, const Node& m, std::string_view noun) const {
   const std::string_view kind = one_of(m, {"orbit", "fall"});
   const Node path = member(m, kind);
   const bool orbit = kind == "orbit";
   if (!hole_)
     fail(path, fmt::format("{} needs a black hole (the top-level \"black_hole\"): without one the "
-                           "camera moves inertially, or as \"phases\" or \"keyframes\" say",
+                           "{} moves inertially, or as \"phases\" or \"keyframes\" say",
                            orbit ? "a circular orbit about a black hole"
-                                 : "a free fall toward a black hole"));
+                                 : "a free fall toward a black hole",
+                           noun));
   const auto refuse = [&](const char* key, std::string_view why) {
     if (Node k = member(n, key); k.value)
       fail(k, fmt::format("must not be given with motion.{} ({})", kind, why));
   };
   if (orbit) {
     for (const char* key : {"position", "time", "velocity"})
-      refuse(key,
-             "the orbit says where and when the camera is and how it moves: give its radius, "
-             "normal and phase");
+      refuse(key, fmt::format("the orbit says where and when the {} is and how it moves: give its "
+                              "radius, normal and phase",
+                              noun));
   } else {
-    refuse("time", "the coordinate time at the camera's proper time 0 is motion.fall.time");
-    refuse("velocity", "the camera falls freely from rest, and its velocity follows");
+    refuse("time",
+           fmt::format("the coordinate time at the {}'s proper time 0 is motion.fall.time", noun));
+    refuse("velocity",
+           fmt::format("the {} falls freely from rest, and its velocity follows", noun));
   }
-  CameraGeodesic g;
+  HoleGeodesic g;
   g.hole = hole_->position;
   g.mass = hole_->mass;
   if (orbit)
-    g.path = camera_orbit(path);
+    g.path = this->orbit(path, noun);
   else
-    g.path = camera_fall(n, path);
+    g.path = fall(n, path, noun);
   return g;
 }
 
-CameraOrbit SceneReader::camera_orbit(const Node& o) const {
+HoleOrbit SceneReader::orbit(const Node& o, std::string_view noun) const {
   object(o, {"radius", "normal", "phase"});
   const double mass = hole_->mass;
   const Node radius = member(o, "radius");
@@ -146,7 +149,7 @@ CameraOrbit SceneReader::camera_orbit(const Node& o) const {
                              "(in units of M) must be greater than 3 (and orbits inside 6M, the "
                              "ISCO, are unstable)",
                              r));
-  CameraOrbit orbit;
+  HoleOrbit orbit;
   orbit.radius = r * mass;
   if (!std::isfinite(orbit.radius))
     fail(radius,
@@ -154,9 +157,9 @@ CameraOrbit SceneReader::camera_orbit(const Node& o) const {
   // Its speed measured by the static observer, sqrt(M / (r - 2M)): gamma = sqrt((r - 2) / (r - 3))
   // in units of M, unbounded toward the photon sphere.
   limit_gamma(radius, std::sqrt((r - 2) / (r - 3)),
-              fmt::format("on a circular orbit at r = {}M the camera's speed {} measured by the "
+              fmt::format("on a circular orbit at r = {}M the {}'s speed {} measured by the "
                           "local static observer",
-                          r, std::sqrt(1 / (r - 2)) * c_),
+                          r, noun, std::sqrt(1 / (r - 2)) * c_),
               observers_.front());
   Vec3 normal{0, 1, 0};
   if (Node nn = member(o, "normal"); nn.value) normal = direction(nn);
@@ -172,68 +175,83 @@ CameraOrbit SceneReader::camera_orbit(const Node& o) const {
   return orbit;
 }
 
-CameraFall SceneReader::camera_fall(const Node& n, const Node& f) const {
+HoleFall SceneReader::fall(const Node& n, const Node& f, std::string_view noun) const {
   object(f, {"from", "direction", "time"});
   const double mass = hole_->mass;
   const Node position = member(n, "position");
-  // Where the camera is at proper time 0, relative to the hole (outside the horizon:
-  // check_camera_near_hole), when given.
+  // Where the body is at proper time 0, relative to the hole (outside the horizon: the
+  // callers check), when given.
   std::optional<Vec3> at;
   double at_r = 0;
   if (position.value) {
     at = vec3(position) - hole_->position;
     at_r = length(*at);
   }
-  CameraFall fall;
+  HoleFall fall;
   const Node from = member(f, "from");
   if (from.value && from.value->is_string()) {
     if (string(from) != "infinity")
-      fail(from, fmt::format("must be a number (the radius r0 in units of M, > 2, where the camera "
+      fail(from, fmt::format("must be a number (the radius r0 in units of M, > 2, where the {} "
                              "falls from rest) or \"infinity\", got {}",
-                             describe(*from.value)));
+                             noun, describe(*from.value)));
     if (!at)
-      fail(f,
-           "a fall from \"infinity\" needs camera.position: where the camera passes at its "
-           "proper time 0 (at coordinate time motion.fall.time)");
+      fail(f, fmt::format("a fall from \"infinity\" needs {0}.position: where the {0} passes at "
+                          "its proper time 0 (at coordinate time motion.fall.time)",
+                          noun));
     fall.from = std::numeric_limits<double>::infinity();
     fall.reference = at_r;
   } else if (from.value) {
     const double r0 = number(from);
     if (!(r0 > 2))
       fail(from, fmt::format("{} is not outside the horizon, 2M: the radius (in units of M) where "
-                             "the camera falls from rest must be greater than 2, or \"infinity\"",
-                             r0));
+                             "the {} falls from rest must be greater than 2, or \"infinity\"",
+                             r0, noun));
     fall.from = r0 * mass;
     if (!std::isfinite(fall.from))
       fail(from, fmt::format("the radius {} M, with M = {}, is too large (not a finite number)", r0,
                              mass));
     if (at && !(std::abs(at_r - fall.from) <= 1e-9 * fall.from))
       fail(from, fmt::format("the fall from rest at r0 = {}M starts at r = {} from the black hole, "
-                             "but camera.position, where it is at proper time 0, is at r = {} "
+                             "but {}.position, where it is at proper time 0, is at r = {} "
                              "({}M): give one of them",
-                             r0, fall.from, at_r, at_r / mass));
+                             r0, fall.from, noun, at_r, at_r / mass));
   } else {
     if (!at)
-      fail(f,
-           "needs \"from\": the radius r0 in units of M (> 2) where the camera falls from "
-           "rest, or \"infinity\" (or camera.position, to fall from rest there)");
+      fail(f, fmt::format("needs \"from\": the radius r0 in units of M (> 2) where the {0} falls "
+                          "from rest, or \"infinity\" (or {0}.position, to fall from rest there)",
+                          noun));
     fall.from = at_r;
   }
   if (Node d = member(f, "direction"); d.value) {
     fall.direction = direction(d);
     if (at && !(length(cross(fall.direction, *at / at_r)) <= 1e-9 && dot(fall.direction, *at) > 0))
-      fail(d,
-           "must point from the black hole toward camera.position, where the camera is at its "
-           "proper time 0 (or be left out: it defaults to that direction)");
+      fail(d, fmt::format("must point from the black hole toward {0}.position, where the {0} is at "
+                          "its proper time 0 (or be left out: it defaults to that direction)",
+                          noun));
   } else {
     if (!at)
-      fail(f,
-           "needs \"direction\" [x, y, z], from the black hole along which the camera falls "
-           "(or camera.position)");
+      fail(f, fmt::format("needs \"direction\" [x, y, z], from the black hole along which the {0} "
+                          "falls (or {0}.position)",
+                          noun));
     fall.direction = *at / at_r;
   }
   if (Node t = member(f, "time"); t.value) fall.time = time(t);
   return fall;
+}
+
+void SceneReader::geodesic_object(const Node& m, Object& o) const {
+  const HoleGeodesic& g = *o.motion.geodesic;
+  const double reach = origin_radius(o.shape, o.scale), horizon = 2 * g.mass;
+  if (const auto* orbit = std::get_if<HoleOrbit>(&g.path);
+      orbit && !(orbit->radius - reach > horizon))
+    fail(member(member(m, "orbit"), "radius"),
+         fmt::format(
+             "the object reaches {:.6g} from its origin, so on an orbit at r = {} it crosses "
+             "the horizon r = 2M = {}: an orbit's radius must exceed 2M plus the object's "
+             "reach",
+             reach, orbit->radius, horizon));
+  const HoleWorldLineState at = hole_world_line(o, *hole_).at(0);
+  o.world_line = {0, g.hole + at.position, at.velocity, at.proper_time};
 }
 
 void SceneReader::refuse_near_hole(const Node& n, std::string_view what,

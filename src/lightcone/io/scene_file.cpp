@@ -71,7 +71,7 @@ Camera SceneReader::camera(const Node& n) const {
   const Node motion_node = member(n, "motion");
   if (geodesic_motion(motion_node)) {
     // An orbit or a fall near the hole: it says where and when the camera is.
-    c.motion.geodesic = camera_geodesic(n, motion_node);
+    c.motion.geodesic = geodesic(n, motion_node, "camera");
   } else {
     // Keyframes say where the camera is; otherwise its position is required.
     const bool keyframed = motion_node.value && motion_node.value->is_object() &&
@@ -287,11 +287,14 @@ Object SceneReader::read_object(const Node& n, std::size_t index) {
   if (Node p = member(n, "position"); p.value) o.world_line.position = vec3(p);
   if (Node t = member(n, "time"); t.value) o.world_line.time = time(t);
   if (Node v = member(n, "velocity"); v.value) o.world_line.velocity = velocity(v);
-  if (Node m = member(n, "motion"); m.value) {
-    if (hole_) refuse_near_hole(m, "motion (phases or keyframes) of an object");
-    o.motion = body_motion(n, m, o.world_line);
+  const Node motion_node = member(n, "motion");
+  if (geodesic_motion(motion_node)) {
+    o.motion.geodesic = geodesic(n, motion_node, "object");
+  } else if (motion_node.value) {
+    if (hole_) refuse_near_hole(motion_node, "motion (phases or keyframes) of an object");
+    o.motion = body_motion(n, motion_node, o.world_line);
   }
-  if (hole_) check_line_near_hole(n, o.world_line, "object");
+  if (hole_ && !o.motion.geodesic) check_line_near_hole(n, o.world_line, "object");
   if (Node r = member(n, "rotation"); r.value) o.rotation = rotation(r);
   if (Node s = member(n, "scale"); s.value) {
     if (s.value->is_number()) {
@@ -301,6 +304,7 @@ Object SceneReader::read_object(const Node& n, std::size_t index) {
       o.scale = positive_vec3(s);
     }
   }
+  if (o.motion.geodesic) geodesic_object(motion_node, o);
   if (Node m = member(n, "material"); m.value) o.material = material(m, index);
   if (Node sp = member(n, "spin"); sp.value) {
     if (hole_) refuse_near_hole(sp, "spin");

@@ -96,17 +96,21 @@ class SceneReader : public SceneValueReader {
   // yet supported).
   void check_camera_near_hole(const Node& n) const;
 
-  // Whether the camera's `motion` node `m` is a geodesic about the hole: an object with "orbit"
+  // Whether the `motion` node `m` is a geodesic about the hole: an object with "orbit"
   // or "fall".
   static bool geodesic_motion(const Node& m);
 
-  // The camera `n`'s geodesic motion `m` ({"orbit": {...}} or {"fall": {...}}), which needs a
-  // black hole. It says where and when the camera is: an orbit takes no position, time or
-  // velocity, a fall no time or velocity, and a fall's position, where given, is where it is at
-  // proper time 0 (its start from rest, or where it passes from infinity).
-  CameraGeodesic camera_geodesic(const Node& n, const Node& m) const;
-  CameraOrbit camera_orbit(const Node& o) const;
-  CameraFall camera_fall(const Node& n, const Node& f) const;
+  // The geodesic motion `m` ({"orbit": {...}} or {"fall": {...}}) of the camera or object `n`
+  // (`noun`, for messages), which needs a black hole. It says where and when the body is: an
+  // orbit takes no position, time or velocity, a fall no time or velocity, and a fall's
+  // position, where given, is where it is at proper time 0 (its start from rest, or where it
+  // passes from infinity).
+  HoleGeodesic geodesic(const Node& n, const Node& m, std::string_view noun) const;
+  HoleOrbit orbit(const Node& o, std::string_view noun) const;
+  HoleFall fall(const Node& n, const Node& f, std::string_view noun) const;
+  // An object on a geodesic (its shape and scale read): its ball about its origin clears the
+  // horizon on an orbit, and its world-line holds its point at coordinate time 0.
+  void geodesic_object(const Node& m, Object& o) const;
 
   // Refuses, near a hole, the key `n` (`what`: motion, spin, ...) that is not yet supported
   // there: "WHAT is not yet supported near a black hole[MORE]".

@@ -15,20 +15,20 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-RadialFall radial_fall(const CameraGeodesic& g, const CameraFall& fall) {
+RadialFall radial_fall(const HoleGeodesic& g, const HoleFall& fall) {
   return std::isinf(fall.from) ? RadialFall::from_infinity(g.mass, fall.reference)
                                : RadialFall::from_rest(g.mass, fall.from);
 }
 
 // The camera's event, its velocity measured by the local static observer, and its proper time.
-WorldLine geodesic_observation(const CameraGeodesic& g, double tau) {
-  if (const auto* orbit = std::get_if<CameraOrbit>(&g.path)) {
+WorldLine geodesic_observation(const HoleGeodesic& g, double tau) {
+  if (const auto* orbit = std::get_if<HoleOrbit>(&g.path)) {
     const CircularOrbitPoint p = circular_orbit_at_proper_time(g.mass, orbit->radius, tau);
     const double phi = orbit->phase + p.angle, c = std::cos(phi), s = std::sin(phi);
     return {p.coordinate_time, g.hole + (orbit->axis_x * c + orbit->axis_y * s) * orbit->radius,
             (orbit->axis_y * c - orbit->axis_x * s) * p.local_speed, tau};
   }
-  const CameraFall& fall = std::get<CameraFall>(g.path);
+  const HoleFall& fall = std::get<HoleFall>(g.path);
   const RadialFallPoint p = radial_fall(g, fall).at_proper_time(tau);
   return {fall.time + p.coordinate_time, g.hole + fall.direction * p.radius,
           fall.direction * p.local_velocity, tau};
@@ -36,8 +36,8 @@ WorldLine geodesic_observation(const CameraGeodesic& g, double tau) {
 
 }  // namespace
 
-ProperTimeSpan drawn_proper_times(const CameraGeodesic& g) {
-  const auto* fall = std::get_if<CameraFall>(&g.path);
+ProperTimeSpan drawn_proper_times(const HoleGeodesic& g) {
+  const auto* fall = std::get_if<HoleFall>(&g.path);
   if (!fall) return {-kInf, kInf};
   const double latest =
       radial_fall(g, *fall).proper_time_at_radius(2 * g.mass * (1 + kCameraHorizonMargin));
@@ -46,7 +46,7 @@ ProperTimeSpan drawn_proper_times(const CameraGeodesic& g) {
 
 std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion, double c) {
   if (!motion.geodesic) return std::nullopt;
-  const CameraGeodesic& g = *motion.geodesic;
+  const HoleGeodesic& g = *motion.geodesic;
   const ProperTimeSpan span = drawn_proper_times(g);
   const double tau = motion.proper_time;
   if (tau > span.earliest && tau < span.latest) {
@@ -55,9 +55,9 @@ std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
     return fmt::format(
         "at proper time {} the camera's coordinate time or distance from the black hole is not a "
         "finite number (it is too far along its {})",
-        tau / c, std::holds_alternative<CameraOrbit>(g.path) ? "orbit" : "fall");
+        tau / c, std::holds_alternative<HoleOrbit>(g.path) ? "orbit" : "fall");
   }
-  const CameraFall& fall = std::get<CameraFall>(g.path);  // an orbit is drawn at every tau
+  const HoleFall& fall = std::get<HoleFall>(g.path);  // an orbit is drawn at every tau
   const double r = radial_fall(g, fall).at_proper_time(tau).radius;
   const std::string drawn =
       !(span.latest > span.earliest) ? "it starts there, and is drawn at no proper time"
@@ -75,10 +75,22 @@ std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
       tau / c, r, where, 2 * g.mass, drawn);
 }
 
-double geodesic_proper_time_at(const CameraGeodesic& g, double t) {
-  if (const auto* orbit = std::get_if<CameraOrbit>(&g.path))
+HoleWorldLine hole_world_line(const Object& object, const BlackHole& hole) {
+  const WorldLine& w = object.world_line;
+  if (!object.motion.geodesic)
+    return HoleWorldLine::straight(hole.mass, w.time, w.position - hole.position, w.velocity,
+                                   w.proper_time);
+  const HoleGeodesic& g = *object.motion.geodesic;
+  if (const auto* orbit = std::get_if<HoleOrbit>(&g.path))
+    return HoleWorldLine::orbit(g.mass, orbit->radius, orbit->axis_x, orbit->axis_y, orbit->phase);
+  const HoleFall& fall = std::get<HoleFall>(g.path);
+  return HoleWorldLine::fall(radial_fall(g, fall), fall.direction, fall.time);
+}
+
+double geodesic_proper_time_at(const HoleGeodesic& g, double t) {
+  if (const auto* orbit = std::get_if<HoleOrbit>(&g.path))
     return circular_orbit_proper_time(g.mass, orbit->radius, t);
-  const CameraFall& fall = std::get<CameraFall>(g.path);
+  const HoleFall& fall = std::get<HoleFall>(g.path);
   return radial_fall(g, fall).proper_time_at_coordinate_time(t - fall.time);
 }
 

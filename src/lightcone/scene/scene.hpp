@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/physics/world_line.hpp"
@@ -131,6 +132,34 @@ struct Material {
   std::optional<Glossy> glossy;
 };
 
+// A camera or body moving freely near the scene's black hole (docs/scene-format.md,
+// "black_hole"), on a geodesic given in closed form (physics/schwarzschild_geodesics.hpp); W's time
+// is Schwarzschild coordinate time there, and the camera's velocity is measured by the local static
+// observer.
+//
+// A circular geodesic at `radius` (> 3M) in the plane of the unit vectors axis_x and axis_y
+// (orthogonal), counter-clockwise about axis_x x axis_y: at coordinate time t it is at
+// hole + radius (cos phi axis_x + sin phi axis_y), phi = phase + Omega t; proper time 0 at t = 0.
+struct HoleOrbit {
+  double radius = 0;
+  Vec3 axis_x{1, 0, 0}, axis_y{0, 0, -1};
+  double phase = 0;  // radians
+};
+// A radial free fall along the unit vector `direction` from the hole: from rest at r = `from`
+// (> 2M; proper time 0 there, at coordinate time `time`), or, with `from` infinite, from rest
+// at infinity, passing r = `reference` (> 2M) at proper time 0 and coordinate time `time`.
+struct HoleFall {
+  double from = 0;
+  double reference = 0;  // from infinity only
+  Vec3 direction{0, 0, 1};
+  double time = 0;
+};
+struct HoleGeodesic {
+  Vec3 hole;        // the hole's position
+  double mass = 1;  // and its mass M
+  std::variant<HoleOrbit, HoleFall> path;
+};
+
 // Motion beyond the inertial world-line of a body's origin (docs/design/accelerated-bodies.md):
 // either phases of constant proper acceleration from the world-line's event (proper time 0)
 // on, or keyframes, world positions at world times that replace the world-line (proper time 0
@@ -138,6 +167,9 @@ struct Material {
 struct BodyMotion {
   std::vector<AccelerationPhase> phases;
   std::vector<Keyframe> keyframes;
+  // Near a black hole, instead of the world-line, phases and keyframes: a geodesic (the
+  // world-line then holds its point at coordinate time 0, for what reads one).
+  std::optional<HoleGeodesic> geodesic;
 
   bool inertial() const { return phases.empty() && keyframes.empty(); }
 };
@@ -193,34 +225,6 @@ struct Light {
   double intensity = 1;  // point, spot, sphere; rest frame
 };
 
-// A camera moving freely near the scene's black hole (docs/scene-format.md, "black_hole"), on a
-// geodesic given in closed form (physics/schwarzschild_geodesics.hpp); W's time is
-// Schwarzschild coordinate time there, and the camera's velocity is measured by the local
-// static observer.
-//
-// A circular geodesic at `radius` (> 3M) in the plane of the unit vectors axis_x and axis_y
-// (orthogonal), counter-clockwise about axis_x x axis_y: at coordinate time t it is at
-// hole + radius (cos phi axis_x + sin phi axis_y), phi = phase + Omega t; proper time 0 at t = 0.
-struct CameraOrbit {
-  double radius = 0;
-  Vec3 axis_x{1, 0, 0}, axis_y{0, 0, -1};
-  double phase = 0;  // radians
-};
-// A radial free fall along the unit vector `direction` from the hole: from rest at r = `from`
-// (> 2M; proper time 0 there, at coordinate time `time`), or, with `from` infinite, from rest
-// at infinity, passing r = `reference` (> 2M) at proper time 0 and coordinate time `time`.
-struct CameraFall {
-  double from = 0;
-  double reference = 0;  // from infinity only
-  Vec3 direction{0, 0, 1};
-  double time = 0;
-};
-struct CameraGeodesic {
-  Vec3 hole;        // the hole's position
-  double mass = 1;  // and its mass M
-  std::variant<CameraOrbit, CameraFall> path;
-};
-
 // The camera is drawn from outside r = 2M (1 + kCameraHorizonMargin) only: its view at and inside
 // the horizon is not drawn yet.
 inline constexpr double kCameraHorizonMargin = 1e-9;
@@ -238,8 +242,8 @@ struct Camera {
     std::vector<AccelerationPhase> phases;
     std::vector<Keyframe> keyframes;  // instead of start and phases (proper time 0 at the first)
     // Near a black hole, instead of start, phases and keyframes: a geodesic (proper time 0 as
-    // CameraOrbit and CameraFall say).
-    std::optional<CameraGeodesic> geodesic;
+    // HoleOrbit and HoleFall say).
+    std::optional<HoleGeodesic> geodesic;
     double proper_time = 0;
   } motion;
   // In the camera's rest frame (axes: W's carried by the pure boost).
@@ -348,7 +352,7 @@ WorldLine camera_observation(const Camera::Motion& motion);
 struct ProperTimeSpan {
   double earliest = 0, latest = 0;
 };
-ProperTimeSpan drawn_proper_times(const CameraGeodesic& geodesic);
+ProperTimeSpan drawn_proper_times(const HoleGeodesic& geodesic);
 
 // Why a camera on a geodesic `motion` cannot be drawn at motion.proper_time (at or within
 // 2M (1 + kCameraHorizonMargin) of the horizon, or so far along that its coordinate time or
@@ -358,7 +362,11 @@ std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
                                                    double speed_of_light);
 
 // The camera's proper time at coordinate (world) time t on its geodesic.
-double geodesic_proper_time_at(const CameraGeodesic& geodesic, double t);
+double geodesic_proper_time_at(const HoleGeodesic& geodesic, double t);
+
+// The world-line near the scene's black hole of an object's origin: its geodesic, or its
+// world-line read as a straight coordinate line. Requires scene.black_hole.
+HoleWorldLine hole_world_line(const Object& object, const BlackHole& hole);
 
 // The world-line of a body whose origin starts on `start` and moves as `motion` says; null for
 // an inertial one (then `start` is its world-line). Throws what the world-lines throw.

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/lorentz.hpp"
 
 namespace lightcone {
@@ -14,6 +15,33 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2 * std::numbers::pi;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// The distance between segments [a0, a1] and [b0, b1]: their closest points, each clamped to
+// its segment in turn (Ericson, "Real-Time Collision Detection", 2005, section 5.1.9).
+double segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+  const Vec3 da = a1 - a0, db = b1 - b0, r = a0 - b0;
+  const double aa = dot(da, da), bb = dot(db, db), f = dot(db, r);
+  double s = 0, t = 0;
+  if (aa <= 0) {
+    t = bb > 0 ? std::clamp(f / bb, 0.0, 1.0) : 0.0;
+  } else {
+    const double c = dot(da, r);
+    if (bb <= 0) {
+      s = std::clamp(-c / aa, 0.0, 1.0);
+    } else {
+      const double ab = dot(da, db), denominator = aa * bb - ab * ab;
+      s = denominator > 0 ? std::clamp((ab * f - c * bb) / denominator, 0.0, 1.0) : 0.0;
+      t = (ab * s + f) / bb;
+      if (t < 0) {
+        t = 0, s = std::clamp(-c / aa, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1, s = std::clamp((ab - c) / aa, 0.0, 1.0);
+      }
+    }
+  }
+  return length(a0 + da * s - (b0 + db * t));
+}
 
 // The events of one ray's path, in W: after sweeping phi it is at the hole's centre plus
 // path.offset(phi, r(phi)), at the camera's time less the coordinate time the light took.
@@ -35,11 +63,12 @@ struct PathEvents {
     const double turn = course.turning_radius;
     return coordinate_time(path.orbit, r0, turn) + coordinate_time(path.orbit, turn, r);
   }
+  double time(double phi, double r) const { return camera_time - delay(phi, r); }
   // The event at phi; its time only when `timed` (a body at rest needs none to be met).
   Vec4 event(double phi, bool timed, double* r_out = nullptr) const {
     const double r = radius(phi);
     if (r_out) *r_out = r;
-    return {timed ? camera_time - delay(phi, r) : 0.0, hole.centre + path.offset(phi, r)};
+    return {timed ? time(phi, r) : 0.0, hole.centre + path.offset(phi, r)};
   }
 };
 
@@ -77,21 +106,176 @@ MetSurface surface_met(const Object& object, const Vec3& p, unsigned prim) {
   return s;
 }
 
+// Where a ray in the plane through the hole with normal n (axes e1, e2) can meet a body: within
+// delta of each centre angle (every angle for delta = pi), at radii between near and reach;
+// inner bounds the radius of a point met from below, for the chord step. No windows: it cannot.
+struct Windows {
+  int count = 0;
+  double centre[2] = {0, 0};  // increasing
+  double delta = kPi;
+  double near = 0, reach = 0, inner = 0;
+};
+
+// How far out a ray can meet a body that comes no nearer than `now` at the camera's time and
+// moves at coordinate speed at most v (< 1): past r, the light's delay T >= r - r0 - 4M ln(1 +
+// r / 2M) - 8M (coordinate light speed at most 1, and the Shapiro delay's bound) takes the body
+// at most v T farther out, and the ray has outrun it.
+double moving_reach(double m, double camera_radius, double v, double now) {
+  const auto beyond = [&](double r) {
+    return (1 - v) * r - v * (camera_radius + 4 * m * std::log1p(r / (2 * m)) + 8 * m) > now;
+  };
+  double reach = std::max(now, camera_radius);
+  while (!beyond(reach)) reach *= 2;
+  return reach;
+}
+
+Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath& path,
+                     const Vec3& n, const HoleView& hole, double camera_time) {
+  const double m = hole.mass;
+  Windows w;
+  const auto at_angle = [&](const Vec3& v) { return std::atan2(dot(v, path.e2), dot(v, path.e1)); };
+  const auto everywhere = [&](double near, double reach) {
+    w.count = 1, w.delta = kPi, w.near = std::max(near, 2 * m), w.reach = reach, w.inner = 0;
+    return w;
+  };
+  if (const auto* orbit = std::get_if<HoleWorldLine::Orbit>(&line.path())) {
+    // The torus about the orbit cuts the plane where |q . N| <= R: within asin(R / (r s)) of
+    // the two directions along which the planes meet (s the sine of the angle between them).
+    const Vec3 normal = cross(orbit->axis_x, orbit->axis_y);
+    const Vec3 in_plane = normal - n * dot(normal, n);
+    const double s = length(in_plane), inner = orbit->radius - radius;
+    if (!(s * inner > radius)) return everywhere(inner, orbit->radius + radius);
+    const double theta = at_angle(in_plane);
+    w.count = 2;
+    w.centre[0] = theta - kPi / 2, w.centre[1] = theta + kPi / 2;
+    w.delta = std::asin(radius / (inner * s));
+    w.near = std::max(inner, 2 * m), w.reach = orbit->radius + radius, w.inner = inner;
+    return w;
+  }
+  if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
+    // The tube along the line of fall (r >= 2M) cuts the plane, at radii rho >= 2M, where
+    // rho^2 (1 - p^2 cos^2(theta - theta_d)) <= R^2, p the length of the direction's projection.
+    const double now = length(line.at(camera_time).position) + radius;
+    const double reach = fall->fall.is_from_infinity()
+                             ? moving_reach(m, hole.camera_radius, line.max_coordinate_speed(), now)
+                             : line.farthest() + radius;
+    if (!(radius < 2 * m)) return everywhere(2 * m, reach);
+    const Vec3 in_plane = fall->direction - n * dot(fall->direction, n);
+    const double least_cos =
+        std::sqrt((1 - radius / (2 * m)) * (1 + radius / (2 * m))) / length(in_plane);
+    if (!(least_cos < 1)) return w;
+    w.count = 1;
+    w.centre[0] = at_angle(in_plane);
+    w.delta = std::acos(least_cos);
+    w.near = 2 * m, w.reach = reach, w.inner = 2 * m;
+    return w;
+  }
+  // A straight line: the body's ball (or the tube it sweeps) cuts the plane in a disc about cp
+  // of radius rho, which the ray can reach only within delta of its angle about the hole.
+  const auto& straight = std::get<HoleWorldLine::Straight>(line.path());
+  const Vec3& p = straight.position;
+  const Vec3& v = straight.velocity;
+  Vec3 cp = p;
+  double rho = radius;
+  if (line.still()) {
+    const double h = dot(p, n);
+    if (std::abs(h) >= radius) return w;
+    cp = p - n * h;
+    rho = std::sqrt(radius * radius - h * h);
+    w.reach = length(cp) + rho;
+  } else {
+    const double vn = dot(v, n), speed = length(v);
+    // How far out the ray can meet it: past where the body cannot keep up with the ray.
+    const double now = length(line.at(camera_time).position) + radius;
+    const double reach = moving_reach(m, hole.camera_radius, speed, now);
+    // How far in: its line's closest approach.
+    const double near = line.nearest() - radius;
+    if (std::abs(vn) <= 1e-9 * speed) {
+      if (std::abs(dot(p, n)) >= radius) return w;
+      return everywhere(near, reach);
+    }
+    cp = p - v * (dot(p, n) / vn);
+    rho = radius * speed / std::abs(vn);
+    w.reach = reach;
+    w.near = std::max(near, 2 * m);
+  }
+  const double d = length(cp);
+  w.count = 1;
+  w.centre[0] = at_angle(cp);
+  w.delta = d <= rho ? kPi : std::asin(rho / d);
+  if (line.still()) w.near = std::max(d - rho, 2 * m);
+  w.inner = w.delta >= kPi ? 0 : d - rho;
+  return w;
+}
+
 }  // namespace
 
 CurvedBodies::CurvedBodies(const ResolvedScene& scene, const Tracer& tracer)
     : scene_(scene), tracer_(tracer) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Object& o = *scene.bodies[i].object;
-    Body b;
-    b.index = static_cast<int>(i);
-    b.position = o.world_line.position - scene.hole->centre;
-    b.velocity = o.world_line.velocity;
-    b.time = o.world_line.time;
-    b.proper_time = o.world_line.proper_time;
-    b.radius = origin_radius(o.shape, o.scale) * (1 + 1e-9);
-    bodies_.push_back(b);
+    bodies_.push_back({static_cast<int>(i), hole_world_line(o, *scene.scene->black_hole),
+                       origin_radius(o.shape, o.scale) * (1 + 1e-9),
+                       (o.rotation * Mat3::diagonal(o.scale)).inverse()});
   }
+}
+
+bool CurvedBodies::Body::may_meet_in_space(const Vec3& a, const Vec3& b, double margin) const {
+  const double reach = radius * (1 + 1e-9) + margin;
+  if (const auto* orbit = std::get_if<HoleWorldLine::Orbit>(&line.path())) {
+    // Both ends on one side of the orbit's plane, beyond the body's radius.
+    const Vec3 normal = cross(orbit->axis_x, orbit->axis_y);
+    const double ha = dot(a, normal), hb = dot(b, normal);
+    return !(std::min(ha, hb) > reach || std::max(ha, hb) < -reach);
+  }
+  if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
+    // The segment's nearest approach to the line of fall (through the hole).
+    const Vec3& d = fall->direction;
+    return segment_distance(a - d * dot(a, d), b - d * dot(b, d), {}, {}) <= reach;
+  }
+  return true;
+}
+
+bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
+                                          const HoleWorldLineState& state_a,
+                                          const HoleWorldLineState& state_b, double margin,
+                                          double& acceleration) const {
+  acceleration = 0;
+  if (std::holds_alternative<HoleWorldLine::Straight>(line.path())) return true;
+  // Over the chord's times the body's origin stays within `bow` of the segment between where
+  // it is at their ends: on its line of fall, or within the sagitta of its orbit's arc.
+  const double t0 = std::min(a.t, b.t), t1 = std::max(a.t, b.t);
+  const HoleWorldLineState& s0 = a.t <= b.t ? state_a : state_b;
+  const HoleWorldLineState& s1 = a.t <= b.t ? state_b : state_a;
+  double bow = 0;
+  if (const auto* orbit = std::get_if<HoleWorldLine::Orbit>(&line.path())) {
+    const double swept = circular_orbit_angular_velocity(line.mass(), orbit->radius) * (t1 - t0);
+    bow = swept < kPi ? orbit->radius * (1 - std::cos(swept / 2)) : kInfinity;
+    acceleration = line.mass() / (orbit->radius * orbit->radius);
+  } else {
+    // A fall's d^2r/dt^2 = f f' (s^2 - f/2) / E^2, with s^2 = E^2 - f and f, s^2 in [0, E^2],
+    // is at most f' = 2M / r^2, its radius least at the later time.
+    const double r = length(s1.position);
+    acceleration = 2 * line.mass() / (r * r);
+  }
+  return segment_distance(a.x, b.x, s0.position, s1.position) <= radius * (1 + 1e-9) + margin + bow;
+}
+
+Vec3 CurvedBodies::Body::shape_point(const ResolvedBody& resolved, const Vec4& event,
+                                     const Vec3& hole, const HoleWorldLineState* known) const {
+  if (std::holds_alternative<HoleWorldLine::Straight>(line.path()))
+    return resolved.shadow_shape_point(event);
+  // Its rest frame's coordinates of a point simultaneous in W with its origin at offset d:
+  // d stretched by gamma along its velocity.
+  const HoleWorldLineState state = known ? *known : line.at(event.t);
+  const Vec3 d = event.x - hole - state.position;
+  const double vv = dot(state.velocity, state.velocity);
+  Vec3 rest = d;
+  if (vv > 0) {
+    const double gamma = lorentz_gamma(state.velocity);
+    rest = d + state.velocity * ((gamma - 1) * dot(d, state.velocity) / vv);
+  }
+  return to_shape * rest;
 }
 
 bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, double limit,
@@ -117,121 +301,148 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   } best;
   double best_phi = limit;
   for (const Body& body : bodies_) {
-    const bool moving = body.velocity.x != 0 || body.velocity.y != 0 || body.velocity.z != 0;
-    // Where the body's ball (or the tube it sweeps) cuts the ray's plane: a disc about cp of
-    // radius rho, which the ray can reach only within delta of its angle about the hole.
-    Vec3 cp = body.position;
-    double rho = body.radius;
-    bool everywhere = false;
-    if (!moving) {
-      const double h = dot(body.position, n);
-      if (std::abs(h) >= body.radius) continue;
-      cp = body.position - n * h;
-      rho = std::sqrt(body.radius * body.radius - h * h);
-    } else {
-      const double vn = dot(body.velocity, n), speed = length(body.velocity);
-      if (std::abs(vn) <= 1e-9 * speed) {
-        if (std::abs(dot(body.position, n)) >= body.radius) continue;
-        everywhere = true;
-      } else {
-        cp = body.position - body.velocity * (dot(body.position, n) / vn);
-        rho = body.radius * speed / std::abs(vn);
-      }
-    }
-    // How far out the ray can meet the body: its ball's disc for a body at rest; for a moving
-    // one, the radius past which the body, within |p| + v T of the hole after the light's delay
-    // T, cannot keep up with a ray that has gone out to r >= T - r0 - 4M ln(1 + r/2M) - 8M
-    // (coordinate light speed at most 1, and the Shapiro delay's bound).
-    double reach = length(cp) + rho;
-    if (moving) {
-      const double v = length(body.velocity);
-      const double now =
-          length(body.position + body.velocity * (scene_.observation_event.t - body.time)) +
-          body.radius;
-      const auto beyond = [&](double r) {
-        return (1 - v) * r - v * (hole.camera_radius + 4 * m * std::log1p(r / (2 * m)) + 8 * m) >
-               now;
-      };
-      reach = std::max(now, hole.camera_radius);
-      while (!beyond(reach)) reach *= 2;
-    }
-    const double d = length(cp);
-    const double centre = std::atan2(dot(cp, path.e2), dot(cp, path.e1));
-    const double delta = everywhere || d <= rho ? kPi : std::asin(rho / d);
-    const double r_min = everywhere ? floor : std::max(floor, d - rho);
-    // How far in the ray can meet the body (its line's closest approach for a moving one).
-    double near = std::max(d - rho, 2 * m);
-    if (moving) {
-      const double vv = dot(body.velocity, body.velocity);
-      const Vec3 closest = body.position - body.velocity * (dot(body.position, body.velocity) / vv);
-      near = std::max(length(closest) - body.radius, 2 * m);
-    }
+    const ResolvedBody& resolved = scene_.bodies[body.index];
+    const Windows windows =
+        body_windows(body.line, body.radius, path, n, hole, scene_.observation_event.t);
+    if (windows.count == 0) continue;
+    const bool moving = !body.line.still();
     // Chords within kChordError R of the path: its curvature is 3 M u^5 / (1/b^2 + 2 M u^3)^1.5,
-    // so a chord over dphi strays at most (3/8) M b dphi^2 / r_min from it.
+    // so a chord over dphi strays at most (3/8) M b dphi^2 / r_min from it; and of the body's
+    // path, which a chord over a coordinate time dt leaves by at most a dt^2 / 8.
     const double error = kChordError * body.radius;
+    const double r_min = std::max(floor, windows.inner);
     const double step = m > 0 ? std::sqrt(8 * error * r_min / (3 * m * path.impact)) : kTwoPi;
+    // Spans of many chords are first tested whole, as one chord widened by how far the path can
+    // stray from it: a quarter of the body's radius.
+    const double span = step * std::sqrt(0.25 / kChordError);
+    const double span_margin = m > 0 ? 0.375 * m * path.impact * span * span / r_min : 0.0;
+    const auto shape_of = [&](const Vec4& e, const HoleWorldLineState* state = nullptr) {
+      return body.shape_point(resolved, e, hole.centre, state);
+    };
+    // A geodesic's chords are timed only once they come near where it ever is.
+    const bool straight = std::holds_alternative<HoleWorldLine::Straight>(body.line.path());
+    const bool timed_at_once = moving && straight;
+    // The windows of this winding and the next, in order of angle: the first met is nearest.
     for (int winding = -1;; ++winding) {
-      double lo = delta >= kPi ? 0.0 : centre - delta + kTwoPi * winding;
-      double hi = delta >= kPi ? best_phi : centre + delta + kTwoPi * winding;
-      if (lo >= best_phi) break;
-      lo = std::max(lo, 0.0), hi = std::min(hi, best_phi);
-      if (!(lo < hi)) continue;
-      bool met = false;
-      double phi_a = lo, r_a;
-      Vec4 a = events.event(phi_a, moving, &r_a);
-      while (phi_a < hi && !met) {
-        // Past the body's reach on the way out, or inside it on the way in with no turning point
-        // ahead (toward the horizon): nothing more to meet.
-        const bool turned = events.turned(phi_a);
-        const bool growing = turned ? !path.outward : path.outward;
-        const bool turn_ahead = events.course.turning_radius > 0 && !turned;
-        if (growing && r_a > reach) break;
-        if (!growing && !turn_ahead && r_a < near) break;
-        if (!(r_a > horizon)) break;
-        // A chord ends where the path still has a finite radius outside the horizon (the path
-        // leaves for infinity, or reaches the horizon, at its total angle).
-        double phi_b = std::min(phi_a + step, hi), r_b = events.radius(phi_b);
-        for (int halving = 0; halving < 64 && !(r_b > horizon && std::isfinite(r_b)); ++halving)
-          phi_b = (phi_a + phi_b) / 2, r_b = events.radius(phi_b);
-        if (!(r_b > horizon && std::isfinite(r_b))) break;
-        const Vec4 b = events.event(phi_b, moving);
-        if (const auto chord = tracer_.body_on_world_segment(body.index, a, b)) {
-          const ResolvedBody& resolved = scene_.bodies[body.index];
-          const Vec4 on_chord = a + chord->s * (b - a);
-          const Vec3 chord_point = resolved.shadow_shape_point(on_chord);
-          const MetSurface surface = surface_met(*resolved.object, chord_point, chord->prim);
-          // The surface met, on the true path: its side at phi, solved between the chord's end
-          // outside and a point past the surface.
-          const auto side = [&](double phi) {
-            return surface.at(resolved.shadow_shape_point(events.event(phi, moving)));
+      bool past = true, met = false;
+      for (int w = 0; w < windows.count && !met; ++w) {
+        double lo =
+            windows.delta >= kPi ? 0.0 : windows.centre[w] - windows.delta + kTwoPi * winding;
+        double hi =
+            windows.delta >= kPi ? best_phi : windows.centre[w] + windows.delta + kTwoPi * winding;
+        if (lo >= best_phi) continue;
+        past = false;
+        lo = std::max(lo, 0.0), hi = std::min(hi, best_phi);
+        if (!(lo < hi)) continue;
+        double phi_a = lo, r_a;
+        Vec4 a = events.event(phi_a, timed_at_once, &r_a);
+        bool a_timed = timed_at_once;
+        Vec3 shape_a;
+        bool shape_known = false;
+        // A geodesic body's state at a's time, once a is timed.
+        HoleWorldLineState state_a, state_b;
+        double span_end = phi_a;
+        while (phi_a < hi && !met) {
+          // Past the body's reach on the way out, or inside it on the way in with no turning
+          // point ahead (toward the horizon): nothing more to meet.
+          const bool turned = events.turned(phi_a);
+          const bool growing = turned ? !path.outward : path.outward;
+          const bool turn_ahead = events.course.turning_radius > 0 && !turned;
+          if (growing && r_a > windows.reach) break;
+          if (!growing && !turn_ahead && r_a < windows.near) break;
+          if (!(r_a > horizon)) break;
+          // A chord ends where the path still has a finite radius outside the horizon (the path
+          // leaves for infinity, or reaches the horizon, at its total angle).
+          const auto chord_end = [&](double end, double& r_end) {
+            r_end = events.radius(end);
+            for (int halving = 0; halving < 64 && !(r_end > horizon && std::isfinite(r_end));
+                 ++halving)
+              end = (phi_a + end) / 2, r_end = events.radius(end);
+            return r_end > horizon && std::isfinite(r_end) ? end : phi_a;
           };
-          const double side_a = side(phi_a);
-          const double phi_c = phi_a + chord->s * (phi_b - phi_a);
-          double phi = phi_c;
-          double other = phi_b, side_other = side(phi_b);
-          if ((side_other < 0) == (side_a < 0)) other = phi_c, side_other = side(phi_c);
-          if ((side_other < 0) != (side_a < 0) && side_a != 0) {
-            std::uintmax_t iterations = 100;
-            const auto [x0, x1] = boost::math::tools::toms748_solve(
-                side, phi_a, other, side_a, side_other, boost::math::tools::eps_tolerance<double>(),
-                iterations);
-            phi = (x0 + x1) / 2;
+          // Whether the chord from a to b, widened by `margin`, may meet the body; if not, a
+          // moves to b.
+          double acceleration = 0;
+          const auto may_meet = [&](double phi_b, double r_b, Vec4& b, double margin) {
+            bool b_timed = timed_at_once;
+            if (body.may_meet_in_space(a.x - hole.centre, b.x - hole.centre, margin)) {
+              if (!straight) {
+                if (!a_timed) a.t = events.time(phi_a, r_a), state_a = body.line.at(a.t);
+                b.t = events.time(phi_b, r_b), state_b = body.line.at(b.t);
+                a_timed = b_timed = true;
+              }
+              if (body.may_meet_in_time({a.t, a.x - hole.centre}, {b.t, b.x - hole.centre}, state_a,
+                                        state_b, margin, acceleration))
+                return true;
+            }
+            phi_a = phi_b, a = b, r_a = r_b, a_timed = b_timed, shape_known = false;
+            state_a = state_b;
+            return false;
+          };
+          if (phi_a >= span_end && span > step) {
+            double r_c;
+            const double phi_c = chord_end(std::min(phi_a + span, hi), r_c);
+            if (!(phi_c > phi_a)) break;
+            Vec4 c = events.event(phi_c, timed_at_once);
+            if (!may_meet(phi_c, r_c, c, span_margin)) continue;
+            span_end = phi_c;
           }
-          // else: a grazing hit, within the chord error of the path; the chord's point stands.
-          if (phi < best_phi) {
-            best_phi = phi;
-            best.body = body.index;
-            best.phi = phi;
-            best.event = events.event(phi, true);
-            best.shape_point = resolved.shadow_shape_point(best.event);
-            best.incoming = resolved.shadow_shape_vector(b - a);
-            best.prim = chord->prim;
+          double r_b;
+          double phi_b = chord_end(std::min({phi_a + step, hi, span > step ? span_end : hi}), r_b);
+          if (!(phi_b > phi_a)) break;
+          Vec4 b = events.event(phi_b, timed_at_once);
+          if (!may_meet(phi_b, r_b, b, 0)) continue;
+          const double max_dt = acceleration > 0 ? std::sqrt(8 * error / acceleration) : kInfinity;
+          bool halved = false;
+          for (int halving = 0; halving < 64 && !(std::abs(b.t - a.t) <= max_dt); ++halving) {
+            phi_b = (phi_a + phi_b) / 2;
+            b = events.event(phi_b, moving, &r_b);
+            halved = true;
           }
-          met = true;
+          // No chord short enough in time (a path that cannot be resolved at this angle): give
+          // up on this window rather than stand still.
+          if (!(phi_b > phi_a)) break;
+          if (!straight && halved) state_b = body.line.at(b.t);
+          if (!shape_known) shape_a = shape_of(a, straight ? nullptr : &state_a);
+          const Vec3 shape_b = shape_of(b, straight ? nullptr : &state_b);
+          shape_known = true;
+          if (const auto chord = tracer_.body_on_shape_segment(body.index, shape_a, shape_b)) {
+            const Vec3 chord_point = shape_a + (shape_b - shape_a) * chord->s;
+            const MetSurface surface = surface_met(*resolved.object, chord_point, chord->prim);
+            // The surface met, on the true path: its side at phi, solved between the chord's
+            // end outside and a point past the surface.
+            const auto side = [&](double phi) {
+              return surface.at(shape_of(events.event(phi, moving)));
+            };
+            const double side_a = surface.at(shape_a);
+            const double phi_c = phi_a + chord->s * (phi_b - phi_a);
+            double phi = phi_c;
+            double other = phi_b, side_other = surface.at(shape_b);
+            if ((side_other < 0) == (side_a < 0)) other = phi_c, side_other = side(phi_c);
+            if ((side_other < 0) != (side_a < 0) && side_a != 0) {
+              std::uintmax_t iterations = 100;
+              const auto [x0, x1] = boost::math::tools::toms748_solve(
+                  side, phi_a, other, side_a, side_other,
+                  boost::math::tools::eps_tolerance<double>(), iterations);
+              phi = (x0 + x1) / 2;
+            }
+            // else: a grazing hit, within the chord error of the path; the chord's point stands.
+            if (phi < best_phi) {
+              best_phi = phi;
+              best.body = body.index;
+              best.phi = phi;
+              best.event = events.event(phi, true);
+              best.shape_point = shape_of(best.event);
+              best.incoming = shape_b - shape_a;
+              best.prim = chord->prim;
+            }
+            met = true;
+          }
+          phi_a = phi_b, a = b, r_a = r_b, a_timed = moving, shape_a = shape_b;
+          state_a = state_b;
         }
-        phi_a = phi_b, a = b, r_a = r_b;
       }
-      if (met || delta >= kPi) break;
+      if (met || past || windows.delta >= kPi) break;
     }
   }
   if (best.body < 0) return false;
@@ -245,28 +456,15 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   ray.hit.s = best.phi;
   ray.hit.shape_point = best.shape_point;
   tracer_.surface_at(best.incoming, ray.hit, best.prim);
-  ray.hit.velocity = body.velocity;
-  // The body's clock (its origin's): the integral of sqrt(f - v_r^2 / f - v_t^2) dt along its
-  // coordinate line, from its own event.
-  const auto rate = [&](double t) {
-    const Vec3 x = body.position + body.velocity * (t - body.time);
-    const double r = length(x), f = 1 - 2 * m / r;
-    const double v_r = dot(body.velocity, x) / r;
-    const double v_t2 = std::max(0.0, dot(body.velocity, body.velocity) - v_r * v_r);
-    return std::sqrt(std::max(0.0, f - v_r * v_r / f - v_t2));
-  };
-  const double t = best.event.t;
-  const auto integral = [&](double from, double to) {
-    return boost::math::quadrature::gauss_kronrod<double, 21>::integrate(rate, from, to, 12, 1e-13);
-  };
-  const bool still = body.velocity.x == 0 && body.velocity.y == 0 && body.velocity.z == 0;
-  ray.hit.proper_time = body.proper_time + (still            ? rate(body.time) * (t - body.time)
-                                            : t >= body.time ? integral(body.time, t)
-                                                             : -integral(t, body.time));
+  // The body's clock (its origin's) and velocity when it emitted.
+  const HoleWorldLineState state = body.line.at(best.event.t);
+  ray.hit.velocity = state.velocity;
+  ray.hit.proper_time = state.proper_time;
   // The shift: the energy the point measures for the photon, against the camera's. In the
   // static observer's frame at the point (radial axis rhat, W's axes), the photon has energy
   // 1 / sqrt(f) and travels along nhat (opposite to the backward ray), and the point moves with
-  // w = (v_r / f, v_t / sqrt(f)): it measures gamma_w (1 - nhat . w) / sqrt(f).
+  // the velocity w its origin has against the static observer there (a body's points share
+  // it: docs/design/black-hole.md, "Bodies"): it measures gamma_w (1 - nhat . w) / sqrt(f).
   const Vec3 x = best.event.x - hole.centre;
   const double r = length(x), f = 1 - 2 * m / r;
   const Vec3 rhat = x / r;
@@ -275,8 +473,7 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   const bool out = events.turned(best.phi) ? !path.outward : path.outward;
   const double radial = std::sqrt(std::max(0.0, 1 - b * b * f / (r * r)));
   const Vec3 nhat = (rhat * ((out ? 1 : -1) * radial) + that * (b * std::sqrt(f) / r)) * -1.0;
-  const double v_r = dot(body.velocity, rhat);
-  const Vec3 w = rhat * (v_r / f) + (body.velocity - rhat * v_r) / std::sqrt(f);
+  const Vec3& w = state.local_velocity;
   const double emitted = lorentz_gamma(w) * (1 - dot(nhat, w)) / std::sqrt(f);
   ray.shift = path.camera_energy / emitted;
   return true;

@@ -1,21 +1,25 @@
 // Bodies met along curved camera rays near a black hole (docs/design/black-hole.md, "Bodies").
 //
-// A body near the hole is at rest or moves on a straight coordinate line; its shape in W's
-// coordinates is the flat one (Lorentz-contracted by its coordinate velocity, as in flat space).
-// A camera ray's path (curved_ray.hpp) is followed in chords, straight segments of W events,
-// only over the angles where it can come near the body: the ray's plane cuts the body's ball
-// (or the tube its ball sweeps) in a disc, seen from the hole within a window of angles, once
-// a winding. Each chord stays within kChordError times the body's radius of the true path (the
-// path's curvature is known in closed form), and is tested against the body exactly, in the
-// body's own coordinates. The first chord that meets it brackets the hit, which is then solved on
-// the true path, to double precision, with the surface met (a sphere, a face's or triangle's
-// plane) and Boost's TOMS 748: a grazing hit within the chord error of the path can be missed,
-// nothing else. The event met is on the true path, so its time includes the Shapiro delay.
+// A body near the hole is at rest, moves on a straight coordinate line, or on a geodesic (a
+// circular orbit or a radial fall: physics/hole_world_line.hpp); at each coordinate time its
+// shape in W's coordinates is the flat one, Lorentz-contracted by its coordinate velocity then,
+// as in flat space. A camera ray's path (curved_ray.hpp) is followed in chords, straight
+// segments of W events, only over the angles where it can come near the body: the ray's plane
+// cuts the region the body's ball sweeps (a ball, a tube along its line, a torus about its
+// orbit, a tube along its line of fall) within windows of angles about the hole, once a
+// winding. Each chord stays within kChordError times the body's radius of the true path (the
+// path's curvature is known in closed form, and the body's acceleration bounded), and is tested
+// against the body exactly, in the body's own coordinates. The first chord that meets it
+// brackets the hit, which is then solved on the true path, to double precision, with the
+// surface met (a sphere, a face's or triangle's plane) and Boost's TOMS 748: a grazing hit
+// within the chord error of the path can be missed, nothing else. The event met is on the true
+// path, so its time includes the Shapiro delay.
 #pragma once
 
 #include <vector>
 
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
@@ -35,10 +39,25 @@ class CurvedBodies {
  private:
   struct Body {
     int index = 0;
-    Vec3 position;  // of its origin at W-time `time`, relative to the hole
-    Vec3 velocity;  // coordinate velocity
-    double time = 0, proper_time = 0;
-    double radius = 0;  // of its ball about its origin, in its rest frame (holds it in W too)
+    HoleWorldLine line;  // of its origin
+    double radius = 0;   // of its ball about its origin, in its rest frame (holds it in W too)
+    Mat3 to_shape;       // its rest frame's axes to its shape's coordinates: (R S)^-1
+    // Whether the chord between points a and b (relative to the hole) can come within the
+    // body's radius of where its origin ever is (its orbit's plane, its line of fall): a test
+    // before the chord is timed. Always, for a straight line, whose windows are tight. Both
+    // tests widen the body by `margin`.
+    bool may_meet_in_space(const Vec3& a, const Vec3& b, double margin) const;
+    // Whether the chord between events a and b (positions relative to the hole) can come within
+    // the body's radius of where its origin is between their times, given its states at
+    // them; `acceleration` gets a bound on its coordinate acceleration then (0 on a straight
+    // line).
+    bool may_meet_in_time(const Vec4& a, const Vec4& b, const HoleWorldLineState& state_a,
+                          const HoleWorldLineState& state_b, double margin,
+                          double& acceleration) const;
+    // Where the body is at the event's time, in its shape's coordinates: by its resolved
+    // (affine) map on a straight line, by its state then on a geodesic (`state`, if known).
+    Vec3 shape_point(const ResolvedBody& resolved, const Vec4& event, const Vec3& hole,
+                     const HoleWorldLineState* state = nullptr) const;
   };
   const ResolvedScene& scene_;
   const Tracer& tracer_;

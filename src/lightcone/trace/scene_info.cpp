@@ -93,7 +93,13 @@ SceneInfo scene_info(const Scene& scene) {
   const ResolvedScene resolved = resolve_scene(scene);
   info.bodies.push_back(body("camera", "camera", scene.camera.world_line.velocity));
   for (const Object& o : resolved.scene->objects)
-    info.bodies.push_back(body(o.name, "object", o.world_line.velocity));
+    // On a geodesic near a hole: the velocity the static observer where it is measures, at
+    // the camera's time (its coordinate velocity goes to 0 at the horizon).
+    info.bodies.push_back(body(
+        o.name, "object",
+        o.motion.geodesic && scene.black_hole
+            ? hole_world_line(o, *scene.black_hole).at(scene.camera.world_line.time).local_velocity
+            : o.world_line.velocity));
   for (const Light& l : resolved.scene->lights)
     info.bodies.push_back(body(l.name, "light", l.world_line.velocity));
   info.bodies.push_back(body("sky", "sky", scene.sky.velocity));

@@ -727,7 +727,13 @@ struct Tracer::Impl {
     const ResolvedBody& body = scene.bodies[index];
     if (body.spin >= 0)
       return intersect_spinning(index, shadow, origin, direction, tnear, tfar, context);
-    const ShapeRay ray = shape_ray(body, shadow, origin, direction);
+    return intersect_shape(index, shape_ray(body, shadow, origin, direction), tnear, tfar, context);
+  }
+
+  // A body that does not spin, met by a ray in its shape's coordinates.
+  ShapeHit intersect_shape(unsigned index, const ShapeRay& ray, double tnear, double tfar,
+                           RTCIntersectContext* context) const {
+    const ResolvedBody& body = scene.bodies[index];
     ShapeHit hit;
     double s = 0;
     struct Visitor {
@@ -1125,6 +1131,16 @@ std::optional<Tracer::SegmentHit> Tracer::body_on_world_segment(int body, const 
   rtcInitIntersectContext(&context);
   const ShapeHit hit =
       impl_->intersect(static_cast<unsigned>(body), true, from, to - from, 0, 1, &context);
+  if (!(hit.s <= 1)) return std::nullopt;
+  return SegmentHit{hit.s, hit.prim, hit.bary_u, hit.bary_v};
+}
+
+std::optional<Tracer::SegmentHit> Tracer::body_on_shape_segment(int body, const Vec3& from,
+                                                                const Vec3& to) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  const ShapeHit hit = impl_->intersect_shape(static_cast<unsigned>(body),
+                                              ShapeRay{from, to - from}, 0, 1, &context);
   if (!(hit.s <= 1)) return std::nullopt;
   return SegmentHit{hit.s, hit.prim, hit.bary_u, hit.bary_v};
 }

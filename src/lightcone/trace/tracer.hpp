@@ -61,6 +61,9 @@ class Tracer : public ShadowQuery {
     float bary_u = 0, bary_v = 0;
   };
   std::optional<SegmentHit> body_on_world_segment(int body, const Vec4& from, const Vec4& to) const;
+  // The same for the straight segment from `from` to `to` in the shape coordinates of body
+  // `body` (which does not spin).
+  std::optional<SegmentHit> body_on_shape_segment(int body, const Vec3& from, const Vec3& to) const;
   // Completes `hit` (its body and shape_point set; `prim` the mesh triangle) with the texture
   // coordinates and the normal facing `incoming` (a direction in shape coordinates), as the
   // camera rays' hits have them; a point on a flat face is put exactly on it.

@@ -1,0 +1,188 @@
+// Bodies on geodesics near a Schwarzschild black hole (physics/hole_world_line.hpp and
+// trace/curved_bodies.hpp), against derivations made independently of the code under test: the
+// radial fall's closed forms (MTW 31.10) and the static observer's speed of a body falling from
+// rest, sqrt((2M/r - 2M/r0) / (1 - 2M/r0)); the circular orbit's clock sqrt(1 - 3M/r); and the
+// photon energy a moving emitter measures written with 4-vectors, -p.u, for the radial fall
+// (u^t = E / f, u^r = -sqrt(E^2 - f)) and the circular orbit (u = u^t (1, 0, 0, Omega)).
+// G = c = 1, M = 1.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lightcone/io/scene_file.hpp"
+#include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/trace/curved_bodies.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+TEST(HoleWorldLine, FallFollowsTheCycloidAndIsHeldUntilLetGo) {
+  const double r0 = 10, time = -20;
+  const HoleWorldLine line = HoleWorldLine::fall(RadialFall::from_rest(1, r0), {0, 1, 0}, time);
+  // Before it is let go: at rest at r0, its clock running at sqrt(1 - 2M / r0).
+  const HoleWorldLineState held = line.at(time - 5);
+  EXPECT_DOUBLE_EQ(held.position.y, r0);
+  EXPECT_EQ(held.velocity, Vec3{});
+  EXPECT_NEAR(held.proper_time, -5 * std::sqrt(1 - 2 / r0), 1e-12);
+  // After: r and t from the cycloid's parameter eta, the static observer's speed from energy.
+  for (const double eta : {0.3, 1.0, 1.9}) {
+    const double a = std::sqrt(r0 / 2 - 1), h = std::tan(eta / 2);
+    const double r = r0 / 2 * (1 + std::cos(eta));
+    const double tau = std::sqrt(r0 * r0 * r0 / 8) * (eta + std::sin(eta));
+    const double t = 2 * (std::log((a + h) / (a - h)) + a * (eta + r0 / 4 * (eta + std::sin(eta))));
+    const HoleWorldLineState s = line.at(time + t);
+    SCOPED_TRACE(eta);
+    EXPECT_NEAR(length(s.position), r, 1e-9 * r0);
+    EXPECT_NEAR(s.proper_time, tau, 1e-9 * tau);
+    const double speed = std::sqrt((2 / r - 2 / r0) / (1 - 2 / r0));
+    EXPECT_NEAR(s.local_velocity.y, -speed, 1e-9);
+    // Its coordinate velocity dr/dt = f v.
+    EXPECT_NEAR(s.velocity.y, -(1 - 2 / r) * speed, 1e-9);
+  }
+}
+
+TEST(HoleWorldLine, OrbitKeepsItsRadiusAndClock) {
+  const double r = 8;
+  const HoleWorldLine line = HoleWorldLine::orbit(1, r, {1, 0, 0}, {0, 0, -1}, 0.4);
+  const double omega = std::sqrt(1 / (r * r * r));  // Kepler's law holds in t
+  for (const double t : {-30.0, 0.0, 55.0}) {
+    const HoleWorldLineState s = line.at(t);
+    EXPECT_NEAR(length(s.position), r, 1e-12);
+    EXPECT_NEAR(length(s.velocity), r * omega, 1e-12);
+    EXPECT_NEAR(dot(s.position, s.velocity), 0, 1e-12);
+    EXPECT_NEAR(s.proper_time, t * std::sqrt(1 - 3 / r), 1e-12);
+    // The static observer sees it at r Omega / sqrt(f).
+    EXPECT_NEAR(length(s.local_velocity), r * omega / std::sqrt(1 - 2 / r), 1e-12);
+  }
+}
+
+// The camera at rest on the z axis at r = 30, looking at the hole.
+Scene hole_scene() {
+  Scene s;
+  s.camera.world_line.position = {0, 0, 30};
+  s.camera.fov_degrees = 30;
+  s.camera.width = 160;
+  s.camera.height = 90;
+  s.black_hole = BlackHole{{0, 0, 0}, 1, std::nullopt};
+  return s;
+}
+
+Object geodesic_ball(const Scene& s, double radius, HoleGeodesic g) {
+  Object o = test::make_object("ball", Sphere{radius}, {}, {}, test::solid({1, 1, 1}));
+  g.hole = s.black_hole->position;
+  g.mass = s.black_hole->mass;
+  o.motion.geodesic = g;
+  const HoleWorldLineState at = hole_world_line(o, *s.black_hole).at(0);
+  o.world_line = {0, at.position, at.velocity, at.proper_time};
+  return o;
+}
+
+struct View {
+  explicit View(const Scene& s)
+      : resolved(resolve_scene(s)), tracer(resolved), bodies(resolved, tracer) {}
+  CurvedRay ray(int i, int j) const {
+    return follow_curved_ray(*resolved.hole, look_direction(resolved.camera, i + 0.5, j + 0.5),
+                             &bodies);
+  }
+  ResolvedScene resolved;
+  Tracer tracer;
+  CurvedBodies bodies;
+};
+
+// A small ball falls from rest at r0 straight at the camera (on the camera's side of the hole):
+// the static observer where a ray meets it measures the photon at 1 / sqrt(f) along p^r =
+// sqrt(1 - b^2 f / r^2) from the radial, and the ball at the fall's speed v =
+// sqrt((2M/r - 2M/r0) / (1 - 2M/r0)) inward, so the ball measures gamma (1 + v p^r) / sqrt(f)
+// (-p.u with u the ball's 4-velocity). Its points share its origin's velocity: a hit at the
+// angle alpha = radius / r from the line of fall errs by about v alpha (alpha + b / r).
+TEST(BlackHoleGeodesicBodies, RadialFallIsSeenWithMinusPDotU) {
+  Scene s = hole_scene();
+  const double r0 = 12, radius = 0.3, f_camera = 1 - 2 / 30.0;
+  for (const double time : {-45.0, -60.0}) {
+    SCOPED_TRACE(time);
+    s.objects = {geodesic_ball(s, radius, {{}, 1, HoleFall{r0, 0, {0, 0, 1}, time}})};
+    const View view(s);
+    int hits = 0;
+    double slowest = 1, fastest = 0;
+    for (int j = 0; j < 90; ++j)
+      for (int i = 0; i < 160; ++i) {
+        const CurvedRay ray = view.ray(i, j);
+        if (ray.end != CurvedRayEnd::kBody) continue;
+        ++hits;
+        const Vec3 origin = hole_world_line(s.objects[0], *s.black_hole).at(ray.event.t).position;
+        const double r_origin = length(origin);
+        const double v = std::sqrt((2 / r_origin - 2 / r0) / (1 - 2 / r0));
+        slowest = std::min(slowest, v), fastest = std::max(fastest, v);
+        const double r = length(ray.event.x), f = 1 - 2 / r;
+        // b from the camera's direction: r_camera sin(angle to the hole) / sqrt(f_camera).
+        const Vec3 u = look_direction(view.resolved.camera, i + 0.5, j + 0.5);
+        const double b = 30 * length(cross(u, Vec3{0, 0, -1})) / std::sqrt(f_camera);
+        const double p_r = std::sqrt(1 - b * b * f / (r * r));
+        const double emitted = (1 + v * p_r) / std::sqrt((1 - v * v) * f);
+        const double expected = 1 / std::sqrt(f_camera) / emitted;
+        const double alpha = radius / r;
+        EXPECT_NEAR(ray.shift, expected, v * alpha * (alpha + b / r) * expected + 1e-9);
+        // The hit is on the ball at the emission time (contracted along its coordinate
+        // velocity, below 0.4: by under 8%).
+        EXPECT_NEAR(length(ray.event.x - origin), radius, 0.08 * radius);
+      }
+    EXPECT_GT(hits, 5);
+    EXPECT_GT(slowest, 0.1);  // it is falling fast: the Doppler factor is tested
+  }
+}
+
+// A moon on a circular orbit at 8M, seen edge-on: -p.u = u^t (1 - Omega L_z) for a photon of
+// unit energy at infinity and angular momentum L_z about the orbit's axis.
+TEST(BlackHoleGeodesicBodies, OrbitingMoonIsSeenWithMinusPDotU) {
+  Scene s = hole_scene();
+  const double r = 8, radius = 0.6;
+  s.objects = {geodesic_ball(s, radius, {{}, 1, HoleOrbit{r, {1, 0, 0}, {0, 0, -1}, 0.5}})};
+  const View view(s);
+  const double omega = circular_orbit_angular_velocity(1, r);
+  const double ut = 1 / std::sqrt(1 - 3 / r);
+  const Vec3 axis = cross(Vec3{1, 0, 0}, Vec3{0, 0, -1});
+  int hits = 0;
+  for (int j = 0; j < 90; ++j)
+    for (int i = 0; i < 160; ++i) {
+      const CurvedRay ray = view.ray(i, j);
+      if (ray.end != CurvedRayEnd::kBody) continue;
+      ++hits;
+      // The photon's angular momentum: r x p at the camera, p of unit energy at infinity along
+      // -u (the backward ray's direction reversed), of length sqrt(f_camera)^-1 ... times f:
+      // L = r0 sin(angle) / sqrt(f_camera) about the axis perpendicular to the plane.
+      const Vec3 u = look_direction(view.resolved.camera, i + 0.5, j + 0.5);
+      const Vec3 l = cross(Vec3{0, 0, 30}, u * -1.0) / std::sqrt(1 - 2 / 30.0);
+      const double expected = (1 / std::sqrt(1 - 2 / 30.0)) / (ut * (1 - omega * dot(l, axis)));
+      const double off_orbit = radius / r;
+      EXPECT_NEAR(ray.shift, expected, off_orbit * expected);
+    }
+  EXPECT_GT(hits, 5);
+}
+
+TEST(BlackHoleGeodesicBodies, InfallSceneLoadsAndItsClocksRedden) {
+  SceneLoadReport report;
+  const Scene s =
+      load_scene_file(LIGHTCONE_SOURCE_DIR "/scenes/infall.json",
+                      {"camera.width=192", "camera.height=108", "camera.samples=1"}, report);
+  ASSERT_EQ(s.objects.size(), 3u);
+  const View view(s);
+  // The mean shift of each clock's hits: the clock let go earlier is seen redder.
+  double sum[3] = {0, 0, 0};
+  int count[3] = {0, 0, 0};
+  for (int j = 0; j < 108; ++j)
+    for (int i = 0; i < 192; ++i) {
+      const CurvedRay ray = view.ray(i, j);
+      if (ray.end != CurvedRayEnd::kBody) continue;
+      sum[ray.hit.body] += ray.shift;
+      ++count[ray.hit.body];
+    }
+  for (int k = 0; k < 3; ++k) ASSERT_GT(count[k], 0) << k;
+  EXPECT_GT(sum[0] / count[0], sum[1] / count[1]);
+  EXPECT_GT(sum[1] / count[1], sum[2] / count[2]);
+  EXPECT_LT(sum[2] / count[2], 0.5);
+}
+
+}  // namespace
+}  // namespace lightcone
