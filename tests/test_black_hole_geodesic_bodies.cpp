@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "lightcone/frame/locate.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/trace/curved_bodies.hpp"
@@ -82,6 +83,7 @@ Object geodesic_ball(const Scene& s, double radius, HoleGeodesic g) {
 struct View {
   explicit View(const Scene& s)
       : resolved(resolve_scene(s)), tracer(resolved), bodies(resolved, tracer) {}
+  CurvedRay ray_along(const Vec3& u) const { return follow_curved_ray(*resolved.hole, u, &bodies); }
   CurvedRay ray(int i, int j) const {
     return follow_curved_ray(*resolved.hole, look_direction(resolved.camera, i + 0.5, j + 0.5),
                              &bodies);
@@ -159,6 +161,41 @@ TEST(BlackHoleGeodesicBodies, OrbitingMoonIsSeenWithMinusPDotU) {
       EXPECT_NEAR(ray.shift, expected, off_orbit * expected);
     }
   EXPECT_GT(hits, 5);
+}
+
+// locate's images of a point of a body on a geodesic (an independent solve: the lens equation
+// for the point's position at t_e, and t_e where its light arrives at the camera's time),
+// followed by the tracer, meet the body there, at the same emission time, with the same shift
+// and the same reading of its clock.
+TEST(BlackHoleGeodesicBodies, EachImageOfABodysPointIsWhereTheTracerMeetsIt) {
+  Scene s = hole_scene();
+  s.objects = {geodesic_ball(s, 0.8, {{}, 1, HoleFall{12, 0, normalize(Vec3{1, 0.3, 0.2}), -40}}),
+               geodesic_ball(s, 0.6, {{}, 1, HoleOrbit{8, {1, 0, 0}, {0, 0, -1}, 2.0}})};
+  s.objects[1].name = "moon";
+  const View view(s);
+  LocateQuery q;
+  q.kind = LocateQuery::Kind::ObjectPoint;
+  int checked = 0;
+  for (const char* name : {"ball", "moon"})
+    for (const Vec3& p : {Vec3{0, 0, 1}, Vec3{0.6, 0, 0.8}, Vec3{-0.6, 0.3, 0.74}}) {
+      q.object = name;
+      q.value = p * (name == std::string("ball") ? 0.8 : 0.6);
+      const LocateResult located = locate(s, q);
+      EXPECT_FALSE(located.images.empty());
+      for (const LocateImage& image : located.images) {
+        const CurvedRay ray = view.ray_along(image.direction);
+        if (ray.end != CurvedRayEnd::kBody || ray.order != image.order) continue;
+        // Another part of the body in front (the point just past its limb as the ray sees it).
+        if (length(ray.event.x - *image.emission_position) > 1e-4) continue;
+        SCOPED_TRACE(testing::Message() << name << " " << image.order);
+        EXPECT_NEAR(length(ray.event.x - *image.emission_position), 0, 1e-6);
+        EXPECT_NEAR(ray.event.t, *image.emission_time, 1e-6);
+        EXPECT_NEAR(ray.shift, image.shift, 1e-7);
+        EXPECT_NEAR(ray.hit.proper_time, *image.emission_proper_time, 1e-6);
+        ++checked;
+      }
+    }
+  EXPECT_GE(checked, 4);
 }
 
 TEST(BlackHoleGeodesicBodies, InfallSceneLoadsAndItsClocksRedden) {

@@ -1056,6 +1056,24 @@ double at(const nlohmann::ordered_json& j, const char* key, std::size_t i) {
   return j.at(key).at(i).get<double>();
 }
 
+// Near a black hole, --object gives every image of a body's point with its clock reading: the
+// clock let go last in infall.json, seen held at rest (clock negative) in its secondary and
+// third images, falling in its primary; their emission times in the order of the images.
+TEST_F(CliTest, LocateAnObjectNearABlackHole) {
+  const CommandResult r = locate(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/infall.json",
+                                 "--object late --point 0,0,0.8");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto out = nlohmann::ordered_json::parse(r.out);
+  const auto& images = out.at("images");
+  ASSERT_EQ(images.size(), 3u);
+  EXPECT_GT(images[0]["emission_proper_time"].get<double>(), 0);
+  EXPECT_LT(images[1]["emission_proper_time"].get<double>(), 0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(images[k]["order"].get<int>(), k);
+  EXPECT_GT(images[0]["emission_time"].get<double>(), images[1]["emission_time"].get<double>());
+  EXPECT_GT(images[1]["emission_time"].get<double>(), images[2]["emission_time"].get<double>());
+  EXPECT_EQ(out["emission_proper_time"], images[0]["emission_proper_time"]);
+}
+
 TEST_F(CliTest, LocateWorldPointKnownValues) {
   const fs::path scene = write_scene(kScene);
   // Camera at rest at the origin: a point 10 ahead is in the image centre, 10 away, emitted at

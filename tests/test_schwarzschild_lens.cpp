@@ -31,7 +31,11 @@ TEST(SchwarzschildLens, EachImagesRayReachesThePointAfterItsSweepInItsTime) {
     double r0, r_e, psi;
   };
   for (const Case& c : {Case{30, 20, 2.0}, Case{30, 8, 0.7}, Case{50, 100, 2.9}, Case{12, 40, 1.2},
-                        Case{30, 20, kPi - 0.01}})
+                        Case{30, 20, kPi - 0.01},
+                        // Beside the hole, just past the periapsis of its primary's ray: the root
+                        // lies between where that ray's stretch begins and the first look angle
+                        // of the grid on it.
+                        Case{30, 10.0107, 1.49095}})
     for (int order = 0; order <= 2; ++order) {
       SCOPED_TRACE(testing::Message() << c.r0 << " " << c.r_e << " " << c.psi << " " << order);
       const auto image = lens_image(m, c.r0, c.r_e, c.psi, order);
@@ -41,6 +45,19 @@ TEST(SchwarzschildLens, EachImagesRayReachesThePointAfterItsSweepInItsTime) {
           follow(m, c.r0, image->cos_alpha, image->sin_alpha, image->sweep);
       EXPECT_NEAR(f.r, c.r_e, 1e-7 * c.r_e);
       EXPECT_NEAR(f.t, image->time, 1e-7 * image->time);
+    }
+}
+
+// A point outside the photon sphere always has a primary image (its light can come round the
+// near side on a ray that does not cross r = 3M), wherever it is.
+TEST(SchwarzschildLens, EveryPointOutsideThePhotonSphereHasAPrimary) {
+  for (const double r_e : {3.5, 10.0, 29.0, 60.0})
+    for (int i = 1; i < 200; ++i) {
+      const double psi = kPi * i / 200;
+      SCOPED_TRACE(testing::Message() << r_e << " " << psi);
+      const auto image = lens_image(1, 30, r_e, psi, 0);
+      EXPECT_TRUE(image);
+      if (image) EXPECT_NEAR(image->sweep, psi, 1e-11);
     }
 }
 

@@ -479,11 +479,14 @@ int run_locate(const LocateArgs& a) {
                                     {"pixel", {image.pixel_x, image.pixel_y}},
                                     {"direction", to_json(image.direction)},
                                     {"emission_time", nullptr},
-                                    {"emission_position", out["emission_position"]},
+                                    {"emission_position", nullptr},
+                                    {"emission_proper_time", nullptr},
                                     {"in_view", image.in_view},
                                     {"g", image.shift}};
       if (!image.in_view) one["pixel"] = nullptr;
       if (image.emission_time) one["emission_time"] = *image.emission_time / c;
+      if (image.emission_position) one["emission_position"] = to_json(*image.emission_position);
+      if (image.emission_proper_time) one["emission_proper_time"] = *image.emission_proper_time / c;
       images.push_back(one);
     }
     out["images"] = images;

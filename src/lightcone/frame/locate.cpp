@@ -1,10 +1,16 @@
 #include "lightcone/frame/locate.hpp"
 
+#include <algorithm>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/aberration.hpp"
+#include "lightcone/physics/hole_world_line.hpp"
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
 #include "lightcone/physics/schwarzschild_lens.hpp"
 #include "lightcone/physics/world_line.hpp"
 
@@ -31,47 +37,154 @@ Vec3 direction_from_sky(const ResolvedScene& r, const Vec3& d_pattern) {
   return normalize(a * lambda - b);
 }
 
-// Near a black hole: the images of a point at rest in W or of a direction far away, each on its
-// exact ray (lens_image), carried into the camera's frame by the flat aberration law.
-LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
-                              const LocateQuery& query) {
-  if (query.kind == LocateQuery::Kind::ObjectPoint)
-    throw std::invalid_argument("objects near a black hole are not drawn yet");
-  const HoleView& hole = *r.hole;
+// One image's ray from the camera toward a point at radius r_e in direction `toward` from the
+// hole: its look direction in the camera's static frame, or none.
+struct HoleImageRay {
+  LensImage lens;
+  Vec3 static_direction;
+  Vec3 at_point_radial, at_point_along;  // at the point: the backward ray's unit vectors
+  bool outward_at_point = false;         // the backward ray moves outward there
+};
+
+std::optional<HoleImageRay> hole_image_ray(const HoleView& hole, double r_e, const Vec3& toward,
+                                           int order) {
   const Vec3& e1 = hole.outward;
-  Vec3 toward;  // from the hole toward the point, or the direction far away
-  double r_e = std::numeric_limits<double>::infinity();
-  if (query.kind == LocateQuery::Kind::WorldPoint) {
-    const Vec3 rel = query.value - hole.centre;
-    r_e = length(rel);
-    if (!(r_e > 2 * hole.mass))
-      throw std::invalid_argument("the point is inside the black hole's horizon");
-    toward = rel / r_e;
-  } else {
-    toward = aberrate_out_of_moving_frame(scene.sky.rotation * normalize(query.value),
-                                          scene.sky.velocity);
-  }
   const double psi = std::acos(std::clamp(dot(e1, toward), -1.0, 1.0));
   // Exactly in line with the hole every image is a ring; its point toward any side stands for it.
   const Vec3 side = toward - e1 * dot(e1, toward);
   const Vec3 t = length(side) > 0
                      ? normalize(side)
                      : normalize(cross(e1, std::abs(e1.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const auto lens = lens_image(hole.mass, hole.camera_radius, r_e, psi, order);
+  if (!lens) return std::nullopt;
+  HoleImageRay ray;
+  ray.lens = *lens;
+  // The backward ray sweeps from e1 toward the point (even orders) or the other way round.
+  const Vec3 turn = order % 2 == 0 ? t : t * -1.0;
+  ray.static_direction = e1 * lens->cos_alpha + turn * lens->sin_alpha;
+  const double c = std::cos(lens->sweep), s = std::sin(lens->sweep);
+  ray.at_point_radial = e1 * c + turn * s;
+  ray.at_point_along = turn * c - e1 * s;
+  if (std::isfinite(r_e)) {
+    const bool outward = lens->cos_alpha > 0;
+    const RayCourse course =
+        ray_course(photon_orbit(hole.mass, lens->impact), hole.camera_radius, outward);
+    const bool turned = course.turning_radius > 0 && lens->sweep > course.angle_to_turn;
+    ray.outward_at_point = outward != turned;
+  }
+  return ray;
+}
+
+// The energy a body moving with velocity w against the static observer at radius r measures for
+// the photon of one image (unit energy at infinity), which reaches the camera on `ray`: in that
+// observer's frame the photon has energy 1 / sqrt(f) and travels along n, opposite to the
+// backward ray, so gamma_w (1 - n . w) / sqrt(f).
+double emitter_photon_energy(const HoleView& hole, const HoleImageRay& ray, double r,
+                             const Vec3& w) {
+  const double f = 1 - 2 * hole.mass / r, b = ray.lens.impact;
+  const double radial = std::sqrt(std::max(0.0, 1 - b * b * f / (r * r)));
+  const Vec3 backward = ray.at_point_radial * ((ray.outward_at_point ? 1 : -1) * radial) +
+                        ray.at_point_along * (b * std::sqrt(f) / r);
+  const Vec3 n = backward * -1.0;
+  return lorentz_gamma(w) * (1 - dot(n, w)) / std::sqrt(f);
+}
+
+// Near a black hole: the images of a point at rest in W, of a direction far away, or of a point
+// of a body (at rest, on a line or on a geodesic), each on its exact ray (lens_image), carried
+// into the camera's frame by the flat aberration law. A body's point is met where the light's
+// time of flight for its position at t_e brings it to the camera at the camera's time:
+// t_cam - t_e - T_k(x(t_e)) = 0, strictly decreasing in t_e for a body slower than light,
+// bracketed and solved with TOMS 748.
+LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
+                              const LocateQuery& query) {
+  const HoleView& hole = *r.hole;
+  const double now = scene.camera.world_line.time;
   const Vec3 beta = scene.camera.world_line.velocity;
+  const Object* object = nullptr;
+  if (query.kind == LocateQuery::Kind::ObjectPoint) {
+    for (const Object& o : r.scene->objects)
+      if (o.name == query.object) object = &o;
+    if (!object) throw std::invalid_argument("no object named '" + query.object + "'");
+  }
+  // The point at coordinate time t: relative to the hole, with the static observer's velocity
+  // of the body there and its clock.
+  struct PointState {
+    Vec3 position, local_velocity;
+    double proper_time = 0;
+  };
+  std::optional<HoleWorldLine> line;
+  Vec3 rest_point;
+  if (object) {
+    line = hole_world_line(*object, *scene.black_hole);
+    rest_point = object->rotation * component_mul(object->scale, query.value);
+  }
+  const auto point_at = [&](double t) {
+    if (!object) return PointState{query.value - hole.centre, {}, 0};
+    const HoleWorldLineState s = line->at(t);
+    // Its rest frame's offset, contracted along the coordinate velocity (W-simultaneous).
+    Vec3 offset = rest_point;
+    const double vv = dot(s.velocity, s.velocity);
+    if (vv > 0)
+      offset = offset +
+               s.velocity * ((1 / lorentz_gamma(s.velocity) - 1) * dot(offset, s.velocity) / vv);
+    return PointState{s.position + offset, s.local_velocity, s.proper_time};
+  };
   LocateResult result;
   for (int order = 0; order <= 2; ++order) {
-    const auto image = lens_image(hole.mass, hole.camera_radius, r_e, psi, order);
-    if (!image) continue;
-    const Vec3 d = e1 * image->cos_alpha + t * ((order % 2 == 0 ? 1 : -1) * image->sin_alpha);
     LocateImage out;
     out.order = order;
-    out.direction = aberrate_into_moving_frame(d, beta);
-    const double camera_energy = camera_photon_energy(hole, out.direction);
-    if (query.kind == LocateQuery::Kind::WorldPoint) {
-      out.emission_time = scene.camera.world_line.time - image->time;
-      out.shift = camera_energy * std::sqrt(1 - 2 * hole.mass / r_e);  // a static emitter
+    std::optional<HoleImageRay> ray;
+    PointState point;
+    double r_e = std::numeric_limits<double>::infinity();
+    if (query.kind == LocateQuery::Kind::SkyDirection) {
+      const Vec3 toward = aberrate_out_of_moving_frame(scene.sky.rotation * normalize(query.value),
+                                                       scene.sky.velocity);
+      ray = hole_image_ray(hole, r_e, toward, order);
+      if (!ray) continue;
+      out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
+      out.shift = camera_photon_energy(hole, out.direction) / sky_photon_energy(hole, toward);
     } else {
-      out.shift = camera_energy / sky_photon_energy(hole, toward);
+      const auto ray_at = [&](double t) {
+        point = point_at(t);
+        r_e = length(point.position);
+        return r_e > 2 * hole.mass ? hole_image_ray(hole, r_e, point.position / r_e, order)
+                                   : std::nullopt;
+      };
+      double t_e = now;
+      if (object) {
+        // late(t) > 0 where light from the point at t arrives after the camera's time.
+        const auto late = [&](double t) {
+          const auto at = ray_at(t);
+          if (!at) throw std::domain_error("no image of this order");
+          return t + at->lens.time - now;
+        };
+        try {
+          double lo = now, hi = now, step = 1;
+          double late_lo = late(lo);
+          if (!(late_lo > 0)) continue;  // (a point inside its own light cone cannot be)
+          for (int k = 0; late_lo > 0 && k < 1100; ++k, step *= 2) {
+            hi = lo;
+            lo = now - step * std::max(1.0, late_lo);
+            late_lo = late(lo);
+          }
+          if (!(late_lo <= 0)) continue;
+          std::uintmax_t iterations = 200;
+          const auto [a, b] = boost::math::tools::toms748_solve(
+              late, lo, hi, late_lo, late(hi), boost::math::tools::eps_tolerance<double>(),
+              iterations);
+          t_e = (a + b) / 2;
+        } catch (const std::domain_error&) {
+          continue;
+        }
+      }
+      ray = ray_at(t_e);
+      if (!ray) continue;
+      out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
+      out.emission_time = object ? t_e : now - ray->lens.time;
+      out.emission_position = hole.centre + point.position;
+      if (object) out.emission_proper_time = point.proper_time;
+      out.shift = camera_photon_energy(hole, out.direction) /
+                  emitter_photon_energy(hole, *ray, r_e, point.local_velocity);
     }
     LocateResult one;
     one.direction = out.direction;
@@ -86,7 +199,8 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
   result.in_view = primary.in_view;
   result.doppler = primary.shift;
   result.emission_time = primary.emission_time;
-  if (query.kind == LocateQuery::Kind::WorldPoint) result.emission_position = query.value;
+  result.emission_position = primary.emission_position;
+  result.emission_proper_time = primary.emission_proper_time;
   return result;
 }
 

@@ -25,7 +25,9 @@ struct LocateImage {
   bool in_view = false;
   Vec3 direction;                       // look direction, camera rest frame
   std::optional<double> emission_time;  // W (Schwarzschild coordinate) time; none at infinity
-  double shift = 1;                     // g = nu_camera / nu_emitter
+  std::optional<Vec3> emission_position;
+  std::optional<double> emission_proper_time;  // an object's clock (its origin's) then
+  double shift = 1;                            // g = nu_camera / nu_emitter
 };
 
 struct LocateResult {
@@ -40,7 +42,7 @@ struct LocateResult {
   bool in_view = false;
   double doppler = 1;  // D = nu_camera / nu_emitter for light from the located point
   // Near a black hole: every image of orders 0 to 2 that exists, the first of which the fields
-  // above describe (a point at rest in W, or a direction far away; no object yet).
+  // above describe (a point at rest in W, a direction far away, or a point of an object).
   std::vector<LocateImage> images;
 };
 

@@ -52,12 +52,14 @@ Reach reach(double mass, double r0, double r_e, double alpha, Stretch stretch) {
   return out;
 }
 
-// Look angles alpha in (0, pi) to bracket on: evenly spaced, and crowding toward the critical
-// angle from both sides, where the sweep grows like -ln |alpha - alpha_c|.
+// Look angles alpha in (0, pi) to bracket on: evenly spaced, crowding toward 0 and pi, and
+// toward the critical angle from both sides, where the sweep grows like -ln |alpha - alpha_c|.
 std::vector<double> alpha_grid(double mass, double r0) {
   std::vector<double> grid;
   constexpr int kEven = 720;
   for (int i = 1; i < kEven; ++i) grid.push_back(kPi * i / kEven);
+  // And toward 0 and pi (nearly radial rays: a point nearly in line with the hole).
+  for (double d = 1e-12; d < kPi / kEven; d *= 2) grid.push_back(d), grid.push_back(kPi - d);
   const double s = critical_impact_parameter(mass) * std::sqrt(1 - 2 * mass / r0) / r0;
   if (s <= 1) {
     const double a = std::asin(s);
@@ -83,9 +85,29 @@ std::optional<LensImage> lens_image(double mass, double r0, double r_e, double p
     const auto miss = [&](double alpha) {
       return reach(mass, r0, r_e, alpha, stretch).sweep - target;
     };
+    // Where the stretch begins or ends between two grid angles (r_e at the turning point), the
+    // last angle on it, to double precision: a root between it and the grid is not lost.
+    const auto edge = [&](double on, double off) {
+      for (int i = 0; i < 64; ++i) {
+        const double mid = (on + off) / 2;
+        if (mid == on || mid == off) break;
+        (std::isfinite(miss(mid)) ? on : off) = mid;
+      }
+      return on;
+    };
     double previous_alpha = kNaN, previous = kNaN;
-    for (const double alpha : grid) {
-      const double value = miss(alpha);
+    for (const double grid_alpha : grid) {
+      const double grid_value = miss(grid_alpha);
+      double alpha = grid_alpha, value = grid_value;
+      if (std::isfinite(value) && std::isnan(previous) && !std::isnan(previous_alpha)) {
+        // Entering the stretch: start from its edge.
+        previous_alpha = edge(alpha, previous_alpha);
+        previous = miss(previous_alpha);
+      } else if (std::isnan(value) && std::isfinite(previous)) {
+        // Leaving it: end at its edge.
+        alpha = edge(previous_alpha, alpha);
+        value = miss(alpha);
+      }
       if (value == 0 ||
           (std::isfinite(previous) && std::isfinite(value) && (previous < 0) != (value < 0))) {
         double root = alpha;
@@ -106,8 +128,8 @@ std::optional<LensImage> lens_image(double mass, double r0, double r_e, double p
         image.time = r.time;
         return image;
       }
-      previous_alpha = alpha;
-      previous = value;
+      previous_alpha = grid_alpha;
+      previous = grid_value;
     }
   }
   return std::nullopt;
