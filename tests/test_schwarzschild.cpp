@@ -374,6 +374,36 @@ TEST(SchwarzschildPath, RadiusAfterAngleMatchesTheIntegratedOrbitEquation) {
   }
 }
 
+// From inside the horizon (a falling camera there looks back along rays whose r grows): the orbit
+// equation holds for every r > 0, so the closed form does too. Below b_c the ray escapes; above
+// it, it turns at r_3 (in (2M, 3M)) and falls back; a ray sent inward reaches r = 0.
+TEST(SchwarzschildPath, RadiusAfterAngleFromInsideTheHorizon) {
+  struct Case {
+    double b, r0;
+    bool outward;
+    RayFate fate;
+  };
+  for (const Case& c :
+       {Case{2, 1.9, true, RayFate::kEscapes}, Case{4.5, 1.2, true, RayFate::kEscapes},
+        Case{5.1, 0.3, true, RayFate::kEscapes}, Case{6, 1.5, true, RayFate::kCaptured},
+        Case{20, 0.8, true, RayFate::kCaptured}}) {
+    SCOPED_TRACE(testing::Message() << c.b << " " << c.r0);
+    const PhotonOrbit o = photon_orbit(1, c.b);
+    const RayCourse course = ray_course(o, c.r0, c.outward);
+    EXPECT_EQ(course.fate, c.fate);
+    ASSERT_TRUE(std::isfinite(course.angle_total));
+    for (double f : {0.05, 0.2, 0.4, 0.5, 0.6, 0.8, 0.95}) {
+      const double phi = f * course.angle_total;
+      const double expected = ode_radius(1, c.b, c.r0, c.outward, phi);
+      EXPECT_NEAR(radius_after_angle(o, c.r0, c.outward, phi), expected, 1e-9 * expected) << f;
+    }
+    // Past its end: escaped, or back at the horizon.
+    const AngleSweep sweep = prepare_sweep(o, c.r0, c.outward);
+    EXPECT_EQ(sweep.end, c.fate == RayFate::kEscapes ? kInf : 2.0);
+    EXPECT_NEAR(sweep.angle_total, course.angle_total, 1e-12 * course.angle_total);
+  }
+}
+
 TEST(SchwarzschildPath, FlatSpaceIsAStraightLine) {
   // M = 0: r = r_p / cos(psi), psi the angle from the periapsis r_p = b; the ray from r0 starts
   // at psi_0 = -+acos(b / r0) and escapes at psi = pi/2.

@@ -705,8 +705,10 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   AngleSweep a;
   a.r0 = r0;
   const double horizon = 2 * o.mass;
-  if (!(r0 > horizon)) return a;  // kInvalid
-  double shared = kNaN;           // from_end, where the course computed it
+  // kInvalid. Inside the horizon r falls along every future-directed ray: a backward ray from
+  // there moves outward.
+  if (!(r0 > 0) || (r0 < horizon && !outward)) return a;
+  double shared = kNaN;     // from_end, where the course computed it
   const RayCourse course = course_of(o, r0, outward, &shared);
   if (std::isnan(course.angle_total)) return a;
   a.angle_total = course.angle_total;
@@ -794,8 +796,9 @@ double radius_after_angle(const AngleSweep& a, double phi) {
       break;
     }
   }
-  // Rounding at the very end of the path cannot carry it past the horizon.
-  return std::max(r, a.horizon);
+  // Rounding at the very end of the path cannot carry it past the horizon (nor, from inside it,
+  // below where it started: its r only grows until it is out).
+  return std::max(r, std::min(a.r0, a.horizon));
 }
 
 double radius_after_angle(const PhotonOrbit& o, double r0, bool outward, double phi) {

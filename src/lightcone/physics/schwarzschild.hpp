@@ -100,7 +100,7 @@ struct RayCourse {
 RayCourse ray_course(const PhotonOrbit& orbit, double r0, bool outward);
 
 // The radius that a ray reaches after sweeping angle phi >= 0 along its path, the inverse of
-// swept_angle: the ray passes r0 (> 2M; infinity with outward false for a ray arriving from
+// swept_angle: the ray passes r0 (> 0; infinity with outward false for a ray arriving from
 // afar) with r increasing (outward) or decreasing, and goes on through its turning point if it
 // has one (as ray_course describes). +infinity once it has escaped (phi >= ray_course's
 // angle_total for an escaping ray), 2M once it has reached the horizon. For b = b_c exactly a ray
@@ -110,7 +110,10 @@ RayCourse ray_course(const PhotonOrbit& orbit, double r0, bool outward);
 // of the argument: the relative error of r is some eps (1 + phi) |d ln r / dphi| (which is
 // ~ r / b far out), plus the same from the start's angle, also near b_c. A radial ray (b = 0)
 // sweeps no angle: r0 for phi = 0, and its end (infinity outward, 2M inward) for any phi > 0.
-// NaN if no ray of this b passes r0 (r0 <= 2M, or in the forbidden gap), or phi < 0 or NaN.
+// From inside the horizon (0 < r0 < 2M) only outward: a backward ray from there moves outward
+// (every future-directed ray there moves inward), through r = 2M and on as from outside. NaN if
+// no ray of this b passes r0 (r0 <= 0, inward inside 2M, or in the forbidden gap), or phi < 0
+// or NaN.
 double radius_after_angle(const PhotonOrbit& orbit, double r0, bool outward, double phi);
 
 // The same, prepared once per ray (orbit, r0, direction) for many angles: prepare_sweep costs
