@@ -52,6 +52,7 @@ render black-hole-order black-hole.json --map image_order
 render lensed-clock lensed-clock.json
 render infall infall.json
 render orbit orbit.json
+render plunge plunge.json
 echo "lightcone animate scenes/rocket.json --fps 10 --frames 0-40 --video rocket.gif ..." >&2
 "$lc" animate scenes/rocket.json --fps 10 --frames 0-40 --set camera.proper_time=0 \
   --width 256 --height 144 --samples 2 --video "$out/rocket.gif" --quiet

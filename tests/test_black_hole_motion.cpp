@@ -500,41 +500,63 @@ TEST_F(BlackHoleMotion, Refusals) {
       "camera.motion.fall.start", "unknown key \"start\" (expected one of: from, direction, time)");
 }
 
-TEST_F(BlackHoleMotion, TheHorizonIsRefusedByProperTime) {
+TEST_F(BlackHoleMotion, TheFallIsDrawnThroughTheHorizonDownTo005M) {
   const RadialFall fall = RadialFall::from_rest(1, 10);
-  const double latest = fall.proper_time_at_radius(2 * (1 + 1e-9));
-  // Just before: drawn, its speed near that of light but within the limit.
-  const Scene close = load(camera_near(fmt::format(
-      R"("motion": {{"fall": {{"from": 10, "direction": [0, 0, 1]}}}}, "proper_time": {:.17g})",
-      latest * (1 - 1e-15))));
+  const double outside = fall.proper_time_at_radius(2 * (1 + 1e-9));
+  const auto at = [](double tau) {
+    return camera_near(fmt::format(
+        R"("motion": {{"fall": {{"from": 10, "direction": [0, 0, 1]}}}}, "proper_time": {:.17g})",
+        tau));
+  };
+  // Just outside 2M (1 + 1e-9): its speed near that of light but within the limit.
+  const Scene close = load(at(outside * (1 - 1e-15)));
   EXPECT_GT(close.camera.world_line.position.z, 2);
   EXPECT_LT(close.camera.world_line.position.z, 2 + 1e-8);
   EXPECT_GT(-close.camera.world_line.velocity.z, 0.9999);
-  for (const double tau : {latest * (1 + 1e-12), fall.horizon_proper_time(), 40.0, -latest, -100.0})
-    expect_error(
-        camera_near(fmt::format(
-            R"("motion": {{"fall": {{"from": 10, "direction": [0, 0, 1]}}}}, "proper_time": {:.17g})",
-            tau)),
-        2, "camera.proper_time",
-        "the camera's view at and inside the horizon is not drawn yet (it is drawn at "
-        "proper times between");
-  expect_error(
-      camera_near(R"("motion": {"fall": {"from": 10, "direction": [0, 0, 1]}}, "proper_time": 40)"),
-      2, "camera.proper_time",
-      "at proper time 40 the falling camera is at r = 0, inside the black hole's horizon r = 2M = "
-      "2");
+  // At and inside the horizon: drawn, from its fall (no static observer, no velocity in W).
+  for (const double tau :
+       {outside * (1 + 1e-12), fall.horizon_proper_time(), fall.proper_time_at_radius(0.06)}) {
+    const Scene inside = load(at(tau));
+    EXPECT_LE(inside.camera.world_line.position.z, 2 * (1 + 1e-9));
+    EXPECT_EQ(inside.camera.world_line.velocity, Vec3{});
+    EXPECT_TRUE(camera_inside_horizon(inside.camera.motion));
+  }
+  // Down to r = 0.05M; and not before it came to rest at r0, rising out of the past horizon.
+  const double innermost = fall.proper_time_at_radius(0.05);
+  expect_error(at(40), 2, "camera.proper_time",
+               "at proper time 40 the falling camera is at r = 0, within 0.05M of the "
+               "singularity at r = 0: the camera is drawn down to r = 0.05M (it is drawn at "
+               "proper times between");
+  expect_error(at(innermost * (1 + 1e-12)), 2, "camera.proper_time", "within 0.05M");
+  for (const double tau : {-outside, -100.0})
+    expect_error(at(tau), 2, "camera.proper_time",
+                 "the falling camera is rising out of the black hole's past horizon");
   // From infinity only a later end; in the scene's units of time.
   const std::string message = error(
       "{\n  \"speed_of_light\": 2,\n  \"camera\": {\"position\": [0, 0, 30], \"motion\": "
       "{\"fall\": "
       "{\"from\": \"infinity\"}}, \"proper_time\": 100},\n  \"black_hole\": {\"mass\": 1}\n}");
-  const double limit = RadialFall::from_infinity(1, 30).proper_time_at_radius(2 * (1 + 1e-9)) / 2;
+  const double limit = RadialFall::from_infinity(1, 30).proper_time_at_radius(0.05) / 2;
   EXPECT_NE(message.find(fmt::format("(it is drawn at proper times below {})", limit)),
             std::string::npos)
       << message;
   EXPECT_NE(message.find(":3: camera.proper_time: at proper time 100 the falling camera"),
             std::string::npos)
       << message;
+}
+
+TEST_F(BlackHoleMotion, InsideTheHorizonObjectsAndTheRasterAreRefused) {
+  const RadialFall fall = RadialFall::from_rest(1, 10);
+  const std::string inside = fmt::format(
+      R"("motion": {{"fall": {{"from": 10, "direction": [0, 0, 1]}}}}, "proper_time": {:.17g})",
+      fall.proper_time_at_radius(1.5));
+  expect_error(
+      "{\n  \"camera\": {" + inside +
+          "},\n  \"black_hole\": {\"mass\": 1},\n  \"objects\": [{\"name\": \"a\", "
+          "\"shape\": {\"sphere\": {\"radius\": 1}}, \"position\": [0, 0, -10]}]\n}",
+      4, "objects",
+      "objects seen from inside the black hole's horizon are not drawn yet (the falling camera "
+      "is at r = 1.5 there");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -601,10 +623,11 @@ TEST_F(BlackHoleMotion, InfoRenderAndAnimate) {
     const auto image = load_image_file(out);
     for (const float v : image->rgb) ASSERT_TRUE(std::isfinite(v));
   }
-  // From rest at 12M the horizon is reached at proper time 44.77: frames 10 apart.
+  // From rest at 12M the horizon is reached at proper time 44.77, r = 0.05M at 46.2: frames 10
+  // apart, the last past it.
   const RadialFall law = RadialFall::from_rest(1, 12);
   ASSERT_GT(law.horizon_proper_time(), 40);
-  ASSERT_LT(law.horizon_proper_time(), 50);
+  ASSERT_LT(law.proper_time_at_radius(0.05), 50);
   const test::CommandResult frames =
       test::run_lightcone("animate " + test::quoted(fall) + " --fps 0.1 --frames 0-5 --exr " +
                           test::quoted(dir_ / "f%d.exr"));
@@ -612,7 +635,8 @@ TEST_F(BlackHoleMotion, InfoRenderAndAnimate) {
   EXPECT_NE(frames.err.find("frame 5: at proper time 50 the falling camera is at r = "),
             std::string::npos)
       << frames.err;
-  EXPECT_NE(frames.err.find("the camera's view at and inside the horizon is not drawn yet"),
+  EXPECT_NE(frames.err.find("within 0.05M of the singularity at r = 0: the camera is drawn down "
+                            "to r = 0.05M"),
             std::string::npos)
       << frames.err;
   EXPECT_FALSE(fs::exists(dir_ / "f5.exr"));

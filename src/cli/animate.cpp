@@ -275,10 +275,22 @@ int run_animate(const AnimateArgs& a) {
     s.camera.motion.proper_time = a.clock == "world"
                                       ? proper_time_at_world_time(camera, (world_start + step) * c)
                                       : (proper_start + step) * c;
-    // A falling camera reaches the horizon at a finite proper time: its view there is not
-    // drawn yet.
+    // A falling camera is drawn down to r = kCameraInnermostRadius M; from inside the horizon
+    // it sees the sky and the disk only.
     if (const auto why = geodesic_camera_refused(s.camera.motion, c)) throw InputError(*why);
     s.camera.world_line = camera_observation(s.camera.motion);
+    if (camera_inside_horizon(s.camera.motion)) {
+      if (!s.objects.empty())
+        throw InputError(fmt::format(
+            "frame {}: the falling camera is inside the black hole's horizon by then, where "
+            "objects are not drawn yet (this version draws the sky and the disk from there)",
+            i));
+      if (a.renderer == "raster")
+        throw InputError(fmt::format(
+            "frame {}: the falling camera is inside the black hole's horizon by then: the raster "
+            "renderer does not draw the view from there yet; render with the ray tracer",
+            i));
+    }
     const double speed = length(s.camera.world_line.velocity);
     if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))
       throw InputError(fmt::format("frame {}: the camera is at the speed of light by then", i));

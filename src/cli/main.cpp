@@ -386,10 +386,17 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
         "black hole: M = %.6g; horizon r = %.6g, photon sphere r = %.6g, innermost stable "
         "circular orbit r = %.6g\n",
         h->mass, h->horizon, h->photon_sphere, h->isco);
-    std::printf(
-        "  camera at r = %.6g (%.4g M): shadow %.4f degrees in radius (%.4f for the static "
-        "observer there)\n",
-        h->camera_radius, h->camera_radius / h->mass, h->shadow_degrees, h->shadow_static_degrees);
+    if (std::isnan(h->shadow_static_degrees))
+      std::printf(
+          "  camera at r = %.6g (%.4g M), inside the horizon: shadow %.4f degrees in radius about "
+          "the direction straight down (no static observer there)\n",
+          h->camera_radius, h->camera_radius / h->mass, h->shadow_degrees);
+    else
+      std::printf(
+          "  camera at r = %.6g (%.4g M): shadow %.4f degrees in radius (%.4f for the static "
+          "observer there)\n",
+          h->camera_radius, h->camera_radius / h->mass, h->shadow_degrees,
+          h->shadow_static_degrees);
     if (h->any_light)
       std::printf("  shift g over the image: %.4g to %.4g; mean image order %.3g\n", h->shift_min,
                   h->shift_max, h->mean_image_order);
@@ -437,6 +444,10 @@ int run_locate(const LocateArgs& a) {
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
   require_drawable_near_black_hole(scene, a.scene, false);
+  if (camera_inside_horizon(scene.camera.motion))
+    throw InputError(a.scene +
+                     ": camera: locate does not answer for a camera inside the black hole's "
+                     "horizon yet");
   LocateResult r;
   try {
     r = locate(scene, query);

@@ -17,9 +17,21 @@ std::optional<HoleView> hole_view(const Scene& scene) {
   const Vec3 from_hole = scene.camera.world_line.position - hole.position;
   v.camera_radius = length(from_hole);
   v.outward = from_hole / v.camera_radius;
-  v.camera_lapse = std::sqrt(1 - 2 * hole.mass / v.camera_radius);
-  v.camera_rapidity = rapidity(scene.camera.world_line.velocity);
-  v.trace_to_static = lorentz_inverse(boost(scene.camera.world_line.velocity));
+  v.falling = falling_camera(scene.camera.motion);
+  if (v.falling) {
+    v.camera_radius = v.falling->radius;
+    v.camera_lapse = std::sqrt(std::max(0.0, 1 - 2 * hole.mass / v.camera_radius));
+    const EnergyRange range = seen_energy_range(*v.falling);
+    v.camera_log_energy_lo = std::log(range.lo), v.camera_log_energy_hi = std::log(range.hi);
+  } else {
+    v.camera_lapse = std::sqrt(1 - 2 * hole.mass / v.camera_radius);
+    v.camera_rapidity = rapidity(scene.camera.world_line.velocity);
+    v.trace_to_static = lorentz_inverse(boost(scene.camera.world_line.velocity));
+    // 1 / sqrt(f) at the static observer, times its Doppler factor within +-rapidity.
+    const double blueshift = -std::log(v.camera_lapse);
+    v.camera_log_energy_lo = blueshift - v.camera_rapidity;
+    v.camera_log_energy_hi = blueshift + v.camera_rapidity;
+  }
   v.world_to_sky = boost(scene.sky.velocity);
   v.to_pattern = scene.sky.rotation.transposed();
   v.sky_rapidity = rapidity(scene.sky.velocity);
@@ -32,6 +44,11 @@ double camera_photon_energy(const HoleView& hole, const Vec4& in_static) {
 }
 
 double camera_photon_energy(const HoleView& hole, const Vec3& u) {
+  if (hole.falling) {
+    const double cos_look = dot(u, hole.outward);
+    const auto ray = observed_ray(*hole.falling, cos_look, length(u - hole.outward * cos_look));
+    return ray ? ray->energy : 0.0;
+  }
   return camera_photon_energy(hole, hole.trace_to_static * Vec4{-1, u});
 }
 
@@ -44,9 +61,8 @@ double sky_photon_energy(const HoleView& hole, const Vec3& far) {
 }
 
 LogShiftRange sky_log_shift_range(const HoleView& hole) {
-  const double blueshift = -std::log(hole.camera_lapse);
-  const double spread = hole.camera_rapidity + hole.sky_rapidity;
-  return {blueshift - spread, blueshift + spread};
+  return {hole.camera_log_energy_lo - hole.sky_rapidity,
+          hole.camera_log_energy_hi + hole.sky_rapidity};
 }
 
 LogShiftRange disk_log_shift_range(const HoleView& hole) {
@@ -58,8 +74,7 @@ LogShiftRange disk_log_shift_range(const HoleView& hole) {
   const double spin = std::atanh(circular_orbit_local_speed(m, hole.disk->inner));
   const double emitted_lo = gravity(hole.disk->outer) - spin;
   const double emitted_hi = gravity(hole.disk->inner) + spin;
-  const double camera = -std::log(hole.camera_lapse);
-  return {camera - hole.camera_rapidity - emitted_hi, camera + hole.camera_rapidity - emitted_lo};
+  return {hole.camera_log_energy_lo - emitted_hi, hole.camera_log_energy_hi - emitted_lo};
 }
 
 LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
@@ -78,9 +93,8 @@ LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
   }
   const double spin = std::atanh(std::min(speed, 1 - 1e-16));
   const auto gravity = [&](double r) { return std::isinf(r) ? 0.0 : 0.5 * std::log1p(-2 * m / r); };
-  const double camera = -std::log(hole.camera_lapse);
-  return {camera - hole.camera_rapidity + gravity(nearest) - spin,
-          camera + hole.camera_rapidity + gravity(farthest) + spin};
+  return {hole.camera_log_energy_lo + gravity(nearest) - spin,
+          hole.camera_log_energy_hi + gravity(farthest) + spin};
 }
 
 }  // namespace lightcone

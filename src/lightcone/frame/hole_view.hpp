@@ -18,14 +18,20 @@ namespace lightcone {
 struct HoleView {
   double mass = 0;
   Vec3 centre;                 // in W
-  double camera_radius = 0;    // Schwarzschild r of the camera, > 2M
+  double camera_radius = 0;    // Schwarzschild r of the camera, > 2M unless it is falling
   Vec3 outward;                // unit, from the hole toward the camera
   double camera_lapse = 1;     // sqrt(1 - 2M / r) at the camera
   double camera_rapidity = 0;  // of the camera relative to the static observer there
-  Mat4 trace_to_static;        // F to the static observer's orthonormal frame (Lorentz)
-  Mat4 world_to_sky;           // W (far away) to the sky's rest frame (Lorentz)
-  Mat3 to_pattern;             // the sky's rest frame to its pattern coordinates
-  double sky_rapidity = 0;     // of the sky relative to W
+  // A camera on a radial fall: its rays are found in its own frame (physics/radial_observer.hpp),
+  // at and inside the horizon too, where there is no static observer (camera_lapse 0, no
+  // rapidity, trace_to_static unused).
+  std::optional<RadialObserver> falling;
+  // The range of ln(camera_photon_energy) over the rays that can bring the camera light.
+  double camera_log_energy_lo = 0, camera_log_energy_hi = 0;
+  Mat4 trace_to_static;     // F to the static observer's orthonormal frame (Lorentz)
+  Mat4 world_to_sky;        // W (far away) to the sky's rest frame (Lorentz)
+  Mat3 to_pattern;          // the sky's rest frame to its pattern coordinates
+  double sky_rapidity = 0;  // of the sky relative to W
   std::optional<AccretionDisk> disk;
 };
 
@@ -36,6 +42,7 @@ std::optional<HoleView> hole_view(const Scene& scene);
 // measures): 1 / sqrt(f) at the static observer, over -t for the static-frame event (t, x) that
 // the backward direction (-1, u) becomes (`in_static`, for a caller that has it already).
 double camera_photon_energy(const HoleView& hole, const Vec4& in_static);
+// (A falling camera: its radial_observer ray's energy; 0 for light of no positive energy.)
 double camera_photon_energy(const HoleView& hole, const Vec3& u);
 
 // The energy the sky's rest frame measures for a photon that arrives from W's direction `far`

@@ -37,4 +37,18 @@ struct ObservedRay {
 std::optional<ObservedRay> observed_ray(const RadialObserver& observer, double cos_look,
                                         double sin_look);
 
+// The shadow's angular radius about the inward direction: the look angle beta from it where
+// b = b_c = 3 sqrt(3) M, from r sin(beta) = b_c (E + u^r cos(beta)). Rays nearer the inward
+// direction are captured (or, inside the horizon, have no positive energy or turn back short of
+// the photon sphere).
+double shadow_angle(const RadialObserver& observer);
+
+// The range [lo, hi] of the energy the observer measures per unit conserved energy (ObservedRay's
+// energy) over the rays that can bring it light from outside the photon sphere: every ray from
+// r >= 3M, and below it, falling, the outward ones with b <= b_c (the others are captured).
+struct EnergyRange {
+  double lo = 1, hi = 1;
+};
+EnergyRange seen_energy_range(const RadialObserver& observer);
+
 }  // namespace lightcone

@@ -29,7 +29,18 @@ WorldLine geodesic_observation(const HoleGeodesic& g, double tau) {
             (orbit->axis_y * c - orbit->axis_x * s) * p.local_speed, tau};
   }
   const HoleFall& fall = std::get<HoleFall>(g.path);
-  const RadialFallPoint p = radial_fall(g, fall).at_proper_time(tau);
+  const RadialFall path = radial_fall(g, fall);
+  const RadialFallPoint p = path.at_proper_time(tau);
+  if (p.radius <= 2 * g.mass * (1 + kCameraHorizonMargin)) {
+    // At and inside the horizon W's time is not defined and there is no static observer: the
+    // time is where it passed 2M (1 + kCameraHorizonMargin), and no velocity is given (the
+    // renderers read the camera's fall, falling_camera).
+    const double passed = path.proper_time_at_radius(2 * g.mass * (1 + kCameraHorizonMargin));
+    return {fall.time + path.at_proper_time(passed).coordinate_time,
+            g.hole + fall.direction * p.radius,
+            {},
+            tau};
+  }
   return {fall.time + p.coordinate_time, g.hole + fall.direction * p.radius,
           fall.direction * p.local_velocity, tau};
 }
@@ -39,9 +50,31 @@ WorldLine geodesic_observation(const HoleGeodesic& g, double tau) {
 ProperTimeSpan drawn_proper_times(const HoleGeodesic& g) {
   const auto* fall = std::get_if<HoleFall>(&g.path);
   if (!fall) return {-kInf, kInf};
-  const double latest =
-      radial_fall(g, *fall).proper_time_at_radius(2 * g.mass * (1 + kCameraHorizonMargin));
-  return {std::isinf(fall->from) ? -kInf : -latest, latest};
+  const RadialFall path = radial_fall(g, *fall);
+  const double latest = path.proper_time_at_radius(kCameraInnermostRadius * g.mass);
+  // Before it came to rest at r0 it rose out of the past horizon: not drawn.
+  const double earliest =
+      std::isinf(fall->from) ? -kInf
+                             : -path.proper_time_at_radius(2 * g.mass * (1 + kCameraHorizonMargin));
+  return {earliest, latest};
+}
+
+std::optional<RadialObserver> falling_camera(const Camera::Motion& motion) {
+  if (!motion.geodesic) return std::nullopt;
+  const HoleGeodesic& g = *motion.geodesic;
+  const auto* fall = std::get_if<HoleFall>(&g.path);
+  if (!fall) return std::nullopt;
+  const RadialFall path = radial_fall(g, *fall);
+  const double r = path.at_proper_time(motion.proper_time).radius, e = path.energy();
+  const double speed = std::sqrt(std::max(0.0, e * e - (1 - 2 * g.mass / r)));
+  // Rising to rest at r0 before proper time 0, falling after.
+  const bool rising = !path.is_from_infinity() && motion.proper_time < 0;
+  return RadialObserver{g.mass, r, e, rising ? speed : -speed};
+}
+
+bool camera_inside_horizon(const Camera::Motion& motion) {
+  const auto falling = falling_camera(motion);
+  return falling && falling->radius <= 2 * falling->mass * (1 + kCameraHorizonMargin);
 }
 
 std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion, double c) {
@@ -65,14 +98,16 @@ std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
           ? fmt::format("it is drawn at proper times below {}", span.latest / c)
           : fmt::format("it is drawn at proper times between {} and {}, both excluded",
                         span.earliest / c, span.latest / c);
-  const std::string where =
-      r < 2 * g.mass ? "inside the black hole's horizon"
-                     : fmt::format("at or within 2M (1 + {:g}) of the black hole's horizon",
-                                   kCameraHorizonMargin);
+  if (tau >= span.latest)
+    return fmt::format(
+        "at proper time {} the falling camera is at r = {:.12g}, within {}M of the singularity "
+        "at r = 0: the camera is drawn down to r = {}M ({})",
+        tau / c, r, kCameraInnermostRadius, kCameraInnermostRadius, drawn);
   return fmt::format(
-      "at proper time {} the falling camera is at r = {:.12g}, {} r = 2M = {}: the camera's view "
-      "at and inside the horizon is not drawn yet ({})",
-      tau / c, r, where, 2 * g.mass, drawn);
+      "at proper time {} the falling camera is rising out of the black hole's past horizon "
+      "(at r = {:.12g}; before it came to rest at r0 it was on the same geodesic, which comes out "
+      "of the past horizon r = 2M = {}): the camera's view there is not drawn ({})",
+      tau / c, r, 2 * g.mass, drawn);
 }
 
 HoleWorldLine hole_world_line(const Object& object, const BlackHole& hole) {

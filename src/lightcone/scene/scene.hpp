@@ -11,6 +11,7 @@
 
 #include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/physics/keyframe_world_line.hpp"
+#include "lightcone/physics/radial_observer.hpp"
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/physics/world_line.hpp"
 
@@ -225,9 +226,11 @@ struct Light {
   double intensity = 1;  // point, spot, sphere; rest frame
 };
 
-// The camera is drawn from outside r = 2M (1 + kCameraHorizonMargin) only: its view at and inside
-// the horizon is not drawn yet.
+// A camera is static or moving from outside r = 2M (1 + kCameraHorizonMargin) only; a falling one
+// is drawn on through the horizon down to r = kCameraInnermostRadius M (inside the margin its
+// view is found in its own frame, as everywhere on its fall; W's time is not defined there).
 inline constexpr double kCameraHorizonMargin = 1e-9;
+inline constexpr double kCameraInnermostRadius = 0.05;
 
 struct Camera {
   // The observation event is (world_line.time, world_line.position), and world_line.velocity
@@ -347,19 +350,30 @@ struct Scene {
 // the velocity is the one the local static observer measures.
 WorldLine camera_observation(const Camera::Motion& motion);
 
-// The proper times at which a camera on `geodesic` is outside r = 2M (1 + kCameraHorizonMargin):
-// the open interval (earliest, latest), either end infinite.
+// The proper times at which a camera on `geodesic` is drawn: every one on an orbit; on a fall,
+// down to r = kCameraInnermostRadius M, and from rest at r0 not before it rose out of the past
+// horizon (outside 2M (1 + kCameraHorizonMargin)). The open interval (earliest, latest), either
+// end infinite.
 struct ProperTimeSpan {
   double earliest = 0, latest = 0;
 };
 ProperTimeSpan drawn_proper_times(const HoleGeodesic& geodesic);
 
-// Why a camera on a geodesic `motion` cannot be drawn at motion.proper_time (at or within
-// 2M (1 + kCameraHorizonMargin) of the horizon, or so far along that its coordinate time or
-// position is not a finite number), with times in the scene's units (`speed_of_light`); empty
+// Why a camera on a geodesic `motion` cannot be drawn at motion.proper_time (outside
+// drawn_proper_times, or so far along that its coordinate time or position is not a finite
+// number), with times in the scene's units (`speed_of_light`); empty
 // when it can (always, off a geodesic).
 std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
                                                    double speed_of_light);
+
+// Whether a camera on a radial fall is at or inside r = 2M (1 + kCameraHorizonMargin), where it
+// has no static observer and W's time is not defined: its picture shows the sky and the disk,
+// not objects (not drawn from there yet).
+bool camera_inside_horizon(const Camera::Motion& motion);
+
+// The camera as a radially moving observer (its energy per unit mass and dr/dtau at its
+// radius), for a camera on a radial fall; none otherwise.
+std::optional<RadialObserver> falling_camera(const Camera::Motion& motion);
 
 // The camera's proper time at coordinate (world) time t on its geodesic.
 double geodesic_proper_time_at(const HoleGeodesic& geodesic, double t);

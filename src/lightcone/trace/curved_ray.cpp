@@ -33,6 +33,26 @@ Vec3 any_perpendicular(const Vec3& n) {
 }  // namespace
 
 CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
+  if (hole.falling) {
+    // In the falling camera's own frame, whose radial axis is e1 and whose other axes are W's.
+    CurvedPath p;
+    p.e1 = hole.outward;
+    const double cos_look = dot(u, p.e1);
+    const Vec3 tangential = u - p.e1 * cos_look;
+    const double sin_look = length(tangential);
+    p.e2 = sin_look > 0 ? tangential / sin_look : any_perpendicular(p.e1);
+    const auto seen = observed_ray(*hole.falling, cos_look, sin_look);
+    if (!seen) {
+      p.dark = true;
+      return p;
+    }
+    p.impact = seen->impact;
+    p.camera_energy = seen->energy;
+    p.orbit = photon_orbit(hole.mass, p.impact);
+    p.outward = seen->outward;
+    p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
+    return p;
+  }
   // The backward ray's direction in the static observer's frame: the F event (-1, u) maps to
   // (t, x) with t < 0.
   const Vec4 back = hole.trace_to_static * Vec4{-1, u};
@@ -58,6 +78,12 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBod
   const double impact = path.impact, camera_energy = path.camera_energy;
   const AngleSweep& sweep = path.sweep;
   CurvedRay ray;
+  if (path.dark) return ray;  // kHorizon, shift 0
+  // From inside the horizon the backward ray first climbs out through r = 2M: the disk's plane
+  // crossed below it is no disk, and it is not yet captured.
+  const bool start_inside = hole.camera_radius < 2 * hole.mass;
+  const RayCourse course =
+      start_inside ? ray_course(path.orbit, hole.camera_radius, path.outward) : RayCourse{};
   if (hole.disk) {
     const AccretionDisk& disk = *hole.disk;
     const double a = dot(e1, disk.normal), c = dot(e2, disk.normal);
@@ -70,6 +96,9 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBod
       if (phi <= 0) phi += kPi;
       for (int k = 0; k < kMaxDiskCrossings && phi < sweep.angle_total; ++k, phi += kPi) {
         const double r = radius_after_angle(sweep, phi);
+        const bool climbing =
+            start_inside && !(course.turning_radius > 0 && phi > course.angle_to_turn);
+        if (climbing && r <= 2 * hole.mass) continue;
         if (!(r > 2 * hole.mass) || std::isinf(r)) break;
         if (r < disk.inner || r > disk.outer) continue;
         // The gas orbits about the disk's normal; the photon's angular momentum about it per unit

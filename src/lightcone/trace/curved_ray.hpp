@@ -29,6 +29,9 @@ struct CurvedPath {
   AngleSweep sweep;
   // The energy the camera measures for the photon, in units of its conserved energy.
   double camera_energy = 1;
+  // No light comes along it: from inside the horizon, light of no positive conserved energy
+  // (which nothing outside sends; the walker ends it at the horizon).
+  bool dark = false;
 
   Vec3 offset(double phi, double r) const {
     return e1 * (r * std::cos(phi)) + e2 * (r * std::sin(phi));

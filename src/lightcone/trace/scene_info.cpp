@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "lightcone/frame/camera_model.hpp"
@@ -35,8 +36,13 @@ HoleInfo hole_info(const ResolvedScene& resolved, const Vec3& camera_velocity) {
   h.photon_sphere = photon_sphere_radius(m);
   h.isco = isco_radius(m);
   h.camera_radius = hole.camera_radius;
-  h.shadow_static_degrees = static_shadow_angle(m, hole.camera_radius) * kDegrees;
-  h.shadow_degrees = shadow_angle_for_camera(hole, camera_velocity) * kDegrees;
+  // Inside the horizon there is no static observer (NaN: printed as none).
+  h.shadow_static_degrees = hole.camera_radius > 2 * m
+                                ? static_shadow_angle(m, hole.camera_radius) * kDegrees
+                                : std::numeric_limits<double>::quiet_NaN();
+  h.shadow_degrees = (hole.falling ? shadow_angle(*hole.falling)
+                                   : shadow_angle_for_camera(hole, camera_velocity)) *
+                     kDegrees;
   constexpr int kRays = 48;
   double orders = 0;
   for (int j = 0; j < kRays; ++j)
