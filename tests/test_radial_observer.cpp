@@ -6,7 +6,9 @@
 // jumps as the observer crosses r = 2M. G = c = 1, M = 1.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "lightcone/physics/radial_observer.hpp"
@@ -16,6 +18,7 @@ namespace lightcone {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Falling from rest at r0 (infinity for r0 = 0): E = sqrt(1 - 2/r0), u^r = -sqrt(E^2 - f).
 RadialObserver falling(double r, double r0 = 0) {
@@ -93,6 +96,30 @@ TEST(RadialObserver, NothingJumpsAtTheHorizon) {
     EXPECT_NEAR(out->impact, in->impact, 1e-8 * out->impact);
     EXPECT_NEAR(out->energy, in->energy, 1e-8 * out->energy);
   }
+}
+
+// The energy range the colour tables are built for holds every ray that can bring light (from
+// r >= 3M every one; below it, falling, the outward ones with b <= b_c), found here by sweeping
+// look directions, and its ends are reached.
+TEST(RadialObserver, SeenEnergyRangeHoldsEveryRayThatBringsLight) {
+  for (const double r : {0.5, 1.5, 2.0, 2.5, 4.0, 20.0})
+    for (const double r0 : {0.0, 40.0}) {
+      const RadialObserver o = falling(r, r0);
+      const EnergyRange range = seen_energy_range(o);
+      double lo = kInf, hi = 0;
+      for (int i = 0; i <= 200000; ++i) {
+        const double look = kPi * i / 200000;
+        const auto ray = observed_ray(o, std::cos(look), std::sin(look));
+        if (!ray) continue;
+        if (r < 3 && !(ray->outward && ray->impact <= critical_impact_parameter(1))) continue;
+        lo = std::min(lo, ray->energy), hi = std::max(hi, ray->energy);
+      }
+      SCOPED_TRACE(testing::Message() << r << " " << r0);
+      EXPECT_GE(lo, range.lo * (1 - 1e-12));
+      EXPECT_LE(hi, range.hi * (1 + 1e-12));
+      EXPECT_NEAR(lo, range.lo, 1e-6 * range.lo);
+      EXPECT_NEAR(hi, range.hi, 1e-3 * range.hi);
+    }
 }
 
 }  // namespace

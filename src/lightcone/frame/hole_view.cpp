@@ -18,15 +18,18 @@ std::optional<HoleView> hole_view(const Scene& scene) {
   v.camera_radius = length(from_hole);
   v.outward = from_hole / v.camera_radius;
   v.falling = falling_camera(scene.camera.motion);
+  if (v.falling) v.camera_radius = v.falling->radius;
+  v.camera_lapse = std::sqrt(std::max(0.0, 1 - 2 * hole.mass / v.camera_radius));
+  if (!camera_inside_horizon(scene.camera.motion)) {
+    // The static observer's route, which the raster renderer takes (a falling camera's velocity
+    // against it is its world-line's, outside the horizon).
+    v.camera_rapidity = rapidity(scene.camera.world_line.velocity);
+    v.trace_to_static = lorentz_inverse(boost(scene.camera.world_line.velocity));
+  }
   if (v.falling) {
-    v.camera_radius = v.falling->radius;
-    v.camera_lapse = std::sqrt(std::max(0.0, 1 - 2 * hole.mass / v.camera_radius));
     const EnergyRange range = seen_energy_range(*v.falling);
     v.camera_log_energy_lo = std::log(range.lo), v.camera_log_energy_hi = std::log(range.hi);
   } else {
-    v.camera_lapse = std::sqrt(1 - 2 * hole.mass / v.camera_radius);
-    v.camera_rapidity = rapidity(scene.camera.world_line.velocity);
-    v.trace_to_static = lorentz_inverse(boost(scene.camera.world_line.velocity));
     // 1 / sqrt(f) at the static observer, times its Doppler factor within +-rapidity.
     const double blueshift = -std::log(v.camera_lapse);
     v.camera_log_energy_lo = blueshift - v.camera_rapidity;

@@ -22,9 +22,10 @@ struct HoleView {
   Vec3 outward;                // unit, from the hole toward the camera
   double camera_lapse = 1;     // sqrt(1 - 2M / r) at the camera
   double camera_rapidity = 0;  // of the camera relative to the static observer there
-  // A camera on a radial fall: its rays are found in its own frame (physics/radial_observer.hpp),
-  // at and inside the horizon too, where there is no static observer (camera_lapse 0, no
-  // rapidity, trace_to_static unused).
+  // A camera on a radial fall: the tracer finds its rays in its own frame
+  // (physics/radial_observer.hpp), at and inside the horizon too, where there is no static
+  // observer (camera_lapse 0, no rapidity; trace_to_static, which the raster renderer reads
+  // outside, is unset).
   std::optional<RadialObserver> falling;
   // The range of ln(camera_photon_energy) over the rays that can bring the camera light.
   double camera_log_energy_lo = 0, camera_log_energy_hi = 0;

@@ -708,7 +708,7 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   // kInvalid. Inside the horizon r falls along every future-directed ray: a backward ray from
   // there moves outward.
   if (!(r0 > 0) || (r0 < horizon && !outward)) return a;
-  double shared = kNaN;     // from_end, where the course computed it
+  double shared = kNaN;  // from_end, where the course computed it
   const RayCourse course = course_of(o, r0, outward, &shared);
   if (std::isnan(course.angle_total)) return a;
   a.angle_total = course.angle_total;

@@ -221,7 +221,7 @@ CurvedBodies::CurvedBodies(const ResolvedScene& scene, const Tracer& tracer)
 }
 
 bool CurvedBodies::Body::may_meet_in_space(const Vec3& a, const Vec3& b, double margin) const {
-  const double reach = radius * (1 + 1e-9) + margin;
+  const double reach = radius + margin;  // radius holds its rounding margin already
   if (const auto* orbit = std::get_if<HoleWorldLine::Orbit>(&line.path())) {
     // Both ends on one side of the orbit's plane, beyond the body's radius.
     const Vec3 normal = cross(orbit->axis_x, orbit->axis_y);
@@ -258,7 +258,7 @@ bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
     const double r = length(s1.position);
     acceleration = 2 * line.mass() / (r * r);
   }
-  return segment_distance(a.x, b.x, s0.position, s1.position) <= radius * (1 + 1e-9) + margin + bow;
+  return segment_distance(a.x, b.x, s0.position, s1.position) <= radius + margin + bow;
 }
 
 Vec3 CurvedBodies::Body::shape_point(const ResolvedBody& resolved, const Vec4& event,
