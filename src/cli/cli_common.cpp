@@ -73,15 +73,14 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
   const auto refuse = [&](const std::string& why) {
     throw InputError(file + ": black_hole: " + why);
   };
-  if (!scene.lights.empty())
-    refuse(
-        "lights near a black hole are not drawn yet (this version follows curved rays to the "
-        "sky, the accretion disk, emitting bodies and the horizon; lit bodies are black); remove "
-        "the lights, or the black hole");
   if (!scene.render.relativity || !scene.render.light_delay)
     refuse(
         "render.relativity and render.light_delay must stay on: curved spacetime has no "
         "classical picture");
+  if (!scene.lights.empty() && scene.render.light_source_delay != LightSourceDelay::kSurface)
+    refuse(
+        "render.light_source_delay must stay \"surface\" near a black hole: each light is met "
+        "where its light left for the surface, along the curved ray");
   if (raster && !scene.objects.empty())
     refuse(
         "the raster renderer and the viewer do not draw objects near a black hole yet; render "

@@ -80,24 +80,42 @@ LogShiftRange disk_log_shift_range(const HoleView& hole) {
   return {hole.camera_log_energy_lo - emitted_hi, hole.camera_log_energy_hi - emitted_lo};
 }
 
-LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
+HoleDepth object_depth(const HoleView& hole, const Object& object) {
   const double m = hole.mass;
   const HoleWorldLine line = hole_world_line(object, BlackHole{hole.centre, m, std::nullopt});
   const double reach = origin_radius(object.shape, object.scale);
-  // The nearest and farthest the body comes (the farthest unbounded for a moving one: f < 1
-  // caps it), and its fastest speed there. A fall reaches c at the horizon, where its light
-  // is shifted without bound: the range stops at 2M (1 + 1e-6), where it is 1 - f / 2E^2.
+  // A fall reaches c at the horizon, where its light is shifted without bound: the range stops
+  // at 2M (1 + 1e-6), where its speed is sqrt(1 - f / E^2).
   const double nearest = std::max(line.nearest() - reach, 2 * m * (1 + 1e-6));
-  const double farthest = line.farthest() + reach;
   double speed = line.max_local_speed();
   if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
     const double f = 1 - 2 * m / nearest, e = fall->fall.energy();
     speed = std::sqrt(1 - f / (e * e));
   }
-  const double spin = std::atanh(std::min(speed, 1 - 1e-16));
-  const auto gravity = [&](double r) { return std::isinf(r) ? 0.0 : 0.5 * std::log1p(-2 * m / r); };
-  return {hole.camera_log_energy_lo + gravity(nearest) - spin,
-          hole.camera_log_energy_hi + gravity(farthest) + spin};
+  return {0.5 * std::log1p(-2 * m / nearest), std::atanh(std::min(speed, 1 - 1e-16))};
+}
+
+HoleDepth light_depth(const HoleView& hole, const Light& light) {
+  const WorldLine& w = light.world_line;
+  if (std::holds_alternative<DirectionalLight>(light.kind)) return {0, rapidity(w.velocity)};
+  const double m = hole.mass;
+  const HoleWorldLine line =
+      HoleWorldLine::straight(m, w.time, w.position - hole.centre, w.velocity, 0);
+  double reach = 0;
+  if (const auto* sphere = std::get_if<SphereLight>(&light.kind)) reach = sphere->radius;
+  const double nearest = std::max(line.nearest() - reach, 2 * m * (1 + 1e-6));
+  return {0.5 * std::log1p(-2 * m / nearest),
+          std::atanh(std::min(line.max_local_speed(), 1 - 1e-16))};
+}
+
+LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
+  const double m = hole.mass;
+  const HoleWorldLine line = hole_world_line(object, BlackHole{hole.centre, m, std::nullopt});
+  const double farthest = line.farthest() + origin_radius(object.shape, object.scale);
+  const HoleDepth depth = object_depth(hole, object);
+  const double far_lapse = std::isinf(farthest) ? 0.0 : 0.5 * std::log1p(-2 * m / farthest);
+  return {hole.camera_log_energy_lo + depth.log_lapse - depth.rapidity,
+          hole.camera_log_energy_hi + far_lapse + depth.rapidity};
 }
 
 }  // namespace lightcone

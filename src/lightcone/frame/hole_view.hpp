@@ -71,4 +71,16 @@ LogShiftRange disk_log_shift_range(const HoleView& hole);
 // to its world-line's peak, moves ln g by its rapidity at most.
 LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object);
 
+// How deep in the hole's well and how fast a light's or an object's points get: the least
+// (1/2) ln f (f = 1 - 2M/r) over their path and the largest rapidity against the static
+// observers where they are (a fall's stops at 2M (1 + 1e-6), where its light is shifted beyond
+// any display). They bound the shift of light between a light and a surface it lights:
+// g = sqrt(f_e / f_r) gamma_r (1 - w_r . n_r) / (gamma_e (1 - w_e . n_e)).
+struct HoleDepth {
+  double log_lapse = 0;  // <= 0
+  double rapidity = 0;
+};
+HoleDepth object_depth(const HoleView& hole, const Object& object);
+HoleDepth light_depth(const HoleView& hole, const Light& light);
+
 }  // namespace lightcone

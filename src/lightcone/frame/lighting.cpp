@@ -1,13 +1,16 @@
 #include "lightcone/frame/lighting.hpp"
 
 #include <algorithm>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "lightcone/color/colour_models.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/shading.hpp"
 #include "lightcone/physics/doppler.hpp"
+#include "lightcone/physics/hole_light_leg.hpp"
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
@@ -83,8 +86,9 @@ double Lighting::ResolvedLight::spectral(double lambda_nm) const {
   return std::get<BlackbodySpectrum>(spectrum)(lambda_nm);
 }
 
-Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
-    : scene_(scene), shadows_(shadows) {
+Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
+                   const CurvedShadowQuery* curved_shadows)
+    : scene_(scene), shadows_(shadows), curved_shadows_(curved_shadows) {
   const Scene& s = *scene.scene;
   const RenderSettings& settings = s.render;
   unshifted_ = settings;
@@ -103,7 +107,12 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
       r.spectrum = b;
     }
     const WorldLine& line = light.world_line;
-    if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
+    if (scene.hole) {
+      // Always the exact delay, along the curved ray.
+      if (!std::holds_alternative<DirectionalLight>(light.kind))
+        r.near_hole = HoleWorldLine::straight(scene.hole->mass, line.time,
+                                              line.position - scene.hole->centre, line.velocity, 0);
+    } else if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
       const Vec3 at_observation = line.position_at(observation.t);
       const double tau = retarded_delay(at_observation - observation.x, line.velocity);
       r.fixed_event = Vec4{observation.t - tau, at_observation - line.velocity * tau};
@@ -114,8 +123,20 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
     }
     lights_.push_back(std::move(r));
   }
-  // The factors a lit surface can see a light with (any direction).
-  if (settings.relativity)
+  // The factors a lit surface can see a light with (any direction); near a hole, with the
+  // gravitational shift between their depths in its well.
+  if (scene.hole) {
+    for (const ResolvedBody& body : scene.bodies) {
+      if (body.object->material.unlit) continue;
+      const HoleDepth surface = object_depth(*scene.hole, *body.object);
+      for (const Light& light : s.lights) {
+        const HoleDepth lamp = light_depth(*scene.hole, light);
+        const double speeds = surface.rapidity + lamp.rapidity;
+        light_rapidity_ =
+            std::max({light_rapidity_, speeds - lamp.log_lapse, speeds - surface.log_lapse});
+      }
+    }
+  } else if (settings.relativity)
     for (const ResolvedBody& body : scene.bodies) {
       if (body.object->material.unlit) continue;
       const double spin = body.spin >= 0 ? spin_rapidity(scene.spins[body.spin]) : 0.0;
@@ -171,8 +192,9 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows)
       // (A spinning body's points move relative to its centre.)
       const bool co_moving =
           !settings.relativity ||
-          (scene.bodies[o].spin < 0 && relative_rapidity(lights_[l].light->world_line.velocity,
-                                                         s.objects[o].world_line.velocity) == 0);
+          (!scene.hole &&
+           (scene.bodies[o].spin < 0 && relative_rapidity(lights_[l].light->world_line.velocity,
+                                                          s.objects[o].world_line.velocity) == 0));
       for (int k = 0; k < count; ++k)
         object_reflections_[o][k].push_back(table_for(colours[k], l, co_moving));
     }
@@ -266,6 +288,107 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
   return true;
 }
 
+bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_world,
+                                  const Vec3& surface_velocity, const Vec3& normal,
+                                  const std::array<double, 2>& light_sample, Incoming& out,
+                                  std::optional<CurvedShadowRay>& shadow) const {
+  shadow.reset();
+  const Light& light = *rl.light;
+  const RenderSettings& settings = scene_.scene->render;
+  const HoleView& hole = *scene_.hole;
+  const Vec3 receiver = surface_world.x - hole.centre;
+  const auto shadow_along = [&](const HoleLegPath& path, double near, double far) {
+    if (settings.shadows && curved_shadows_)
+      shadow =
+          CurvedShadowRay{surface_world, path.e1, path.e2, path.impact, path.outward, near, far};
+  };
+
+  if (const auto* sun = std::get_if<DirectionalLight>(&light.kind)) {
+    // A plane wave far away, its frequency there carried from the light's frame into W; the
+    // hole bends, focuses and blueshifts it on the way in.
+    const Vec4 k_light{1.0, normalize(sun->direction)};
+    const Vec4 k_world = boost(-light.world_line.velocity) * k_light;
+    const auto wave = hole_plane_wave(hole.mass, receiver, surface_velocity, k_world.x / k_world.t);
+    if (!wave) return false;
+    out.direction_to_light = -wave->direction;
+    out.doppler = wave->doppler * k_world.t / k_light.t;
+    const double cos_i = dot(normal, out.direction_to_light);
+    if (!(cos_i > 0)) return false;
+    const double irradiance = sun->irradiance * wave->focusing;
+    set_irradiance(out, settings.searchlight, irradiance * cos_i,
+                   plane_wave_irradiance(out.doppler, irradiance, cos_i),
+                   irradiance * plane_wave_spectral_factor(out.doppler, cos_i));
+    shadow_along(wave->path, kShadowEpsilon * wave->path.sweep, wave->path.sweep);
+    return true;
+  }
+
+  // The emitting point: the centre, or a point of a sphere light (its offset contracted by its
+  // coordinate velocity, as bodies' shapes are), on the light's coordinate line.
+  const HoleWorldLine& line = *rl.near_hole;
+  Vec3 rest_offset;
+  double intensity = light.intensity;
+  const auto* sphere = std::get_if<SphereLight>(&light.kind);
+  if (sphere) rest_offset = sphere_point(light_sample) * sphere->radius;
+  const Vec3 offset = contracted(rest_offset, light.world_line.velocity);
+  // The light that reaches the surface event left at t_e with t_s - t_e the coordinate time of
+  // the direct ray from where the light then was: exact for a light at rest; on a moving line
+  // the root of that equation, whose left side falls strictly with t_e (nothing outruns light),
+  // bracketed by stepping back and solved with TOMS 748.
+  HoleWorldLineState state = line.at(surface_world.t);
+  auto leg = hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
+                            surface_velocity);
+  if (!leg) return false;
+  if (!line.still()) {
+    const auto leg_at = [&](double t) {
+      state = line.at(t);
+      return hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
+                            surface_velocity);
+    };
+    const auto miss = [&](double t) {
+      const auto l = leg_at(t);
+      return l ? surface_world.t - t - l->time : std::numeric_limits<double>::quiet_NaN();
+    };
+    double hi = surface_world.t, value_hi = -leg->time;
+    double step = leg->time, lo = hi - step, value_lo = miss(lo);
+    for (int k = 0; k < 64 && value_lo < 0; ++k) {
+      hi = lo, value_hi = value_lo;
+      step *= 2, lo = hi - step, value_lo = miss(lo);
+    }
+    if (!(value_lo >= 0)) return false;
+    double t_e = lo;
+    if (value_lo > 0) {
+      std::uintmax_t iterations = 100;
+      const auto [a, b] = boost::math::tools::toms748_solve(
+          miss, lo, hi, value_lo, value_hi, boost::math::tools::eps_tolerance<double>(),
+          iterations);
+      t_e = (a + b) / 2;
+    }
+    leg = leg_at(t_e);
+    if (!leg) return false;
+  }
+  out.direction_to_light = -leg->leg.direction;
+  out.doppler = leg->leg.doppler;
+  const double cos_i = dot(normal, out.direction_to_light);
+  if (!(cos_i > 0)) return false;
+  if (const auto* spot = std::get_if<SpotLight>(&light.kind)) {
+    const double angle =
+        std::acos(
+            std::clamp(dot(leg->leg.emitted_direction, normalize(spot->direction)), -1.0, 1.0)) *
+        180 / kPi;
+    const double half = spot->cone_degrees / 2;
+    intensity *= 1 - smoothstep(half - spot->falloff_degrees, half, angle);
+  } else if (sphere) {
+    intensity *= 4 * std::max(0.0, dot(normalize(rest_offset), leg->leg.emitted_direction));
+  }
+  if (intensity <= 0) return false;
+  const double distance = leg->leg.distance;
+  set_irradiance(out, settings.searchlight, intensity * cos_i / (distance * distance),
+                 point_source_irradiance(leg->leg, intensity, cos_i),
+                 intensity * point_source_spectral_factor(leg->leg, cos_i));
+  shadow_along(leg->path, kShadowEpsilon * leg->path.sweep, (1 - kShadowEpsilon) * leg->path.sweep);
+  return true;
+}
+
 Xyz Lighting::reflected_at(const Reflection& t, const GridStencil& camera, double d_camera,
                            double d_light) {
   // A co-moving light's leg has D = 1 (to rounding), so only the camera's factor counts.
@@ -285,6 +408,7 @@ struct Lighting::Shading {
   const LinearRgb* albedo = nullptr;
   Vec4 surface_world;                        // the surface event
   Vec3 surface_velocity, normal, to_camera;  // W; rest-frame unit normal and direction to camera
+  bool near_hole = false;  // (then surface_velocity is against the static observer there)
   double d_camera = 1;
   double diffuse = 1;  // the diffuse layer's share
   // Spectral: the colour reaching the camera before its searchlight factor, and the tables it
@@ -306,23 +430,33 @@ void Lighting::prepare(const LitPoint& point, Shading& shading) const {
   shading.d_camera = point.d_camera;
 
   // The surface event and velocity, and its rest-frame normal and direction to the camera.
-  const Vec4 surface_trace{scene_.ray_time * hit.s, point.u * hit.s};
-  shading.surface_world = scene_.trace_to_world(surface_trace);
-  // A spinning body's point moves and is turned with its spin; the normal is taken in the
-  // body's rest frame (docs/design/spinning-bodies.md).
   const ResolvedBody& body = scene_.bodies[hit.body];
-  shading.surface_velocity = !settings.relativity ? Vec3{}
-                             : body.spin >= 0
-                                 ? velocity_of(scene_.trace_to_world.linear * Vec4{1, hit.velocity})
-                                 : object.world_line.velocity;
   shading.normal = normalize(object.rotation * component_div(hit.shape_normal, object.scale));
-  if (body.spin >= 0)
-    shading.normal = Mat3::rotation(scene_.spins[body.spin].axis, hit.spin_angle) * shading.normal;
-  const Vec3 camera_velocity =
-      settings.relativity ? scene_.scene->camera.world_line.velocity : Vec3{};
-  shading.to_camera = receive_leg(shading.surface_world, shading.surface_velocity,
-                                  scene_.observation_event, camera_velocity)
-                          .emitted_direction;
+  if (point.near_hole) {
+    // Against the static observer at the event (bodies near a hole do not spin).
+    shading.near_hole = true;
+    shading.surface_world = point.near_hole->event;
+    shading.surface_velocity = point.near_hole->local_velocity;
+    const Vec4 k = boost(shading.surface_velocity) * Vec4{1, point.near_hole->to_camera};
+    shading.to_camera = k.x / k.t;
+  } else {
+    const Vec4 surface_trace{scene_.ray_time * hit.s, point.u * hit.s};
+    shading.surface_world = scene_.trace_to_world(surface_trace);
+    // A spinning body's point moves and is turned with its spin; the normal is taken in the
+    // body's rest frame (docs/design/spinning-bodies.md).
+    shading.surface_velocity =
+        !settings.relativity ? Vec3{}
+        : body.spin >= 0     ? velocity_of(scene_.trace_to_world.linear * Vec4{1, hit.velocity})
+                             : object.world_line.velocity;
+    if (body.spin >= 0)
+      shading.normal =
+          Mat3::rotation(scene_.spins[body.spin].axis, hit.spin_angle) * shading.normal;
+    const Vec3 camera_velocity =
+        settings.relativity ? scene_.scene->camera.world_line.velocity : Vec3{};
+    shading.to_camera = receive_leg(shading.surface_world, shading.surface_velocity,
+                                    scene_.observation_event, camera_velocity)
+                            .emitted_direction;
+  }
   shading.diffuse = object.material.glossy ? 1 - object.material.glossy->specular : 1.0;
   if (settings.doppler != DopplerModel::kSpectral) return;
   shading.camera_stencil = grid_stencil(camera_grid_, point.d_camera);
@@ -409,6 +543,14 @@ void Lighting::received(std::span<const LitPoint> points, std::span<LinearRgb> o
       bool blocked[kBatchSize];
       std::size_t ray_point[kBatchSize], ray_count = 0;
       for (std::size_t p = 0; p < count; ++p) {
+        if (shading[p].near_hole) {
+          std::optional<CurvedShadowRay> curved;
+          arrives[p] =
+              incoming_near_hole(lights_[l], shading[p].surface_world, shading[p].surface_velocity,
+                                 shading[p].normal, points[first + p].light_sample, in[p], curved);
+          if (arrives[p] && curved) arrives[p] = !curved_shadows_->occluded(*curved);
+          continue;
+        }
         std::optional<ShadowRay> shadow;
         arrives[p] = incoming(lights_[l], shading[p].surface_world, shading[p].surface_velocity,
                               shading[p].normal, points[first + p].light_sample, in[p], shadow);

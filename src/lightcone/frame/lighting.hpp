@@ -15,6 +15,7 @@
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/frame/surface_hit.hpp"
+#include "lightcone/physics/hole_world_line.hpp"
 
 namespace lightcone {
 
@@ -22,8 +23,19 @@ class Lighting {
  public:
   // Prepares, for the spectral model, the colour of every fixed albedo of every lit object
   // under every light against the camera's and the light's Doppler factors. Shadows (where the
-  // scene asks for them) come from `shadows`; without one nothing is shadowed.
-  Lighting(const ResolvedScene& scene, const ShadowQuery* shadows);
+  // scene asks for them) come from `shadows`, or near a black hole from `curved_shadows`;
+  // without one nothing is shadowed.
+  Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
+           const CurvedShadowQuery* curved_shadows = nullptr);
+
+  // A lit point near a black hole, as the curved camera ray met it: its event (W), and in the
+  // static observer's frame there the direction in which its light leaves toward the camera
+  // and the surface's velocity. Its lights arrive along direct null geodesics
+  // (physics/hole_light_leg.hpp; docs/design/black-hole.md, "Lights").
+  struct HoleSurface {
+    Vec4 event;
+    Vec3 to_camera, local_velocity;
+  };
 
   // Linear sRGB received at the camera from the lit surface point of `hit`, seen along look
   // direction u with Doppler factor d_camera; `surface` carries the rest-frame albedo (RGB in
@@ -40,6 +52,7 @@ class Lighting {
     double d_camera = 1;
     PointEmission surface;
     std::array<double, 2> light_sample{0.5, 0.5};
+    const HoleSurface* near_hole = nullptr;  // (then u is unused)
   };
   static constexpr std::size_t kBatchSize = 8;
   void received(std::span<const LitPoint> points, std::span<LinearRgb> out) const;
@@ -75,6 +88,9 @@ class Lighting {
     // and the classical picture); before a sphere light's offset. Unset for the exact delay.
     std::optional<Vec4> fixed_event;
     DopplerXyzTable seen;  // spectral: its colour against the camera-to-light factor
+    // Near a black hole (point, spot and sphere lights): its straight coordinate line, relative
+    // to the hole.
+    std::optional<HoleWorldLine> near_hole;
     double spectral(double lambda_nm) const;
   };
   // What one light delivers to the surface, in the surface's rest frame.
@@ -97,6 +113,12 @@ class Lighting {
   bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec3& surface_velocity,
                 const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out,
                 std::optional<ShadowRay>& shadow) const;
+  // The same near a black hole, surface_velocity against the static observer there, the
+  // shadow path curved.
+  bool incoming_near_hole(const ResolvedLight& light, const Vec4& surface_world,
+                          const Vec3& surface_velocity, const Vec3& normal,
+                          const std::array<double, 2>& light_sample, Incoming& out,
+                          std::optional<CurvedShadowRay>& shadow) const;
   // One lit point's state while its lights are summed.
   struct Shading;
   void prepare(const LitPoint& point, Shading& shading) const;
@@ -105,6 +127,7 @@ class Lighting {
 
   const ResolvedScene& scene_;
   const ShadowQuery* shadows_;
+  const CurvedShadowQuery* curved_shadows_;
   // The scene's settings with the searchlight off: a light's colour shift as a surface sees it,
   // its irradiance apart.
   RenderSettings unshifted_;

@@ -18,6 +18,24 @@ struct ShadowRay {
   double label = 0;
 };
 
+// Near a black hole: the direct null geodesic from a lit surface event back to a light
+// (physics/hole_light_leg.hpp's HoleLegPath), in the plane of the hole (at `centre`, mass M), the
+// surface (along e1 from the hole) and the light (toward e2); a body blocks it if the path meets
+// one between swept angles sweep_near and sweep_far from the surface.
+struct CurvedShadowRay {
+  Vec4 origin;  // the surface event, in W
+  Vec3 e1, e2;
+  double impact = 0;
+  bool outward = false;  // r grows at the surface along the path
+  double sweep_near = 0, sweep_far = 0;
+};
+
+class CurvedShadowQuery {
+ public:
+  virtual ~CurvedShadowQuery() = default;
+  virtual bool occluded(const CurvedShadowRay& ray) const = 0;
+};
+
 class ShadowQuery {
  public:
   virtual ~ShadowQuery() = default;

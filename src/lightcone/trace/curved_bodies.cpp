@@ -13,6 +13,8 @@
 namespace lightcone {
 namespace {
 
+using PathStart = CurvedBodies::PathStart;
+
 constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -44,31 +46,30 @@ double segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Ve
 }
 
 // The events of one ray's path, in W: after sweeping phi it is at the hole's centre plus
-// path.offset(phi, r(phi)), at the camera's time less the coordinate time the light took.
+// path.offset(phi, r(phi)), at its start's time less the coordinate time the light took.
 struct PathEvents {
-  const HoleView& hole;
+  const PathStart& start;
   const CurvedPath& path;
-  double camera_time;
   RayCourse course;
 
-  PathEvents(const HoleView& h, const CurvedPath& p, double t)
-      : hole(h), path(p), camera_time(t), course(ray_course(p.orbit, h.camera_radius, p.outward)) {}
+  PathEvents(const PathStart& s, const CurvedPath& p)
+      : start(s), path(p), course(ray_course(p.orbit, s.radius, p.outward)) {}
 
   bool turned(double phi) const { return course.turning_radius > 0 && phi > course.angle_to_turn; }
   double radius(double phi) const { return radius_after_angle(path.sweep, phi); }
-  // The coordinate time from the point at phi (radius r) to the camera, on the stretches between.
+  // The coordinate time from the point at phi (radius r) to the start, on the stretches between.
   double delay(double phi, double r) const {
-    const double r0 = hole.camera_radius;
+    const double r0 = start.radius;
     if (!turned(phi)) return coordinate_time(path.orbit, r0, r);
     const double turn = course.turning_radius;
     return coordinate_time(path.orbit, r0, turn) + coordinate_time(path.orbit, turn, r);
   }
-  double time(double phi, double r) const { return camera_time - delay(phi, r); }
+  double time(double phi, double r) const { return start.time - delay(phi, r); }
   // The event at phi; its time only when `timed` (a body at rest needs none to be met).
   Vec4 event(double phi, bool timed, double* r_out = nullptr) const {
     const double r = radius(phi);
     if (r_out) *r_out = r;
-    return {timed ? time(phi, r) : 0.0, hole.centre + path.offset(phi, r)};
+    return {timed ? time(phi, r) : 0.0, start.centre + path.offset(phi, r)};
   }
 };
 
@@ -116,22 +117,22 @@ struct Windows {
   double near = 0, reach = 0, inner = 0;
 };
 
-// How far out a ray can meet a body that comes no nearer than `now` at the camera's time and
+// How far out a ray can meet a body that comes no nearer than `now` at the ray's start and
 // moves at coordinate speed at most v (< 1): past r, the light's delay T >= r - r0 - 4M ln(1 +
 // r / 2M) - 8M (coordinate light speed at most 1, and the Shapiro delay's bound) takes the body
 // at most v T farther out, and the ray has outrun it.
-double moving_reach(double m, double camera_radius, double v, double now) {
+double moving_reach(double m, double start_radius, double v, double now) {
   const auto beyond = [&](double r) {
-    return (1 - v) * r - v * (camera_radius + 4 * m * std::log1p(r / (2 * m)) + 8 * m) > now;
+    return (1 - v) * r - v * (start_radius + 4 * m * std::log1p(r / (2 * m)) + 8 * m) > now;
   };
-  double reach = std::max(now, camera_radius);
+  double reach = std::max(now, start_radius);
   while (!beyond(reach)) reach *= 2;
   return reach;
 }
 
 Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath& path,
-                     const Vec3& n, const HoleView& hole, double camera_time) {
-  const double m = hole.mass;
+                     const Vec3& n, const PathStart& start) {
+  const double m = start.mass, start_time = start.time;
   Windows w;
   const auto at_angle = [&](const Vec3& v) { return std::atan2(dot(v, path.e2), dot(v, path.e1)); };
   const auto everywhere = [&](double near, double reach) {
@@ -155,9 +156,9 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
   if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
     // The tube along the line of fall (r >= 2M) cuts the plane, at radii rho >= 2M, where
     // rho^2 (1 - p^2 cos^2(theta - theta_d)) <= R^2, p the length of the direction's projection.
-    const double now = length(line.at(camera_time).position) + radius;
+    const double now = length(line.at(start_time).position) + radius;
     const double reach = fall->fall.is_from_infinity()
-                             ? moving_reach(m, hole.camera_radius, line.max_coordinate_speed(), now)
+                             ? moving_reach(m, start.radius, line.max_coordinate_speed(), now)
                              : line.farthest() + radius;
     if (!(radius < 2 * m)) return everywhere(2 * m, reach);
     const Vec3 in_plane = fall->direction - n * dot(fall->direction, n);
@@ -186,8 +187,8 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
   } else {
     const double vn = dot(v, n), speed = length(v);
     // How far out the ray can meet it: past where the body cannot keep up with the ray.
-    const double now = length(line.at(camera_time).position) + radius;
-    const double reach = moving_reach(m, hole.camera_radius, speed, now);
+    const double now = length(line.at(start_time).position) + radius;
+    const double reach = moving_reach(m, start.radius, speed, now);
     // How far in: its line's closest approach.
     const double near = line.nearest() - radius;
     if (std::abs(vn) <= 1e-9 * speed) {
@@ -278,32 +279,24 @@ Vec3 CurvedBodies::Body::shape_point(const ResolvedBody& resolved, const Vec4& e
   return to_shape * rest;
 }
 
-bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, double limit,
-                             CurvedRay& ray) const {
+bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, double from,
+                           double limit, Found& best) const {
   // A ray straight through the hole's centre (b = 0) has no plane; it does not see bodies.
-  if (bodies_.empty() || !(path.impact > 0) || !(limit > 0)) return false;
-  const double m = hole.mass;
-  const PathEvents events(hole, path, scene_.observation_event.t);
+  if (bodies_.empty() || !(path.impact > 0) || !(limit > from)) return false;
+  const double m = start.mass;
+  const PathEvents events(start, path);
   const Vec3 n = cross(path.e1, path.e2);
-  // The smallest radius the path reaches: the camera's or the periapsis for a ray outside the
+  // The smallest radius the path reaches: the start's or the periapsis for a ray outside the
   // photon sphere that turns or leaves, the horizon otherwise.
   const PhotonOrbit& orbit = path.orbit;
-  const double floor = orbit.turning && hole.camera_radius >= orbit.periapsis
-                           ? (path.outward ? hole.camera_radius : orbit.periapsis)
+  const double floor = orbit.turning && start.radius >= orbit.periapsis
+                           ? (path.outward ? start.radius : orbit.periapsis)
                            : 2 * m;
   const double horizon = 2 * m * (1 + 1e-12);
-  struct Found {
-    int body = -1;
-    double phi = 0;
-    Vec4 event;
-    Vec3 shape_point, incoming;
-    unsigned prim = 0;
-  } best;
   double best_phi = limit;
   for (const Body& body : bodies_) {
     const ResolvedBody& resolved = scene_.bodies[body.index];
-    const Windows windows =
-        body_windows(body.line, body.radius, path, n, hole, scene_.observation_event.t);
+    const Windows windows = body_windows(body.line, body.radius, path, n, start);
     if (windows.count == 0) continue;
     const bool moving = !body.line.still();
     // Chords within kChordError R of the path: its curvature is 3 M u^5 / (1/b^2 + 2 M u^3)^1.5,
@@ -317,7 +310,7 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
     const double span = step * std::sqrt(0.25 / kChordError);
     const double span_margin = m > 0 ? 0.375 * m * path.impact * span * span / r_min : 0.0;
     const auto shape_of = [&](const Vec4& e, const HoleWorldLineState* state = nullptr) {
-      return body.shape_point(resolved, e, hole.centre, state);
+      return body.shape_point(resolved, e, start.centre, state);
     };
     // A geodesic's chords are timed only once they come near where it ever is.
     const bool straight = std::holds_alternative<HoleWorldLine::Straight>(body.line.path());
@@ -332,7 +325,7 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
             windows.delta >= kPi ? best_phi : windows.centre[w] + windows.delta + kTwoPi * winding;
         if (lo >= best_phi) continue;
         past = false;
-        lo = std::max(lo, 0.0), hi = std::min(hi, best_phi);
+        lo = std::max(lo, from), hi = std::min(hi, best_phi);
         if (!(lo < hi)) continue;
         double phi_a = lo, r_a;
         Vec4 a = events.event(phi_a, timed_at_once, &r_a);
@@ -365,14 +358,14 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
           double acceleration = 0;
           const auto may_meet = [&](double phi_b, double r_b, Vec4& b, double margin) {
             bool b_timed = timed_at_once;
-            if (body.may_meet_in_space(a.x - hole.centre, b.x - hole.centre, margin)) {
+            if (body.may_meet_in_space(a.x - start.centre, b.x - start.centre, margin)) {
               if (!straight) {
                 if (!a_timed) a.t = events.time(phi_a, r_a), state_a = body.line.at(a.t);
                 b.t = events.time(phi_b, r_b), state_b = body.line.at(b.t);
                 a_timed = b_timed = true;
               }
-              if (body.may_meet_in_time({a.t, a.x - hole.centre}, {b.t, b.x - hole.centre}, state_a,
-                                        state_b, margin, acceleration))
+              if (body.may_meet_in_time({a.t, a.x - start.centre}, {b.t, b.x - start.centre},
+                                        state_a, state_b, margin, acceleration))
                 return true;
             }
             phi_a = phi_b, a = b, r_a = r_b, a_timed = b_timed, shape_known = false;
@@ -415,7 +408,12 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
               return surface.at(shape_of(events.event(phi, moving)));
             };
             const double side_a = surface.at(shape_a);
-            const double phi_c = phi_a + chord->s * (phi_b - phi_a);
+            // The path's angle at the chord's point (the angle does not grow linearly along
+            // a chord: a long chord, far from a light hole, would miss the body there).
+            const Vec3 chord_at = a.x + (b.x - a.x) * chord->s - start.centre;
+            double phi_c = std::atan2(dot(chord_at, path.e2), dot(chord_at, path.e1));
+            phi_c += kTwoPi * std::round((0.5 * (phi_a + phi_b) - phi_c) / kTwoPi);
+            phi_c = std::clamp(phi_c, phi_a, phi_b);
             double phi = phi_c;
             double other = phi_b, side_other = surface.at(shape_b);
             if ((side_other < 0) == (side_a < 0)) other = phi_c, side_other = side(phi_c);
@@ -435,6 +433,7 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
               best.shape_point = shape_of(best.event);
               best.incoming = shape_b - shape_a;
               best.prim = chord->prim;
+              best.turned = events.turned(phi);
             }
             met = true;
           }
@@ -445,8 +444,15 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
       if (met || past || windows.delta >= kPi) break;
     }
   }
-  if (best.body < 0) return false;
+  return best.body >= 0;
+}
 
+bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, double limit,
+                             CurvedRay& ray) const {
+  const PathStart start{hole.centre, hole.mass, hole.camera_radius, scene_.observation_event.t};
+  Found best;
+  if (!nearest(start, path, 0, limit, best)) return false;
+  const double m = hole.mass;
   const Body& body = bodies_[best.body];
   ray.end = CurvedRayEnd::kBody;
   ray.phi = best.phi;
@@ -468,15 +474,32 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   const Vec3 x = best.event.x - hole.centre;
   const double r = length(x), f = 1 - 2 * m / r;
   const Vec3 rhat = x / r;
-  const Vec3 that = cross(n, rhat);  // the direction of growing phi
+  const Vec3 that = cross(cross(path.e1, path.e2), rhat);  // the direction of growing phi
   const double b = path.impact;
-  const bool out = events.turned(best.phi) ? !path.outward : path.outward;
+  const bool out = best.turned ? !path.outward : path.outward;
   const double radial = std::sqrt(std::max(0.0, 1 - b * b * f / (r * r)));
   const Vec3 nhat = (rhat * ((out ? 1 : -1) * radial) + that * (b * std::sqrt(f) / r)) * -1.0;
   const Vec3& w = state.local_velocity;
   const double emitted = lorentz_gamma(w) * (1 - dot(nhat, w)) / std::sqrt(f);
   ray.shift = path.camera_energy / emitted;
+  ray.to_camera = nhat;
+  ray.local_velocity = w;
   return true;
+}
+
+bool CurvedBodies::occluded(const CurvedShadowRay& shadow) const {
+  const double m = scene_.hole->mass;
+  const Vec3& centre = scene_.hole->centre;
+  const PathStart start{centre, m, length(shadow.origin.x - centre), shadow.origin.t};
+  CurvedPath path;
+  path.e1 = shadow.e1;
+  path.e2 = shadow.e2;
+  path.impact = shadow.impact;
+  path.outward = shadow.outward;
+  path.orbit = photon_orbit(m, shadow.impact);
+  path.sweep = prepare_sweep(path.orbit, start.radius, shadow.outward);
+  Found found;
+  return nearest(start, path, shadow.sweep_near, shadow.sweep_far, found);
 }
 
 }  // namespace lightcone

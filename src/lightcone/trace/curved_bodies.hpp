@@ -19,16 +19,23 @@
 #include <vector>
 
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
 
-class CurvedBodies {
+class CurvedBodies : public CurvedShadowQuery {
  public:
   // The largest distance of a chord from the path, in units of the radius of the body it tests.
   static constexpr double kChordError = 1e-5;
+
+  // Where a path starts: the hole's centre and mass, and the start's radius and W time.
+  struct PathStart {
+    Vec3 centre;
+    double mass = 0, radius = 0, time = 0;
+  };
 
   CurvedBodies(const ResolvedScene& scene, const Tracer& tracer);
 
@@ -36,7 +43,25 @@ class CurvedBodies {
   // kBody, the angle phi, the hit, its event and its shift g.
   bool first_hit(const HoleView& hole, const CurvedPath& path, double limit, CurvedRay& ray) const;
 
+  // Whether a body blocks a lit surface's light (frame/shadow_query.hpp), met as camera rays meet
+  // them, along the path from the surface event.
+  bool occluded(const CurvedShadowRay& ray) const override;
+
  private:
+  // The body a path meets first between swept angles `from` and `limit`: its index, the angle,
+  // the event and shape point met, the chord's direction there (shape coordinates), the
+  // triangle, and whether the path had passed its turning point.
+  struct Found {
+    int body = -1;
+    double phi = 0;
+    Vec4 event;
+    Vec3 shape_point, incoming;
+    unsigned prim = 0;
+    bool turned = false;
+  };
+  bool nearest(const PathStart& start, const CurvedPath& path, double from, double limit,
+               Found& found) const;
+
   struct Body {
     int index = 0;
     HoleWorldLine line;  // of its origin

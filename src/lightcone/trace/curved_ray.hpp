@@ -54,6 +54,10 @@ struct CurvedRay {
   double disk_radius = 0;  // kDisk: the Schwarzschild r where the ray meets the disk
   Hit hit;                 // kBody: the body and the point met (its s is phi)
   Vec4 event;              // kBody: the event met, in W
+  // kBody: the direction in which the light leaves the point toward the camera, and the
+  // velocity of the body there, both in the static observer's frame at the event (a lit
+  // point's shading reads them).
+  Vec3 to_camera, local_velocity;
 };
 
 // The ray with look direction u (unit, in the camera's rest frame F), meeting the scene's bodies

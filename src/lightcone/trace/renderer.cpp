@@ -77,7 +77,8 @@ void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
 }
 
 LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emission,
-                          const CurvedRay& ray) {
+                          const CurvedRay& ray, const Lighting* lighting,
+                          const std::array<double, 2>& light_sample) {
   const RenderSettings& settings = scene.scene->render;
   switch (ray.end) {
     case CurvedRayEnd::kSky:
@@ -87,9 +88,15 @@ LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emiss
                                      disk_temperature_ratio(scene.hole->mass, ray.disk_radius),
                                      ray.shift, settings);
     case CurvedRayEnd::kBody: {
-      // Lit materials are black: no light reaches them near a hole yet.
-      if (!scene.scene->objects[ray.hit.body].material.unlit) break;
-      return received_colour(emission.surface(ray.hit.body, ray.hit), ray.shift, settings);
+      const PointEmission surface = emission.surface(ray.hit.body, ray.hit);
+      if (scene.scene->objects[ray.hit.body].material.unlit)
+        return received_colour(surface, ray.shift, settings);
+      if (!lighting) break;
+      const Lighting::HoleSurface at{ray.event, ray.to_camera, ray.local_velocity};
+      Lighting::LitPoint point{&ray.hit, {}, ray.shift, surface, light_sample, &at};
+      LinearRgb out;
+      lighting->received(std::span(&point, 1), std::span(&out, 1));
+      return out;
     }
     case CurvedRayEnd::kHorizon:
       break;
@@ -105,15 +112,15 @@ struct Observation {
       : resolved(resolve_scene(scene)),
         tracer(resolved),
         emission(resolved),
-        lighting(resolved, &tracer) {
-    if (resolved.hole && !resolved.bodies.empty())
-      curved_bodies = std::make_unique<CurvedBodies>(resolved, tracer);
-  }
+        curved_bodies(resolved.hole && !resolved.bodies.empty()
+                          ? std::make_unique<CurvedBodies>(resolved, tracer)
+                          : nullptr),
+        lighting(resolved, &tracer, curved_bodies.get()) {}
   ResolvedScene resolved;
   Tracer tracer;
   EmissionTable emission;
-  Lighting lighting;
   std::unique_ptr<CurvedBodies> curved_bodies;  // near a black hole
+  Lighting lighting;
 };
 
 }  // namespace
@@ -215,7 +222,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 for (std::size_t l = 0; l < lanes; ++l) {
                   const CurvedRay ray =
                       follow_curved_ray(*resolved.hole, directions[l], seen.curved_bodies.get());
-                  colours[l] = curved_radiance(resolved, seen.emission, ray);
+                  colours[l] =
+                      curved_radiance(resolved, seen.emission, ray, &seen.lighting, light[l]);
                   tile_orders += ray.order;
                 }
               } else {

@@ -1,0 +1,104 @@
+#include "lightcone/physics/hole_light_leg.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/schwarzschild_lens.hpp"
+
+namespace lightcone {
+namespace {
+
+// A unit vector perpendicular to n.
+Vec3 any_perpendicular(const Vec3& n) {
+  const Vec3 other = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  return normalize(cross(n, other));
+}
+
+// The plane through the hole, the receiver (e1) and a second point (toward e2), and the angle
+// between them about the hole.
+struct LegPlane {
+  Vec3 e1, e2;
+  double psi = 0;
+};
+LegPlane leg_plane(const Vec3& receiver, const Vec3& other) {
+  LegPlane p;
+  p.e1 = normalize(receiver);
+  const double along = dot(other, p.e1);
+  const Vec3 across = other - p.e1 * along;
+  const double across_length = length(across);
+  p.e2 = across_length > 0 ? across / across_length : any_perpendicular(p.e1);
+  p.psi = std::atan2(across_length, along);
+  return p;
+}
+
+// A photon of unit static-frame energy travelling along n, as the observer moving with w
+// measures it: its energy, and its direction of travel.
+struct Measured {
+  double energy = 1;
+  Vec3 direction;
+};
+Measured measured(const Vec3& n, const Vec3& w) {
+  if (dot(w, w) == 0) return {1, n};
+  const Vec4 k = boost(w) * Vec4{1, n};
+  return {k.t, k.x / k.t};
+}
+
+HoleLegPath leg_path(const LegPlane& plane, const DirectRay& ray) {
+  // Back from the receiver (end a) the path leaves toward the emitter: r grows along it where
+  // that direction points outward.
+  return {plane.e1, plane.e2, ray.impact, ray.cos_a > 0, plane.psi};
+}
+
+}  // namespace
+
+std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
+                                      const Vec3& receiver, const Vec3& w_r) {
+  const double r_e = length(emitter), r_r = length(receiver);
+  const LegPlane plane = leg_plane(receiver, emitter);
+  if (plane.psi == 0 && r_e == r_r) return std::nullopt;
+  const std::optional<DirectRay> ray = direct_ray(mass, r_r, r_e, plane.psi);
+  if (!ray || !(ray->spread_b_to_a > 0)) return std::nullopt;
+  // In the static frames: the receiver sees the light arrive from its direction toward the
+  // emitter; the emitter sends it along its direction toward the receiver (toward decreasing
+  // angle about the hole).
+  const Vec3& e1 = plane.e1;
+  const Vec3& e2 = plane.e2;
+  const Vec3 travel_at_receiver = (e1 * ray->cos_a + e2 * ray->sin_a) * -1.0;
+  const double c = std::cos(plane.psi), s = std::sin(plane.psi);
+  const Vec3 out_e = e1 * c + e2 * s, across_e = e1 * -s + e2 * c;
+  const Vec3 travel_at_emitter = out_e * ray->cos_b - across_e * ray->sin_b;
+  // Energies per unit conserved energy: 1 / sqrt(f) for the static observers.
+  const double static_r = 1 / std::sqrt(1 - 2 * mass / r_r);
+  const double static_e = 1 / std::sqrt(1 - 2 * mass / r_e);
+  const Measured at_r = measured(travel_at_receiver, w_r);
+  const Measured at_e = measured(travel_at_emitter, w_e);
+  HoleLeg out;
+  out.leg.doppler = (static_r * at_r.energy) / (static_e * at_e.energy);
+  out.leg.distance = static_r * at_r.energy / static_e * std::sqrt(ray->spread_b_to_a);
+  out.leg.direction = at_r.direction;
+  out.leg.emitted_direction = at_e.direction;
+  out.time = ray->time;
+  out.path = leg_path(plane, *ray);
+  return out;
+}
+
+std::optional<HolePlaneWave> hole_plane_wave(double mass, const Vec3& receiver, const Vec3& w_r,
+                                             const Vec3& propagation) {
+  const double r_r = length(receiver);
+  // The wave comes from far away along -propagation.
+  const LegPlane plane = leg_plane(receiver, propagation * -1.0);
+  const std::optional<DirectRay> ray =
+      direct_ray(mass, r_r, std::numeric_limits<double>::infinity(), plane.psi);
+  if (!ray || !(ray->focusing > 0) || !std::isfinite(ray->focusing)) return std::nullopt;
+  const Vec3 travel = (plane.e1 * ray->cos_a + plane.e2 * ray->sin_a) * -1.0;
+  const Measured at_r = measured(travel, w_r);
+  HolePlaneWave out;
+  out.doppler = at_r.energy / std::sqrt(1 - 2 * mass / r_r);
+  out.focusing = ray->focusing;
+  out.direction = at_r.direction;
+  out.path = leg_path(plane, *ray);
+  return out;
+}
+
+}  // namespace lightcone

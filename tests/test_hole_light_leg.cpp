@@ -1,0 +1,183 @@
+// Light from a lamp to a surface near a Schwarzschild hole (physics/schwarzschild_lens.hpp's
+// direct_ray, physics/hole_light_leg.hpp) against derivations made here: the locate solver's
+// primary image and the orbit equation integrated step by step (the ray reaches the other end,
+// in its time), the straight line of flat space (the bundle's area is the squared distance, and
+// a moving lamp and surface give the flat leg of light_path.hpp), the radial ray's closed form
+// dA / dOmega = (r_b - r_a)^2 / f_emitter, neighbouring rays integrated step by step for the
+// bundle off the axis, and the static observers' g = sqrt(f_e / f_r).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "lightcone/physics/hole_light_leg.hpp"
+#include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
+#include "lightcone/physics/schwarzschild_lens.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+struct Case {
+  double r_a, r_b, psi;
+};
+const Case kCases[] = {{30, 20, 2.0}, {8, 30, 0.7},  {50, 100, 2.9}, {12, 40, 1.2},
+                       {20, 20, 1.0}, {4, 25, 2.5},  {2.5, 9, 0.4},  {2.6, 2.9, 1.5},
+                       {40, 6, 3.1},  {10, 7, 1e-6}, {7, 10, 0.01}};
+
+TEST(DirectRay, IsTheLensSolversPrimaryImage) {
+  for (const Case& c : kCases) {
+    SCOPED_TRACE(testing::Message() << c.r_a << " " << c.r_b << " " << c.psi);
+    const auto ray = direct_ray(1, c.r_a, c.r_b, c.psi);
+    const auto image = lens_image(1, c.r_a, c.r_b, c.psi, 0);
+    ASSERT_TRUE(ray && image);
+    EXPECT_NEAR(ray->impact, image->impact, 1e-9 * image->impact);
+    EXPECT_NEAR(ray->cos_a, image->cos_alpha, 1e-9);
+    EXPECT_NEAR(ray->sin_a, image->sin_alpha, 1e-9);
+    EXPECT_NEAR(ray->time, image->time, 1e-9 * image->time);
+    // Seen from the other end it is the same ray.
+    const auto back = direct_ray(1, c.r_b, c.r_a, c.psi);
+    ASSERT_TRUE(back);
+    EXPECT_NEAR(back->cos_a, ray->cos_b, 1e-9);
+    EXPECT_NEAR(back->sin_a, ray->sin_b, 1e-9);
+    EXPECT_NEAR(back->spread_a_to_b, ray->spread_b_to_a, 1e-9 * ray->spread_b_to_a);
+  }
+}
+
+// Follows the ray leaving radius r0 at static-frame angle alpha (from the outward radial) for
+// the angle phi: du/dphi = -sqrt(f0) cot(alpha) / r0 there.
+test::IntegratedOrbit follow(double m, double r0, double cos_alpha, double sin_alpha, double phi) {
+  const double f0 = 1 - 2 * m / r0;
+  return test::integrate_orbit(m, r0 * sin_alpha / std::sqrt(f0), 1 / r0,
+                               -std::sqrt(f0) * cos_alpha / sin_alpha / r0, phi, 200000);
+}
+
+TEST(DirectRay, ReachesTheOtherEndInItsTimeAndSpreadsAsNeighbouringRaysDo) {
+  const double m = 1;
+  for (const Case& c : kCases) {
+    if (c.psi < 0.1) continue;  // (the integration's start needs a tangential part)
+    SCOPED_TRACE(testing::Message() << c.r_a << " " << c.r_b << " " << c.psi);
+    const auto ray = direct_ray(m, c.r_a, c.r_b, c.psi);
+    ASSERT_TRUE(ray);
+    const test::IntegratedOrbit end = follow(m, c.r_a, ray->cos_a, ray->sin_a, c.psi);
+    EXPECT_NEAR(end.r, c.r_b, 1e-7 * c.r_b);
+    EXPECT_NEAR(end.t, ray->time, 1e-7 * ray->time);
+    // The bundle from end a: two neighbouring rays followed over psi reach radii r+ and r-;
+    // the ray through r_b sweeps dpsi / dalpha = -(dr / dalpha) / (dr / dphi) more per unit
+    // look angle, with dr / dphi = r^2 sqrt(1 / b^2 - u^2 + 2 M u^3) at r_b (moving outward
+    // or inward there). The bundle's cross-section there per
+    // unit solid angle at a is r_b^2 sin(psi) |cos(beta_b)| (dpsi / dalpha) / sin(alpha_a).
+    const double delta = 1e-5, alpha = std::atan2(ray->sin_a, ray->cos_a);
+    const auto r_at = [&](double a) { return follow(m, c.r_a, std::cos(a), std::sin(a), c.psi).r; };
+    const double dr_dalpha = (r_at(alpha + delta) - r_at(alpha - delta)) / (2 * delta);
+    const double u = 1 / c.r_b, b = ray->impact;
+    const double dr_dphi = c.r_b * c.r_b * std::sqrt(1 / (b * b) - u * u + 2 * m * u * u * u);
+    const double rate = std::abs(dr_dalpha / dr_dphi);
+    const double f_b = 1 - 2 * m / c.r_b;
+    const double sin_beta = b * std::sqrt(f_b) / c.r_b;
+    const double spread =
+        c.r_b * c.r_b * std::sin(c.psi) * std::sqrt(1 - sin_beta * sin_beta) * rate / ray->sin_a;
+    EXPECT_NEAR(ray->spread_a_to_b, spread, 1e-5 * spread);
+  }
+}
+
+TEST(DirectRay, InFlatSpaceIsTheStraightLine) {
+  for (const double m : {0.0, 1e-12})
+    for (const Case& c : {Case{10, 7, 1.1}, Case{3, 9, 2.5}, Case{5, 5, 0.3}, Case{4, 8, 1e-7}}) {
+      SCOPED_TRACE(testing::Message() << m << " " << c.r_a << " " << c.r_b << " " << c.psi);
+      const double dx = c.r_b * std::cos(c.psi) - c.r_a, dy = c.r_b * std::sin(c.psi);
+      const double d = std::hypot(dx, dy);
+      const auto ray = direct_ray(m, c.r_a, c.r_b, c.psi);
+      ASSERT_TRUE(ray);
+      EXPECT_NEAR(ray->cos_a, dx / d, 1e-8);
+      EXPECT_NEAR(ray->sin_a, dy / d, 1e-8);
+      EXPECT_NEAR(ray->time, d, 1e-9 * d);
+      EXPECT_NEAR(ray->spread_a_to_b, d * d, 1e-7 * d * d);
+      EXPECT_NEAR(ray->spread_b_to_a, d * d, 1e-7 * d * d);
+    }
+  // A plane wave is not focused.
+  const auto far = direct_ray(0, 6, std::numeric_limits<double>::infinity(), 1.3);
+  ASSERT_TRUE(far);
+  EXPECT_NEAR(far->focusing, 1, 1e-9);
+}
+
+TEST(DirectRay, RadialBundleHasItsClosedForm) {
+  // Along the radial line, for b -> 0 the ray sweeps phi = b (1/r_a - 1/r_b) (dphi/dr = b / r^2
+  // to first order in b), b = r_a alpha / sqrt(f_a): dA_b / dOmega_a = r_b^2 (dphi/dalpha)^2 =
+  // (r_b - r_a)^2 / f_a, and back (r_b - r_a)^2 / f_b.
+  const double m = 1;
+  for (const auto& [r_a, r_b] : {std::pair{3.0, 10.0}, {10.0, 3.0}, {2.2, 50.0}, {40.0, 6.0}})
+    for (const double psi : {0.0, 1e-9}) {
+      SCOPED_TRACE(testing::Message() << r_a << " " << r_b << " " << psi);
+      const auto ray = direct_ray(m, r_a, r_b, psi);
+      ASSERT_TRUE(ray);
+      const double d2 = (r_b - r_a) * (r_b - r_a);
+      EXPECT_NEAR(ray->spread_a_to_b, d2 / (1 - 2 * m / r_a), 1e-6 * d2);
+      EXPECT_NEAR(ray->spread_b_to_a, d2 / (1 - 2 * m / r_b), 1e-6 * d2);
+      EXPECT_NEAR(ray->time, std::abs(tortoise_coordinate(m, r_b) - tortoise_coordinate(m, r_a)),
+                  1e-9 * std::sqrt(d2));
+    }
+}
+
+TEST(HoleLightLeg, StaticEndsSeeTheGravitationalShift) {
+  const double m = 1;
+  const Vec3 lamp{0, 12, 0}, surface{5, -3, 1};
+  const auto leg = hole_light_leg(m, lamp, {}, surface, {});
+  ASSERT_TRUE(leg);
+  EXPECT_NEAR(leg->leg.doppler, std::sqrt((1 - 2 * m / 12) / (1 - 2 * m / length(surface))), 1e-12);
+  // At rest the flux is g^2 I dOmega / dA: r_eff^2 = g^2 dA_surface / dOmega_lamp.
+  const double psi = std::acos(dot(normalize(lamp), normalize(surface)));
+  const auto ray = direct_ray(m, length(surface), 12, psi);
+  ASSERT_TRUE(ray);
+  const double g2 = leg->leg.doppler * leg->leg.doppler;
+  EXPECT_NEAR(leg->leg.distance * leg->leg.distance, g2 * ray->spread_b_to_a,
+              1e-12 * ray->spread_b_to_a);
+  EXPECT_NEAR(leg->time, ray->time, 1e-12 * ray->time);
+  // The light arrives from the lamp's side and leaves toward the surface's.
+  EXPECT_LT(dot(leg->leg.direction, normalize(surface - lamp)), 1.0);
+  EXPECT_GT(dot(leg->leg.direction, normalize(surface - lamp)), 0.8);
+  EXPECT_GT(dot(leg->leg.emitted_direction, normalize(surface - lamp)), 0.8);
+}
+
+TEST(HoleLightLeg, InFlatSpaceIsTheFlatLegBetweenMovingEnds) {
+  const Vec3 lamp{1, 9, -2}, surface{4, -3, 2};
+  const Vec3 w_lamp{0.3, -0.5, 0.1}, w_surface{-0.6, 0.2, 0.4};
+  const double d = length(surface - lamp);
+  const ReceivedLeg flat = receive_leg({0, lamp}, w_lamp, {d, surface}, w_surface);
+  const auto leg = hole_light_leg(1e-12, lamp, w_lamp, surface, w_surface);
+  ASSERT_TRUE(leg);
+  EXPECT_NEAR(leg->leg.doppler, flat.doppler, 1e-8);
+  EXPECT_NEAR(leg->leg.distance, flat.distance, 1e-8 * flat.distance);
+  EXPECT_LT(length(leg->leg.direction - flat.direction), 1e-8);
+  EXPECT_LT(length(leg->leg.emitted_direction - flat.emitted_direction), 1e-8);
+  EXPECT_NEAR(leg->time, d, 1e-9 * d);
+}
+
+TEST(HoleLightLeg, PlaneWaveIsBlueshiftedAndFocusedFallingIn) {
+  // Flat: the Doppler factor of a moving receiver, no focusing.
+  const Vec3 propagation = normalize(Vec3{1, -2, 0.5}), w{0.4, 0.1, -0.3};
+  const auto flat = hole_plane_wave(1e-12, {3, 4, 5}, w, propagation);
+  ASSERT_TRUE(flat);
+  EXPECT_NEAR(flat->doppler, lorentz_gamma(w) * (1 - dot(w, propagation)), 1e-9);
+  EXPECT_NEAR(flat->focusing, 1, 1e-8);
+  // A static receiver far from the hole's axis: blueshifted by 1 / sqrt(f); straight below the
+  // source (psi = 0) focused by the radial closed form, 1 / (f (dpsi/dalpha)^2) with dpsi/dalpha
+  // = 1 / sqrt(f) for r_b -> infinity: 1.
+  const double m = 1, r = 10;
+  const auto below = hole_plane_wave(m, {0, r, 0}, {}, {0, -1, 0});
+  ASSERT_TRUE(below);
+  EXPECT_NEAR(below->doppler, 1 / std::sqrt(1 - 2 * m / r), 1e-12);
+  EXPECT_NEAR(below->focusing, 1, 1e-6);
+  EXPECT_LT(length(below->direction - Vec3{0, -1, 0}), 1e-12);
+  // Beside the hole the wave arrives bent toward it, and converging (focused).
+  const auto beside = hole_plane_wave(m, {r, 0, 0}, {}, {0, -1, 0});
+  ASSERT_TRUE(beside);
+  EXPECT_LT(beside->direction.x, 0);
+  EXPECT_GT(beside->focusing, 1);
+}
+
+}  // namespace
+}  // namespace lightcone
