@@ -2,15 +2,16 @@
 // curved shadow paths of trace/curved_bodies.hpp), against derivations made here: the flat
 // renderer's lit picture as M -> 0 (moving lights and bodies, every kind of light, shadows), the
 // irradiance of a lamp straight above a surface in closed form, E = g^2 I f_lamp / (r_l - r_s)^2
-// with g^2 = f_lamp / f_surface (times the Doppler factor's square for a moving surface), and a
-// blocker that shadows the surface where the curved path passes, not where the straight line
-// between them does. G = c = 1.
+// with g^2 = f_lamp / f_surface (times the Doppler factor's square for a moving surface), the
+// light round the far side added to the direct light, and blockers that shadow each where its
+// curved path passes, not where the straight line between lamp and surface does. G = c = 1.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "lightcone/frame/lighting.hpp"
+#include "lightcone/physics/hole_light_leg.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
 #include "lightcone/physics/schwarzschild_lens.hpp"
@@ -148,27 +149,44 @@ TEST(BlackHoleLights, LampStraightAboveGivesTheClosedFormIrradiance) {
   EXPECT_EQ(lit_event.radiance({0, {0, r_s, 0}}, {0, -1, 0}), 0.0);
 }
 
-TEST(BlackHoleLights, ShadowFollowsTheCurvedPath) {
+TEST(BlackHoleLights, LightComesDirectlyAndRoundTheFarSideAndEachIsShadowedOnItsPath) {
   // A surface and a lamp at r = 6 on either side of the hole, 150 degrees apart about it: the
   // straight line between them passes 6 cos(75 deg) = 1.55M from the centre (through the
-  // horizon), the light's path at its periapsis r_p, farther out.
-  const double r = 6, psi = 150 * kPi / 180;
+  // horizon), the direct light's path at its periapsis r_p, farther out; the light round the
+  // far side sweeps 210 degrees the other way.
+  const double r = 6, psi = 150 * kPi / 180, intensity = 50;
   const Vec3 surface{r, 0, 0}, lamp{r * std::cos(psi), r * std::sin(psi), 0};
-  const auto ray = direct_ray(1, r, r, psi);
-  ASSERT_TRUE(ray);
-  const double periapsis = photon_orbit(1, ray->impact).periapsis;
-  ASSERT_GT(periapsis, 3);
-  const Vec3 on_path = normalize(Vec3{std::cos(psi / 2), std::sin(psi / 2), 0}) * periapsis;
-  // Half way between the path and the horizon along the same direction: off the path.
-  const Vec3 off_path = normalize(on_path) * ((periapsis + 2) / 2 + 0.3);
   const Vec4 event{0, surface};
   const Vec3 normal = normalize(lamp - surface);
-  const double open = LitEvent(lamp_scene(lamp, 50)).radiance(event, normal);
-  EXPECT_GT(open, 0);
-  EXPECT_EQ(LitEvent(lamp_scene(lamp, 50, on_path)).radiance(event, normal), 0.0);
-  EXPECT_EQ(LitEvent(lamp_scene(lamp, 50, off_path)).radiance(event, normal), open);
+  // What each path brings (physical searchlight, colour unshifted), reflected as albedo / pi.
+  const auto brought = [&](int order) {
+    const auto leg = hole_light_leg(1, lamp, {}, surface, {}, order);
+    EXPECT_TRUE(leg);
+    return 0.5 / kPi *
+           point_source_irradiance(leg->leg, intensity, dot(normal, -leg->leg.direction));
+  };
+  const double direct = brought(0), round = brought(1);
+  EXPECT_GT(round, 0.05 * direct);  // a third of it at 150 degrees: not negligible
+  const double open = LitEvent(lamp_scene(lamp, intensity)).radiance(event, normal);
+  EXPECT_NEAR(open, direct + round, 1e-9 * open);
+  // The middle of each path: at its periapsis, half way round.
+  const auto middle = [&](int order) {
+    const auto ray = ray_between(1, r, r, psi, order);
+    EXPECT_TRUE(ray);
+    const double half = (order == 0 ? 1 : -1) * ray->sweep / 2;
+    return Vec3{std::cos(half), std::sin(half), 0} * photon_orbit(1, ray->impact).periapsis;
+  };
+  const Vec3 on_direct = middle(0), on_round = middle(1);
+  ASSERT_GT(length(on_direct), 3);
+  EXPECT_NEAR(LitEvent(lamp_scene(lamp, intensity, on_direct)).radiance(event, normal), round,
+              1e-9 * open);
+  EXPECT_NEAR(LitEvent(lamp_scene(lamp, intensity, on_round)).radiance(event, normal), direct,
+              1e-9 * open);
+  // Half way between the direct path and the horizon, on the straight line's side: off both.
+  const Vec3 off_path = normalize(on_direct) * ((length(on_direct) + 2) / 2 + 0.3);
+  EXPECT_EQ(LitEvent(lamp_scene(lamp, intensity, off_path)).radiance(event, normal), open);
   // A blocker beyond the lamp does not shadow.
-  EXPECT_EQ(LitEvent(lamp_scene(lamp, 50, lamp * 1.5)).radiance(event, normal), open);
+  EXPECT_EQ(LitEvent(lamp_scene(lamp, intensity, lamp * 1.5)).radiance(event, normal), open);
 }
 
 }  // namespace

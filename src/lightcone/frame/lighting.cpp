@@ -290,8 +290,8 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
 
 bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_world,
                                   const Vec3& surface_velocity, const Vec3& normal,
-                                  const std::array<double, 2>& light_sample, Incoming& out,
-                                  std::optional<CurvedShadowRay>& shadow) const {
+                                  const std::array<double, 2>& light_sample, int order,
+                                  Incoming& out, std::optional<CurvedShadowRay>& shadow) const {
   shadow.reset();
   const Light& light = *rl.light;
   const RenderSettings& settings = scene_.scene->render;
@@ -308,7 +308,8 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
     // hole bends, focuses and blueshifts it on the way in.
     const Vec4 k_light{1.0, normalize(sun->direction)};
     const Vec4 k_world = boost(-light.world_line.velocity) * k_light;
-    const auto wave = hole_plane_wave(hole.mass, receiver, surface_velocity, k_world.x / k_world.t);
+    const auto wave =
+        hole_plane_wave(hole.mass, receiver, surface_velocity, k_world.x / k_world.t, order);
     if (!wave) return false;
     out.direction_to_light = -wave->direction;
     out.doppler = wave->doppler * k_world.t / k_light.t;
@@ -336,13 +337,13 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   // bracketed by stepping back and solved with TOMS 748.
   HoleWorldLineState state = line.at(surface_world.t);
   auto leg = hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
-                            surface_velocity);
+                            surface_velocity, order);
   if (!leg) return false;
   if (!line.still()) {
     const auto leg_at = [&](double t) {
       state = line.at(t);
       return hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
-                            surface_velocity);
+                            surface_velocity, order);
     };
     const auto miss = [&](double t) {
       const auto l = leg_at(t);
@@ -544,11 +545,17 @@ void Lighting::received(std::span<const LitPoint> points, std::span<LinearRgb> o
       std::size_t ray_point[kBatchSize], ray_count = 0;
       for (std::size_t p = 0; p < count; ++p) {
         if (shading[p].near_hole) {
-          std::optional<CurvedShadowRay> curved;
-          arrives[p] =
-              incoming_near_hole(lights_[l], shading[p].surface_world, shading[p].surface_velocity,
-                                 shading[p].normal, points[first + p].light_sample, in[p], curved);
-          if (arrives[p] && curved) arrives[p] = !curved_shadows_->occluded(*curved);
+          // Directly and round the far side (the higher orders bring a few thousandths of it).
+          arrives[p] = false;
+          for (const int order : {0, 1}) {
+            Incoming leg;
+            std::optional<CurvedShadowRay> curved;
+            if (incoming_near_hole(lights_[l], shading[p].surface_world,
+                                   shading[p].surface_velocity, shading[p].normal,
+                                   points[first + p].light_sample, order, leg, curved) &&
+                !(curved && curved_shadows_->occluded(*curved)))
+              add_light(l, leg, shading[p]);
+          }
           continue;
         }
         std::optional<ShadowRay> shadow;

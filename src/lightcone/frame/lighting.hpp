@@ -30,8 +30,8 @@ class Lighting {
 
   // A lit point near a black hole, as the curved camera ray met it: its event (W), and in the
   // static observer's frame there the direction in which its light leaves toward the camera
-  // and the surface's velocity. Its lights arrive along direct null geodesics
-  // (physics/hole_light_leg.hpp; docs/design/black-hole.md, "Lights").
+  // and the surface's velocity. Each light arrives along two null geodesics, directly and round
+  // the far side (physics/hole_light_leg.hpp; docs/design/black-hole.md, "Lights").
   struct HoleSurface {
     Vec4 event;
     Vec3 to_camera, local_velocity;
@@ -113,11 +113,11 @@ class Lighting {
   bool incoming(const ResolvedLight& light, const Vec4& surface_world, const Vec3& surface_velocity,
                 const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out,
                 std::optional<ShadowRay>& shadow) const;
-  // The same near a black hole, surface_velocity against the static observer there, the
-  // shadow path curved.
+  // The same near a black hole, along the ray of image order `order` (0 direct, 1 round the
+  // far side), surface_velocity against the static observer there, the shadow path curved.
   bool incoming_near_hole(const ResolvedLight& light, const Vec4& surface_world,
                           const Vec3& surface_velocity, const Vec3& normal,
-                          const std::array<double, 2>& light_sample, Incoming& out,
+                          const std::array<double, 2>& light_sample, int order, Incoming& out,
                           std::optional<CurvedShadowRay>& shadow) const;
   // One lit point's state while its lights are summed.
   struct Shading;

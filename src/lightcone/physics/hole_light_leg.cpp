@@ -15,19 +15,21 @@ Vec3 any_perpendicular(const Vec3& n) {
   return normalize(cross(n, other));
 }
 
-// The plane through the hole, the receiver (e1) and a second point (toward e2), and the angle
-// between them about the hole.
+// The plane through the hole, the receiver (e1) and a second point, the angle psi between them
+// about the hole, and the way a ray of image order k sweeps round from e1: toward the point for
+// even k, away from it for odd k (e2).
 struct LegPlane {
   Vec3 e1, e2;
   double psi = 0;
 };
-LegPlane leg_plane(const Vec3& receiver, const Vec3& other) {
+LegPlane leg_plane(const Vec3& receiver, const Vec3& other, int order) {
   LegPlane p;
   p.e1 = normalize(receiver);
   const double along = dot(other, p.e1);
   const Vec3 across = other - p.e1 * along;
   const double across_length = length(across);
   p.e2 = across_length > 0 ? across / across_length : any_perpendicular(p.e1);
+  if (order % 2 != 0) p.e2 = p.e2 * -1.0;
   p.psi = std::atan2(across_length, along);
   return p;
 }
@@ -44,28 +46,28 @@ Measured measured(const Vec3& n, const Vec3& w) {
   return {k.t, k.x / k.t};
 }
 
-HoleLegPath leg_path(const LegPlane& plane, const DirectRay& ray) {
+HoleLegPath leg_path(const LegPlane& plane, const RayBetween& ray) {
   // Back from the receiver (end a) the path leaves toward the emitter: r grows along it where
   // that direction points outward.
-  return {plane.e1, plane.e2, ray.impact, ray.cos_a > 0, plane.psi};
+  return {plane.e1, plane.e2, ray.impact, ray.cos_a > 0, ray.sweep};
 }
 
 }  // namespace
 
 std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
-                                      const Vec3& receiver, const Vec3& w_r) {
+                                      const Vec3& receiver, const Vec3& w_r, int order) {
   const double r_e = length(emitter), r_r = length(receiver);
-  const LegPlane plane = leg_plane(receiver, emitter);
+  const LegPlane plane = leg_plane(receiver, emitter, order);
   if (plane.psi == 0 && r_e == r_r) return std::nullopt;
-  const std::optional<DirectRay> ray = direct_ray(mass, r_r, r_e, plane.psi);
+  const std::optional<RayBetween> ray = ray_between(mass, r_r, r_e, plane.psi, order);
   if (!ray || !(ray->spread_b_to_a > 0)) return std::nullopt;
-  // In the static frames: the receiver sees the light arrive from its direction toward the
-  // emitter; the emitter sends it along its direction toward the receiver (toward decreasing
-  // angle about the hole).
+  // In the static frames: the receiver sees the light arrive from the direction in which the
+  // path leaves it; the emitter, at angle `sweep` round from e1 toward e2, sends it back round
+  // (toward decreasing angle).
   const Vec3& e1 = plane.e1;
   const Vec3& e2 = plane.e2;
   const Vec3 travel_at_receiver = (e1 * ray->cos_a + e2 * ray->sin_a) * -1.0;
-  const double c = std::cos(plane.psi), s = std::sin(plane.psi);
+  const double c = std::cos(ray->sweep), s = std::sin(ray->sweep);
   const Vec3 out_e = e1 * c + e2 * s, across_e = e1 * -s + e2 * c;
   const Vec3 travel_at_emitter = out_e * ray->cos_b - across_e * ray->sin_b;
   // Energies per unit conserved energy: 1 / sqrt(f) for the static observers.
@@ -84,12 +86,12 @@ std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Ve
 }
 
 std::optional<HolePlaneWave> hole_plane_wave(double mass, const Vec3& receiver, const Vec3& w_r,
-                                             const Vec3& propagation) {
+                                             const Vec3& propagation, int order) {
   const double r_r = length(receiver);
   // The wave comes from far away along -propagation.
-  const LegPlane plane = leg_plane(receiver, propagation * -1.0);
-  const std::optional<DirectRay> ray =
-      direct_ray(mass, r_r, std::numeric_limits<double>::infinity(), plane.psi);
+  const LegPlane plane = leg_plane(receiver, propagation * -1.0, order);
+  const std::optional<RayBetween> ray =
+      ray_between(mass, r_r, std::numeric_limits<double>::infinity(), plane.psi, order);
   if (!ray || !(ray->focusing > 0) || !std::isfinite(ray->focusing)) return std::nullopt;
   const Vec3 travel = (plane.e1 * ray->cos_a + plane.e2 * ray->sin_a) * -1.0;
   const Measured at_r = measured(travel, w_r);

@@ -1,6 +1,7 @@
 // Light from a lamp to a lit surface near one Schwarzschild black hole (PHYSICS.md, "Curved
-// spacetime"; docs/design/black-hole.md, "Lights"): the direct null geodesic between them
-// (schwarzschild_lens.hpp, direct_ray), seen by the emitter and the receiver, each moving with
+// spacetime"; docs/design/black-hole.md, "Lights"): a null geodesic between them, directly or
+// round the far side (schwarzschild_lens.hpp, ray_between), seen by the emitter and the
+// receiver, each moving with
 // its velocity relative to the static observer where it is. The same quantities as a flat leg
 // (light_path.hpp), so that the flat irradiance laws hold unchanged: D becomes the shift g =
 // (p . u_receiver) / (p . u_emitter), and the distance an effective one that carries the lens's
@@ -14,11 +15,11 @@
 
 namespace lightcone {
 
-// The path of such a light back from the receiver, for a shadow test: in the plane of the hole,
-// the receiver (along e1 from the hole) and the emitter (toward e2), with impact parameter b, r
-// growing at the receiver along it (outward) or not, and sweeping `sweep` to the emitter (the
-// angle between them about the hole; infinity-bound for a plane wave: the angle to its source
-// direction).
+// The path of such a light back from the receiver, for a shadow test: in the plane of the hole
+// and the receiver (along e1 from the hole), sweeping from e1 toward e2 (toward the emitter for
+// the direct ray, away from it round the far side), with impact parameter b, r growing at the
+// receiver along it (outward) or not, and sweeping `sweep` to the emitter (for a plane wave,
+// to the direction it comes from).
 struct HoleLegPath {
   Vec3 e1, e2;
   double impact = 0;
@@ -38,11 +39,12 @@ struct HoleLeg {
 };
 
 // Light from a point at `emitter` (r > 2M) moving with velocity w_e against its static
-// observer, to one at `receiver` (r > 2M) moving with w_r. None where no direct ray carries
-// light: the two points coincide, or the receiver lies on the caustic behind the hole (the two
-// points exactly in line through it), where a point's light is focused without bound.
+// observer, to one at `receiver` (r > 2M) moving with w_r, along the ray of image order
+// `order` (0 direct, 1 round the far side). None where that ray carries no light: the two
+// points coincide, or the receiver lies on a caustic (the two points exactly in line through
+// the hole), where a point's light is focused without bound.
 std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
-                                      const Vec3& receiver, const Vec3& w_r);
+                                      const Vec3& receiver, const Vec3& w_r, int order = 0);
 
 // A plane wave: light that far away travels along the unit `propagation` (in W), received at
 // `receiver` (r > 2M) moving with w_r. doppler is nu_receiver / nu far away (in W), direction
@@ -55,6 +57,6 @@ struct HolePlaneWave {
   HoleLegPath path;
 };
 std::optional<HolePlaneWave> hole_plane_wave(double mass, const Vec3& receiver, const Vec3& w_r,
-                                             const Vec3& propagation);
+                                             const Vec3& propagation, int order = 0);
 
 }  // namespace lightcone

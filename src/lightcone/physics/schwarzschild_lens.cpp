@@ -135,7 +135,8 @@ std::optional<LensImage> lens_image(double mass, double r0, double r_e, double p
   return std::nullopt;
 }
 
-std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double psi) {
+std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order) {
+  const double target = image_sweep(psi, order);
   const bool a_inner = r_a <= r_b;
   const double rho = a_inner ? r_a : r_b, outer = a_inner ? r_b : r_a;
   const double f_rho = 1 - 2 * mass / rho;
@@ -168,7 +169,7 @@ std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double 
   // The root on the stretch from `start` (sweep below psi) toward `end` (where it diverges).
   bool turned_inside = false;
   const auto solve = [&](double start, double end, bool turned, double& alpha) {
-    const auto miss = [&](double x) { return sweep(x, turned) - psi; };
+    const auto miss = [&](double x) { return sweep(x, turned) - target; };
     const double value_start = miss(start);
     if (value_start == 0) return alpha = start, true;
     double hi = start, value_hi = value_start;
@@ -177,18 +178,19 @@ std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double 
       value_hi = miss(hi);
       if (std::isnan(value_hi)) return false;
     }
-    if (!(value_hi >= 0)) return false;  // M = 0 and psi = pi: through the centre
+    if (!(value_hi >= 0)) return false;  // M = 0: no second image, nor a ray through the centre
     if (value_hi == 0) return alpha = hi, true;
     std::uintmax_t iterations = 200;
-    const auto [lo, up] =
-        boost::math::tools::toms748_solve(miss, start, hi, value_start, value_hi,
-                                          boost::math::tools::eps_tolerance<double>(), iterations);
+    const bool rising = start < hi;  // (the second stretch is solved from its upper end down)
+    const auto [lo, up] = boost::math::tools::toms748_solve(
+        miss, rising ? start : hi, rising ? hi : start, rising ? value_start : value_hi,
+        rising ? value_hi : value_start, boost::math::tools::eps_tolerance<double>(), iterations);
     alpha = (lo + up) / 2;
     return true;
   };
   double alpha = 0, stretch_lo = 0, stretch_hi = alpha_max;  // (the second: from alpha_critical)
-  if (psi > 0) {
-    if (!inside || sweep(alpha_touch, false) >= psi) {
+  if (target > 0) {
+    if (!inside || sweep(alpha_touch, false) >= target) {
       if (inside) stretch_hi = alpha_touch;
       if (!solve(0, inside ? alpha_touch : alpha_max, false, alpha)) return std::nullopt;
     } else {
@@ -198,8 +200,9 @@ std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double 
     }
   }
   const PhotonOrbit o = orbit_at(alpha);
-  DirectRay ray;
+  RayBetween ray;
   ray.impact = o.impact;
+  ray.sweep = target;
   // At the outer end the ray moves outward (it escapes), or inward after turning inside the
   // photon sphere; the direction toward the inner end is the opposite.
   const double f_outer = std::isinf(outer) ? 1.0 : 1 - 2 * mass / outer;
@@ -221,7 +224,7 @@ std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double 
     ray.time = coordinate_time(o, rho, outer);
   else
     ray.time = coordinate_time(o, rho, o.periapsis) + coordinate_time(o, o.periapsis, outer);
-  // |dpsi / dalpha|, a central difference well inside the stretch; for rays near the radial
+  // |dsweep / dalpha|, a central difference well inside the stretch; for rays near the radial
   // one, the sweep continued to negative angles as the mirror image, -sweep(-alpha).
   const double h =
       1e-5 * std::min({1.0, stretch_hi - alpha, turned_inside ? alpha - stretch_lo : 1.0});
@@ -229,10 +232,10 @@ std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double 
     return x < 0 ? -sweep(-x, turned_inside) : sweep(x, turned_inside);
   };
   const double rate = std::abs(signed_sweep(alpha + h) - signed_sweep(alpha - h)) / (2 * h);
-  // sin(psi) / sin(alpha), which tends to dpsi / dalpha for the radial ray; there, at psi within
-  // 1e-6, the limit is taken (off by psi^2), not the ratio of two angles whose sweep is accurate
-  // only to some 1e-14 absolutely.
-  const double ratio = psi > 1e-6 ? std::sin(psi) / sin_inner : rate;
+  // sin(psi) / sin(alpha), which tends to dsweep / dalpha for the radial ray; there, at a sweep
+  // within 1e-6, the limit is taken (off by its square), not the ratio of two angles whose
+  // sweep is accurate only to some 1e-14 absolutely.
+  const double ratio = target > 1e-6 ? std::sin(psi) / sin_inner : rate;
   if (std::isinf(outer)) {
     ray.focusing = ratio > 0 ? 1 / (f_rho * ratio * rate) : 0.0;
     return ray;

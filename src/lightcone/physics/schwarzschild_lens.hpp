@@ -33,32 +33,35 @@ struct LensImage {
 // precision.
 std::optional<LensImage> lens_image(double mass, double r0, double r_e, double psi, int order);
 
-// The direct ray (image order 0) between two points at radii r_a and r_b (> 2M; r_b may be
+// The ray of image order k between two points at radii r_a and r_b (> 2M; r_b may be
 // infinity, a direction far away), psi in [0, pi] apart about the hole: the light that lights a
-// surface from a lamp. Solved in the look angle alpha at the inner point, on which the angle
-// swept to the outer radius grows continuously and monotonically from 0 (radially outward) to
-// infinity (the critical angle, b -> b_c: inward for an inner point outside the photon sphere,
-// outward inside it), so one bracket holds the one root; TOMS 748 on the exact swept_angle.
-struct DirectRay {
+// surface from a lamp, directly (k = 0) or round the far side (k = 1). Solved in the look angle
+// alpha at the inner point, on which the angle swept to the outer radius grows continuously and
+// monotonically from 0 (radially outward) to infinity (the critical angle, b -> b_c: inward for
+// an inner point outside the photon sphere, outward inside it), so one bracket holds the one
+// root of sweep = image_sweep(psi, k); TOMS 748 on the exact swept_angle.
+struct RayBetween {
   double impact = 0;
+  double sweep = 0;  // image_sweep(psi, order)
   // At each end, the direction in which the ray leaves toward the other end, in the static
   // observer's frame there: at angle alpha from the outward radial direction, tipped toward the
-  // other end (sin >= 0).
+  // way the ray goes round (toward the other end for even orders, away from it for odd ones;
+  // sin >= 0).
   double cos_a = 0, sin_a = 0, cos_b = 0, sin_b = 0;
   double time = 0;  // the coordinate time between the ends (infinity for r_b = infinity)
   // The bundle's cross-section at one end per unit solid angle at the other, both in the
   // static observers' frames: dA_b / dOmega_a (light sent from a) and dA_a / dOmega_b (from b;
   // Etherington's reciprocity: f_a / f_b times the first). With the outer end at R, the inner
   // at rho with look angle alpha there, dA_outer / dOmega_inner =
-  //   R^2 sin(psi) |cos(beta_outer)| (dpsi / dalpha) / sin(alpha),
-  // the sphere's area element over the emitted one (dpsi / dalpha by a central difference of
-  // the exact sweep; sin(psi) / sin(alpha) -> dpsi / dalpha for the radial ray). 0 on the
+  //   R^2 sin(psi) |cos(beta_outer)| |dsweep / dalpha| / sin(alpha),
+  // the sphere's area element over the emitted one (dsweep / dalpha by a central difference of
+  // the exact sweep; sin(psi) / sin(alpha) -> dsweep / dalpha toward the radial ray). 0 on the
   // caustic psi = pi, where a point's light is focused onto a ring. Unset for r_b = infinity.
   double spread_a_to_b = 0, spread_b_to_a = 0;
   // r_b = infinity: a plane wave from there is focused at a by dA_far / dA_a =
-  // sin(alpha) / (f_a sin(psi) dpsi / dalpha) (the areas across the ray).
+  // sin(alpha) / (f_a sin(psi) |dsweep / dalpha|) (the areas across the ray).
   double focusing = 0;
 };
-std::optional<DirectRay> direct_ray(double mass, double r_a, double r_b, double psi);
+std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order);
 
 }  // namespace lightcone
