@@ -712,6 +712,8 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   const RayCourse course = course_of(o, r0, outward, &shared);
   if (std::isnan(course.angle_total)) return a;
   a.angle_total = course.angle_total;
+  a.turning_radius = course.turning_radius;
+  a.angle_to_turn = course.angle_to_turn;
   a.horizon = horizon;
   a.end = course.fate == RayFate::kEscapes    ? kInf
           : course.fate == RayFate::kCaptured ? horizon

@@ -134,6 +134,8 @@ struct AngleSweep {
   Form form = Form::kInvalid;
   double r0 = 0;
   double angle_total = 0;      // ray_course's: the path ends here
+  double turning_radius = 0;   // ray_course's, 0 without one (kAt, kInvalid: 0)
+  double angle_to_turn = 0;    // ray_course's
   double end = 0;              // the radius past angle_total: infinity, 2M (3M for b = b_c exactly)
   double horizon = 0;          // 2M
   double phase = 0, rate = 0;  // Boost's argument at phi: phase + rate phi

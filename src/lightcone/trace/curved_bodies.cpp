@@ -50,10 +50,9 @@ double segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Ve
 struct PathEvents {
   const PathStart& start;
   const CurvedPath& path;
-  RayCourse course;
+  const AngleSweep& course;  // its turning point (prepare_sweep keeps ray_course's)
 
-  PathEvents(const PathStart& s, const CurvedPath& p)
-      : start(s), path(p), course(ray_course(p.orbit, s.radius, p.outward)) {}
+  PathEvents(const PathStart& s, const CurvedPath& p) : start(s), path(p), course(p.sweep) {}
 
   bool turned(double phi) const { return course.turning_radius > 0 && phi > course.angle_to_turn; }
   double radius(double phi) const { return radius_after_angle(path.sweep, phi); }
@@ -234,6 +233,11 @@ bool CurvedBodies::Body::may_meet_in_space(const Vec3& a, const Vec3& b, double 
     const Vec3& d = fall->direction;
     return segment_distance(a - d * dot(a, d), b - d * dot(b, d), {}, {}) <= reach;
   }
+  // At rest: the ball itself (a moving line is tested once its chord is timed).
+  if (line.still()) {
+    const Vec3& p = std::get<HoleWorldLine::Straight>(line.path()).position;
+    return segment_distance(a, b, p, p) <= reach;
+  }
   return true;
 }
 
@@ -242,7 +246,14 @@ bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
                                           const HoleWorldLineState& state_b, double margin,
                                           double& acceleration) const {
   acceleration = 0;
-  if (std::holds_alternative<HoleWorldLine::Straight>(line.path())) return true;
+  if (const auto* straight = std::get_if<HoleWorldLine::Straight>(&line.path())) {
+    if (line.still()) return true;  // (tested in space)
+    // The segment its origin moves along between the chord's times.
+    const auto at = [&](double t) {
+      return straight->position + straight->velocity * (t - straight->time);
+    };
+    return segment_distance(a.x, b.x, at(a.t), at(b.t)) <= radius + margin;
+  }
   // Over the chord's times the body's origin stays within `bow` of the segment between where
   // it is at their ends: on its line of fall, or within the sagitta of its orbit's arc.
   const double t0 = std::min(a.t, b.t), t1 = std::max(a.t, b.t);
