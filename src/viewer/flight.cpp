@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/lorentz.hpp"
 
 namespace lightcone {
@@ -11,10 +12,28 @@ namespace {
 constexpr double kMaxSpeed = 0.999;
 }
 
-Flight::Flight(const Camera& start) : camera(start), speed(length(start.world_line.velocity)) {}
+Flight::Flight(const Camera& start) : camera(start), speed(length(start.world_line.velocity)) {
+  // A scene's camera on a geodesic goes on along it.
+  if (start.motion.geodesic)
+    mode =
+        std::holds_alternative<HoleOrbit>(start.motion.geodesic->path) ? Mode::kOrbit : Mode::kFall;
+}
 
 bool Flight::advance(double proper_time, const BlackHole* hole) {
   WorldLine& w = camera.world_line;
+  if (mode != Mode::kPowered) {
+    Camera::Motion next = camera.motion;
+    next.proper_time += proper_time;
+    const WorldLine moved = camera_observation(next);
+    if (hole && length(moved.position - hole->position) < kClosestToHole * hole->mass) {
+      set_speed(0);
+      return false;
+    }
+    camera.motion = next;
+    w = moved;
+    speed = length(w.velocity);
+    return true;
+  }
   const double dt = proper_time * lorentz_gamma(w.velocity);
   const Vec3 next = w.position + w.velocity * dt;
   if (hole && length(next - hole->position) < kClosestToHole * hole->mass) {
@@ -26,7 +45,54 @@ bool Flight::advance(double proper_time, const BlackHole* hole) {
   return true;
 }
 
+std::optional<std::string> Flight::start_orbit(const BlackHole& hole) {
+  const WorldLine& w = camera.world_line;
+  const Vec3 from_hole = w.position - hole.position;
+  const double r = length(from_hole), m = hole.mass;
+  if (!(r > 3 * m * (1 + 1e-6)))
+    return "no circular orbit at r = " + std::to_string(r / m) +
+           "M: circular geodesics lie outside the photon sphere, r = 3M";
+  const Vec3 axis_x = from_hole / r;
+  Vec3 along = camera.forward - axis_x * dot(camera.forward, axis_x);
+  if (!(length(along) > 1e-9)) along = cross(camera.up, axis_x);
+  // Through the current event: at phase + Omega t = 0 now, proper time t sqrt(1 - 3M/r).
+  HoleOrbit orbit;
+  orbit.radius = r;
+  orbit.axis_x = axis_x;
+  orbit.axis_y = normalize(along);
+  orbit.phase = -circular_orbit_angular_velocity(m, r) * w.time;
+  camera.motion = {};
+  camera.motion.geodesic = HoleGeodesic{hole.position, m, orbit};
+  camera.motion.proper_time = w.time * std::sqrt(1 - 3 * m / r);
+  camera.world_line = camera_observation(camera.motion);
+  speed = length(camera.world_line.velocity);
+  mode = Mode::kOrbit;
+  return std::nullopt;
+}
+
+std::optional<std::string> Flight::start_fall(const BlackHole& hole) {
+  const WorldLine& w = camera.world_line;
+  const Vec3 from_hole = w.position - hole.position;
+  const double r = length(from_hole), m = hole.mass;
+  if (!(r > kClosestToHole * m))
+    return "too near the horizon to fall: the viewer stops the camera at r = " +
+           std::to_string(kClosestToHole) + "M";
+  HoleFall fall;
+  fall.from = r;
+  fall.direction = from_hole / r;
+  fall.time = w.time;
+  camera.motion = {};
+  camera.motion.geodesic = HoleGeodesic{hole.position, m, fall};
+  camera.world_line = camera_observation(camera.motion);
+  speed = 0;
+  mode = Mode::kFall;
+  return std::nullopt;
+}
+
 void Flight::set_speed(double new_speed) {
+  // Leaving a geodesic: powered flight from its current event.
+  mode = Mode::kPowered;
+  camera.motion.geodesic.reset();
   speed = std::clamp(new_speed, 0.0, kMaxSpeed);
   camera.world_line.velocity = normalize(camera.forward) * speed;
 }

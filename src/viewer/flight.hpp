@@ -1,6 +1,10 @@
 // The viewer's camera: where it is and how it moves, as the world-line the scene format gives
-// it (an event and a velocity), changed by instantaneous boosts.
+// it (an event and a velocity), changed by instantaneous boosts; near a black hole it may also
+// move freely, on a circular orbit or a radial fall (the scene format's camera motions).
 #pragma once
+
+#include <optional>
+#include <string>
 
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/scene/scene.hpp"
@@ -10,16 +14,27 @@ namespace lightcone {
 struct Flight {
   Camera camera;     // world_line: the current event and velocity
   double speed = 0;  // |velocity|
+  // Powered: the velocity holds until a boost changes it (near a hole, against the static
+  // observer where the camera is: hovering at speed 0). Orbit, fall: on camera.motion's
+  // geodesic, advanced in proper time; a boost or a stop returns to powered flight.
+  enum class Mode { kPowered, kOrbit, kFall };
+  Mode mode = Mode::kPowered;
 
   explicit Flight(const Camera& start);
   // Advances the camera along its world-line by `proper_time` of its own clock. Near a black
-  // hole it stops (speed 0) rather than come within kClosestToHole M of it: its velocity is the
-  // one the static observer at its event measures, and there is none inside the horizon.
-  // Returns false when it stopped so.
+  // hole it stops (speed 0, hovering) rather than come within kClosestToHole M of it, powered
+  // or falling: its velocity is the one the static observer at its event measures, and there is
+  // none inside the horizon. Returns false when it stopped so.
   static constexpr double kClosestToHole = 2.01;
   bool advance(double proper_time, const BlackHole* hole = nullptr);
+  // Near `hole`, from the current event: the circular geodesic through it (radius r > 3M, in
+  // the plane of the hole, the camera and its view direction, turning toward the view), or the
+  // radial fall from rest there. Each is refused (the reason returned, nothing changed) where it
+  // does not exist: inside 3M (1 + 1e-6) for an orbit; within kClosestToHole M for a fall.
+  std::optional<std::string> start_orbit(const BlackHole& hole);
+  std::optional<std::string> start_fall(const BlackHole& hole);
   // An instantaneous boost to `speed` (below 1) along the current view direction, through the
-  // current event.
+  // current event (powered flight from then on).
   void set_speed(double new_speed);
   // Steps the speed by `steps` tenths of rapidity (so that steps near c stay even).
   void change_speed(int steps);

@@ -153,6 +153,17 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           if (key == GLFW_KEY_S) flight.change_speed(-1);
           if (key == GLFW_KEY_SPACE) flight.set_speed(0);
           if (key == GLFW_KEY_C && !scene.black_hole) split = !split;
+          if ((key == GLFW_KEY_O || key == GLFW_KEY_F) && scene.black_hole) {
+            const auto refused = key == GLFW_KEY_O ? flight.start_orbit(*scene.black_hole)
+                                                   : flight.start_fall(*scene.black_hole);
+            if (refused)
+              std::fprintf(stderr, "lightcone: %s\n", refused->c_str());
+            else
+              std::fprintf(stderr, "lightcone: %s from r = %.4gM\n",
+                           key == GLFW_KEY_O ? "orbiting" : "falling",
+                           length(flight.camera.world_line.position - scene.black_hole->position) /
+                               scene.black_hole->mass);
+          }
           if (key == GLFW_KEY_H) hud = !hud;
           if (key == GLFW_KEY_F12) screenshot = true;
           if (key == GLFW_KEY_W || key == GLFW_KEY_S || key == GLFW_KEY_SPACE)
@@ -236,8 +247,10 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         if (scene.black_hole) {
           // Curved spacetime has no classical picture to compare with.
           const Vec3 from_hole = flight.camera.world_line.position - scene.black_hole->position;
-          ImGui::Text("black hole: camera at r = %.4gM",
-                      length(from_hole) / scene.black_hole->mass);
+          const char* modes[] = {"powered", "on a circular orbit", "falling freely"};
+          ImGui::Text("black hole: camera at r = %.4gM, %s",
+                      length(from_hole) / scene.black_hole->mass,
+                      modes[static_cast<int>(flight.mode)]);
         } else {
           ImGui::Checkbox("relativity", &scene.render.relativity);
           ImGui::Checkbox("light delay", &scene.render.light_delay);
@@ -256,7 +269,10 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         float scale = static_cast<float>(time_scale);
         if (ImGui::SliderFloat("time scale", &scale, 0.0f, 20.0f, "%.2f")) time_scale = scale;
         if (!scene.black_hole) ImGui::Checkbox("classical | relativistic (C)", &split);
-        ImGui::TextUnformatted("W/S speed, Space stop, drag or arrows look, F12 PNG, H panel");
+        ImGui::TextUnformatted(
+            scene.black_hole ? "W/S boost, Space hover, O orbit, F fall, drag or arrows "
+                               "look, F12 PNG, H panel"
+                             : "W/S speed, Space stop, drag or arrows look, F12 PNG, H panel");
         ImGui::End();
       }
       ImGui::Render();

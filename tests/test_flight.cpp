@@ -1,0 +1,93 @@
+// The viewer's camera near a black hole (src/viewer/flight.hpp): the free motions it can switch
+// to, against closed forms written here: a circular orbit keeps its radius and moves at the
+// static observers' sqrt(M / (r - 2M)), sweeping Omega = sqrt(M / r^3) of coordinate angle per
+// unit of coordinate time, t = tau / sqrt(1 - 3M/r); a fall from rest at r0 moves at
+// sqrt(2M (1/r - 1/r0)) / sqrt(1 - 2M/r0) (MTW eq. 31.10's energy); both start at the camera's
+// event, and a boost returns to powered flight.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "viewer/flight.hpp"
+
+namespace lightcone {
+namespace {
+
+Camera camera_at(const Vec3& position, double time) {
+  Camera c;
+  c.world_line.position = position;
+  c.world_line.time = time;
+  c.forward = normalize(Vec3{0.2, 0, -1});
+  return c;
+}
+
+TEST(Flight, OrbitsThroughItsEventAtTheCircularSpeed) {
+  const BlackHole hole{{1, 2, 3}, 1, std::nullopt};
+  const double r = 10, t0 = 7;
+  Flight flight(camera_at(hole.position + Vec3{r, 0, 0}, t0));
+  ASSERT_FALSE(flight.start_orbit(hole));
+  EXPECT_EQ(flight.mode, Flight::Mode::kOrbit);
+  // Still at its event.
+  EXPECT_LT(length(flight.camera.world_line.position - (hole.position + Vec3{r, 0, 0})), 1e-9);
+  EXPECT_NEAR(flight.camera.world_line.time, t0, 1e-9);
+  // Moving toward its view, at the circular speed.
+  EXPECT_NEAR(flight.speed, std::sqrt(1 / (r - 2)), 1e-12);
+  EXPECT_LT(flight.camera.world_line.velocity.z, 0);
+  const double tau = 3;
+  ASSERT_TRUE(flight.advance(tau, &hole));
+  const Vec3 from_hole = flight.camera.world_line.position - hole.position;
+  EXPECT_NEAR(length(from_hole), r, 1e-9);
+  const double dt = tau / std::sqrt(1 - 3 / r);
+  EXPECT_NEAR(flight.camera.world_line.time, t0 + dt, 1e-9);
+  EXPECT_NEAR(std::acos(from_hole.x / r), std::sqrt(1 / (r * r * r)) * dt, 1e-9);
+  // A boost leaves the orbit for powered flight along the view.
+  flight.set_speed(0.5);
+  EXPECT_EQ(flight.mode, Flight::Mode::kPowered);
+  EXPECT_FALSE(flight.camera.motion.geodesic);
+}
+
+TEST(Flight, NoOrbitInsideThePhotonSphere) {
+  const BlackHole hole{{}, 1, std::nullopt};
+  Flight flight(camera_at({2.9, 0, 0}, 0));
+  const auto refused = flight.start_orbit(hole);
+  ASSERT_TRUE(refused);
+  EXPECT_NE(refused->find("3M"), std::string::npos) << *refused;
+  EXPECT_EQ(flight.mode, Flight::Mode::kPowered);
+}
+
+TEST(Flight, FallsFromRestAndStopsOutsideTheHorizon) {
+  const BlackHole hole{{}, 2, std::nullopt};  // M = 2
+  const double r0 = 20, m = 2;
+  Flight flight(camera_at({0, r0, 0}, -4));
+  ASSERT_FALSE(flight.start_fall(hole));
+  EXPECT_EQ(flight.mode, Flight::Mode::kFall);
+  EXPECT_EQ(flight.speed, 0);
+  ASSERT_TRUE(flight.advance(30, &hole));
+  const double r = length(flight.camera.world_line.position);
+  EXPECT_LT(r, r0);
+  EXPECT_NEAR(flight.camera.world_line.position.x, 0, 1e-9);
+  EXPECT_NEAR(flight.speed, std::sqrt(2 * m * (1 / r - 1 / r0)) / std::sqrt(1 - 2 * m / r0), 1e-9);
+  EXPECT_LT(flight.camera.world_line.velocity.y, 0);
+  // On toward the horizon: stopped outside it, hovering.
+  bool stopped = false;
+  for (int i = 0; i < 1000 && !stopped; ++i) stopped = !flight.advance(1, &hole);
+  EXPECT_TRUE(stopped);
+  EXPECT_EQ(flight.mode, Flight::Mode::kPowered);
+  EXPECT_EQ(flight.speed, 0);
+  EXPECT_GT(length(flight.camera.world_line.position), Flight::kClosestToHole * m);
+}
+
+TEST(Flight, SceneCameraOnAGeodesicGoesOnAlongIt) {
+  Camera c;
+  HoleOrbit orbit;
+  orbit.radius = 8;
+  c.motion.geodesic = HoleGeodesic{{}, 1, orbit};
+  c.world_line = camera_observation(c.motion);
+  Flight flight(c);
+  EXPECT_EQ(flight.mode, Flight::Mode::kOrbit);
+  ASSERT_TRUE(flight.advance(5));
+  EXPECT_NEAR(length(flight.camera.world_line.position), 8, 1e-9);
+}
+
+}  // namespace
+}  // namespace lightcone
