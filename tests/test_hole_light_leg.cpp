@@ -1,10 +1,10 @@
 // Light from a lamp to a surface near a Schwarzschild hole (physics/schwarzschild_lens.hpp's
-// ray_between, physics/hole_light_leg.hpp) against derivations made here: the locate solver's
-// primary image and the orbit equation integrated step by step (the ray reaches the other end,
-// in its time), the straight line of flat space (the bundle's area is the squared distance, and
-// a moving lamp and surface give the flat leg of light_path.hpp), the radial ray's closed form
-// dA / dOmega = (r_b - r_a)^2 / f_emitter, neighbouring rays integrated step by step for the
-// bundle off the axis, and the static observers' g = sqrt(f_e / f_r).
+// ray_between, physics/hole_light_leg.hpp) against derivations made here: the orbit equation
+// integrated step by step (the ray reaches the other end, in its time, and neighbouring rays
+// spread as the bundle's formula says), the same ray from either end, the straight line of flat
+// space (the bundle's area is the squared distance, and a moving lamp and surface give the flat
+// leg of light_path.hpp), the radial ray's closed form dA / dOmega = (r_b - r_a)^2 / f_emitter,
+// and the static observers' g = sqrt(f_e / f_r).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,21 +28,15 @@ const Case kCases[] = {{30, 20, 2.0}, {8, 30, 0.7},  {50, 100, 2.9}, {12, 40, 1.
                        {20, 20, 1.0}, {4, 25, 2.5},  {2.5, 9, 0.4},  {2.6, 2.9, 1.5},
                        {40, 6, 3.1},  {10, 7, 1e-6}, {7, 10, 0.01}};
 
-TEST(RayBetween, IsTheLensSolversImage) {
+TEST(RayBetween, IsTheSameRaySeenFromEitherEnd) {
   for (const Case& c : kCases)
     for (int order = 0; order <= 1; ++order) {
       SCOPED_TRACE(testing::Message() << c.r_a << " " << c.r_b << " " << c.psi << " " << order);
       const auto ray = ray_between(1, c.r_a, c.r_b, c.psi, order);
-      const auto image = lens_image(1, c.r_a, c.r_b, c.psi, order);
-      ASSERT_TRUE(ray && image);
-      EXPECT_NEAR(ray->sweep, image->sweep, 1e-12);
-      EXPECT_NEAR(ray->impact, image->impact, 1e-9 * image->impact);
-      EXPECT_NEAR(ray->cos_a, image->cos_alpha, 1e-9);
-      EXPECT_NEAR(ray->sin_a, image->sin_alpha, 1e-9);
-      EXPECT_NEAR(ray->time, image->time, 1e-9 * image->time);
-      // Seen from the other end it is the same ray.
       const auto back = ray_between(1, c.r_b, c.r_a, c.psi, order);
-      ASSERT_TRUE(back);
+      ASSERT_TRUE(ray && back);
+      EXPECT_NEAR(back->impact, ray->impact, 1e-9 * ray->impact);
+      EXPECT_NEAR(back->time, ray->time, 1e-9 * ray->time);
       EXPECT_NEAR(back->cos_a, ray->cos_b, 1e-9);
       EXPECT_NEAR(back->sin_a, ray->sin_b, 1e-9);
       EXPECT_NEAR(back->spread_a_to_b, ray->spread_b_to_a, 1e-9 * ray->spread_b_to_a);

@@ -1,4 +1,5 @@
-// The images of a point past a Schwarzschild hole (physics/schwarzschild_lens.hpp) against
+// The images of a point past a Schwarzschild hole (physics/schwarzschild_lens.hpp, ray_between)
+// against
 // derivations made here: each image's ray followed by integrating u'' = 3 M u^2 - u and
 // dt/dphi = r^2 / (b f) step by step from the observer (it must arrive at the point's radius
 // after sweeping the image's angle, in the time found), the straight line of flat space, and the
@@ -38,11 +39,10 @@ TEST(SchwarzschildLens, EachImagesRayReachesThePointAfterItsSweepInItsTime) {
                         Case{30, 10.0107, 1.49095}})
     for (int order = 0; order <= 2; ++order) {
       SCOPED_TRACE(testing::Message() << c.r0 << " " << c.r_e << " " << c.psi << " " << order);
-      const auto image = lens_image(m, c.r0, c.r_e, c.psi, order);
+      const auto image = ray_between(m, c.r0, c.r_e, c.psi, order);
       ASSERT_TRUE(image);
       EXPECT_NEAR(image->sweep, image_sweep(c.psi, order), 1e-11);
-      const test::IntegratedOrbit f =
-          follow(m, c.r0, image->cos_alpha, image->sin_alpha, image->sweep);
+      const test::IntegratedOrbit f = follow(m, c.r0, image->cos_a, image->sin_a, image->sweep);
       EXPECT_NEAR(f.r, c.r_e, 1e-7 * c.r_e);
       EXPECT_NEAR(f.t, image->time, 1e-7 * image->time);
     }
@@ -55,7 +55,7 @@ TEST(SchwarzschildLens, EveryPointOutsideThePhotonSphereHasAPrimary) {
     for (int i = 1; i < 200; ++i) {
       const double psi = kPi * i / 200;
       SCOPED_TRACE(testing::Message() << r_e << " " << psi);
-      const auto image = lens_image(1, 30, r_e, psi, 0);
+      const auto image = ray_between(1, 30, r_e, psi, 0);
       EXPECT_TRUE(image);
       if (image) EXPECT_NEAR(image->sweep, psi, 1e-11);
     }
@@ -66,22 +66,22 @@ TEST(SchwarzschildLens, FlatSpaceSeesTheStraightLineAndNoSecondImage) {
   // The point at r_e (cos psi, sin psi) seen from (r0, 0): the direction toward it.
   const double dx = r_e * std::cos(psi) - r0, dy = r_e * std::sin(psi);
   const double len = std::hypot(dx, dy);
-  const auto image = lens_image(1e-12, r0, r_e, psi, 0);
+  const auto image = ray_between(1e-12, r0, r_e, psi, 0);
   ASSERT_TRUE(image);
-  EXPECT_NEAR(image->cos_alpha, dx / len, 1e-9);
-  EXPECT_NEAR(image->sin_alpha, dy / len, 1e-9);
+  EXPECT_NEAR(image->cos_a, dx / len, 1e-9);
+  EXPECT_NEAR(image->sin_a, dy / len, 1e-9);
   EXPECT_NEAR(image->time, len, 1e-9);
-  EXPECT_FALSE(lens_image(0, r0, r_e, psi, 1));
+  EXPECT_FALSE(ray_between(0, r0, r_e, psi, 1));
 }
 
 TEST(SchwarzschildLens, PointExactlyBehindIsSeenOnTheEinsteinRing) {
   // Weak field: a ring of angular radius sqrt(4M D_ls / (D_l D_s)) about the hole.
   const double m = 1, r0 = 1e6, r_e = 2e6;
-  const auto primary = lens_image(m, r0, r_e, kPi, 0), secondary = lens_image(m, r0, r_e, kPi, 1);
+  const auto primary = ray_between(m, r0, r_e, kPi, 0), secondary = ray_between(m, r0, r_e, kPi, 1);
   ASSERT_TRUE(primary && secondary);
-  EXPECT_NEAR(primary->sin_alpha, secondary->sin_alpha, 1e-12);
+  EXPECT_NEAR(primary->sin_a, secondary->sin_a, 1e-12);
   const double ring = std::sqrt(4 * m * r_e / (r0 * (r0 + r_e)));
-  EXPECT_NEAR(primary->sin_alpha, ring, 2e-3 * ring);  // to first order in M/b
+  EXPECT_NEAR(primary->sin_a, ring, 2e-3 * ring);  // to first order in M/b
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ Vec3 direction_from_sky(const ResolvedScene& r, const Vec3& d_pattern) {
 // One image's ray from the camera toward a point at radius r_e in direction `toward` from the
 // hole: its look direction in the camera's static frame, or none.
 struct HoleImageRay {
-  LensImage lens;
+  RayBetween lens;
   Vec3 static_direction;
   Vec3 at_point_radial, at_point_along;  // at the point: the backward ray's unit vectors
   bool outward_at_point = false;         // the backward ray moves outward there
@@ -55,23 +55,18 @@ std::optional<HoleImageRay> hole_image_ray(const HoleView& hole, double r_e, con
   const Vec3 t = length(side) > 0
                      ? normalize(side)
                      : normalize(cross(e1, std::abs(e1.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-  const auto lens = lens_image(hole.mass, hole.camera_radius, r_e, psi, order);
+  const auto lens = ray_between(hole.mass, hole.camera_radius, r_e, psi, order);
   if (!lens) return std::nullopt;
   HoleImageRay ray;
   ray.lens = *lens;
   // The backward ray sweeps from e1 toward the point (even orders) or the other way round.
   const Vec3 turn = order % 2 == 0 ? t : t * -1.0;
-  ray.static_direction = e1 * lens->cos_alpha + turn * lens->sin_alpha;
+  ray.static_direction = e1 * lens->cos_a + turn * lens->sin_a;
   const double c = std::cos(lens->sweep), s = std::sin(lens->sweep);
   ray.at_point_radial = e1 * c + turn * s;
   ray.at_point_along = turn * c - e1 * s;
-  if (std::isfinite(r_e)) {
-    const bool outward = lens->cos_alpha > 0;
-    const RayCourse course =
-        ray_course(photon_orbit(hole.mass, lens->impact), hole.camera_radius, outward);
-    const bool turned = course.turning_radius > 0 && lens->sweep > course.angle_to_turn;
-    ray.outward_at_point = outward != turned;
-  }
+  // There the ray leaves toward the camera along cos_b; the backward ray goes the other way.
+  if (std::isfinite(r_e)) ray.outward_at_point = lens->cos_b < 0;
   return ray;
 }
 
@@ -90,7 +85,7 @@ double emitter_photon_energy(const HoleView& hole, const HoleImageRay& ray, doub
 }
 
 // Near a black hole: the images of a point at rest in W, of a direction far away, or of a point
-// of a body (at rest, on a line or on a geodesic), each on its exact ray (lens_image), carried
+// of a body (at rest, on a line or on a geodesic), each on its exact ray (ray_between), carried
 // into the camera's frame by the flat aberration law. A body's point is met where the light's
 // time of flight for its position at t_e brings it to the camera at the camera's time:
 // t_cam - t_e - T_k(x(t_e)) = 0, strictly decreasing in t_e for a body slower than light,

@@ -13,29 +13,11 @@ namespace lightcone {
 // (k + 1) pi - psi for odd k (round the other side): 0 the primary image, 1 the secondary.
 double image_sweep(double psi, int order);
 
-struct LensImage {
-  // The direction in which the observer's static frame receives the ray (its look direction):
-  // at angle alpha from the outward radial direction, tipped toward the point for even orders
-  // and away from it for odd ones.
-  double cos_alpha = 0, sin_alpha = 0;
-  double impact = 0;  // b = r0 sin(alpha) / sqrt(1 - 2M / r0)
-  double sweep = 0;   // the angle it sweeps, image_sweep(psi, order)
-  // The coordinate time the light takes from the point to the observer (infinity for r_e =
-  // infinity).
-  double time = 0;
-};
-
-// The ray of image order `order` from the point to the observer, if there is one (none for a
-// point on the far side of the photon sphere's shadow region that no ray of that order
-// reaches). Found by bracketing the sweep at r_e as a function of alpha on a grid that crowds
-// toward the critical angle (where the sweep diverges) and solving each bracket with Boost's
-// TOMS 748 on the exact swept_angle: a root of a continuous, monotonic function, to double
-// precision.
-std::optional<LensImage> lens_image(double mass, double r0, double r_e, double psi, int order);
-
 // The ray of image order k between two points at radii r_a and r_b (> 2M; r_b may be
-// infinity, a direction far away), psi in [0, pi] apart about the hole: the light that lights a
-// surface from a lamp, directly (k = 0) or round the far side (k = 1). Solved in the look angle
+// infinity, a direction far away), psi in [0, pi] apart about the hole: the image of order k of
+// the point at b seen from a (locate), or the light that lights a surface from a lamp, directly
+// (k = 0) or round the far side (k = 1). Every order exists for M > 0 (none for k >= 1 when
+// M = 0, nor the ray through the centre). Solved in the look angle
 // alpha at the inner point, on which the angle swept to the outer radius grows continuously and
 // monotonically from 0 (radially outward) to infinity (the critical angle, b -> b_c: inward for
 // an inner point outside the photon sphere, outward inside it), so one bracket holds the one
