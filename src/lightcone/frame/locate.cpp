@@ -84,6 +84,75 @@ double emitter_photon_energy(const HoleView& hole, const HoleImageRay& ray, doub
   return lorentz_gamma(w) * (1 - dot(n, w)) / std::sqrt(f);
 }
 
+// Where the point at rest_point from a body's origin is at coordinate time t: relative to the
+// hole, with the static observer's velocity of the body there and its clock. Its rest-frame
+// offset is contracted along the coordinate velocity (W-simultaneous).
+struct PointState {
+  Vec3 position, local_velocity;
+  double proper_time = 0;
+};
+PointState body_point_at(const HoleWorldLine& line, const Vec3& rest_point, double t) {
+  const HoleWorldLineState s = line.at(t);
+  Vec3 offset = rest_point;
+  const double vv = dot(s.velocity, s.velocity);
+  if (vv > 0)
+    offset =
+        offset + s.velocity * ((1 / lorentz_gamma(s.velocity) - 1) * dot(offset, s.velocity) / vv);
+  return PointState{s.position + offset, s.local_velocity, s.proper_time};
+}
+
+}  // namespace
+
+std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const WorldLine& camera,
+                                                    const HoleWorldLine& line,
+                                                    const Vec3& rest_point, int order) {
+  const double now = camera.time;
+  PointState point;
+  double r_e = 0;
+  const auto ray_at = [&](double t) {
+    point = body_point_at(line, rest_point, t);
+    r_e = length(point.position);
+    return r_e > 2 * hole.mass ? hole_image_ray(hole, r_e, point.position / r_e, order)
+                               : std::nullopt;
+  };
+  // late(t) > 0 where light from the point at t arrives after the camera's time.
+  const auto late = [&](double t) {
+    const auto at = ray_at(t);
+    if (!at) throw std::domain_error("no image of this order");
+    return t + at->lens.time - now;
+  };
+  double t_e = now;
+  try {
+    double lo = now, hi = now, step = 1;
+    double late_lo = late(lo);
+    if (!(late_lo > 0)) return std::nullopt;  // (a point inside its own light cone cannot be)
+    for (int k = 0; late_lo > 0 && k < 1100; ++k, step *= 2) {
+      hi = lo;
+      lo = now - step * std::max(1.0, late_lo);
+      late_lo = late(lo);
+    }
+    if (!(late_lo <= 0)) return std::nullopt;
+    std::uintmax_t iterations = 200;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        late, lo, hi, late_lo, late(hi), boost::math::tools::eps_tolerance<double>(), iterations);
+    t_e = (a + b) / 2;
+  } catch (const std::domain_error&) {
+    return std::nullopt;
+  }
+  const auto ray = ray_at(t_e);
+  if (!ray) return std::nullopt;
+  HolePointImage out;
+  out.direction = aberrate_into_moving_frame(ray->static_direction, camera.velocity);
+  out.emission_time = t_e;
+  out.emission_position = hole.centre + point.position;
+  out.proper_time = point.proper_time;
+  out.shift = camera_photon_energy(hole, out.direction) /
+              emitter_photon_energy(hole, *ray, r_e, point.local_velocity);
+  return out;
+}
+
+namespace {
+
 // Near a black hole: the images of a point at rest in W, of a direction far away, or of a point
 // of a body (at rest, on a line or on a geodesic), each on its exact ray (ray_between), carried
 // into the camera's frame by the flat aberration law. A body's point is met where the light's
@@ -101,35 +170,17 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
       if (o.name == query.object) object = &o;
     if (!object) throw std::invalid_argument("no object named '" + query.object + "'");
   }
-  // The point at coordinate time t: relative to the hole, with the static observer's velocity
-  // of the body there and its clock.
-  struct PointState {
-    Vec3 position, local_velocity;
-    double proper_time = 0;
-  };
   std::optional<HoleWorldLine> line;
   Vec3 rest_point;
   if (object) {
     line = hole_world_line(*object, *scene.black_hole);
     rest_point = object->rotation * component_mul(object->scale, query.value);
   }
-  const auto point_at = [&](double t) {
-    if (!object) return PointState{query.value - hole.centre, {}, 0};
-    const HoleWorldLineState s = line->at(t);
-    // Its rest frame's offset, contracted along the coordinate velocity (W-simultaneous).
-    Vec3 offset = rest_point;
-    const double vv = dot(s.velocity, s.velocity);
-    if (vv > 0)
-      offset = offset +
-               s.velocity * ((1 / lorentz_gamma(s.velocity) - 1) * dot(offset, s.velocity) / vv);
-    return PointState{s.position + offset, s.local_velocity, s.proper_time};
-  };
   LocateResult result;
   for (int order = 0; order <= 2; ++order) {
     LocateImage out;
     out.order = order;
     std::optional<HoleImageRay> ray;
-    PointState point;
     double r_e = std::numeric_limits<double>::infinity();
     if (query.kind == LocateQuery::Kind::SkyDirection) {
       const Vec3 toward = aberrate_out_of_moving_frame(scene.sky.rotation * normalize(query.value),
@@ -138,48 +189,26 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
       if (!ray) continue;
       out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
       out.shift = camera_photon_energy(hole, out.direction) / sky_photon_energy(hole, toward);
+    } else if (object) {
+      const auto image =
+          hole_body_point_image(hole, scene.camera.world_line, *line, rest_point, order);
+      if (!image) continue;
+      out.direction = image->direction;
+      out.emission_time = image->emission_time;
+      out.emission_position = image->emission_position;
+      out.emission_proper_time = image->proper_time;
+      out.shift = image->shift;
     } else {
-      const auto ray_at = [&](double t) {
-        point = point_at(t);
-        r_e = length(point.position);
-        return r_e > 2 * hole.mass ? hole_image_ray(hole, r_e, point.position / r_e, order)
-                                   : std::nullopt;
-      };
-      double t_e = now;
-      if (object) {
-        // late(t) > 0 where light from the point at t arrives after the camera's time.
-        const auto late = [&](double t) {
-          const auto at = ray_at(t);
-          if (!at) throw std::domain_error("no image of this order");
-          return t + at->lens.time - now;
-        };
-        try {
-          double lo = now, hi = now, step = 1;
-          double late_lo = late(lo);
-          if (!(late_lo > 0)) continue;  // (a point inside its own light cone cannot be)
-          for (int k = 0; late_lo > 0 && k < 1100; ++k, step *= 2) {
-            hi = lo;
-            lo = now - step * std::max(1.0, late_lo);
-            late_lo = late(lo);
-          }
-          if (!(late_lo <= 0)) continue;
-          std::uintmax_t iterations = 200;
-          const auto [a, b] = boost::math::tools::toms748_solve(
-              late, lo, hi, late_lo, late(hi), boost::math::tools::eps_tolerance<double>(),
-              iterations);
-          t_e = (a + b) / 2;
-        } catch (const std::domain_error&) {
-          continue;
-        }
-      }
-      ray = ray_at(t_e);
+      const Vec3 from_hole = query.value - hole.centre;
+      r_e = length(from_hole);
+      if (!(r_e > 2 * hole.mass)) continue;
+      ray = hole_image_ray(hole, r_e, from_hole / r_e, order);
       if (!ray) continue;
       out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
-      out.emission_time = object ? t_e : now - ray->lens.time;
-      out.emission_position = hole.centre + point.position;
-      if (object) out.emission_proper_time = point.proper_time;
-      out.shift = camera_photon_energy(hole, out.direction) /
-                  emitter_photon_energy(hole, *ray, r_e, point.local_velocity);
+      out.emission_time = now - ray->lens.time;
+      out.emission_position = query.value;
+      out.shift =
+          camera_photon_energy(hole, out.direction) / emitter_photon_energy(hole, *ray, r_e, {});
     }
     LocateResult one;
     one.direction = out.direction;

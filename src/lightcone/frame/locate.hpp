@@ -49,4 +49,24 @@ struct LocateResult {
 // Throws std::invalid_argument when the named object does not exist.
 LocateResult locate(const Scene& scene, const LocateQuery& query);
 
+// Near a black hole (the camera outside the horizon): the image of order k (0, 1, 2, ...) of a
+// point of a body, `rest_point` its offset from the body's origin in the body's rest frame
+// (W's axes: rotation and scale applied), on the body's world-line `line`: the emission event
+// at which light from where the point then is reaches the camera at its time along that
+// order's exact ray, t_cam - t_e - T_k(x(t_e)) = 0 (strictly decreasing in t_e; bracketed and
+// solved with TOMS 748), with its look direction in the camera's frame, shift and clock. None
+// where the point is within the horizon or has no image of that order. locate's --object answers
+// and the raster renderer's vertices near a hole both come from here.
+struct HoleView;
+struct HolePointImage {
+  Vec3 direction;  // look direction, camera rest frame
+  double emission_time = 0;
+  Vec3 emission_position;  // W
+  double proper_time = 0;  // the body's clock (its origin's) then
+  double shift = 1;        // g = nu_camera / nu_emitter
+};
+std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const WorldLine& camera,
+                                                    const HoleWorldLine& line,
+                                                    const Vec3& rest_point, int order);
+
 }  // namespace lightcone
