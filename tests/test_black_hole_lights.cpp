@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/physics/hole_light_leg.hpp"
@@ -89,8 +90,10 @@ TEST(BlackHoleLights, FlatLimitIsTheFlatRenderersLitPicture) {
 
 // Lighting for one surface event near a hole of mass 1 at the origin, lit by the scene's lights.
 struct LitEvent {
-  explicit LitEvent(const Scene& s)
-      : resolved(resolve_scene(s)),
+  // (The scene is kept: the resolved scene points into it.)
+  explicit LitEvent(Scene s)
+      : scene(std::move(s)),
+        resolved(resolve_scene(scene)),
         tracer(resolved),
         bodies(resolved, tracer),
         lighting(resolved, &tracer, &bodies) {}
@@ -108,6 +111,7 @@ struct LitEvent {
     lighting.received(std::span(&point, 1), std::span(&out, 1));
     return out.g;
   }
+  Scene scene;
   ResolvedScene resolved;
   Tracer tracer;
   CurvedBodies bodies;
