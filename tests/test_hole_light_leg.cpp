@@ -43,12 +43,8 @@ TEST(RayBetween, IsTheSameRaySeenFromEitherEnd) {
     }
 }
 
-// Follows the ray leaving radius r0 at static-frame angle alpha (from the outward radial) for
-// the angle phi: du/dphi = -sqrt(f0) cot(alpha) / r0 there.
 test::IntegratedOrbit follow(double m, double r0, double cos_alpha, double sin_alpha, double phi) {
-  const double f0 = 1 - 2 * m / r0;
-  return test::integrate_orbit(m, r0 * sin_alpha / std::sqrt(f0), 1 / r0,
-                               -std::sqrt(f0) * cos_alpha / sin_alpha / r0, phi, 200000);
+  return test::integrate_orbit_from(m, r0, cos_alpha, sin_alpha, phi, 200000);
 }
 
 TEST(RayBetween, ReachesTheOtherEndInItsTimeAndSpreadsAsNeighbouringRaysDo) {

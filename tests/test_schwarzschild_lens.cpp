@@ -17,13 +17,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Follows the ray from the observer at r0 (static frame angle alpha from the outward radial) for
-// the angle phi: dr/dphi = r sqrt(f) cot(alpha) at the observer, so du/dphi = -sqrt(f0) cot(alpha)
-// / r0.
 test::IntegratedOrbit follow(double m, double r0, double cos_alpha, double sin_alpha, double phi) {
-  const double f0 = 1 - 2 * m / r0;
-  return test::integrate_orbit(m, r0 * sin_alpha / std::sqrt(f0), 1 / r0,
-                               -std::sqrt(f0) * cos_alpha / sin_alpha / r0, phi, 400000);
+  return test::integrate_orbit_from(m, r0, cos_alpha, sin_alpha, phi, 400000);
 }
 
 TEST(SchwarzschildLens, EachImagesRayReachesThePointAfterItsSweepInItsTime) {

@@ -108,6 +108,13 @@ IntegratedOrbit integrate_orbit(double m, double b, double u0, double du0, doubl
   return {static_cast<double>(1 / s.u), static_cast<double>(s.t)};
 }
 
+IntegratedOrbit integrate_orbit_from(double m, double r0, double cos_alpha, double sin_alpha,
+                                     double phi, int steps) {
+  const double f0 = 1 - 2 * m / r0;
+  return integrate_orbit(m, r0 * sin_alpha / std::sqrt(f0), 1 / r0,
+                         -std::sqrt(f0) * cos_alpha / sin_alpha / r0, phi, steps);
+}
+
 Scene SceneFileTest::load(const std::string& text, const std::vector<std::string>& overrides) {
   SceneLoadReport report;
   return load_scene_file(write("scene.json", text), overrides, report);

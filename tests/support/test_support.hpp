@@ -52,6 +52,10 @@ struct IntegratedOrbit {
   double r = 0, t = 0;
 };
 IntegratedOrbit integrate_orbit(double m, double b, double u0, double du0, double phi, int steps);
+// The same for the ray leaving radius r0 at static-frame angle alpha from the outward radial:
+// dr/dphi = r sqrt(f) cot(alpha) there, so du/dphi = -sqrt(f0) cot(alpha) / r0.
+IntegratedOrbit integrate_orbit_from(double m, double r0, double cos_alpha, double sin_alpha,
+                                     double phi, int steps);
 
 // A fixture that loads scene text written to DIR/scene.json, for tests of the scene format.
 class SceneFileTest : public TempDirTest {

@@ -52,9 +52,7 @@ std::optional<HoleImageRay> hole_image_ray(const HoleView& hole, double r_e, con
   const double psi = std::acos(std::clamp(dot(e1, toward), -1.0, 1.0));
   // Exactly in line with the hole every image is a ring; its point toward any side stands for it.
   const Vec3 side = toward - e1 * dot(e1, toward);
-  const Vec3 t = length(side) > 0
-                     ? normalize(side)
-                     : normalize(cross(e1, std::abs(e1.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 t = length(side) > 0 ? normalize(side) : any_perpendicular(e1);
   const auto lens = ray_between(hole.mass, hole.camera_radius, r_e, psi, order);
   if (!lens) return std::nullopt;
   HoleImageRay ray;

@@ -9,12 +9,6 @@
 namespace lightcone {
 namespace {
 
-// A unit vector perpendicular to n.
-Vec3 any_perpendicular(const Vec3& n) {
-  const Vec3 other = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  return normalize(cross(n, other));
-}
-
 // The plane through the hole, the receiver (e1) and a second point, the angle psi between them
 // about the hole, and the way a ray of image order k sweeps round from e1: toward the point for
 // even k, away from it for odd k (e2).

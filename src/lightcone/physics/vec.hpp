@@ -62,6 +62,12 @@ inline double length(const Vec3& a) {
 inline Vec3 normalize(const Vec3& a) {
   return a / length(a);
 }
+
+// A unit vector perpendicular to the unit vector n.
+inline Vec3 any_perpendicular(const Vec3& n) {
+  const Vec3 other = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  return normalize(cross(n, other));
+}
 inline Vec3 component_mul(const Vec3& a, const Vec3& b) {
   return {a.x * b.x, a.y * b.y, a.z * b.z};
 }

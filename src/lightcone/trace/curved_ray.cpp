@@ -24,12 +24,6 @@ int image_order(double phi) {
   return phi > 0 ? static_cast<int>(std::min(std::ceil(phi / kPi), kMaxImageOrder + 1)) - 1 : 0;
 }
 
-// A unit vector perpendicular to n.
-Vec3 any_perpendicular(const Vec3& n) {
-  const Vec3 other = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  return normalize(cross(n, other));
-}
-
 }  // namespace
 
 CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
