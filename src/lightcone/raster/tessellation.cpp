@@ -5,6 +5,7 @@
 
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/world_line.hpp"
+#include "lightcone/raster/adaptive_split.hpp"
 
 namespace lightcone {
 
@@ -170,76 +171,27 @@ double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& pa,
 
 namespace {
 
-// A vertex of the tessellation: its shape point and where it is seen (each computed once).
-struct Corner {
-  Vec3 p;
-  ApparentPoint seen;
-};
-
-struct Tessellator {
+// Straight rays: a corner is its shape point and where it is seen (each computed once).
+struct FlatSeeing {
+  struct Corner {
+    Vec3 p;
+    ApparentPoint seen;
+  };
   const ResolvedScene& scene;
   const BodyView& view;
-  const RestMesh& mesh;
   const TessellationLimits& limits;
   std::vector<float>& out;
   std::array<float, 4> plane{};  // of the untessellated triangle being split
 
   Corner corner(const Vec3& p) const { return {p, apparent_point(scene, view, p)}; }
-
-  // Whether edge ab (at `level`) is split; its midpoint is set either way.
-  bool split(const Corner& a, const Corner& b, int level, Corner& middle) const {
-    if (level >= limits.max_level) return false;
-    middle = corner(mesh.midpoint(a.p, b.p));
+  bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const {
     return edge_error_pixels(scene.camera, a.seen, b.seen, middle.seen) > limits.max_error_pixels;
   }
-
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
     for (const Corner* k : {&a, &b, &c})
       out.insert(out.end(),
                  {static_cast<float>(k->seen.drawn.x), static_cast<float>(k->seen.drawn.y),
                   static_cast<float>(k->seen.drawn.z), plane[0], plane[1], plane[2], plane[3]});
-  }
-
-  // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.
-  void triangle(const Corner& a, const Corner& b, const Corner& c, int lab, int lbc,
-                int lca) const {
-    Corner mab, mbc, mca;
-    const bool sab = split(a, b, lab, mab), sbc = split(b, c, lbc, mbc),
-               sca = split(c, a, lca, mca);
-    cut(a, b, c, mab, mbc, mca, lab, lbc, lca, sab, sbc, sca);
-  }
-
-  // The same, with each edge's decision (and midpoint) made, so that rotating the triangle
-  // decides nothing twice.
-  void cut(const Corner& a, const Corner& b, const Corner& c, const Corner& mab, const Corner& mbc,
-           const Corner& mca, int lab, int lbc, int lca, bool sab, bool sbc, bool sca) const {
-    const int count = int(sab) + int(sbc) + int(sca);
-    if (count == 0) return emit(a, b, c);
-    if (count == 3) {
-      const int l = std::max({lab, lbc, lca}) + 1;
-      triangle(a, mab, mca, lab + 1, l, lca + 1);
-      triangle(mab, b, mbc, lab + 1, lbc + 1, l);
-      triangle(mca, mbc, c, l, lbc + 1, lca + 1);
-      triangle(mab, mbc, mca, l, l, l);
-      return;
-    }
-    // One or two edges split: rotate so that ab is split (and, for two, bc as well).
-    if (!sab) {
-      if (sbc) return cut(b, c, a, mbc, mca, mab, lbc, lca, lab, sbc, sca, sab);
-      return cut(c, a, b, mca, mab, mbc, lca, lab, lbc, sca, sab, sbc);
-    }
-    if (count == 2 && !sbc) return cut(c, a, b, mca, mab, mbc, lca, lab, lbc, sca, sab, sbc);
-    if (count == 1) {
-      // The new edge from the midpoint to c lies inside: its level follows the split edge's.
-      triangle(a, mab, c, lab + 1, lab + 1, lca);
-      triangle(mab, b, c, lab + 1, lbc, lab + 1);
-      return;
-    }
-    // ab and bc split (ca not).
-    const int l = std::max(lab, lbc) + 1;
-    triangle(mab, b, mbc, lab + 1, lbc + 1, l);
-    triangle(a, mab, mbc, lab + 1, l, l);
-    triangle(a, mbc, c, l, lbc + 1, lca);
   }
 };
 
@@ -247,19 +199,20 @@ struct Tessellator {
 
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out) {
-  Tessellator t{scene, view, mesh, limits, out};
+  FlatSeeing seeing{scene, view, limits, out};
+  const AdaptiveSplit split(seeing, mesh, limits.max_level);
   // Each of the mesh's own vertices is seen once, whatever the number of its triangles.
-  std::vector<Corner> corners;
+  std::vector<FlatSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());
-  for (const Vec3& p : mesh.positions) corners.push_back(t.corner(p));
+  for (const Vec3& p : mesh.positions) corners.push_back(seeing.corner(p));
   for (const auto& [i, j, k] : mesh.triangles) {
     const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
     const Vec3 n = cross(b - a, c - a);
     const double l = length(n);
     const Vec3 unit = l > 0 ? n * (1 / l) : Vec3{0, 1, 0};
-    t.plane = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
-               static_cast<float>(dot(unit, a))};
-    t.triangle(corners[i], corners[j], corners[k], 0, 0, 0);
+    seeing.plane = {static_cast<float>(unit.x), static_cast<float>(unit.y),
+                    static_cast<float>(unit.z), static_cast<float>(dot(unit, a))};
+    split.triangle(corners[i], corners[j], corners[k]);
   }
 }
 
