@@ -574,12 +574,18 @@ TEST(RasterShaders, CompileAsGlslEs300) {
     const char* extra = "";    // what the program puts between the shared code and the stage
     const char* defines = "";  // which variant of the stage
   };
+  const std::string patterns = shader_sources::patterns_glsl;
+  const std::string patterns_and_lighting = patterns + shader_sources::lighting_glsl;
   const Stage stages[] = {
       {"body.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl},
-      {"body.frag", shader_sources::body_frag, true},
-      {"body-textured.frag", shader_sources::body_frag, true, "", "#define LIGHTCONE_TEXTURED 1\n"},
-      {"body-lit.frag", shader_sources::body_frag, true, shader_sources::lighting_glsl,
+      {"body.frag", shader_sources::body_frag, true, patterns.c_str()},
+      {"body-textured.frag", shader_sources::body_frag, true, patterns.c_str(),
+       "#define LIGHTCONE_TEXTURED 1\n"},
+      {"body-lit.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
        "#define LIGHTCONE_LIT 1\n"},
+      {"hole_body.vert", shader_sources::hole_body_vert, false,
+       shader_sources::body_projection_glsl},
+      {"hole_body.frag", shader_sources::hole_body_frag, true, patterns.c_str()},
       {"fullscreen.vert", shader_sources::fullscreen_vert, false},
       {"display.frag", shader_sources::display_frag, true},
       {"sky.frag", shader_sources::sky_frag, true},

@@ -113,32 +113,55 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
     return r_e > 2 * hole.mass ? hole_image_ray(hole, r_e, point.position / r_e, order)
                                : std::nullopt;
   };
-  // late(t) > 0 where light from the point at t arrives after the camera's time.
+  // late(t) > 0 where light from the point at t arrives after the camera's time; infinite where
+  // the point is within the horizon (its light never arrives).
   const auto late = [&](double t) {
     const auto at = ray_at(t);
-    if (!at) throw std::domain_error("no image of this order");
+    if (!at) {
+      if (r_e <= 2 * hole.mass) return std::numeric_limits<double>::infinity();
+      throw std::domain_error("no image of this order");
+    }
     return t + at->lens.time - now;
   };
   double t_e = now;
-  try {
-    double lo = now, hi = now, step = 1;
-    double late_lo = late(lo);
-    if (!(late_lo > 0)) return std::nullopt;  // (a point inside its own light cone cannot be)
-    for (int k = 0; late_lo > 0 && k < 1100; ++k, step *= 2) {
-      hi = lo;
-      lo = now - step * std::max(1.0, late_lo);
-      late_lo = late(lo);
+  std::optional<HoleImageRay> ray;
+  if (line.still()) {
+    // One place, one ray: its time of flight is the delay.
+    ray = ray_at(now);
+    if (!ray) return std::nullopt;
+    t_e = now - ray->lens.time;
+    point = body_point_at(line, rest_point, t_e);  // (its clock then)
+  } else {
+    try {
+      double lo = now, hi = now, step = 1;
+      double late_lo = late(lo);
+      if (!(late_lo > 0)) return std::nullopt;  // (a point inside its own light cone cannot be)
+      for (int k = 0; late_lo > 0 && k < 1100; ++k, step *= 2) {
+        hi = lo;
+        lo = now - step * (std::isfinite(late_lo) ? std::max(1.0, late_lo) : 1.0);
+        late_lo = late(lo);
+      }
+      if (!(late_lo <= 0)) return std::nullopt;
+      // A part of a body that has fallen within the horizon by `hi`: its light from nearer `lo`
+      // still arrives, late, and the bracket's late end is moved there.
+      double late_hi = late(hi);
+      for (int k = 0; !std::isfinite(late_hi) && k < 200; ++k) {
+        const double mid = lo + (hi - lo) / 2;
+        const double late_mid = late(mid);
+        (late_mid <= 0 ? lo : hi) = mid;
+        (late_mid <= 0 ? late_lo : late_hi) = late_mid;
+      }
+      if (!std::isfinite(late_hi)) return std::nullopt;
+      std::uintmax_t iterations = 200;
+      const auto [a, b] = boost::math::tools::toms748_solve(
+          late, lo, hi, late_lo, late_hi, boost::math::tools::eps_tolerance<double>(), iterations);
+      t_e = (a + b) / 2;
+      ray = ray_at(t_e);
+      if (!ray) return std::nullopt;
+    } catch (const std::domain_error&) {
+      return std::nullopt;
     }
-    if (!(late_lo <= 0)) return std::nullopt;
-    std::uintmax_t iterations = 200;
-    const auto [a, b] = boost::math::tools::toms748_solve(
-        late, lo, hi, late_lo, late(hi), boost::math::tools::eps_tolerance<double>(), iterations);
-    t_e = (a + b) / 2;
-  } catch (const std::domain_error&) {
-    return std::nullopt;
   }
-  const auto ray = ray_at(t_e);
-  if (!ray) return std::nullopt;
   HolePointImage out;
   out.direction = aberrate_into_moving_frame(ray->static_direction, camera.velocity);
   out.emission_time = t_e;

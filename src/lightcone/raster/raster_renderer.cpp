@@ -20,9 +20,11 @@
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/black_hole_pass.hpp"
+#include "lightcone/raster/body_patterns.hpp"
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/shader_sources.hpp"
 
 namespace lightcone {
@@ -80,8 +82,8 @@ std::string vertex_shader(const char* source, bool tessellation = false) {
   return version_line(tessellation) + shader_sources::common_glsl +
          shader_sources::body_projection_glsl + source;
 }
-std::string fragment_shader(const char* source, const char* extra = "", const char* defines = "",
-                            bool tessellation = false) {
+std::string fragment_shader(const char* source, const std::string& extra = "",
+                            const char* defines = "", bool tessellation = false) {
   return version_line(tessellation) + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + defines +
          shader_sources::common_glsl + extra + source;
 }
@@ -121,6 +123,8 @@ struct RasterRenderer::Impl {
   // not): each built with the first frame that needs it.
   GLuint hole_sky_programs[2][2] = {{0, 0}, {0, 0}};
   std::unique_ptr<BlackHolePass> black_hole;
+  // The bodies near a black hole: built with the first frame that has them.
+  std::unique_ptr<HoleBodiesPass> hole_bodies;
   int disk_row = 0;
   double disk_floor = 0;
   // The same with tessellation shaders (OpenGL 4), where the context has them.
@@ -132,14 +136,20 @@ struct RasterRenderer::Impl {
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
 
+  // What a body program puts between the shared code and body.frag.
+  static std::string body_fragment_extra(int variant) {
+    return std::string(shader_sources::patterns_glsl) +
+           (variant == kLit ? shader_sources::lighting_glsl : "");
+  }
+
   Impl() {
     for (int v = 0; v < 3; ++v)
-      body_programs[v] = link_program(
-          vertex_shader(shader_sources::body_vert),
-          fragment_shader(shader_sources::body_frag, v == kLit ? shader_sources::lighting_glsl : "",
-                          v == kLit        ? "#define LIGHTCONE_LIT 1\n"
-                          : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
-                                           : ""));
+      body_programs[v] =
+          link_program(vertex_shader(shader_sources::body_vert),
+                       fragment_shader(shader_sources::body_frag, body_fragment_extra(v),
+                                       v == kLit        ? "#define LIGHTCONE_LIT 1\n"
+                                       : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
+                                                        : ""));
     driver.tessellation_shaders = gl_has_tessellation_shaders();
     driver.renderer = gl_renderer();
     if (driver.tessellation_shaders) {
@@ -148,8 +158,7 @@ struct RasterRenderer::Impl {
       for (int v = 0; v < 3; ++v)
         patch_programs[v] =
             link_program(common + shader_sources::patch_vert,
-                         fragment_shader(shader_sources::body_frag,
-                                         v == kLit ? shader_sources::lighting_glsl : "",
+                         fragment_shader(shader_sources::body_frag, body_fragment_extra(v),
                                          v == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                          : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
                                                           : "",
@@ -245,6 +254,7 @@ struct RasterRenderer::Impl {
   };
   const ResolvedScene* scene = nullptr;
   std::vector<BodyDraw> draws;
+  std::vector<HoleBodiesPass::Body> hole_body_list;
   std::vector<LightDraw> lights;
   std::array<int, 3> final_rows{};
   int basis_first_row = 0;
@@ -395,11 +405,13 @@ struct RasterRenderer::Impl {
     std::map<ReflectionKey, int> reflection_rows, reflection_tables;
 
     draws.clear();
+    hole_body_list.clear();
     std::map<const void*, RestMesh> meshes;  // per shape, for this frame
     for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
       const ResolvedBody& body = resolved.bodies[i];
-      // Bodies out of view need neither rows nor triangles.
-      if (!may_be_in_view(resolved.camera, body.trace_bounds)) continue;
+      // Bodies out of view need neither rows nor triangles (near a black hole their images can
+      // be anywhere).
+      if (!resolved.hole && !may_be_in_view(resolved.camera, body.trace_bounds)) continue;
       BodyDraw draw;
       draw.body = i;
       const Material& m = body.object->material;
@@ -465,11 +477,22 @@ struct RasterRenderer::Impl {
       const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
       auto it = meshes.find(shape_key);
       if (it == meshes.end())
-        it = meshes.emplace(shape_key, rest_mesh(shape, gpu_tessellation ? 8 : 2)).first;
+        it = meshes.emplace(shape_key, rest_mesh(shape, gpu_tessellation && !resolved.hole ? 8 : 2))
+                 .first;
       draw.mesh = &it->second;
-      draws.push_back(draw);
+      if (resolved.hole)
+        hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern});
+      else
+        draws.push_back(draw);
     }
     RasterFrameStats stats;
+    if (resolved.hole && !hole_body_list.empty()) {
+      if (!hole_bodies)
+        hole_bodies = std::make_unique<HoleBodiesPass>(link_program(
+            vertex_shader(shader_sources::hole_body_vert),
+            fragment_shader(shader_sources::hole_body_frag, shader_sources::patterns_glsl)));
+      stats.triangles += hole_bodies->prepare(resolved, hole_body_list, limits);
+    }
     if (gpu_tessellation) {
       // Each shape's untessellated triangles, once; the tessellation shaders cut them per body.
       std::map<const RestMesh*, std::pair<std::size_t, std::size_t>> ranges;
@@ -515,7 +538,7 @@ struct RasterRenderer::Impl {
               GL_ARRAY_BUFFER,
               static_cast<GLintptr>(draws[d].first_vertex * kFloatsPerVertex * sizeof(float)),
               static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
-      stats.triangles = total / 3;
+      stats.triangles += total / 3;
     }
     const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
     const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
@@ -714,11 +737,8 @@ struct RasterRenderer::Impl {
         set_mat3(body_program, "shape_spatial", body.spatial);
         set_doppler(body_program, resolved, body.velocity);
         glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
-        glUniform1i(uniform(body_program, "pattern"), draw.pattern);
+        set_pattern_uniforms(body_program, *body.object, draw.pattern);
         const Shape& shape = body.object->shape;
-        const auto* checker = std::get_if<Checker>(&body.object->material.pattern);
-        glUniform1f(uniform(body_program, "checker_size"),
-                    checker ? static_cast<float>(checker->size) : 1.0f);
         // The body's clock along the sample's ray, s (ray_time row.t + row.x . u), and the
         // patterns that read it.
         glUniform1f(uniform(body_program, "proper_time_origin"),
@@ -739,25 +759,7 @@ struct RasterRenderer::Impl {
           set_mat3(body_program, "shape_of_rest", spin.shape_of_rest);
           set_mat4(body_program, "trace_from_rest", spin.trace_from_rest);
         }
-        const auto* blink = std::get_if<Blink>(&body.object->material.pattern);
-        const auto* clock = std::get_if<Clock>(&body.object->material.pattern);
-        glUniform1f(uniform(body_program, "pattern_period"),
-                    static_cast<float>(blink   ? blink->period
-                                       : clock ? clock->period
-                                               : 1.0));
-        glUniform1f(uniform(body_program, "blink_duty"),
-                    blink ? static_cast<float>(blink->duty) : 0.0f);
-        const auto* box = std::get_if<Box>(&shape);
         const auto* sphere = std::get_if<Sphere>(&shape);
-        glUniform1i(uniform(body_program, "shape_kind"), box                                    ? 1
-                                                         : std::holds_alternative<Plane>(shape) ? 2
-                                                         : sphere                               ? 3
-                                                                  : 0);
-        const auto* plane = std::get_if<Plane>(&shape);
-        set_vec3(body_program, "box_size",
-                 box     ? box->size
-                 : plane ? Vec3{plane->size_x, 0, plane->size_z}
-                         : Vec3{1, 1, 1});
         glUniform1i(uniform(body_program, "texture_image"), 3);
         if (draw.pattern == 2) {
           glActiveTexture(GL_TEXTURE3);
@@ -781,6 +783,11 @@ struct RasterRenderer::Impl {
                      static_cast<GLint>(draw.first_vertex),
                      static_cast<GLsizei>(draw.vertex_count));
       }
+    }
+    if (resolved.hole && !hole_body_list.empty()) {
+      glUseProgram(hole_bodies->program());
+      set_common(hole_bodies->program(), resolved, first_log_doppler, ox, oy);
+      hole_bodies->draw(resolved);
     }
     check_gl("drawing the bodies");
 

@@ -14,16 +14,12 @@ uniform vec2 depth_range;
 uniform vec3 doppler_velocity;  // the body's velocity in F (0 for the classical picture)
 uniform float doppler_gamma;
 uniform int colour_row;  // the row of the pattern's first colour
-uniform int pattern;     // 0: one colour; 1: checker; 2: texture; 3: blink; 4: clock
 uniform sampler2D texture_image;
-uniform float checker_size;
 // The body's own clock at the ray's event s: proper_time_origin + s (proper_time_ray +
 // proper_time_row . u) (ResolvedBody::proper_time).
 uniform float proper_time_origin;
 uniform float proper_time_ray;
 uniform vec3 proper_time_row;
-uniform float pattern_period;  // blink, clock
-uniform float blink_duty;
 // A spinning body (ResolvedSpin): its shape coordinates above are those of the shape frozen at
 // the angle its origin shows; the rest frame of its centre is rest_from_shape of them, where
 // at proper time tau a point p of the shape sits at R(spin_rate tau) rest_of_shape p.
@@ -34,38 +30,9 @@ uniform float spin_rate;
 uniform mat3 rest_from_shape;
 uniform mat3 shape_of_rest;
 uniform mat4 trace_from_rest;  // the linear part: 4-velocities from the rest frame to F
-uniform int shape_kind;  // 0: mesh; 1: box; 2: plane; 3: sphere
-uniform vec3 box_size;
 uniform float sphere_radius;
 
 layout(location = 0) out vec4 colour;
-
-// frame/shading.cpp, checker_index: (floor(x/s) + floor(y/s) + floor(z/s)) mod 2.
-int checker_index(vec3 p, float size) {
-  vec3 cell = floor(p / size);
-  return int(mod(cell.x + cell.y + cell.z, 2.0));
-}
-
-// frame/shading.cpp's period_phase, blink_index and clock_index.
-float period_phase(float proper_time) {
-  float cycles = proper_time / pattern_period;
-  return clamp(cycles - floor(cycles), 0.0, 0.99999994);
-}
-
-int blink_index(float proper_time) {
-  return period_phase(proper_time) < blink_duty ? 1 : 0;
-}
-
-int clock_index(vec2 uv, float proper_time) {
-  vec2 p = vec2(uv.x - 0.5, 0.5 - uv.y);
-  float r = length(p);
-  if (r > 0.5) return 0;
-  if (r >= 0.45) return 1;
-  float angle = 6.283185307179586 * period_phase(proper_time);
-  vec2 hand = vec2(sin(angle), cos(angle));
-  float along = dot(p, hand), across = abs(p.x * hand.y - p.y * hand.x);
-  return (along >= 0.0 && along <= 0.4 && across <= 0.025) || r <= 0.04 ? 1 : 0;
-}
 
 // The ray parameter where the sample's ray meets the surface: trace/tracer.cpp's sphere and
 // plane intersections (the nearer root; where the tessellated outline covers a sample just
@@ -156,24 +123,6 @@ uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
 uniform int relativity;
 #endif
 
-const float kTwoPi = 6.283185307179586;
-const float kHalfTurn = 3.141592653589793;
-
-// trace/tracer.cpp's texture coordinates of a surface point: sphere_uv, box_uv, the plane's.
-vec2 surface_uv(vec3 p) {
-  if (shape_kind == 3) {
-    vec3 n = normalize(p);
-    return vec2(0.5 + atan(n.x, n.z) / kTwoPi, atan(length(n.xz), n.y) / kHalfTurn);
-  }
-  if (shape_kind == 1) {
-    vec3 rel = p / box_size, a = abs(rel);
-    if (a.x >= a.y && a.x >= a.z) return vec2(0.5 + rel.z, 0.5 - rel.y);
-    if (a.y >= a.z) return vec2(0.5 + rel.x, 0.5 + rel.z);
-    return vec2(0.5 + rel.x, 0.5 - rel.y);
-  }
-  return vec2(0.5 + p.x / box_size.x, 0.5 + p.z / box_size.z);  // a plane's size in x and z
-}
-
 void main() {
   vec3 u = fragment_look_direction();
   vec3 direction = ray_offset + shape_spatial * u;
@@ -201,10 +150,7 @@ void main() {
                        0.0, 1.0);
   float d = doppler_factor(u, velocity, gamma);
   float proper_time = proper_time_origin + s * tau1;
-  int k = pattern == 1                     ? checker_index(p, checker_size)
-          : pattern == 3                   ? blink_index(proper_time)
-          : pattern == 4 && shape_kind > 0 ? clock_index(surface_uv(p), proper_time)
-                                           : 0;
+  int k = pattern_index(p, proper_time);
   // One program per kind of material (the program defines which), so that each stays small.
 #if defined(LIGHTCONE_LIT)
   vec3 normal = normalize(normal_to_rest * shape_normal(p, direction));

@@ -1,0 +1,70 @@
+// The raster renderer's bodies near a black hole (docs/design/black-hole.md, "The raster
+// renderer"): each body is drawn once per image order, 0 (the primary image) and 1 (the
+// secondary, round the far side). Every vertex is a point of the body seen along that order's
+// exact ray from its own retarded event (frame/locate.hpp, hole_body_point_image), and the
+// tessellation splits edges until the drawn chord lies within half a pixel of the image of the
+// edge's midpoint, so that the straight edges bend as the lens bends them.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/physics/hole_world_line.hpp"
+#include "lightcone/raster/gl.hpp"
+#include "lightcone/raster/tessellation.hpp"
+
+namespace lightcone {
+
+// The image orders drawn: what lies beyond (orders >= 2, squeezed against the shadow's edge)
+// is left to the ray tracer.
+constexpr int kRasterHoleOrders = 2;
+
+// Per vertex: its apparent position in F (the look direction times the coordinate time the
+// light took, which orders the images met along one ray), its shape point, ln g and the body's
+// clock at its emission.
+constexpr int kHoleVertexFloats = 8;
+
+// Appends the triangles of image `order` of the body drawn with `mesh` on `line`. A triangle is
+// left out where a corner has no image of this order (inside the horizon) and where the body's
+// emission points wind round the line through the hole and the camera: such a triangle's image
+// wraps round the shadow (an Einstein ring) and has no straight-edged drawing.
+void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
+                           const HoleWorldLine& line, const RestMesh& mesh, int order,
+                           const TessellationLimits& limits, std::vector<float>& out);
+
+// The bodies' images as one vertex buffer, drawn with the program for them
+// (shaders/hole_body.vert and .frag); needs a current OpenGL 3.3 context.
+class HoleBodiesPass {
+ public:
+  // A body to draw: its colour rows and pattern (as the flat bodies' draws).
+  struct Body {
+    std::size_t index = 0;  // in the resolved scene's bodies
+    const RestMesh* mesh = nullptr;
+    int first_row = 0, pattern = 0;
+  };
+
+  explicit HoleBodiesPass(GLuint program);
+  ~HoleBodiesPass();
+  HoleBodiesPass(const HoleBodiesPass&) = delete;
+  HoleBodiesPass& operator=(const HoleBodiesPass&) = delete;
+
+  GLuint program() const { return program_; }
+  // Tessellates each body's images of orders 0 and 1 (in parallel) and uploads them; returns
+  // the number of triangles. The meshes need only last the call.
+  std::size_t prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
+                      const TessellationLimits& limits);
+  // Draws them with the program in use, its camera and colour uniforms set.
+  void draw(const ResolvedScene& scene) const;
+
+ private:
+  struct Draw {
+    Body body;
+    GLint first_vertex = 0;
+    GLsizei vertex_count = 0;
+  };
+  GLuint program_ = 0, vertex_array_ = 0, vertex_buffer_ = 0;
+  std::vector<Draw> draws_;
+};
+
+}  // namespace lightcone

@@ -1,0 +1,18 @@
+// A body's vertex near a black hole, seen along one image order's exact ray from its own
+// retarded event (solved on the CPU in double precision, raster/hole_bodies.cpp): its apparent
+// position is its look direction times the coordinate time its light took, which orders what
+// one ray meets (the depth).
+layout(location = 0) in vec3 apparent_position;
+layout(location = 1) in vec3 shape_position;
+layout(location = 2) in vec2 shift_and_clock;  // ln g, the body's clock at the emission
+
+out vec3 shape_point;
+out float log_shift;
+out float proper_time;
+
+void main() {
+  gl_Position = clip_of(vec4(apparent_position, length(apparent_position)));
+  shape_point = shape_position;
+  log_shift = shift_and_clock.x;
+  proper_time = shift_and_clock.y;
+}
