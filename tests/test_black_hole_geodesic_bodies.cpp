@@ -219,6 +219,35 @@ TEST(BlackHoleGeodesicBodies, EachImageOfABodysPointIsWhereTheTracerMeetsIt) {
   EXPECT_GE(checked, 4);
 }
 
+// A point of a falling clock that is within the horizon by the camera's time (the clock's near
+// face, once its centre is at r < 2.8M) is still seen, as it was before it crossed: locate
+// finds its images, and the tracer meets the clock there, then.
+TEST(BlackHoleGeodesicBodies, PointWithinTheHorizonByNowIsSeenAsItWas) {
+  const Scene s = test::load_repository_scene("infall.json");
+  const Object& middle = s.objects[1];
+  const Vec3 toward_hole =
+      normalize(Vec3{1, 0, 0});  // the shape's +x face: the clock falls along -x
+  const HoleWorldLine line = hole_world_line(middle, *s.black_hole);
+  const Vec3 centre_now = line.at(s.camera.world_line.time).position;
+  ASSERT_LT(length(centre_now + toward_hole * 0.8), 2.0);  // that face is within the horizon now
+  const View view(s);
+  const LocateResult located =
+      locate(s, {LocateQuery::Kind::ObjectPoint, "middle", toward_hole * 0.8});
+  ASSERT_EQ(located.images.size(), 3u);
+  int checked = 0;
+  for (const LocateImage& image : located.images) {
+    SCOPED_TRACE(image.order);
+    EXPECT_LT(*image.emission_time, -30);
+    const CurvedRay ray = view.ray_along(image.direction);
+    if (ray.end != CurvedRayEnd::kBody || ray.order != image.order) continue;
+    if (length(ray.event.x - *image.emission_position) > 1e-4) continue;
+    EXPECT_NEAR(ray.event.t, *image.emission_time, 1e-6);
+    EXPECT_NEAR(ray.shift, image.shift, 1e-7);
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
 TEST(BlackHoleGeodesicBodies, InfallSceneLoadsAndItsClocksRedden) {
   SceneLoadReport report;
   const Scene s =
