@@ -105,15 +105,26 @@ struct GridStencil {
 };
 GridStencil grid_stencil(const DopplerGrid& grid, double d);
 
+// Runs f(k) for every k in [0, n): one after another, or (a caller's own) in parallel. The
+// tables below compute each node on its own, so any order gives the same table.
+struct SerialNodes {
+  template <class F>
+  void operator()(int n, const F& f) const {
+    for (int k = 0; k < n; ++k) f(k);
+  }
+};
+
 // A spectrum sampled for DopplerXyzTable::under: I(d(k) (360 + i)) for every node k of the grid
 // and i in [0, kCieTableSize).
-template <class Spectrum>
-std::vector<double> illuminant_samples(const Spectrum& spectrum, const DopplerGrid& grid) {
+template <class Spectrum, class ForEachNode = SerialNodes>
+std::vector<double> illuminant_samples(const Spectrum& spectrum, const DopplerGrid& grid,
+                                       const ForEachNode& for_each_node = {}) {
   std::vector<double> samples(static_cast<std::size_t>(grid.size()) * kCieTableSize);
-  for (int k = 0; k < grid.size(); ++k)
+  for_each_node(grid.size(), [&](int k) {
     for (int i = 0; i < kCieTableSize; ++i)
       samples[static_cast<std::size_t>(k) * kCieTableSize + i] =
           spectrum(grid.d(k) * (kCieMinWavelength + i));
+  });
   return samples;
 }
 
@@ -124,26 +135,28 @@ std::vector<double> illuminant_samples(const Spectrum& spectrum, const DopplerGr
 class DopplerXyzTable {
  public:
   DopplerXyzTable() = default;
-  template <class Spectrum>
-  static DopplerXyzTable of(const Spectrum& spectrum, const DopplerGrid& grid) {
+  template <class Spectrum, class ForEachNode = SerialNodes>
+  static DopplerXyzTable of(const Spectrum& spectrum, const DopplerGrid& grid,
+                            const ForEachNode& for_each_node = {}) {
     std::vector<Xyz> nodes(grid.size());
-    for (int i = 0; i < grid.size(); ++i) nodes[i] = xyz_seen_with_doppler(spectrum, grid.d(i));
+    for_each_node(grid.size(),
+                  [&](int i) { nodes[i] = xyz_seen_with_doppler(spectrum, grid.d(i)); });
     return DopplerXyzTable(grid, std::move(nodes));
   }
   // The same for a spectrum rho(lambda) I(lambda) with I sampled once per grid: `samples`
   // holds I(d(k) (360 + i)) at index k * kCieTableSize + i (illuminant_samples), so that many
   // tables under one illuminant evaluate it once.
-  template <class Reflectance>
+  template <class Reflectance, class ForEachNode = SerialNodes>
   static DopplerXyzTable under(const Reflectance& rho, const std::vector<double>& samples,
-                               const DopplerGrid& grid) {
+                               const DopplerGrid& grid, const ForEachNode& for_each_node = {}) {
     std::vector<Xyz> nodes(grid.size());
-    for (int k = 0; k < grid.size(); ++k) {
+    for_each_node(grid.size(), [&](int k) {
       const double d = grid.d(k);
       const double* row = &samples[static_cast<std::size_t>(k) * kCieTableSize];
       nodes[k] = xyz_from_spectrum([&](double lambda) {
         return rho(d * lambda) * row[static_cast<int>(lambda - kCieMinWavelength)];
       });
-    }
+    });
     return DopplerXyzTable(grid, std::move(nodes));
   }
   DopplerXyzTable(const DopplerGrid& grid, std::vector<Xyz> nodes);

@@ -66,6 +66,18 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
   return range;
 }
 
+namespace {
+
+// A table's nodes on the TBB pool: a frame of the viewer builds its tables while it waits.
+struct ParallelNodes {
+  template <class F>
+  void operator()(int n, const F& f) const {
+    tbb::parallel_for(0, n, [&](int k) { f(k); });
+  }
+};
+
+}  // namespace
+
 EmissionTable::EmissionTable(const ResolvedScene& resolved)
     : scene_(*resolved.scene),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
@@ -74,9 +86,10 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved)
         return DopplerGrid::covering(r.lo, r.hi);
       }()) {
   if (spectral_) {
-    illuminant_ = illuminant_samples([](double l) { return reference_illuminant(l); }, grid_);
-    white_ =
-        DopplerXyzTable::under([](double l) { return rgb_white_factor(l); }, illuminant_, grid_);
+    illuminant_ = illuminant_samples([](double l) { return reference_illuminant(l); }, grid_,
+                                     ParallelNodes{});
+    white_ = DopplerXyzTable::under([](double l) { return rgb_white_factor(l); }, illuminant_,
+                                    grid_, ParallelNodes{});
     nodes_.resize(static_cast<std::size_t>(kRgbEmitterCases) * kRgbToSpectrumRes);
     node_built_.assign(nodes_.size(), false);
     if (has_per_lookup_colours(scene_)) {
@@ -113,7 +126,7 @@ ThermalEmission EmissionTable::thermal_disk(const HoleView& hole) {
   const BlackbodySpectrum peak =
       BlackbodySpectrum::with_luminance(disk.temperature_k, disk.luminance);
   t.peak.rest_rgb = linear_srgb_from_xyz(xyz_from_spectrum(peak));
-  t.peak.tables[0] = &fixed_tables_.emplace_back(DopplerXyzTable::of(peak, grid));
+  t.peak.tables[0] = &fixed_tables_.emplace_back(DopplerXyzTable::of(peak, grid, ParallelNodes{}));
   t.peak.weights[0] = 1;
   t.peak.table_count = 1;
   return t;
@@ -122,7 +135,8 @@ ThermalEmission EmissionTable::thermal_disk(const HoleView& hole) {
 const DopplerXyzTable& EmissionTable::node_table(int node_case, int node) {
   const std::size_t i = static_cast<std::size_t>(node_case) * kRgbToSpectrumRes + node;
   if (!node_built_[i]) {
-    nodes_[i] = DopplerXyzTable::under(rgb_emitter_node(node_case, node), illuminant_, grid_);
+    nodes_[i] = DopplerXyzTable::under(rgb_emitter_node(node_case, node), illuminant_, grid_,
+                                       ParallelNodes{});
     node_built_[i] = true;
   }
   return nodes_[i];
@@ -133,7 +147,8 @@ PointEmission EmissionTable::fixed_spectrum(const Spectrum& spectrum) {
   PointEmission e;
   e.rest_rgb = linear_srgb_from_xyz(xyz_from_spectrum(spectrum));
   if (spectral_) {
-    e.tables[0] = &fixed_tables_.emplace_back(DopplerXyzTable::of(spectrum, grid_));
+    e.tables[0] =
+        &fixed_tables_.emplace_back(DopplerXyzTable::of(spectrum, grid_, ParallelNodes{}));
     e.weights[0] = 1;
     e.table_count = 1;
   }

@@ -103,7 +103,8 @@ PointState body_point_at(const HoleWorldLine& line, const Vec3& rest_point, doub
 
 std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const WorldLine& camera,
                                                     const HoleWorldLine& line,
-                                                    const Vec3& rest_point, int order) {
+                                                    const Vec3& rest_point, int order,
+                                                    std::optional<double> emission_time_guess) {
   const double now = camera.time;
   PointState point;
   double r_e = 0;
@@ -133,18 +134,33 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
     point = body_point_at(line, rest_point, t_e);  // (its clock then)
   } else {
     try {
-      double lo = now, hi = now, step = 1;
-      double late_lo = late(lo);
-      if (!(late_lo > 0)) return std::nullopt;  // (a point inside its own light cone cannot be)
-      for (int k = 0; late_lo > 0 && k < 1100; ++k, step *= 2) {
-        hi = lo;
-        lo = now - step * (std::isfinite(late_lo) ? std::max(1.0, late_lo) : 1.0);
-        late_lo = late(lo);
+      // The bracket, from the guess (or the camera's time) toward the root: late rises with t
+      // at a rate 1 + dT/dt between 0 and 2, so a step of |late| (grown by half each time it
+      // falls short) reaches past the root within a few.
+      const double start =
+          emission_time_guess && *emission_time_guess < now ? *emission_time_guess : now;
+      const double late_start = late(start);
+      double lo = start, hi = start, late_lo = late_start, late_hi = late_start;
+      const auto first_step = [&](double l) {
+        return std::isfinite(l) ? std::max(1.5 * std::abs(l), 1e-9 * (1 + std::abs(start))) : 1.0;
+      };
+      if (late_start > 0) {
+        for (double step = first_step(late_start); late_lo > 0 && step < 1e300; step *= 2) {
+          hi = lo, late_hi = late_lo;
+          lo = start - step;
+          late_lo = late(lo);
+        }
+        if (!(late_lo <= 0)) return std::nullopt;
+      } else {
+        for (double step = first_step(late_start); !(late_hi > 0) && hi < now; step *= 2) {
+          lo = hi, late_lo = late_hi;
+          hi = std::min(start + step, now);
+          late_hi = late(hi);
+        }
+        if (!(late_hi > 0)) return std::nullopt;  // (a point inside its own light cone)
       }
-      if (!(late_lo <= 0)) return std::nullopt;
       // A part of a body that has fallen within the horizon by `hi`: its light from nearer `lo`
       // still arrives, late, and the bracket's late end is moved there.
-      double late_hi = late(hi);
       for (int k = 0; !std::isfinite(late_hi) && k < 200; ++k) {
         const double mid = lo + (hi - lo) / 2;
         const double late_mid = late(mid);

@@ -56,7 +56,8 @@ LocateResult locate(const Scene& scene, const LocateQuery& query);
 // order's exact ray, t_cam - t_e - T_k(x(t_e)) = 0 (strictly decreasing in t_e; bracketed and
 // solved with TOMS 748), with its look direction in the camera's frame, shift and clock. None
 // where the point is within the horizon or has no image of that order. locate's --object answers
-// and the raster renderer's vertices near a hole both come from here.
+// and the raster renderer's vertices near a hole both come from here; the renderer's
+// `emission_time_guess` (its neighbours') starts the bracket near the root.
 struct HoleView;
 struct HolePointImage {
   Vec3 direction;  // look direction, camera rest frame
@@ -67,6 +68,7 @@ struct HolePointImage {
 };
 std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const WorldLine& camera,
                                                     const HoleWorldLine& line,
-                                                    const Vec3& rest_point, int order);
+                                                    const Vec3& rest_point, int order,
+                                                    std::optional<double> emission_time_guess = {});
 
 }  // namespace lightcone

@@ -13,6 +13,8 @@ namespace lightcone {
 
 // `Seeing` provides
 //   Corner corner(const Vec3& shape_point) const;  // where the point is seen (Corner has .p)
+//   Corner middle(const Corner& a, const Corner& b, const Vec3& shape_point) const;  // the same,
+//       for the midpoint of edge ab (which may start from where a and b are seen)
 //   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const;
 //   void emit(const Corner& a, const Corner& b, const Corner& c) const;
 // and a midpoint rule `mesh.midpoint(a, b)` comes from the RestMesh.
@@ -36,7 +38,7 @@ class AdaptiveSplit {
   // Whether edge ab (at `level`) is split; its midpoint is set either way.
   bool split(const Corner& a, const Corner& b, int level, Corner& middle) const {
     if (level >= max_level_) return false;
-    middle = seeing_.corner(mesh_.midpoint(a.p, b.p));
+    middle = seeing_.middle(a, b, mesh_.midpoint(a.p, b.p));
     return seeing_.needs_split(a, b, middle);
   }
 

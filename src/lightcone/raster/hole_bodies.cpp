@@ -4,7 +4,9 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <tuple>
 #include <variant>
 
 #include "lightcone/frame/locate.hpp"
@@ -22,6 +24,7 @@ struct HoleSeeing {
     ApparentPoint at;
     // The emission point along the line from the hole toward the camera, and across it.
     double along = 0, across_x = 0, across_y = 0;
+    double emission_time = 0;
     float log_shift = 0, proper_time = 0;
   };
   const ResolvedScene& scene;
@@ -33,14 +36,18 @@ struct HoleSeeing {
   Vec3 across_x, across_y;  // unit, perpendicular to the axis and each other
   std::vector<float>& out;
 
-  Corner corner(const Vec3& p) const {
+  // Each edge's midpoint, solved once for both triangles that share the edge.
+  mutable std::map<std::array<double, 6>, Corner> middles;
+
+  Corner corner(const Vec3& p, std::optional<double> emission_time_guess = {}) const {
     Corner c;
     c.p = p;
     const Vec3 rest = object.rotation * component_mul(object.scale, p);
-    const auto image =
-        hole_body_point_image(hole, scene.scene->camera.world_line, line, rest, order);
+    const auto image = hole_body_point_image(hole, scene.scene->camera.world_line, line, rest,
+                                             order, emission_time_guess);
     if (!image) return c;
     c.seen = true;
+    c.emission_time = image->emission_time;
     const double lag = scene.scene->camera.world_line.time - image->emission_time;
     c.at = {image->direction * lag, project_direction(scene.camera, image->direction), p};
     const Vec3 from_hole = image->emission_position - hole.centre;
@@ -50,6 +57,22 @@ struct HoleSeeing {
     c.log_shift = static_cast<float>(std::log(image->shift));
     c.proper_time = static_cast<float>(image->proper_time);
     return c;
+  }
+
+  Corner middle(const Corner& a, const Corner& b, const Vec3& p) const {
+    const bool ordered = std::tie(a.p.x, a.p.y, a.p.z) < std::tie(b.p.x, b.p.y, b.p.z);
+    const Vec3 &u = ordered ? a.p : b.p, &v = ordered ? b.p : a.p;
+    const auto [it, added] = middles.try_emplace({u.x, u.y, u.z, v.x, v.y, v.z});
+    if (added) {
+      // The ends' emission times bracket the midpoint's closely.
+      std::optional<double> guess;
+      if (a.seen && b.seen)
+        guess = (a.emission_time + b.emission_time) / 2;
+      else if (a.seen || b.seen)
+        guess = a.seen ? a.emission_time : b.emission_time;
+      it->second = corner(p, guess);
+    }
+    return it->second;
   }
 
   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const {
@@ -93,7 +116,12 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   std::vector<HoleSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());
-  for (const Vec3& p : mesh.positions) corners.push_back(seeing.corner(p));
+  // The body's points are seen at nearly one time: each starts from the last one's.
+  std::optional<double> guess;
+  for (const Vec3& p : mesh.positions) {
+    corners.push_back(seeing.corner(p, guess));
+    if (corners.back().seen) guess = corners.back().emission_time;
+  }
   for (const auto& [i, j, k] : mesh.triangles) split.triangle(corners[i], corners[j], corners[k]);
 }
 

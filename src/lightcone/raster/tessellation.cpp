@@ -184,6 +184,7 @@ struct FlatSeeing {
   std::array<float, 4> plane{};  // of the untessellated triangle being split
 
   Corner corner(const Vec3& p) const { return {p, apparent_point(scene, view, p)}; }
+  Corner middle(const Corner&, const Corner&, const Vec3& p) const { return corner(p); }
   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const {
     return edge_error_pixels(scene.camera, a.seen, b.seen, middle.seen) > limits.max_error_pixels;
   }
