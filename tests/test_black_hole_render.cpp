@@ -14,6 +14,7 @@
 
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/io/image_file.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/trace/curved_ray.hpp"
@@ -273,10 +274,14 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
     return test::quoted(p);
   };
   const std::string plain = scene_file("plain.json", "");
+  Image texture;
+  texture.width = texture.height = 2;
+  texture.rgb.assign(12, 0.5f);
+  write_images(texture, texture, {{dir / "texture.exr", ImageFormat::kExr}});
   const std::string with_body =
       scene_file("body.json", R"(, "objects": [{"name": "moon", "shape": {"sphere": {"radius": 1}},
                                       "position": [10, 0, 0],
-                                      "material": {"color": [1, 1, 1], "unlit": false}}])");
+                                      "material": {"texture": "texture.exr"}}])");
   const std::string with_light = scene_file(
       "light.json", R"(, "lights": [{"name": "lamp", "type": "point", "position": [10, 0, 0]}],
                      "render": {"light_source_delay": "camera"})");
@@ -290,7 +295,7 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
            Case{"render " + with_light + " -o " + test::quoted(out), "light_source_delay"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
            Case{"render " + with_body + " --renderer raster -o " + test::quoted(out),
-                "\"moon\" is lit"},
+                "\"moon\" is textured"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
        }) {

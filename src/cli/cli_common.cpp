@@ -83,11 +83,11 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
         "where its light left for the surface, along the curved ray");
   if (raster)
     for (const Object& o : scene.objects)
-      if (!o.material.unlit || std::holds_alternative<Texture>(o.material.pattern))
+      if (std::holds_alternative<Texture>(o.material.pattern))
         refuse(fmt::format(
-            "the raster renderer and the viewer draw only unlit, untextured objects near a black "
-            "hole yet, and \"{}\" is {}; render with the ray tracer (the default)",
-            o.name, o.material.unlit ? "textured" : "lit"));
+            "the raster renderer and the viewer do not draw textured objects near a black hole "
+            "yet, and \"{}\" is textured; render with the ray tracer (the default)",
+            o.name));
   if (raster && camera_inside_horizon(scene.camera.motion))
     refuse(
         "the raster renderer and the viewer do not draw the view from inside the horizon yet "

@@ -68,18 +68,24 @@ std::optional<HoleImageRay> hole_image_ray(const HoleView& hole, double r_e, con
   return ray;
 }
 
-// The energy a body moving with velocity w against the static observer at radius r measures for
-// the photon of one image (unit energy at infinity), which reaches the camera on `ray`: in that
-// observer's frame the photon has energy 1 / sqrt(f) and travels along n, opposite to the
-// backward ray, so gamma_w (1 - n . w) / sqrt(f).
-double emitter_photon_energy(const HoleView& hole, const HoleImageRay& ray, double r,
-                             const Vec3& w) {
+// The direction in which the photon of one image leaves the point at radius r toward the camera
+// on `ray`, in the static observer's frame there (W's axes): opposite to the backward ray.
+Vec3 photon_direction_at_point(const HoleView& hole, const HoleImageRay& ray, double r) {
   const double f = 1 - 2 * hole.mass / r, b = ray.lens.impact;
   const double radial = std::sqrt(std::max(0.0, 1 - b * b * f / (r * r)));
   const Vec3 backward = ray.at_point_radial * ((ray.outward_at_point ? 1 : -1) * radial) +
                         ray.at_point_along * (b * std::sqrt(f) / r);
-  const Vec3 n = backward * -1.0;
-  return lorentz_gamma(w) * (1 - dot(n, w)) / std::sqrt(f);
+  return backward * -1.0;
+}
+
+// The energy a body moving with velocity w against the static observer at radius r measures for
+// the photon of one image (unit energy at infinity), which reaches the camera on `ray`: in that
+// observer's frame the photon has energy 1 / sqrt(f) and travels along n, so
+// gamma_w (1 - n . w) / sqrt(f).
+double emitter_photon_energy(const HoleView& hole, const HoleImageRay& ray, double r,
+                             const Vec3& w) {
+  const Vec3 n = photon_direction_at_point(hole, ray, r);
+  return lorentz_gamma(w) * (1 - dot(n, w)) / std::sqrt(1 - 2 * hole.mass / r);
 }
 
 // Where the point at rest_point from a body's origin is at coordinate time t: relative to the
@@ -183,6 +189,8 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
   out.emission_time = t_e;
   out.emission_position = hole.centre + point.position;
   out.proper_time = point.proper_time;
+  out.to_camera = photon_direction_at_point(hole, *ray, r_e);
+  out.local_velocity = point.local_velocity;
   out.shift = camera_photon_energy(hole, out.direction) /
               emitter_photon_energy(hole, *ray, r_e, point.local_velocity);
   return out;

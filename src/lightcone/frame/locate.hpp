@@ -65,6 +65,9 @@ struct HolePointImage {
   Vec3 emission_position;  // W
   double proper_time = 0;  // the body's clock (its origin's) then
   double shift = 1;        // g = nu_camera / nu_emitter
+  // In the static observer's frame at the emission event: the direction the light leaves in
+  // toward the camera, and the body's velocity.
+  Vec3 to_camera, local_velocity;
 };
 std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const WorldLine& camera,
                                                     const HoleWorldLine& line,

@@ -10,12 +10,15 @@
 #include <variant>
 
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/shading.hpp"
 #include "lightcone/raster/adaptive_split.hpp"
 #include "lightcone/raster/body_patterns.hpp"
 
 namespace lightcone {
 
 namespace {
+
+constexpr float kLitColourTolerance = 1.0f / 128;
 
 struct HoleSeeing {
   struct Corner {
@@ -26,6 +29,11 @@ struct HoleSeeing {
     double along = 0, across_x = 0, across_y = 0;
     double emission_time = 0;
     float log_shift = 0, proper_time = 0;
+    // For a lit body: the emission event, and in the static observer's frame there the light's
+    // direction toward the camera and the body's velocity, and the shift.
+    Vec4 event;
+    Vec3 to_camera, local_velocity;
+    double shift = 1;
   };
   const ResolvedScene& scene;
   const HoleView& hole;
@@ -35,6 +43,13 @@ struct HoleSeeing {
   const TessellationLimits& limits;
   Vec3 across_x, across_y;  // unit, perpendicular to the axis and each other
   std::vector<float>& out;
+  const HoleLitBody* lit = nullptr;
+  bool round = false;  // a sphere: its normal is its point's direction
+  Vec3 face_normal;    // of the untessellated triangle being split (shape coordinates)
+
+  // A lit corner's two colours, per corner and normal (a box's edge joins two faces).
+  using Colours = std::array<float, 6>;
+  mutable std::map<std::array<double, 6>, Colours> colours;
 
   // Each edge's midpoint, solved once for both triangles that share the edge.
   mutable std::map<std::array<double, 6>, Corner> middles;
@@ -56,7 +71,36 @@ struct HoleSeeing {
     c.across_y = dot(from_hole, across_y);
     c.log_shift = static_cast<float>(std::log(image->shift));
     c.proper_time = static_cast<float>(image->proper_time);
+    c.event = {image->emission_time, image->emission_position};
+    c.to_camera = image->to_camera;
+    c.local_velocity = image->local_velocity;
+    c.shift = image->shift;
     return c;
+  }
+
+  // What the lit surface at corner c sends to the camera, for each of its material's fixed
+  // colours: the ray tracer's Lighting at that point (without shadows, as the raster renderer
+  // draws everywhere), the normal facing the camera as the tracer's faces the ray.
+  const Colours& colours_at(const Corner& c) const {
+    const Vec3 n = round ? normalize(c.p) : face_normal;
+    const auto [it, added] = colours.try_emplace({c.p.x, c.p.y, c.p.z, n.x, n.y, n.z});
+    if (!added) return it->second;
+    Hit hit;
+    hit.body = static_cast<int>(lit->body);
+    hit.shape_point = c.p;
+    const bool toward = dot(object.rotation * component_div(n, object.scale), c.to_camera) >= 0;
+    hit.shape_normal = toward ? n : n * -1.0;
+    const Lighting::HoleSurface at{c.event, c.to_camera, c.local_velocity};
+    std::array<Lighting::LitPoint, 2> points;
+    for (int k = 0; k < 2; ++k) points[k] = {&hit, {}, c.shift, *lit->albedo[k], {0.5, 0.5}, &at};
+    std::array<LinearRgb, 2> received;
+    lit->lighting->received(points, received);
+    for (int k = 0; k < 2; ++k) {
+      it->second[3 * k] = static_cast<float>(received[k].r);
+      it->second[3 * k + 1] = static_cast<float>(received[k].g);
+      it->second[3 * k + 2] = static_cast<float>(received[k].b);
+    }
+    return it->second;
   }
 
   Corner middle(const Corner& a, const Corner& b, const Vec3& p) const {
@@ -78,7 +122,19 @@ struct HoleSeeing {
   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const {
     // Follow the edge of what has an image down to the finest level.
     if (!a.seen || !b.seen || !middle.seen) return a.seen || b.seen || middle.seen;
-    return edge_error_pixels(scene.camera, a.at, b.at, middle.at) > limits.max_error_pixels;
+    if (edge_error_pixels(scene.camera, a.at, b.at, middle.at) > limits.max_error_pixels)
+      return true;
+    // A lit edge longer than a pixel is also split until the colours drawn along it
+    // (interpolated between its ends) lie within kLitColourTolerance of the brightest there.
+    if (!lit || std::hypot(a.at.image.x - b.at.image.x, a.at.image.y - b.at.image.y) <= 1)
+      return false;
+    const Colours &ca = colours_at(a), &cb = colours_at(b), &cm = colours_at(middle);
+    float error = 0, brightest = 0;
+    for (int i = 0; i < 6; ++i) {
+      error = std::max(error, std::abs(cm[i] - 0.5f * (ca[i] + cb[i])));
+      brightest = std::max({brightest, ca[i], cb[i], cm[i]});
+    }
+    return error > kLitColourTolerance * brightest;
   }
 
   // Whether the triangle's emission points, seen along the axis, enclose it (or touch it) where
@@ -95,12 +151,16 @@ struct HoleSeeing {
 
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
     if (!a.seen || !b.seen || !c.seen || winds_round_axis(a, b, c)) return;
-    for (const Corner* k : {&a, &b, &c})
+    for (const Corner* k : {&a, &b, &c}) {
       out.insert(
           out.end(),
           {static_cast<float>(k->at.position.x), static_cast<float>(k->at.position.y),
            static_cast<float>(k->at.position.z), static_cast<float>(k->p.x),
            static_cast<float>(k->p.y), static_cast<float>(k->p.z), k->log_shift, k->proper_time});
+      static const Colours kNone{};
+      const Colours& lit_colours = lit ? colours_at(*k) : kNone;
+      out.insert(out.end(), lit_colours.begin(), lit_colours.end());
+    }
   }
 };
 
@@ -108,11 +168,14 @@ struct HoleSeeing {
 
 void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
                            const HoleWorldLine& line, const RestMesh& mesh, int order,
-                           const TessellationLimits& limits, std::vector<float>& out) {
+                           const TessellationLimits& limits, std::vector<float>& out,
+                           const HoleLitBody* lit) {
   const HoleView& hole = *scene.hole;
   const Vec3 across_x = any_perpendicular(hole.outward);
   HoleSeeing seeing{
       scene, hole, object, line, order, limits, across_x, cross(hole.outward, across_x), out};
+  seeing.lit = lit;
+  seeing.round = mesh.sphere_radius > 0;
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   std::vector<HoleSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());
@@ -122,7 +185,12 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
     corners.push_back(seeing.corner(p, guess));
     if (corners.back().seen) guess = corners.back().emission_time;
   }
-  for (const auto& [i, j, k] : mesh.triangles) split.triangle(corners[i], corners[j], corners[k]);
+  for (const auto& [i, j, k] : mesh.triangles) {
+    const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
+    const Vec3 n = cross(b - a, c - a);
+    seeing.face_normal = length(n) > 0 ? normalize(n) : Vec3{0, 1, 0};
+    split.triangle(corners[i], corners[j], corners[k]);
+  }
 }
 
 HoleBodiesPass::HoleBodiesPass(GLuint program) : program_(program) {
@@ -131,7 +199,8 @@ HoleBodiesPass::HoleBodiesPass(GLuint program) : program_(program) {
   glBindVertexArray(vertex_array_);
   glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
   constexpr GLsizei stride = kHoleVertexFloats * sizeof(float);
-  for (const auto& [location, size, first] : {std::array<int, 3>{0, 3, 0}, {1, 3, 3}, {2, 2, 6}}) {
+  for (const auto& [location, size, first] :
+       {std::array<int, 3>{0, 3, 0}, {1, 3, 3}, {2, 2, 6}, {3, 3, 8}, {4, 3, 11}}) {
     glEnableVertexAttribArray(static_cast<GLuint>(location));
     glVertexAttribPointer(static_cast<GLuint>(location), size, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(first * sizeof(float)));
@@ -147,14 +216,23 @@ HoleBodiesPass::~HoleBodiesPass() {
 }
 
 std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
+                                    const EmissionTable& emission, const Lighting& lighting,
                                     const TessellationLimits& limits) {
   const BlackHole& hole = *scene.scene->black_hole;
   std::vector<std::vector<float>> parts(bodies.size() * kRasterHoleOrders);
   tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t k) {
     const Body& body = bodies[k / kRasterHoleOrders];
     const Object& object = *scene.bodies[body.index].object;
+    HoleLitBody lit{
+        &lighting,
+        body.index,
+        {&emission.object_colour(body.index, 0), &emission.object_colour(body.index, 0)}};
+    Rgb colours[2];
+    if (pattern_colours(object.material, colours) == 2)
+      lit.albedo[1] = &emission.object_colour(body.index, 1);
     tessellate_hole_image(scene, object, hole_world_line(object, hole), *body.mesh,
-                          static_cast<int>(k % kRasterHoleOrders), limits, parts[k]);
+                          static_cast<int>(k % kRasterHoleOrders), limits, parts[k],
+                          body.lit ? &lit : nullptr);
   });
   draws_.clear();
   std::size_t total = 0;
@@ -187,6 +265,7 @@ void HoleBodiesPass::draw(const ResolvedScene& scene) const {
   glUniform2f(uniform(p, "depth_range"), std::log(1e-6f), std::log(1e12f));
   for (const Draw& d : draws_) {
     glUniform1i(uniform(p, "colour_row"), d.body.first_row);
+    glUniform1i(uniform(p, "lit"), d.body.lit ? 1 : 0);
     set_pattern_uniforms(p, *scene.bodies[d.body.index].object, d.body.pattern);
     glDrawArrays(GL_TRIANGLES, d.first_vertex, d.vertex_count);
   }

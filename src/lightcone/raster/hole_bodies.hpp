@@ -6,9 +6,12 @@
 // edge's midpoint, so that the straight edges bend as the lens bends them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/raster/gl.hpp"
@@ -22,8 +25,18 @@ constexpr int kRasterHoleOrders = 2;
 
 // Per vertex: its apparent position in F (the look direction times the coordinate time the
 // light took, which orders the images met along one ray), its shape point, ln g and the body's
-// clock at its emission.
-constexpr int kHoleVertexFloats = 8;
+// clock at its emission; for a lit body the linear RGB it sends the camera in each of its
+// material's two fixed colours (zero for an emitter, whose colour comes from its rows).
+constexpr int kHoleVertexFloats = 14;
+
+// A lit body: its colours per vertex are the ray tracer's Lighting at the vertex's surface
+// point, and a lit edge longer than a pixel is also split until the colours interpolated along
+// it lie within 1/128 of the brightest of them.
+struct HoleLitBody {
+  const Lighting* lighting = nullptr;
+  std::size_t body = 0;                          // in the resolved scene's bodies
+  std::array<const PointEmission*, 2> albedo{};  // its fixed colours (the same twice for one)
+};
 
 // Appends the triangles of image `order` of the body drawn with `mesh` on `line`. A triangle is
 // left out where a corner has no image of this order (inside the horizon) and where the body's
@@ -31,7 +44,8 @@ constexpr int kHoleVertexFloats = 8;
 // wraps round the shadow (an Einstein ring) and has no straight-edged drawing.
 void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
                            const HoleWorldLine& line, const RestMesh& mesh, int order,
-                           const TessellationLimits& limits, std::vector<float>& out);
+                           const TessellationLimits& limits, std::vector<float>& out,
+                           const HoleLitBody* lit = nullptr);
 
 // The bodies' images as one vertex buffer, drawn with the program for them
 // (shaders/hole_body.vert and .frag); needs a current OpenGL 3.3 context.
@@ -42,6 +56,7 @@ class HoleBodiesPass {
     std::size_t index = 0;  // in the resolved scene's bodies
     const RestMesh* mesh = nullptr;
     int first_row = 0, pattern = 0;
+    bool lit = false;
   };
 
   explicit HoleBodiesPass(GLuint program);
@@ -51,8 +66,9 @@ class HoleBodiesPass {
 
   GLuint program() const { return program_; }
   // Tessellates each body's images of orders 0 and 1 (in parallel) and uploads them; returns
-  // the number of triangles. The meshes need only last the call.
+  // the number of triangles. The meshes, `emission` and `lighting` need only last the call.
   std::size_t prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
+                      const EmissionTable& emission, const Lighting& lighting,
                       const TessellationLimits& limits);
   // Draws them with the program in use, its camera and colour uniforms set.
   void draw(const ResolvedScene& scene) const;

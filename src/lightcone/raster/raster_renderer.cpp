@@ -442,7 +442,8 @@ struct RasterRenderer::Impl {
       } else {
         draw.lit = true;
         const std::size_t object = static_cast<std::size_t>(body.object - s.objects.data());
-        for (int k = 0; k < (two_colours ? 2 : 1) && spectral; ++k) {
+        // (Near a black hole lit bodies are coloured per vertex: raster/hole_bodies.hpp.)
+        for (int k = 0; k < (two_colours ? 2 : 1) && spectral && !resolved.hole; ++k) {
           const Rgb albedo = colours[k];
           for (std::size_t l = 0; l < lights.size(); ++l) {
             const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
@@ -481,7 +482,7 @@ struct RasterRenderer::Impl {
                  .first;
       draw.mesh = &it->second;
       if (resolved.hole)
-        hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern});
+        hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern, draw.lit});
       else
         draws.push_back(draw);
     }
@@ -491,7 +492,7 @@ struct RasterRenderer::Impl {
         hole_bodies = std::make_unique<HoleBodiesPass>(link_program(
             vertex_shader(shader_sources::hole_body_vert),
             fragment_shader(shader_sources::hole_body_frag, shader_sources::patterns_glsl)));
-      stats.triangles += hole_bodies->prepare(resolved, hole_body_list, limits);
+      stats.triangles += hole_bodies->prepare(resolved, hole_body_list, emission, lighting, limits);
     }
     if (gpu_tessellation) {
       // Each shape's untessellated triangles, once; the tessellation shaders cut them per body.

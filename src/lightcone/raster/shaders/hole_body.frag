@@ -1,17 +1,23 @@
 // A body's fragment near a black hole: the surface point, shift g and clock interpolated
 // between the vertices (each exact, and the edges split until the drawing lies within half a
-// pixel of the image); the pattern's rest-frame colour is received with g, which replaces the
-// Doppler factor in the colour and searchlight laws.
+// pixel of the image). An emitter's rest-frame pattern colour is received with g, which
+// replaces the Doppler factor in the colour and searchlight laws; a lit body's colour is
+// interpolated between its vertices' (each the ray tracer's lighting there).
 in vec3 shape_point;
 in float log_shift;
 in float proper_time;
+in vec3 received_0;
+in vec3 received_1;
 
-uniform int colour_row;  // the row of the pattern's first colour
+uniform int colour_row;  // an emitter's row of the pattern's first colour
+uniform int lit;
 
 layout(location = 0) out vec4 colour;
 
 void main() {
-  colour = vec4(received_colour(colour_row + pattern_index(shape_point, proper_time),
-                                exp(log_shift)),
-                1.0);
+  int k = pattern_index(shape_point, proper_time);
+  if (lit == 1)
+    colour = vec4(k == 0 ? received_0 : received_1, 1.0);
+  else
+    colour = vec4(received_colour(colour_row + k, exp(log_shift)), 1.0);
 }

@@ -5,14 +5,21 @@
 layout(location = 0) in vec3 apparent_position;
 layout(location = 1) in vec3 shape_position;
 layout(location = 2) in vec2 shift_and_clock;  // ln g, the body's clock at the emission
+// A lit body: what the vertex sends the camera in each of its material's two fixed colours.
+layout(location = 3) in vec3 lit_colour_0;
+layout(location = 4) in vec3 lit_colour_1;
 
 out vec3 shape_point;
 out float log_shift;
 out float proper_time;
+out vec3 received_0;
+out vec3 received_1;
 
 void main() {
   gl_Position = clip_of(vec4(apparent_position, length(apparent_position)));
   shape_point = shape_position;
   log_shift = shift_and_clock.x;
   proper_time = shift_and_clock.y;
+  received_0 = lit_colour_0;
+  received_1 = lit_colour_1;
 }
