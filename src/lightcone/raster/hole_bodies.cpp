@@ -44,8 +44,9 @@ struct HoleSeeing {
   Vec3 across_x, across_y;  // unit, perpendicular to the axis and each other
   std::vector<float>& out;
   const HoleLitBody* lit = nullptr;
-  bool round = false;  // a sphere: its normal is its point's direction
-  Vec3 face_normal;    // of the untessellated triangle being split (shape coordinates)
+  bool round = false;   // a sphere: its normal is its point's direction
+  bool closed = false;  // a sphere or a box: its outward normals face the camera
+  Vec3 face_normal;     // of the untessellated triangle being split (shape coordinates)
 
   // A lit corner's two colours, per corner and normal (a box's edge joins two faces).
   using Colours = std::array<float, 6>;
@@ -81,15 +82,22 @@ struct HoleSeeing {
   // What the lit surface at corner c sends to the camera, for each of its material's fixed
   // colours: the ray tracer's Lighting at that point (without shadows, as the raster renderer
   // draws everywhere), the normal facing the camera as the tracer's faces the ray.
+  Vec3 normal_at(const Corner& c) const { return round ? normalize(c.p) : face_normal; }
+  // Whether the surface at c faces the way its light leaves for the camera.
+  bool faces_camera(const Corner& c) const {
+    return dot(object.rotation * component_div(normal_at(c), object.scale), c.to_camera) >= 0;
+  }
+
   const Colours& colours_at(const Corner& c) const {
-    const Vec3 n = round ? normalize(c.p) : face_normal;
+    const Vec3 n = normal_at(c);
     const auto [it, added] = colours.try_emplace({c.p.x, c.p.y, c.p.z, n.x, n.y, n.z});
     if (!added) return it->second;
     Hit hit;
     hit.body = static_cast<int>(lit->body);
     hit.shape_point = c.p;
-    const bool toward = dot(object.rotation * component_div(n, object.scale), c.to_camera) >= 0;
-    hit.shape_normal = toward ? n : n * -1.0;
+    // A closed shape is seen from outside (the tracer's normal faces the ray, outward but for
+    // grazing rays); a plane or a mesh from either side.
+    hit.shape_normal = closed || faces_camera(c) ? n : n * -1.0;
     const Lighting::HoleSurface at{c.event, c.to_camera, c.local_velocity};
     std::array<Lighting::LitPoint, 2> points;
     for (int k = 0; k < 2; ++k) points[k] = {&hit, {}, c.shift, *lit->albedo[k], {0.5, 0.5}, &at};
@@ -125,8 +133,13 @@ struct HoleSeeing {
     if (edge_error_pixels(scene.camera, a.at, b.at, middle.at) > limits.max_error_pixels)
       return true;
     // A lit edge longer than a pixel is also split until the colours drawn along it
-    // (interpolated between its ends) lie within kLitColourTolerance of the brightest there.
+    // (interpolated between its ends) lie within kLitColourTolerance of the brightest there;
+    // not where it turns from the camera (a closed body's far side is hidden, and an outline
+    // is drawn to its half pixel already).
     if (!lit || std::hypot(a.at.image.x - b.at.image.x, a.at.image.y - b.at.image.y) <= 1)
+      return false;
+    const bool facing = faces_camera(a);
+    if (faces_camera(b) != facing || faces_camera(middle) != facing || (closed && !facing))
       return false;
     const Colours &ca = colours_at(a), &cb = colours_at(b), &cm = colours_at(middle);
     float error = 0, brightest = 0;
@@ -176,6 +189,8 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
       scene, hole, object, line, order, limits, across_x, cross(hole.outward, across_x), out};
   seeing.lit = lit;
   seeing.round = mesh.sphere_radius > 0;
+  seeing.closed =
+      std::holds_alternative<Sphere>(object.shape) || std::holds_alternative<Box>(object.shape);
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   std::vector<HoleSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());
@@ -215,13 +230,15 @@ HoleBodiesPass::~HoleBodiesPass() {
   glDeleteProgram(program_);
 }
 
-std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
-                                    const EmissionTable& emission, const Lighting& lighting,
-                                    const TessellationLimits& limits) {
+std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
+                                                   const std::vector<HoleBodiesPass::Body>& bodies,
+                                                   const EmissionTable& emission,
+                                                   const Lighting& lighting,
+                                                   const TessellationLimits& limits) {
   const BlackHole& hole = *scene.scene->black_hole;
   std::vector<std::vector<float>> parts(bodies.size() * kRasterHoleOrders);
   tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t k) {
-    const Body& body = bodies[k / kRasterHoleOrders];
+    const HoleBodiesPass::Body& body = bodies[k / kRasterHoleOrders];
     const Object& object = *scene.bodies[body.index].object;
     HoleLitBody lit{
         &lighting,
@@ -234,6 +251,14 @@ std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vecto
                           static_cast<int>(k % kRasterHoleOrders), limits, parts[k],
                           body.lit ? &lit : nullptr);
   });
+  return parts;
+}
+
+std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
+                                    const EmissionTable& emission, const Lighting& lighting,
+                                    const TessellationLimits& limits) {
+  const std::vector<std::vector<float>> parts =
+      hole_body_vertices(scene, bodies, emission, lighting, limits);
   draws_.clear();
   std::size_t total = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {

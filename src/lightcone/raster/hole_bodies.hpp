@@ -83,4 +83,12 @@ class HoleBodiesPass {
   std::vector<Draw> draws_;
 };
 
+// The CPU's part of HoleBodiesPass::prepare: each body's vertices of orders 0 and 1, in that
+// order (kHoleVertexFloats each), tessellated in parallel.
+std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
+                                                   const std::vector<HoleBodiesPass::Body>& bodies,
+                                                   const EmissionTable& emission,
+                                                   const Lighting& lighting,
+                                                   const TessellationLimits& limits);
+
 }  // namespace lightcone
