@@ -61,6 +61,8 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     differences.push_back("no shadows are cast");
   if (scene.black_hole && scene.black_hole->disk && scene.render.doppler == DopplerModel::kHue)
     differences.push_back("the accretion disk under the hue colour model is drawn black");
+  if (scene.black_hole && scene.black_hole->disk && !scene.objects.empty())
+    differences.push_back("objects are drawn in front of the accretion disk where it hides them");
   return differences;
 }
 

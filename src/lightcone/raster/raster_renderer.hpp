@@ -20,7 +20,7 @@ namespace lightcone {
 
 // What the raster renderer cannot show as the ray tracer does, one line each (empty when it
 // shows the scene exactly): lit materials, textures and sky images, shadows, the accretion disk
-// under the hue model.
+// under the hue model and in front of objects.
 std::vector<std::string> raster_differences(const Scene& scene);
 
 struct RasterFrameStats {
