@@ -285,11 +285,6 @@ int run_animate(const AnimateArgs& a) {
             "frame {}: the falling camera is inside the black hole's horizon by then, where "
             "objects are not drawn yet (this version draws the sky and the disk from there)",
             i));
-      if (a.renderer == "raster")
-        throw InputError(fmt::format(
-            "frame {}: the falling camera is inside the black hole's horizon by then: the raster "
-            "renderer does not draw the view from there yet; render with the ray tracer",
-            i));
     }
     const double speed = length(s.camera.world_line.velocity);
     if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))

@@ -88,10 +88,6 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
             "the raster renderer and the viewer do not draw textured objects near a black hole "
             "yet, and \"{}\" is textured; render with the ray tracer (the default)",
             o.name));
-  if (raster && camera_inside_horizon(scene.camera.motion))
-    refuse(
-        "the raster renderer and the viewer do not draw the view from inside the horizon yet "
-        "(the camera falls through it by then); render with the ray tracer");
   if (what) refuse(std::string(what) + " is not available near a black hole yet");
 }
 

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 #include "lightcone/frame/received_colour.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
 
 namespace lightcone {
 
@@ -31,11 +34,15 @@ void BlackHolePass::prepare(const HoleView& hole) {
                tables_.texels.data());
   glActiveTexture(GL_TEXTURE0 + kTemperatureUnit);
   glBindTexture(GL_TEXTURE_2D, temperature_);
-  static const float kNone[2] = {0, 0};
-  const bool disk = !tables_.temperature.empty();
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F,
-               disk ? static_cast<GLsizei>(tables_.temperature.size()) : 2, 1, 0, GL_RED, GL_FLOAT,
-               disk ? tables_.temperature.data() : kNone);
+  // Row 0 the disk's temperatures, row 1 the angles swept below R (from inside the horizon).
+  const std::size_t width =
+      std::max({tables_.temperature.size(), tables_.inner_angle.size(), std::size_t{2}});
+  std::vector<float> rows(2 * width, 0.0f);
+  std::copy(tables_.temperature.begin(), tables_.temperature.end(), rows.begin());
+  std::copy(tables_.inner_angle.begin(), tables_.inner_angle.end(),
+            rows.begin() + static_cast<std::ptrdiff_t>(width));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, static_cast<GLsizei>(width), 2, 0, GL_RED, GL_FLOAT,
+               rows.data());
   glActiveTexture(GL_TEXTURE0);
   check_gl("uploading the black hole's tables");
 }
@@ -51,11 +58,20 @@ void BlackHolePass::set_uniforms(GLuint p, const HoleView& hole, double disk_flo
   glUniform1i(uniform(p, "hole_rays"), kRaysUnit);
   glUniform1i(uniform(p, "hole_temperature"), kTemperatureUnit);
   set_mat4(p, "hole_trace_to_static", hole.trace_to_static);
+  // From inside the horizon: the falling camera's own frame, and the tables' radius R.
+  const bool inside = t.inside_radius > 0;
+  glUniform1i(uniform(p, "hole_inside"), inside ? 1 : 0);
+  glUniform4f(uniform(p, "hole_falling"), static_cast<float>(inside ? hole.falling->energy : 1),
+              static_cast<float>(inside ? hole.falling->radial_velocity : 0),
+              static_cast<float>(t.inside_radius),
+              static_cast<float>(critical_impact_parameter(hole.mass)));
+  glUniform1i(uniform(p, "hole_inner_nodes"), static_cast<GLint>(t.inner_angle.size()));
   set_mat4(p, "hole_world_to_sky", hole.world_to_sky);
   set_mat3(p, "hole_to_pattern", hole.to_pattern);
   set_vec3(p, "hole_outward", hole.outward);
-  glUniform1f(uniform(p, "hole_camera_lapse"), static_cast<float>(hole.camera_lapse));
-  glUniform1f(uniform(p, "hole_camera_radius"), static_cast<float>(hole.camera_radius));
+  glUniform1f(uniform(p, "hole_camera_lapse"),
+              static_cast<float>(std::sqrt(1 - 2 * hole.mass / t.camera_radius)));
+  glUniform1f(uniform(p, "hole_camera_radius"), static_cast<float>(t.camera_radius));
   glUniform1f(uniform(p, "hole_mass"), static_cast<float>(hole.mass));
   glUniform1f(uniform(p, "hole_critical_alpha"), static_cast<float>(t.critical_alpha));
   glUniform2f(uniform(p, "hole_side_width"), static_cast<float>(t.side_width[0]),

@@ -140,7 +140,20 @@ HoleRayTables hole_ray_tables(const HoleView& hole, int rows, int nodes) {
   HoleRayTables t;
   t.mass = hole.mass;
   t.camera_radius = hole.camera_radius;
-  t.critical_alpha = kPi - static_shadow_angle(hole.mass, hole.camera_radius);
+  if (tables_from_inside(hole)) {
+    t.inside_radius = hole.camera_radius;
+    t.camera_radius = HoleRayTables::kInnerRadius * hole.mass;
+    const int n = HoleRayTables::kInnerNodes;
+    t.inner_angle.resize(n);
+    const double bc = critical_impact_parameter(hole.mass);
+    tbb::parallel_for(0, n, [&](int j) {
+      // (The last node a hair below b_c, where the closed form's pair of roots meets.)
+      const double b = bc * std::min(static_cast<double>(j) / (n - 1), 1 - 1e-12);
+      t.inner_angle[j] = static_cast<float>(
+          swept_angle(photon_orbit(hole.mass, b), t.inside_radius, t.camera_radius));
+    });
+  }
+  t.critical_alpha = kPi - static_shadow_angle(hole.mass, t.camera_radius);
   t.side_width[0] = t.critical_alpha;
   t.side_width[1] = kPi - t.critical_alpha;
   t.rows = std::max(rows, 2);
@@ -230,6 +243,17 @@ double tabulated_radius(const HoleRayTables& t, const HoleRowPosition& at, doubl
   for (int k = 0; k < 4; ++k)
     if (w.w[k] != 0) u += w.w[k] * row_u(t, at.side, w.first + k, phi, total - phi, use_out);
   return u > 0 ? t.mass / u : kInf;
+}
+
+bool tables_from_inside(const HoleView& hole) {
+  return hole.falling && !(hole.camera_radius > 2 * hole.mass);
+}
+
+double tabulated_inner_angle(const HoleRayTables& t, double impact) {
+  const int n = static_cast<int>(t.inner_angle.size());
+  const double p = std::clamp(impact / critical_impact_parameter(t.mass) * (n - 1), 0.0, n - 1.0);
+  const int j = std::min(static_cast<int>(p), n - 2);
+  return t.inner_angle[j] + (t.inner_angle[j + 1] - t.inner_angle[j]) * (p - j);
 }
 
 double tabulated_temperature_ratio(const HoleRayTables& t, double r) {

@@ -36,10 +36,21 @@
 
 namespace lightcone {
 
+// From inside the horizon (a falling camera at r0 <= 2M, where there is no static observer):
+// every ray that escapes (b < b_c) moves outward, through r = R = 2.5M, and meets nothing below
+// R (the disk lies beyond 6M). So the tables are those of a static observer at R, which that
+// ray passes looking outward at sin(alpha) = b sqrt(1 - 2M/R) / R, after sweeping the angle
+// phi_in(b) from r0 to R, tabulated at kInnerNodes values of b uniform over [0, b_c]. The rays
+// with b > b_c turn below the photon sphere and fall back: the shadow.
+
 struct HoleRayTables {
   static constexpr int kDefaultRows = 256;  // per side
   static constexpr int kDefaultNodes = 16;  // per leg
   static constexpr int kTemperatureNodes = 1024;
+  static constexpr int kInnerNodes = 1024;
+  static constexpr double kInnerRadius = 2.5;  // R, in units of M
+  // (One texture holds both as rows of the same width.)
+  static_assert(kInnerNodes == kTemperatureNodes);
 
   double mass = 1;
   double camera_radius = 0;
@@ -61,7 +72,14 @@ struct HoleRayTables {
   // itself rises like sqrt(r - 6M).
   std::vector<float> temperature;
   double log_inner = 0, log_step = 1;
+  // From inside the horizon: the camera's radius r0 (then camera_radius is R), and phi_in at
+  // b = b_c j / (kInnerNodes - 1); empty outside.
+  double inside_radius = 0;
+  std::vector<float> inner_angle;
 };
+
+// Whether the camera is inside the horizon (a fall at r0 <= 2M), where the tables are R's.
+bool tables_from_inside(const HoleView& hole);
 
 HoleRayTables hole_ray_tables(const HoleView& hole, int rows = HoleRayTables::kDefaultRows,
                               int nodes = HoleRayTables::kDefaultNodes);
@@ -94,5 +112,8 @@ double tabulated_radius(const HoleRayTables& tables, const HoleRowPosition& at, 
 
 // tau = disk_temperature_ratio, from the table (the square root of its linear interpolation).
 double tabulated_temperature_ratio(const HoleRayTables& tables, double r);
+
+// From inside the horizon: phi_in(b) for 0 <= b < b_c, linear between the nodes.
+double tabulated_inner_angle(const HoleRayTables& tables, double impact);
 
 }  // namespace lightcone

@@ -3,7 +3,14 @@
 // lookups these mirror; docs/design/black-hole.md, "The raster renderer").
 
 uniform sampler2D hole_rays;         // HoleRayTables::texels (RGBA)
-uniform sampler2D hole_temperature;  // HoleRayTables::temperature (R): tau^2 against ln r
+uniform sampler2D hole_temperature;  // row 0: HoleRayTables::temperature (R), tau^2 against
+                                     // ln r; row 1: inner_angle
+// From inside the horizon (HoleRayTables, "From inside the horizon"): 1, the falling camera's
+// (E, u^r, r0, b_c), and the number of inner_angle's nodes; the tables are then R's, and
+// hole_camera_radius and hole_camera_lapse R's too.
+uniform int hole_inside;
+uniform vec4 hole_falling;
+uniform int hole_inner_nodes;
 uniform mat4 hole_trace_to_static;   // F to the static observer's frame, on (t, x, y, z)
 uniform mat4 hole_world_to_sky;      // W far away to the sky's rest frame
 uniform mat3 hole_to_pattern;        // the sky's rest frame to its pattern coordinates
@@ -157,6 +164,16 @@ vec3 hole_any_perpendicular(vec3 n) {
   return normalize(cross(n, other));
 }
 
+// raster/hole_tables.cpp, tabulated_inner_angle.
+float hole_inner_angle(float impact) {
+  float p = clamp(impact / hole_falling.w * float(hole_inner_nodes - 1), 0.0,
+                  float(hole_inner_nodes - 1));
+  int j = min(int(p), hole_inner_nodes - 2);
+  float a = texelFetch(hole_temperature, ivec2(j, 1), 0).x;
+  float b = texelFetch(hole_temperature, ivec2(j + 1, 1), 0).x;
+  return mix(a, b, p - float(j));
+}
+
 // trace/curved_ray.hpp, CurvedRay: the sky direction and the shift are set for every end (the
 // sky's where the ray does not reach it), so that a pass can read the sky everywhere.
 struct HoleRay {
@@ -170,22 +187,52 @@ struct HoleRay {
 
 // trace/curved_ray.cpp, follow_curved_ray.
 HoleRay follow_hole_ray(vec3 u) {
-  vec4 back = hole_trace_to_static * vec4(-1.0, u);
-  vec3 d = back.yzw / -back.x;
-  float camera_energy = 1.0 / (hole_camera_lapse * -back.x);
+  HoleRay ray;
+  ray.disk_radius = 0.0;
   vec3 e1 = hole_outward;
-  float cos_alpha = dot(d, e1);
-  vec3 tangential = d - e1 * cos_alpha;
-  float sin_alpha = length(tangential);
-  vec3 e2 = sin_alpha > 0.0 ? tangential / sin_alpha : hole_any_perpendicular(e1);
+  float cos_alpha, sin_alpha, camera_energy;
+  vec3 e2;
+  float swept = 0.0;  // from inside the horizon: the angle swept below R
+  if (hole_inside == 1) {
+    // physics/radial_observer.cpp, observed_ray, in the falling camera's own frame (radial axis
+    // e1, the others W's); light of no positive energy, and rays beyond b_c, are dark.
+    float cos_look = dot(u, e1);
+    vec3 across = u - e1 * cos_look;
+    float sin_look = length(across);
+    e2 = sin_look > 0.0 ? across / sin_look : hole_any_perpendicular(e1);
+    float per_energy = hole_falling.x - hole_falling.y * cos_look;
+    float impact = hole_falling.z * sin_look / max(per_energy, 1e-30);
+    if (!(per_energy > 0.0) || !(impact < hole_falling.w)) {
+      ray.end = kHoleHorizon;
+      ray.order = 0;
+      ray.phi = 0.0;
+      ray.shift = 0.0;
+      ray.sky_direction = vec3(0.0, 0.0, 1.0);
+      return ray;
+    }
+    camera_energy = 1.0 / per_energy;
+    swept = hole_inner_angle(impact);
+    // On at R, looking outward from there; the ray's plane turned by the angle swept.
+    sin_alpha = impact * hole_camera_lapse / hole_camera_radius;
+    cos_alpha = sqrt(max(1.0 - sin_alpha * sin_alpha, 0.0));
+    vec3 r1 = e1 * cos(swept) + e2 * sin(swept);
+    e2 = e2 * cos(swept) - e1 * sin(swept);
+    e1 = r1;
+  } else {
+    vec4 back = hole_trace_to_static * vec4(-1.0, u);
+    vec3 d = back.yzw / -back.x;
+    camera_energy = 1.0 / (hole_camera_lapse * -back.x);
+    cos_alpha = dot(d, e1);
+    vec3 tangential = d - e1 * cos_alpha;
+    sin_alpha = length(tangential);
+    e2 = sin_alpha > 0.0 ? tangential / sin_alpha : hole_any_perpendicular(e1);
+  }
   HoleRows rows = hole_rows_at(sin_alpha, cos_alpha);
   float total = hole_total_angle(rows);
 
-  HoleRay ray;
   ray.end = rows.side == 0 ? kHoleSky : kHoleHorizon;
-  ray.phi = total;
-  ray.order = total > 0.0 ? int(ceil(total / kHolePi)) - 1 : 0;
-  ray.disk_radius = 0.0;
+  ray.phi = swept + total;
+  ray.order = ray.phi > 0.0 ? int(ceil(ray.phi / kHolePi)) - 1 : 0;
   vec3 far_direction = e1 * cos(total) + e2 * sin(total);
   vec4 in_sky = hole_world_to_sky * vec4(-1.0, far_direction);
   ray.sky_direction = hole_to_pattern * (in_sky.yzw / -in_sky.x);
@@ -217,7 +264,7 @@ HoleRay follow_hole_ray(vec3 u) {
     float lambda = -impact * dot(cross(e1, e2), disk_normal);
     ray.end = kHoleDisk;
     ray.order = k;
-    ray.phi = phi;
+    ray.phi = swept + phi;
     ray.disk_radius = r;
     ray.shift = camera_energy * circular_orbit_frequency_shift(hole_mass, r, lambda);
     return ray;
