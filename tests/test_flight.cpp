@@ -55,7 +55,7 @@ TEST(Flight, NoOrbitInsideThePhotonSphere) {
   EXPECT_EQ(flight.mode, Flight::Mode::kPowered);
 }
 
-TEST(Flight, FallsFromRestAndStopsOutsideTheHorizon) {
+TEST(Flight, FallsFromRest) {
   const BlackHole hole{{}, 2, std::nullopt};  // M = 2
   const double r0 = 20, m = 2;
   Flight flight(camera_at({0, r0, 0}, -4));
@@ -68,13 +68,33 @@ TEST(Flight, FallsFromRestAndStopsOutsideTheHorizon) {
   EXPECT_NEAR(flight.camera.world_line.position.x, 0, 1e-9);
   EXPECT_NEAR(flight.speed, std::sqrt(2 * m * (1 / r - 1 / r0)) / std::sqrt(1 - 2 * m / r0), 1e-9);
   EXPECT_LT(flight.camera.world_line.velocity.y, 0);
-  // On toward the horizon: stopped outside it, hovering.
+}
+
+// A fall goes on through the horizon (the renderers draw the view from inside) to where they
+// stop, r = kCameraInnermostRadius M; inside, boosts, stops and orbits are refused.
+TEST(Flight, FallsThroughTheHorizonToTheInnermostRadius) {
+  const BlackHole hole{{}, 1, std::nullopt};
+  Flight flight(camera_at({0, 6, 0}, -4));
+  ASSERT_FALSE(flight.start_fall(hole));
+  EXPECT_FALSE(flight.inside_horizon());
+  double least = 6;
   bool stopped = false;
-  for (int i = 0; i < 1000 && !stopped; ++i) stopped = !flight.advance(1, &hole);
-  EXPECT_TRUE(stopped);
-  EXPECT_EQ(flight.mode, Flight::Mode::kPowered);
-  EXPECT_EQ(flight.speed, 0);
-  EXPECT_GT(length(flight.camera.world_line.position), Flight::kClosestToHole * m);
+  for (int i = 0; i < 10000 && !stopped; ++i) {
+    stopped = !flight.advance(0.01, &hole);
+    least = std::min(least, length(flight.camera.world_line.position));
+  }
+  ASSERT_TRUE(stopped);
+  EXPECT_EQ(flight.mode, Flight::Mode::kFall);
+  EXPECT_TRUE(flight.inside_horizon());
+  EXPECT_LT(least, 0.06);
+  EXPECT_GE(least, kCameraInnermostRadius);
+  const double tau = flight.camera.motion.proper_time;
+  flight.set_speed(0.5);
+  EXPECT_EQ(flight.mode, Flight::Mode::kFall);
+  EXPECT_EQ(flight.camera.motion.proper_time, tau);
+  EXPECT_TRUE(flight.start_orbit(hole));
+  EXPECT_TRUE(flight.start_fall(hole));
+  EXPECT_FALSE(flight.advance(0.01, &hole));  // it stays at the end
 }
 
 TEST(Flight, SceneCameraOnAGeodesicGoesOnAlongIt) {

@@ -287,6 +287,17 @@ TEST(ViewerBenchmark, StopsOutsideTheHorizon) {
   fs::remove_all(dir);
 }
 
+// A camera that has fallen through the horizon (scenes/plunge.json, r = 1.6M) is drawn from
+// there; boosts are refused inside, so the scripted flight leaves it falling.
+TEST(ViewerBenchmark, DrawsTheViewFromInsideTheHorizon) {
+  const auto r = test::run_lightcone(
+      "view " + test::quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/plunge.json") +
+          " --benchmark 5 --width 64 --height 36",
+      "env -u DISPLAY -u WAYLAND_DISPLAY");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["frames"], 5);
+}
+
 TEST(ViewerWithoutOpenGl, RasterRenderAndBenchmarkAreStatusTwoNamingOpenGl) {
   // No EGL driver at all (libglvnd is pointed at none): a clear error, nothing written.
   const fs::path dir = test::fresh_temp_dir("nogl");

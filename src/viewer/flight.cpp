@@ -24,11 +24,13 @@ bool Flight::advance(double proper_time, const BlackHole* hole) {
   if (mode != Mode::kPowered) {
     Camera::Motion next = camera.motion;
     next.proper_time += proper_time;
-    const WorldLine moved = camera_observation(next);
-    if (hole && length(moved.position - hole->position) < kClosestToHole * hole->mass) {
-      set_speed(0);
-      return false;
+    // A fall goes on through the horizon to the last moment the renderers draw, and stays.
+    if (mode == Mode::kFall) {
+      const double last = std::nextafter(drawn_proper_times(*next.geodesic).latest, -1e300);
+      if (!(camera.motion.proper_time < last)) return false;
+      next.proper_time = std::min(next.proper_time, last);
     }
+    const WorldLine moved = camera_observation(next);
     camera.motion = next;
     w = moved;
     speed = length(w.velocity);
@@ -46,6 +48,7 @@ bool Flight::advance(double proper_time, const BlackHole* hole) {
 }
 
 std::optional<std::string> Flight::start_orbit(const BlackHole& hole) {
+  if (inside_horizon()) return kInsideHorizon;
   const WorldLine& w = camera.world_line;
   const Vec3 from_hole = w.position - hole.position;
   const double r = length(from_hole), m = hole.mass;
@@ -74,6 +77,7 @@ std::optional<std::string> Flight::start_fall(const BlackHole& hole) {
   const WorldLine& w = camera.world_line;
   const Vec3 from_hole = w.position - hole.position;
   const double r = length(from_hole), m = hole.mass;
+  if (inside_horizon()) return kInsideHorizon;
   if (!(r > kClosestToHole * m))
     return "too near the horizon to fall: the viewer stops the camera at r = " +
            std::to_string(kClosestToHole) + "M";
@@ -89,7 +93,14 @@ std::optional<std::string> Flight::start_fall(const BlackHole& hole) {
   return std::nullopt;
 }
 
+bool Flight::inside_horizon() const {
+  const auto& g = camera.motion.geodesic;
+  return mode == Mode::kFall && g &&
+         !(length(camera.world_line.position - g->hole) > 2 * g->mass * (1 + kCameraHorizonMargin));
+}
+
 void Flight::set_speed(double new_speed) {
+  if (inside_horizon()) return;  // no static observer to move against: it can only fall on
   // Leaving a geodesic: powered flight from its current event.
   mode = Mode::kPowered;
   camera.motion.geodesic.reset();

@@ -22,9 +22,10 @@ struct Flight {
 
   explicit Flight(const Camera& start);
   // Advances the camera along its world-line by `proper_time` of its own clock. Near a black
-  // hole it stops (speed 0, hovering) rather than come within kClosestToHole M of it, powered
-  // or falling: its velocity is the one the static observer at its event measures, and there is
-  // none inside the horizon. Returns false when it stopped so.
+  // hole, powered, it stops (speed 0, hovering) rather than come within kClosestToHole M of it:
+  // its velocity is the one the static observer at its event measures, and there is none
+  // inside the horizon. Falling, it goes on through the horizon and stays where the renderers
+  // stop drawing (r = kCameraInnermostRadius M). Returns false when it stopped so.
   static constexpr double kClosestToHole = 2.01;
   bool advance(double proper_time, const BlackHole* hole = nullptr);
   // Near `hole`, from the current event: the circular geodesic through it (radius r > 3M, in
@@ -33,6 +34,12 @@ struct Flight {
   // does not exist: inside 3M (1 + 1e-6) for an orbit; within kClosestToHole M for a fall.
   std::optional<std::string> start_orbit(const BlackHole& hole);
   std::optional<std::string> start_fall(const BlackHole& hole);
+  // Whether the camera has fallen through the horizon: then it falls on, and boosts, stops and
+  // orbits are refused (set_speed does nothing; the others say why).
+  bool inside_horizon() const;
+  static constexpr const char* kInsideHorizon =
+      "inside the horizon: there is no static observer to hover or boost against, and no orbit; "
+      "the camera can only fall on";
   // An instantaneous boost to `speed` (below 1) along the current view direction, through the
   // current event (powered flight from then on).
   void set_speed(double new_speed);

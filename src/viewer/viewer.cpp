@@ -137,6 +137,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     double last_x = 0, last_y = 0;
     bool dragging = false;
     FrameDraw drawn;
+    bool stopped_said = false;
     while (!glfwWindowShouldClose(window)) {
       glfwPollEvents();
       const auto now = std::chrono::steady_clock::now();
@@ -149,6 +150,9 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
       if (!io.WantCaptureKeyboard) {
         for (const int key : pressed) {
           if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, GLFW_TRUE);
+          const bool boost = key == GLFW_KEY_W || key == GLFW_KEY_S || key == GLFW_KEY_SPACE;
+          if (boost && flight.inside_horizon())
+            std::fprintf(stderr, "lightcone: %s\n", Flight::kInsideHorizon);
           if (key == GLFW_KEY_W) flight.change_speed(1);
           if (key == GLFW_KEY_S) flight.change_speed(-1);
           if (key == GLFW_KEY_SPACE) flight.set_speed(0);
@@ -185,9 +189,17 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         last_x = x;
         last_y = y;
       }
-      if (!flight.advance(dt * time_scale, scene.black_hole ? &*scene.black_hole : nullptr))
-        std::fprintf(stderr, "lightcone: stopped at r = %gM, outside the black hole's horizon\n",
-                     Flight::kClosestToHole);
+      const bool moved =
+          flight.advance(dt * time_scale, scene.black_hole ? &*scene.black_hole : nullptr);
+      if (!moved && !stopped_said) {
+        if (flight.mode == Flight::Mode::kFall)
+          std::fprintf(stderr, "lightcone: the fall is drawn down to r = %gM, and ends there\n",
+                       kCameraInnermostRadius);
+        else
+          std::fprintf(stderr, "lightcone: stopped at r = %gM, outside the black hole's horizon\n",
+                       Flight::kClosestToHole);
+      }
+      stopped_said = !moved;  // (said once, until it moves again)
 
       int width = 0, height = 0;
       glfwGetFramebufferSize(window, &width, &height);
