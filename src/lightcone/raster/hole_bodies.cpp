@@ -79,15 +79,16 @@ struct HoleSeeing {
     return c;
   }
 
-  // What the lit surface at corner c sends to the camera, for each of its material's fixed
-  // colours: the ray tracer's Lighting at that point (without shadows, as the raster renderer
-  // draws everywhere), the normal facing the camera as the tracer's faces the ray.
+  // The outward normal at corner c (shape coordinates), and whether the surface there faces the
+  // way its light leaves for the camera.
   Vec3 normal_at(const Corner& c) const { return round ? normalize(c.p) : face_normal; }
-  // Whether the surface at c faces the way its light leaves for the camera.
   bool faces_camera(const Corner& c) const {
     return dot(object.rotation * component_div(normal_at(c), object.scale), c.to_camera) >= 0;
   }
 
+  // What the lit surface at corner c sends to the camera, for each of its material's fixed
+  // colours: the ray tracer's Lighting at that point (without shadows, as the raster renderer
+  // draws everywhere), the normal facing the camera as the tracer's faces the ray.
   const Colours& colours_at(const Corner& c) const {
     const Vec3 n = normal_at(c);
     const auto [it, added] = colours.try_emplace({c.p.x, c.p.y, c.p.z, n.x, n.y, n.z});
@@ -287,7 +288,7 @@ void HoleBodiesPass::draw(const ResolvedScene& scene) const {
   const GLuint p = program_;
   glBindVertexArray(vertex_array_);
   // Depth: the light's coordinate time of flight, on the flat bodies' log scale.
-  glUniform2f(uniform(p, "depth_range"), std::log(1e-6f), std::log(1e12f));
+  glUniform2f(uniform(p, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
   for (const Draw& d : draws_) {
     glUniform1i(uniform(p, "colour_row"), d.body.first_row);
     glUniform1i(uniform(p, "lit"), d.body.lit ? 1 : 0);

@@ -724,7 +724,7 @@ struct RasterRenderer::Impl {
       glUseProgram(body_program);
       set_common(body_program, resolved, first_log_doppler, ox, oy);
       // Depth: the light travel distance on a log scale between these.
-      glUniform2f(uniform(body_program, "depth_range"), std::log(1e-6f), std::log(1e12f));
+      glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
       if (variant == kLit) set_lights(resolved);
       for (const BodyDraw& draw : draws) {
         if (draw.lit != (variant == kLit) || (draw.pattern == 2) != (variant == kTextured))

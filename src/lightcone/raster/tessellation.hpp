@@ -70,6 +70,10 @@ double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& a, cons
 // trace bounds (every event where a camera ray can meet it) fail this is not drawn.
 bool may_be_in_view(const CameraBasis& camera, const Bounds3& bounds);
 
+// The depth buffer holds the light travel distance (near a black hole, the light's coordinate
+// time of flight) on a log scale between these.
+inline constexpr float kDepthNear = 1e-6f, kDepthFar = 1e12f;
+
 struct TessellationLimits {
   double max_error_pixels = 0.5;
   int max_level = 10;  // an edge is split into at most 2^max_level pieces
