@@ -4,8 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cctype>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -15,56 +13,16 @@
 #include "lightcone/color/sigmoid_polynomial.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/received_colour.hpp"
-#include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/shading.hpp"
-#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/black_hole_pass.hpp"
 #include "lightcone/raster/body_patterns.hpp"
-#include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/shader_sources.hpp"
 
 namespace lightcone {
-
-namespace {
-constexpr int kMaxLights = 16;  // lighting.glsl's
-}  // namespace
-
-std::vector<std::string> raster_differences(const Scene& scene) {
-  std::vector<std::string> differences;
-  bool lit = false, textured = false, textured_mesh = false, lit_textured = false,
-       clock_mesh = false;
-  for (const Object& o : scene.objects) {
-    const bool has_texture = std::holds_alternative<Texture>(o.material.pattern);
-    lit = lit || !o.material.unlit;
-    textured = textured || has_texture;
-    textured_mesh = textured_mesh || (has_texture && std::holds_alternative<MeshShape>(o.shape));
-    lit_textured = lit_textured || (has_texture && !o.material.unlit);
-    clock_mesh = clock_mesh || (std::holds_alternative<Clock>(o.material.pattern) &&
-                                std::holds_alternative<MeshShape>(o.shape));
-  }
-  if (textured_mesh) differences.push_back("textured meshes are drawn black");
-  if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
-
-  if (lit_textured) differences.push_back("lit textured materials are drawn black");
-  const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
-  if ((textured || sky_image) && scene.render.doppler == DopplerModel::kHue)
-    differences.push_back("textures and sky images under the hue colour model are drawn black");
-  if (lit && scene.render.doppler == DopplerModel::kHue)
-    differences.push_back("lit materials under the hue colour model are drawn black");
-  if (lit && scene.lights.size() > static_cast<std::size_t>(kMaxLights))
-    differences.push_back(fmt::format("only the first {} lights light surfaces", kMaxLights));
-  if (lit && scene.render.shadows && !scene.lights.empty())
-    differences.push_back("no shadows are cast");
-  if (scene.black_hole && scene.black_hole->disk && scene.render.doppler == DopplerModel::kHue)
-    differences.push_back("the accretion disk under the hue colour model is drawn black");
-  if (scene.black_hole && scene.black_hole->disk && !scene.objects.empty())
-    differences.push_back("objects are drawn in front of the accretion disk where it hides them");
-  return differences;
-}
 
 namespace {
 
@@ -244,7 +202,7 @@ struct RasterRenderer::Impl {
     std::size_t body = 0, first_vertex = 0, vertex_count = 0;
     int first_row = 0, pattern = 0;
     bool lit = false;
-    std::array<int, 2 * kMaxLights> reflection_row{}, reflection_moving{};
+    std::array<int, 2 * kRasterMaxLights> reflection_row{}, reflection_moving{};
     const RestMesh* mesh = nullptr;  // during prepare()
     double sphere_radius = 0;        // the GPU path's: its mesh's
   };
@@ -316,7 +274,7 @@ struct RasterRenderer::Impl {
     lights.clear();
     RenderSettings unshifted = settings;  // the light's colour shift alone
     unshifted.searchlight = SearchlightModel::kOff;
-    for (std::size_t l = 0; l < s.lights.size() && l < kMaxLights; ++l) {
+    for (std::size_t l = 0; l < s.lights.size() && l < kRasterMaxLights; ++l) {
       const Light& light = s.lights[l];
       LightDraw d;
       d.velocity = settings.relativity ? light.world_line.velocity : Vec3{};
@@ -449,7 +407,7 @@ struct RasterRenderer::Impl {
           const Rgb albedo = colours[k];
           for (std::size_t l = 0; l < lights.size(); ++l) {
             const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
-            const std::size_t slot = kMaxLights * static_cast<std::size_t>(k) + l;
+            const std::size_t slot = kRasterMaxLights * static_cast<std::size_t>(k) + l;
             if (lighting.co_moving(object, l)) {
               auto [it, added] = reflection_rows.emplace(key, 0);
               if (added)
@@ -686,8 +644,9 @@ struct RasterRenderer::Impl {
                 m.glossy ? static_cast<float>(m.glossy->roughness) : 1.0f);
     glUniform1f(uniform(p, "glossy_specular"),
                 m.glossy ? static_cast<float>(m.glossy->specular) : 0.0f);
-    glUniform1iv(uniform(p, "reflection_row"), 2 * kMaxLights, draw.reflection_row.data());
-    glUniform1iv(uniform(p, "reflection_moving"), 2 * kMaxLights, draw.reflection_moving.data());
+    glUniform1iv(uniform(p, "reflection_row"), 2 * kRasterMaxLights, draw.reflection_row.data());
+    glUniform1iv(uniform(p, "reflection_moving"), 2 * kRasterMaxLights,
+                 draw.reflection_moving.data());
   }
 
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
@@ -838,104 +797,9 @@ const GlDriver& RasterRenderer::driver() const {
   return impl_->driver;
 }
 
-bool software_rasteriser(const std::string& renderer) {
-  std::string name = renderer;
-  std::transform(name.begin(), name.end(), name.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  for (const char* software : {"llvmpipe", "softpipe", "swrast", "swiftshader",
-                               "basic render driver", "software renderer"})
-    if (name.find(software) != std::string::npos) return true;
-  return false;
-}
-
-bool tessellate_on_gpu(RasterTessellation mode, const GlDriver& driver) {
-  if (mode == RasterTessellation::kGpu && !driver.tessellation_shaders)
-    throw GlUnavailable("tessellation on the GPU needs OpenGL 4");
-  if (mode != RasterTessellation::kAuto) return mode == RasterTessellation::kGpu;
-  return driver.tessellation_shaders && !software_rasteriser(driver.renderer);
-}
-
 void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,
                           const std::vector<float>* shading_offsets) {
   impl_->pass(pixel_offset_x, pixel_offset_y, shading_offsets);
-}
-
-namespace {
-
-// Pass k of n: the pixels covered at one point of a multi-jittered pattern, each shaded at the
-// ray tracer's own sample k for it (one sample: the centres).
-void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int width, int height,
-                 std::vector<float>& offsets) {
-  if (n == 1) return renderer.pass(0.5, 0.5);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const PixelSample p = pixel_sample(x, y, k, n, seed);
-      float* o = &offsets[4 * (static_cast<std::size_t>(height - 1 - y) * width + x)];
-      o[0] = static_cast<float>(p.x);
-      o[1] = static_cast<float>(p.y);
-      o[2] = static_cast<float>(p.light[0]);
-      o[3] = static_cast<float>(p.light[1]);
-    }
-  const std::array<double, 2> cover =
-      multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);
-  renderer.pass(cover[0], cover[1], &offsets);
-}
-
-}  // namespace
-
-Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
-                    std::uint64_t seed, RasterTessellation mode) {
-  const auto start = std::chrono::steady_clock::now();
-  const HeadlessGlContext context;
-  const ResolvedScene resolved = resolve_scene(scene);
-  const EmissionTable emission(resolved);
-  RasterRenderer renderer;
-  const int width = scene.camera.width, height = scene.camera.height;
-  const FloatTarget target(width, height);
-  // camera.samples passes: each covers the pixels at one point of a multi-jittered pattern and
-  // shades every pixel at the ray tracer's own sample for it (one sample: the centres).
-  const int n = std::max(1, scene.camera.samples);
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  std::vector<double> sum(3 * pixels, 0.0);
-  std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
-  const bool on_gpu = tessellate_on_gpu(mode, renderer.driver());
-  std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  for (int k = 0; k < n; ++k) {
-    if (scene.camera.shutter > 0) {
-      // Motion blur: pass k is seen from the middle of the k-th of n parts of the shutter, as
-      // the ray tracer's sample k is.
-      Scene moved = scene;
-      moved.camera.world_line =
-          observation_after(scene.camera, scene.camera.shutter * (k + 0.5) / n);
-      const ResolvedScene seen = resolve_scene(moved);
-      const EmissionTable seen_emission(seen);
-      triangles =
-          std::max(triangles, renderer.prepare(seen, seen_emission, limits, on_gpu).triangles);
-      pass_sample(renderer, k, n, seed, width, height, offsets);
-      target.add_to(sum);
-      continue;
-    }
-    pass_sample(renderer, k, n, seed, width, height, offsets);
-    target.add_to(sum);
-  }
-  Image image;
-  image.width = width;
-  image.height = height;
-  image.rgb.resize(3 * pixels);
-  for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / n);
-  const double ev = scene.render.auto_exposure ? auto_exposure(image) : scene.render.exposure;
-  const auto scale = static_cast<float>(std::exp2(ev));
-  for (float& v : image.rgb) v *= scale;
-  if (stats) {
-    stats->exposure = ev;
-    stats->triangles = triangles;
-    stats->gpu_tessellation = on_gpu;
-    stats->gl = context.description();
-    stats->seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  return image;
 }
 
 }  // namespace lightcone
