@@ -11,6 +11,7 @@ packages=(
   libboost-math-dev
   libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools libglfw3-dev libimgui-dev
   xvfb xdotool x11-apps ffmpeg slurm-wlm munge
+  kstars-data
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()

@@ -1,0 +1,39 @@
+// The star catalogue: the naked-eye stars of KStars' catalogue (Hipparcos positions at J2000,
+// V magnitudes and B-V colour indices, from Debian's kstars-data), converted at build time into
+// a compact file of lightcone's own and read from there (docs/design/stars.md).
+#pragma once
+
+#include <filesystem>
+#include <istream>
+#include <vector>
+
+#include "lightcone/physics/vec.hpp"
+
+namespace lightcone {
+
+struct CatalogueStar {
+  Vec3 direction;         // unit, equatorial (physics/celestial.hpp)
+  float magnitude = 0;    // V
+  float colour_index = 0;  // B-V
+};
+
+// The stars of KStars' stars.dat (its fixed columns: right ascension hhmmss.ss, declination
+// +ddmmss.s, ..., V at columns 45-50, B-V at 51-55) brighter than `magnitude_limit`, in the
+// file's order (brightest first). Throws std::runtime_error naming the line of a record it
+// cannot read.
+std::vector<CatalogueStar> parse_kstars_stars(std::istream& in, double magnitude_limit);
+
+// The compact file: "LCSTARS1", the number of stars (uint32, little-endian), then per star its
+// direction (3 float64), V and B-V (2 float32).
+void write_star_catalogue(const std::filesystem::path& path,
+                          const std::vector<CatalogueStar>& stars);
+// Throws InputError naming the file when it is missing (and the package that provides it),
+// unreadable, or not such a file.
+std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path);
+
+// The bundled catalogue's name, "bright", and where the program finds it: beside the program
+// (the build folder's data/) or in the installed data folder (../share/lightcone/ from it).
+inline constexpr const char* kBrightCatalogueFile = "stars-bright.lcstars";
+std::filesystem::path bright_star_catalogue_path();
+
+}  // namespace lightcone
