@@ -186,12 +186,23 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
                            const HoleLitBody* lit) {
   const HoleView& hole = *scene.hole;
   const Vec3 across_x = any_perpendicular(hole.outward);
-  HoleSeeing seeing{
-      scene, hole, object, line, order, limits, across_x, cross(hole.outward, across_x), out};
-  seeing.lit = lit;
-  seeing.round = mesh.sphere_radius > 0;
-  seeing.closed =
+  const bool closed =
       std::holds_alternative<Sphere>(object.shape) || std::holds_alternative<Box>(object.shape);
+  HoleSeeing seeing{scene,
+                    hole,
+                    object,
+                    line,
+                    order,
+                    limits,
+                    across_x,
+                    cross(hole.outward, across_x),
+                    out,
+                    lit,
+                    mesh.sphere_radius > 0,
+                    closed,
+                    {},
+                    {},
+                    {}};
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   std::vector<HoleSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());

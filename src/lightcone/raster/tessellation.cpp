@@ -13,7 +13,10 @@ BodyView body_view(const ResolvedScene& scene, const ResolvedBody& body) {
   // shape = shape_origin + time_column t + spatial x, so x = spatial^-1 (shape - shape_origin)
   // - spatial^-1 time_column t.
   const Mat3 spatial_inverse = body.spatial.inverse();
-  BodyView view{spatial_inverse, body.shape_origin, (spatial_inverse * body.time_column) * -1.0};
+  BodyView view;
+  view.shape_to_trace = spatial_inverse;
+  view.shape_origin = body.shape_origin;
+  view.velocity = (spatial_inverse * body.time_column) * -1.0;
   if (body.spin < 0) return view;
   const ResolvedSpin& spin = scene.spins[body.spin];
   view.spin = &spin;
