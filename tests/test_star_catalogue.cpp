@@ -12,6 +12,7 @@
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/physics/celestial.hpp"
+#include "lightcone/physics/stars.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {
@@ -37,6 +38,26 @@ TEST(Celestial, EquatorialAxes) {
   const Vec3 d = equatorial_direction(0.7, -0.3);
   EXPECT_NEAR(std::atan2(d.x, -d.z), -0.7, 1e-12);
   EXPECT_NEAR(std::asin(d.y), -0.3, 1e-12);
+}
+
+// Ballesteros (2012) against measured temperatures: the Sun (B-V 0.653, Ramirez et al. 2012;
+// T_eff 5772 K, the IAU's nominal value, 2015) within 0.5 %, Procyon (B-V 0.42, T_eff 6530 K,
+// Kervella et al. 2004) within 5 % (a star is not quite a blackbody); hotter for bluer stars
+// throughout the catalogue's range.
+TEST(StarPhysics, TemperatureFromColourIndex) {
+  EXPECT_NEAR(star_temperature(0.653), 5772, 0.005 * 5772);
+  EXPECT_NEAR(star_temperature(0.42), 6530, 0.05 * 6530);
+  for (double bv = -0.35; bv < 2.0; bv += 0.05)
+    EXPECT_GT(star_temperature(bv), star_temperature(bv + 0.05)) << bv;
+}
+
+// Pogson: five magnitudes are a factor of 100, one about 2.512.
+TEST(StarPhysics, MagnitudesAreLogarithmic) {
+  EXPECT_DOUBLE_EQ(magnitude_flux_ratio(0), 1);
+  EXPECT_NEAR(magnitude_flux_ratio(5), 0.01, 1e-15);
+  EXPECT_NEAR(magnitude_flux_ratio(-1.46) / magnitude_flux_ratio(0.03), std::pow(100.0, 1.49 / 5),
+              1e-12);
+  EXPECT_NEAR(magnitude_flux_ratio(1) * 2.5118864315, 1, 1e-10);
 }
 
 // The bundled catalogue holds the naked-eye stars, with Sirius, Vega and Polaris where the
@@ -74,9 +95,9 @@ TEST(StarCatalogue, KStarsRecordsAreReadByColumn) {
       "000000.00 +000000.0 000000.0 000000.0 00000.0  7.00 0.50G2 0\n");
   const auto stars = parse_kstars_stars(in, 6.5);
   ASSERT_EQ(stars.size(), 2u);
-  EXPECT_LT(length(stars[0].direction -
-                   equatorial_direction(hours(6, 45, 8.92), degrees(-16, 42, 58.0))),
-            1e-12);
+  EXPECT_LT(
+      length(stars[0].direction - equatorial_direction(hours(6, 45, 8.92), degrees(-16, 42, 58.0))),
+      1e-12);
   EXPECT_FLOAT_EQ(stars[0].magnitude, -1.44f);
   EXPECT_FLOAT_EQ(stars[0].colour_index, 0.01f);
   EXPECT_FLOAT_EQ(stars[1].magnitude, 0.03f);

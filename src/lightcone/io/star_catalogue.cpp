@@ -56,11 +56,11 @@ std::vector<CatalogueStar> parse_kstars_stars(std::istream& in, double magnitude
                  arcseconds = field(line, 15, 4);
     const double magnitude = field(line, 45, 6), colour_index = field(line, 51, 5);
     const char sign = line.size() > 10 ? line[10] : '?';
-    for (const double v : {hours, minutes, seconds, degrees, arcminutes, arcseconds, magnitude,
-                           colour_index})
+    for (const double v :
+         {hours, minutes, seconds, degrees, arcminutes, arcseconds, magnitude, colour_index})
       if (!std::isfinite(v) || (sign != '+' && sign != '-'))
-        throw std::runtime_error(fmt::format("line {}: not a star record of KStars' stars.dat",
-                                             number));
+        throw std::runtime_error(
+            fmt::format("line {}: not a star record of KStars' stars.dat", number));
     if (!(magnitude < magnitude_limit)) continue;
     const double ra = (hours + minutes / 60 + seconds / 3600) * 15 * kDegree;
     const double dec =
@@ -90,9 +90,7 @@ void write_star_catalogue(const std::filesystem::path& path,
 }
 
 std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path) {
-  const auto fail = [&](const std::string& why) {
-    throw InputError(path.string() + ": " + why);
-  };
+  const auto fail = [&](const std::string& why) { throw InputError(path.string() + ": " + why); };
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
     fail(

@@ -12,8 +12,8 @@
 namespace lightcone {
 
 struct CatalogueStar {
-  Vec3 direction;         // unit, equatorial (physics/celestial.hpp)
-  float magnitude = 0;    // V
+  Vec3 direction;          // unit, equatorial (physics/celestial.hpp)
+  float magnitude = 0;     // V
   float colour_index = 0;  // B-V
 };
 
