@@ -660,6 +660,26 @@ TEST_F(Wigner, CollinearBoostsAddRapidities) {
 // =============================================================================================
 // velocity_addition
 
+// Lorentz contraction against the boost itself: the rest-frame events of a point at rest offset
+// d, carried into the frame where the body moves with beta, meet that frame's instant t = 0 at
+// contracted_offset(d, beta); rest_offset_of undoes it.
+TEST(LorentzContraction, OffsetsAtOneInstantAgainstTheBoost) {
+  const Vec3 beta{0.5, -0.3, 0.6};
+  const Mat4 to_moving = boost(beta * -1.0);  // rest frame -> the frame where the body moves
+  for (const Vec3& d : {Vec3{1, 0, 0}, Vec3{0.3, -2, 0.7}, Vec3{-1, 1, 1}}) {
+    // The rest-frame event (tau, d) maps to t = 0 for one tau (t is linear in tau).
+    const Vec4 a = to_moving * Vec4{0, d}, b = to_moving * Vec4{1, d};
+    const double tau = -a.t / (b.t - a.t);
+    const Vec4 at_zero = to_moving * Vec4{tau, d};
+    const Vec4 origin_a = to_moving * Vec4{0, {}}, origin_b = to_moving * Vec4{1, {}};
+    const double tau0 = -origin_a.t / (origin_b.t - origin_a.t);
+    const Vec3 origin = (to_moving * Vec4{tau0, {}}).x;
+    EXPECT_LT(length(contracted_offset(d, beta) - (at_zero.x - origin)), 1e-12);
+    EXPECT_LT(length(rest_offset_of(contracted_offset(d, beta), beta) - d), 1e-12);
+  }
+  EXPECT_EQ(contracted_offset({1, 2, 3}, {}).y, 2);
+}
+
 TEST_F(VelocityAddition, ParallelEinsteinFormula) {
   // (a + b) / (1 + a b) along a common line.
   for (double a : {-0.9, -0.3, 0.0, 0.5, 0.99})

@@ -23,15 +23,6 @@ constexpr double kPi = std::numbers::pi;
 // that the lit surface and the light's own sphere do not shadow themselves.
 constexpr double kShadowEpsilon = 1e-5;
 
-// Where the rest point `offset` of a body moving with beta is, relative to the body's origin,
-// at one instant of W: contracted along beta.
-Vec3 contracted(const Vec3& offset, const Vec3& beta) {
-  const double b2 = dot(beta, beta);
-  if (b2 == 0) return offset;
-  const double g = lorentz_gamma(beta);
-  return offset - beta * ((1 - 1 / g) * dot(beta, offset) / b2);
-}
-
 // Uniform point on the unit sphere from two numbers in [0, 1).
 Vec3 sphere_point(const std::array<double, 2>& u) {
   const double z = 1 - 2 * u[0], r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * kPi * u[1];
@@ -246,7 +237,7 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
   if (sphere) rest_offset = sphere_point(light_sample) * sphere->radius;
 
   // Its emission event, by the light-source delay mode.
-  const Vec3 offset_world = contracted(rest_offset, light_velocity);
+  const Vec3 offset_world = contracted_offset(rest_offset, light_velocity);
   auto position = [&](double t) {
     return light.world_line.position + light_velocity * (t - light.world_line.time) + offset_world;
   };
@@ -330,7 +321,7 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   double intensity = light.intensity;
   const auto* sphere = std::get_if<SphereLight>(&light.kind);
   if (sphere) rest_offset = sphere_point(light_sample) * sphere->radius;
-  const Vec3 offset = contracted(rest_offset, light.world_line.velocity);
+  const Vec3 offset = contracted_offset(rest_offset, light.world_line.velocity);
   // The light that reaches the surface event left at t_e with t_s - t_e the coordinate time of
   // the direct ray from where the light then was: exact for a light at rest; on a moving line
   // the root of that equation, whose left side falls strictly with t_e (nothing outruns light),

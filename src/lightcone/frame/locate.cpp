@@ -97,12 +97,8 @@ struct PointState {
 };
 PointState body_point_at(const HoleWorldLine& line, const Vec3& rest_point, double t) {
   const HoleWorldLineState s = line.at(t);
-  Vec3 offset = rest_point;
-  const double vv = dot(s.velocity, s.velocity);
-  if (vv > 0)
-    offset =
-        offset + s.velocity * ((1 / lorentz_gamma(s.velocity) - 1) * dot(offset, s.velocity) / vv);
-  return PointState{s.position + offset, s.local_velocity, s.proper_time};
+  return PointState{s.position + contracted_offset(rest_point, s.velocity), s.local_velocity,
+                    s.proper_time};
 }
 
 }  // namespace

@@ -121,4 +121,16 @@ AffineMap4 rest_frame_map(const Vec4& event, const Vec3& beta) {
   return {l, -1.0 * (l * event)};
 }
 
+Vec3 contracted_offset(const Vec3& rest_offset, const Vec3& beta) {
+  const double b2 = dot(beta, beta);
+  if (b2 == 0) return rest_offset;
+  return rest_offset - beta * ((1 - 1 / lorentz_gamma(beta)) * dot(beta, rest_offset) / b2);
+}
+
+Vec3 rest_offset_of(const Vec3& offset, const Vec3& beta) {
+  const double b2 = dot(beta, beta);
+  if (b2 == 0) return offset;
+  return offset + beta * ((lorentz_gamma(beta) - 1) * dot(beta, offset) / b2);
+}
+
 }  // namespace lightcone

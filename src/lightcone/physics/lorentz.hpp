@@ -76,6 +76,13 @@ inline Vec3 velocity_of(const Vec4& u) {
   return u.x / u.t;
 }
 
+// Lorentz contraction of a body's extent: where the point at `rest_offset` from its origin (in
+// its rest frame, axes parallel to the frame's) lies relative to the origin at one instant of a
+// frame in which the body moves with beta: shortened by 1 / gamma along beta, unchanged across.
+Vec3 contracted_offset(const Vec3& rest_offset, const Vec3& beta);
+// Its inverse: the rest-frame offset of a point seen at `offset` from the origin at one instant.
+Vec3 rest_offset_of(const Vec3& offset, const Vec3& beta);
+
 // An affine map of events: e' = linear * e + offset.
 struct AffineMap4 {
   Mat4 linear;

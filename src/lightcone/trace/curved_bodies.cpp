@@ -280,14 +280,7 @@ Vec3 CurvedBodies::Body::shape_point(const ResolvedBody& resolved, const Vec4& e
   // Its rest frame's coordinates of a point simultaneous in W with its origin at offset d:
   // d stretched by gamma along its velocity.
   const HoleWorldLineState state = known ? *known : line.at(event.t);
-  const Vec3 d = event.x - hole - state.position;
-  const double vv = dot(state.velocity, state.velocity);
-  Vec3 rest = d;
-  if (vv > 0) {
-    const double gamma = lorentz_gamma(state.velocity);
-    rest = d + state.velocity * ((gamma - 1) * dot(d, state.velocity) / vv);
-  }
-  return to_shape * rest;
+  return to_shape * rest_offset_of(event.x - hole - state.position, state.velocity);
 }
 
 bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, double from,
