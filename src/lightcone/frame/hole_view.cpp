@@ -80,10 +80,11 @@ LogShiftRange disk_log_shift_range(const HoleView& hole) {
   return {hole.camera_log_energy_lo - emitted_hi, hole.camera_log_energy_hi - emitted_lo};
 }
 
-HoleDepth object_depth(const HoleView& hole, const Object& object) {
+namespace {
+
+// object_depth, for the object's world-line `line` and its reach from its origin.
+HoleDepth line_depth(const HoleView& hole, const HoleWorldLine& line, double reach) {
   const double m = hole.mass;
-  const HoleWorldLine line = hole_world_line(object, BlackHole{hole.centre, m, std::nullopt});
-  const double reach = origin_radius(object.shape, object.scale);
   // A fall reaches c at the horizon, where its light is shifted without bound: the range stops
   // at 2M (1 + 1e-6), where its speed is sqrt(1 - f / E^2).
   const double nearest = std::max(line.nearest() - reach, 2 * m * (1 + 1e-6));
@@ -93,6 +94,13 @@ HoleDepth object_depth(const HoleView& hole, const Object& object) {
     speed = std::sqrt(1 - f / (e * e));
   }
   return {0.5 * std::log1p(-2 * m / nearest), std::atanh(std::min(speed, 1 - 1e-16))};
+}
+
+}  // namespace
+
+HoleDepth object_depth(const HoleView& hole, const Object& object) {
+  return line_depth(hole, hole_world_line(object, BlackHole{hole.centre, hole.mass, std::nullopt}),
+                    origin_radius(object.shape, object.scale));
 }
 
 HoleDepth light_depth(const HoleView& hole, const Light& light) {
@@ -111,8 +119,9 @@ HoleDepth light_depth(const HoleView& hole, const Light& light) {
 LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
   const double m = hole.mass;
   const HoleWorldLine line = hole_world_line(object, BlackHole{hole.centre, m, std::nullopt});
-  const double farthest = line.farthest() + origin_radius(object.shape, object.scale);
-  const HoleDepth depth = object_depth(hole, object);
+  const double reach = origin_radius(object.shape, object.scale);
+  const double farthest = line.farthest() + reach;
+  const HoleDepth depth = line_depth(hole, line, reach);
   const double far_lapse = std::isinf(farthest) ? 0.0 : 0.5 * std::log1p(-2 * m / farthest);
   return {hole.camera_log_energy_lo + depth.log_lapse - depth.rapidity,
           hole.camera_log_energy_hi + far_lapse + depth.rapidity};
