@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lightcone/physics/aberration.hpp"
+#include "lightcone/physics/emission_root.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
 #include "lightcone/physics/vec.hpp"
@@ -678,6 +679,32 @@ TEST(LorentzContraction, OffsetsAtOneInstantAgainstTheBoost) {
     EXPECT_LT(length(rest_offset_of(contracted_offset(d, beta), beta) - d), 1e-12);
   }
   EXPECT_EQ(contracted_offset({1, 2, 3}, {}).y, 2);
+}
+
+// The bracketed root for light delay without a closed form, against the closed form of a
+// straight line in flat space (retarded_delay), from the receiver's time and from guesses on
+// either side; a late end where the source's light never arrives (+infinity) is moved back; a
+// NaN (no such light) gives none.
+TEST(EmissionTimeRoot, MatchesTheClosedFormOfAStraightLine) {
+  const Vec3 x0{3, -1, 2}, beta{-0.6, 0.3, 0.5};
+  const double t_r = 10;
+  const auto late = [&](double t) { return t + length(x0 + beta * t) - t_r; };
+  const double want = t_r - retarded_delay(x0 + beta * t_r, beta);
+  for (const double start : {t_r, want - 3.0, want + 0.5, want - 1e-6}) {
+    const auto root = emission_time_root(late, t_r, start, late(start));
+    ASSERT_TRUE(root) << start;
+    EXPECT_NEAR(*root, want, 1e-12 * (1 + std::abs(want))) << start;
+  }
+  const auto never_after = [&](double t) {
+    return t > want + 1 ? std::numeric_limits<double>::infinity() : late(t);
+  };
+  const auto root = emission_time_root(never_after, t_r, t_r, never_after(t_r));
+  ASSERT_TRUE(root);
+  EXPECT_NEAR(*root, want, 1e-12 * (1 + std::abs(want)));
+  const auto none = [&](double t) {
+    return t < want + 0.5 ? std::numeric_limits<double>::quiet_NaN() : late(t);
+  };
+  EXPECT_FALSE(emission_time_root(none, t_r, t_r, none(t_r)));
 }
 
 TEST_F(VelocityAddition, ParallelEinsteinFormula) {

@@ -1,7 +1,6 @@
 #include "lightcone/frame/lighting.hpp"
 
 #include <algorithm>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -10,6 +9,7 @@
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/shading.hpp"
 #include "lightcone/physics/doppler.hpp"
+#include "lightcone/physics/emission_root.hpp"
 #include "lightcone/physics/hole_light_leg.hpp"
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -324,8 +324,7 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   const Vec3 offset = contracted_offset(rest_offset, light.world_line.velocity);
   // The light that reaches the surface event left at t_e with t_s - t_e the coordinate time of
   // the direct ray from where the light then was: exact for a light at rest; on a moving line
-  // the root of that equation, whose left side falls strictly with t_e (nothing outruns light),
-  // bracketed by stepping back and solved with TOMS 748.
+  // the root of that equation (physics/emission_root.hpp).
   HoleWorldLineState state = line.at(surface_world.t);
   auto leg = hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
                             surface_velocity, order);
@@ -336,25 +335,13 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
       return hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
                             surface_velocity, order);
     };
-    const auto miss = [&](double t) {
+    const auto late = [&](double t) {
       const auto l = leg_at(t);
-      return l ? surface_world.t - t - l->time : std::numeric_limits<double>::quiet_NaN();
+      return l ? t + l->time - surface_world.t : std::numeric_limits<double>::quiet_NaN();
     };
-    double hi = surface_world.t, value_hi = -leg->time;
-    double step = leg->time, lo = hi - step, value_lo = miss(lo);
-    for (int k = 0; k < 64 && value_lo < 0; ++k) {
-      hi = lo, value_hi = value_lo;
-      step *= 2, lo = hi - step, value_lo = miss(lo);
-    }
-    if (!(value_lo >= 0)) return false;
-    double t_e = lo;
-    if (value_lo > 0) {
-      std::uintmax_t iterations = 100;
-      const auto [a, b] = boost::math::tools::toms748_solve(
-          miss, lo, hi, value_lo, value_hi, boost::math::tools::eps_tolerance<double>(),
-          iterations);
-      t_e = (a + b) / 2;
-    }
+    const auto root = emission_time_root(late, surface_world.t, surface_world.t, leg->time);
+    if (!root) return false;
+    const double t_e = *root;
     leg = leg_at(t_e);
     if (!leg) return false;
   }

@@ -1,13 +1,13 @@
 #include "lightcone/frame/locate.hpp"
 
 #include <algorithm>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/aberration.hpp"
+#include "lightcone/physics/emission_root.hpp"
 #include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
@@ -117,13 +117,13 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
                                : std::nullopt;
   };
   // late(t) > 0 where light from the point at t arrives after the camera's time; infinite where
-  // the point is within the horizon (its light never arrives).
+  // the point is within the horizon (its light never arrives), NaN where it has no image of this
+  // order.
   const auto late = [&](double t) {
     const auto at = ray_at(t);
-    if (!at) {
-      if (r_e <= 2 * hole.mass) return std::numeric_limits<double>::infinity();
-      throw std::domain_error("no image of this order");
-    }
+    if (!at)
+      return r_e <= 2 * hole.mass ? std::numeric_limits<double>::infinity()
+                                  : std::numeric_limits<double>::quiet_NaN();
     return t + at->lens.time - now;
   };
   double t_e = now;
@@ -135,50 +135,15 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
     t_e = now - ray->lens.time;
     point = body_point_at(line, rest_point, t_e);  // (its clock then)
   } else {
-    try {
-      // The bracket, from the guess (or the camera's time) toward the root: late rises with t
-      // at a rate 1 + dT/dt between 0 and 2, so a step of |late| (grown by half each time it
-      // falls short) reaches past the root within a few.
-      const double start =
-          emission_time_guess && *emission_time_guess < now ? *emission_time_guess : now;
-      const double late_start = late(start);
-      double lo = start, hi = start, late_lo = late_start, late_hi = late_start;
-      const auto first_step = [&](double l) {
-        return std::isfinite(l) ? std::max(1.5 * std::abs(l), 1e-9 * (1 + std::abs(start))) : 1.0;
-      };
-      if (late_start > 0) {
-        for (double step = first_step(late_start); late_lo > 0 && step < 1e300; step *= 2) {
-          hi = lo, late_hi = late_lo;
-          lo = start - step;
-          late_lo = late(lo);
-        }
-        if (!(late_lo <= 0)) return std::nullopt;
-      } else {
-        for (double step = first_step(late_start); !(late_hi > 0) && hi < now; step *= 2) {
-          lo = hi, late_lo = late_hi;
-          hi = std::min(start + step, now);
-          late_hi = late(hi);
-        }
-        if (!(late_hi > 0)) return std::nullopt;  // (a point inside its own light cone)
-      }
-      // A part of a body that has fallen within the horizon by `hi`: its light from nearer `lo`
-      // still arrives, late, and the bracket's late end is moved there.
-      for (int k = 0; !std::isfinite(late_hi) && k < 200; ++k) {
-        const double mid = lo + (hi - lo) / 2;
-        const double late_mid = late(mid);
-        (late_mid <= 0 ? lo : hi) = mid;
-        (late_mid <= 0 ? late_lo : late_hi) = late_mid;
-      }
-      if (!std::isfinite(late_hi)) return std::nullopt;
-      std::uintmax_t iterations = 200;
-      const auto [a, b] = boost::math::tools::toms748_solve(
-          late, lo, hi, late_lo, late_hi, boost::math::tools::eps_tolerance<double>(), iterations);
-      t_e = (a + b) / 2;
-      ray = ray_at(t_e);
-      if (!ray) return std::nullopt;
-    } catch (const std::domain_error&) {
-      return std::nullopt;
-    }
+    // From the guess (or the camera's time); a part of a body that has fallen within the
+    // horizon by the camera's time is still seen from before it crossed.
+    const double start =
+        emission_time_guess && *emission_time_guess < now ? *emission_time_guess : now;
+    const auto root = emission_time_root(late, now, start, late(start));
+    if (!root) return std::nullopt;
+    t_e = *root;
+    ray = ray_at(t_e);
+    if (!ray) return std::nullopt;
   }
   HolePointImage out;
   out.direction = aberrate_into_moving_frame(ray->static_direction, camera.velocity);
