@@ -9,12 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "lightcone/frame/camera_model.hpp"
-#include "lightcone/frame/locate.hpp"
-#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/image_file.hpp"
-#include "lightcone/raster/gl_context.hpp"
-#include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/trace/aov.hpp"
 #include "lightcone/trace/renderer.hpp"

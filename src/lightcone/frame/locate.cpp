@@ -79,12 +79,9 @@ Vec3 photon_direction_at_point(const HoleView& hole, const HoleImageRay& ray, do
 }
 
 // The energy a body moving with velocity w against the static observer at radius r measures for
-// the photon of one image (unit energy at infinity), which reaches the camera on `ray`: in that
-// observer's frame the photon has energy 1 / sqrt(f) and travels along n, so
-// gamma_w (1 - n . w) / sqrt(f).
-double emitter_photon_energy(const HoleView& hole, const HoleImageRay& ray, double r,
-                             const Vec3& w) {
-  const Vec3 n = photon_direction_at_point(hole, ray, r);
+// a photon of unit energy at infinity travelling along n (photon_direction_at_point) there: in
+// that observer's frame the photon has energy 1 / sqrt(f), so gamma_w (1 - n . w) / sqrt(f).
+double emitter_photon_energy(const HoleView& hole, const Vec3& n, double r, const Vec3& w) {
   return lorentz_gamma(w) * (1 - dot(n, w)) / std::sqrt(1 - 2 * hole.mass / r);
 }
 
@@ -153,7 +150,7 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
   out.to_camera = photon_direction_at_point(hole, *ray, r_e);
   out.local_velocity = point.local_velocity;
   out.shift = camera_photon_energy(hole, out.direction) /
-              emitter_photon_energy(hole, *ray, r_e, point.local_velocity);
+              emitter_photon_energy(hole, out.to_camera, r_e, point.local_velocity);
   return out;
 }
 
@@ -213,8 +210,8 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
       out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
       out.emission_time = now - ray->lens.time;
       out.emission_position = query.value;
-      out.shift =
-          camera_photon_energy(hole, out.direction) / emitter_photon_energy(hole, *ray, r_e, {});
+      out.shift = camera_photon_energy(hole, out.direction) /
+                  emitter_photon_energy(hole, photon_direction_at_point(hole, *ray, r_e), r_e, {});
     }
     LocateResult one;
     one.direction = out.direction;

@@ -31,6 +31,13 @@ double auto_exposure(const Image& linear) {
   return std::log2(0.8 / *nth);
 }
 
+double apply_exposure(Image& linear, const RenderSettings& settings) {
+  const double ev = settings.auto_exposure ? auto_exposure(linear) : settings.exposure;
+  const auto scale = static_cast<float>(std::exp2(ev));
+  for (float& v : linear.rgb) v *= scale;
+  return ev;
+}
+
 Image tone_map(const Image& linear, ToneMap curve) {
   Image out = linear;
   // Each pixel on its own: in parallel, off the critical path of an animation's next frame.

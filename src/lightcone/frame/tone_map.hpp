@@ -10,6 +10,10 @@ namespace lightcone {
 // rest of the picture is readable. 0 for an image without light.
 double auto_exposure(const Image& linear);
 
+// Scales a rendered image by 2^EV, EV the settings' exposure or (auto_exposure on) the automatic
+// one; returns the EV applied. Both renderers' pictures end here.
+double apply_exposure(Image& linear, const RenderSettings& settings);
+
 // Display-referred linear values in [0, 1] (the PNG then applies the sRGB curve):
 //   clamp:    min(max(L, 0), 1) per channel;
 //   reinhard: L / (1 + Y) on the luminance Y, so hue is kept while highlights compress;

@@ -27,13 +27,13 @@ struct HoleSeeing {
     ApparentPoint at;
     // The emission point along the line from the hole toward the camera, and across it.
     double along = 0, across_x = 0, across_y = 0;
-    double emission_time = 0;
-    float log_shift = 0, proper_time = 0;
-    // For a lit body: the emission event, and in the static observer's frame there the light's
-    // direction toward the camera and the body's velocity, and the shift.
+    // The emission event, the shift g and the body's clock then; for a lit body also, in the
+    // static observer's frame there, the light's direction toward the camera and the body's
+    // velocity.
     Vec4 event;
-    Vec3 to_camera, local_velocity;
     double shift = 1;
+    float proper_time = 0;
+    Vec3 to_camera, local_velocity;
   };
   const ResolvedScene& scene;
   const HoleView& hole;
@@ -63,14 +63,12 @@ struct HoleSeeing {
                                              order, emission_time_guess);
     if (!image) return c;
     c.seen = true;
-    c.emission_time = image->emission_time;
     const double lag = scene.scene->camera.world_line.time - image->emission_time;
     c.at = {image->direction * lag, project_direction(scene.camera, image->direction), p};
     const Vec3 from_hole = image->emission_position - hole.centre;
     c.along = dot(from_hole, hole.outward);
     c.across_x = dot(from_hole, across_x);
     c.across_y = dot(from_hole, across_y);
-    c.log_shift = static_cast<float>(std::log(image->shift));
     c.proper_time = static_cast<float>(image->proper_time);
     c.event = {image->emission_time, image->emission_position};
     c.to_camera = image->to_camera;
@@ -120,9 +118,9 @@ struct HoleSeeing {
       // The ends' emission times bracket the midpoint's closely.
       std::optional<double> guess;
       if (a.seen && b.seen)
-        guess = (a.emission_time + b.emission_time) / 2;
+        guess = (a.event.t + b.event.t) / 2;
       else if (a.seen || b.seen)
-        guess = a.seen ? a.emission_time : b.emission_time;
+        guess = a.seen ? a.event.t : b.event.t;
       it->second = corner(p, guess);
     }
     return it->second;
@@ -166,11 +164,11 @@ struct HoleSeeing {
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
     if (!a.seen || !b.seen || !c.seen || winds_round_axis(a, b, c)) return;
     for (const Corner* k : {&a, &b, &c}) {
-      out.insert(
-          out.end(),
-          {static_cast<float>(k->at.position.x), static_cast<float>(k->at.position.y),
-           static_cast<float>(k->at.position.z), static_cast<float>(k->p.x),
-           static_cast<float>(k->p.y), static_cast<float>(k->p.z), k->log_shift, k->proper_time});
+      out.insert(out.end(),
+                 {static_cast<float>(k->at.position.x), static_cast<float>(k->at.position.y),
+                  static_cast<float>(k->at.position.z), static_cast<float>(k->p.x),
+                  static_cast<float>(k->p.y), static_cast<float>(k->p.z),
+                  static_cast<float>(std::log(k->shift)), k->proper_time});
       static const Colours kNone{};
       const Colours& lit_colours = lit ? colours_at(*k) : kNone;
       out.insert(out.end(), lit_colours.begin(), lit_colours.end());
@@ -210,7 +208,7 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
   std::optional<double> guess;
   for (const Vec3& p : mesh.positions) {
     corners.push_back(seeing.corner(p, guess));
-    if (corners.back().seen) guess = corners.back().emission_time;
+    if (corners.back().seen) guess = corners.back().event.t;
   }
   for (const auto& [i, j, k] : mesh.triangles) {
     const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];

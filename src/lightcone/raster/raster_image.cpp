@@ -132,9 +132,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   image.height = height;
   image.rgb.resize(3 * pixels);
   for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / n);
-  const double ev = scene.render.auto_exposure ? auto_exposure(image) : scene.render.exposure;
-  const auto scale = static_cast<float>(std::exp2(ev));
-  for (float& v : image.rgb) v *= scale;
+  const double ev = apply_exposure(image, scene.render);
   if (stats) {
     stats->exposure = ev;
     stats->triangles = triangles;

@@ -269,9 +269,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   if (observations > 1)
     for (std::size_t v = 0; v < sum.size(); ++v) image.rgb[v] = static_cast<float>(sum[v] / n);
 
-  const double ev = scene.render.auto_exposure ? auto_exposure(image) : scene.render.exposure;
-  const auto scale = static_cast<float>(std::exp2(ev));
-  for (float& v : image.rgb) v *= scale;
+  const double ev = apply_exposure(image, scene.render);
 
   if (stats) {
     stats->exposure = ev;
