@@ -25,18 +25,6 @@ void set_pixel(const CameraBasis& camera, LocateResult& result) {
       p.in_front && p.x >= 0 && p.x <= camera.width && p.y >= 0 && p.y <= camera.height;
 }
 
-// The look direction in F of a ray that, carried into the sky's frame, looks along d.
-Vec3 direction_from_sky(const ResolvedScene& r, const Vec3& d_pattern) {
-  // Solve sky_time_column * ray_time + sky_spatial * u  =  lambda d  for u (unit).
-  const Mat3 inv = r.sky_spatial.inverse();
-  const Vec3 a = inv * d_pattern;                       // lambda part
-  const Vec3 b = inv * r.sky_time_column * r.ray_time;  // fixed part: u = lambda a - b
-  // |lambda a - b| = 1, lambda > 0.
-  const double aa = dot(a, a), ab = dot(a, b), bb = dot(b, b);
-  const double lambda = (ab + std::sqrt(ab * ab - aa * (bb - 1.0))) / aa;
-  return normalize(a * lambda - b);
-}
-
 // One image's ray from the camera toward a point at radius r_e in direction `toward` from the
 // hole: its look direction in the camera's static frame, or none.
 struct HoleImageRay {
@@ -154,6 +142,22 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
   return out;
 }
 
+std::optional<HoleSkyImage> hole_sky_image(const HoleView& hole, const Scene& scene,
+                                           const Vec3& sky_direction, int order) {
+  const Vec3 toward = aberrate_out_of_moving_frame(sky_direction, scene.sky.velocity);
+  const auto ray = hole_image_ray(hole, std::numeric_limits<double>::infinity(), toward, order);
+  if (!ray) return std::nullopt;
+  HoleSkyImage image;
+  image.direction =
+      aberrate_into_moving_frame(ray->static_direction, scene.camera.world_line.velocity);
+  image.shift = camera_photon_energy(hole, image.direction) / sky_photon_energy(hole, toward);
+  // Solid angles go as the inverse square of the photon's energy in each frame, and the lens
+  // maps the static observer's at the camera to W's far away as f times `focusing`: the
+  // energies 1 / sqrt(f) (static) and 1 (W) cancel that f, leaving focusing / g^2.
+  image.magnification = ray->lens.focusing / (image.shift * image.shift);
+  return image;
+}
+
 namespace {
 
 // Near a black hole: the images of a point at rest in W, of a direction far away, or of a point
@@ -186,12 +190,10 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
     std::optional<HoleImageRay> ray;
     double r_e = std::numeric_limits<double>::infinity();
     if (query.kind == LocateQuery::Kind::SkyDirection) {
-      const Vec3 toward = aberrate_out_of_moving_frame(scene.sky.rotation * normalize(query.value),
-                                                       scene.sky.velocity);
-      ray = hole_image_ray(hole, r_e, toward, order);
-      if (!ray) continue;
-      out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
-      out.shift = camera_photon_energy(hole, out.direction) / sky_photon_energy(hole, toward);
+      const auto image = hole_sky_image(hole, scene, normalize(query.value), order);
+      if (!image) continue;
+      out.direction = image->direction;
+      out.shift = image->shift;
     } else if (object) {
       const auto image =
           hole_body_point_image(hole, scene.camera.world_line, *line, rest_point, order);
@@ -239,7 +241,7 @@ LocateResult locate(const Scene& scene, const LocateQuery& query) {
   LocateResult result;
   if (query.kind == LocateQuery::Kind::SkyDirection) {
     result.direction =
-        direction_from_sky(r, scene.sky.rotation.transposed() * normalize(query.value));
+        r.look_direction_from_sky(scene.sky.rotation.transposed() * normalize(query.value));
     result.doppler = r.doppler(result.direction, r.sky_velocity);
     set_pixel(r.camera, result);
     return result;

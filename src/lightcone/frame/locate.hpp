@@ -74,4 +74,18 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
                                                     const Vec3& rest_point, int order,
                                                     std::optional<double> emission_time_guess = {});
 
+// Near a black hole (the camera outside the horizon, not falling): the image of order k of a
+// direction far away, `sky_direction` in the sky's rest frame (unit, pointing away from the
+// hole), on its exact ray, carried into the camera's frame by the flat aberration law: its look
+// direction, its shift g and the ratio of a small bundle's solid angle at the camera to that in
+// the sky's frame (the lens's and both frames' aberration together: 1 / g^2 without a lens).
+// None where that order does not exist. locate --direction and the stars both use it.
+struct HoleSkyImage {
+  Vec3 direction;  // look direction, camera rest frame
+  double shift = 1;
+  double magnification = 1;
+};
+std::optional<HoleSkyImage> hole_sky_image(const HoleView& hole, const Scene& scene,
+                                           const Vec3& sky_direction, int order);
+
 }  // namespace lightcone

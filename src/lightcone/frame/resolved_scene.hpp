@@ -210,6 +210,9 @@ struct ResolvedScene {
   Vec3 sky_direction(const Vec3& u) const {
     return normalize(sky_time_column * ray_time + sky_spatial * u);
   }
+  // Its inverse: the look direction whose ray looks along `pattern_direction` (unit) in the
+  // sky's pattern coordinates.
+  Vec3 look_direction_from_sky(const Vec3& pattern_direction) const;
 };
 
 ResolvedScene resolve_scene(const Scene& scene);

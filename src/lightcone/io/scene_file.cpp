@@ -20,6 +20,7 @@
 #include "lightcone/io/scene_overrides.hpp"
 #include "lightcone/io/scene_parse.hpp"
 #include "lightcone/io/scene_reader.hpp"
+#include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/world_line.hpp"
@@ -431,6 +432,15 @@ void SceneReader::load_assets(Scene& scene) {
                                                  mesh_report.degenerate_triangles_dropped));
       }
       std::get<MeshShape>(scene.objects[a.object].shape).mesh = mesh;
+      continue;
+    }
+    if (a.kind == Asset::kStars) {
+      SkyStars& stars = *scene.sky.stars;
+      auto kept = std::make_shared<std::vector<CatalogueStar>>(
+          load(a, [&] { return read_star_catalogue(a.file); }));
+      std::erase_if(*kept,
+                    [&](const CatalogueStar& s) { return !(s.magnitude < stars.magnitude_limit); });
+      stars.stars = std::move(kept);
       continue;
     }
     auto& image = images[key];

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lightcone/io/scene_reader.hpp"
+#include "lightcone/io/star_catalogue.hpp"
 
 namespace lightcone::scene_io {
 
@@ -200,8 +201,44 @@ EmissionSpectrum SceneReader::emission_spectrum(const Node& n) const {
 }
 
 Sky SceneReader::sky(const Node& n) {
-  const std::string_view kind = one_of(n, {"color", "image", "grid"}, {"velocity", "rotation"});
   Sky s;
+  if (Node stars = member(n, "stars"); stars.value) s.stars = sky_stars(stars);
+  // The pattern: one of these, or none under stars alone (a black sky).
+  const bool needs_pattern = !s.stars || n.value->contains("color") || n.value->contains("image") ||
+                             n.value->contains("grid");
+  if (!needs_pattern) {
+    object(n, {"stars"}, {"velocity", "rotation"});
+  } else {
+    pattern(n, s);
+  }
+  if (Node v = member(n, "velocity"); v.value) s.velocity = velocity(v);
+  if (Node r = member(n, "rotation"); r.value) s.rotation = rotation(r);
+  return s;
+}
+
+std::optional<SkyStars> SceneReader::sky_stars(const Node& n) {
+  SkyStars stars;
+  if (n.value->is_boolean()) {
+    if (!boolean(n)) return std::nullopt;
+  } else {
+    object(n, {}, {"catalogue", "magnitude_limit", "exposure"});
+    if (Node c = member(n, "catalogue"); c.value) {
+      stars.catalogue = string(c);
+      if (stars.catalogue != "bright")
+        fail(c, fmt::format("unknown catalogue '{}' (the one lightcone has: \"bright\", the "
+                            "naked-eye stars)",
+                            stars.catalogue));
+    }
+    if (Node m = member(n, "magnitude_limit"); m.value) stars.magnitude_limit = number(m);
+    if (Node e = member(n, "exposure"); e.value) stars.exposure = number(e);
+  }
+  assets_.push_back({Asset::kStars, 0, bright_star_catalogue_path(), n.path()});
+  return stars;
+}
+
+void SceneReader::pattern(const Node& n, Sky& s) {
+  const std::string_view kind =
+      one_of(n, {"color", "image", "grid"}, {"velocity", "rotation", "stars"});
   const Node body = member(n, kind);
   if (kind == "color") {
     s.pattern = SolidColor{color(body)};
@@ -222,9 +259,6 @@ Sky SceneReader::sky(const Node& n) {
     if (Node b = member(body, "background"); b.value) grid.background = color(b);
     s.pattern = grid;
   }
-  if (Node v = member(n, "velocity"); v.value) s.velocity = velocity(v);
-  if (Node r = member(n, "rotation"); r.value) s.rotation = rotation(r);
-  return s;
 }
 
 }  // namespace lightcone::scene_io

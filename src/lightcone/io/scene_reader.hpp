@@ -33,7 +33,7 @@ class SceneReader : public SceneValueReader {
   // A mesh or image file named at `path`, to be loaded once the whole document is valid (so that
   // a typo near the end does not wait for large files to load first).
   struct Asset {
-    enum Kind { kMesh, kTexture, kSkyImage } kind;
+    enum Kind { kMesh, kTexture, kSkyImage, kStars } kind;
     std::size_t object = 0;
     std::filesystem::path file;
     std::string path;
@@ -82,6 +82,8 @@ class SceneReader : public SceneValueReader {
   Light read_light(const Node& n) const;
   EmissionSpectrum emission_spectrum(const Node& n) const;
   Sky sky(const Node& n);
+  void pattern(const Node& n, Sky& s);
+  std::optional<SkyStars> sky_stars(const Node& n);
 
   // --- The black hole (scene_black_hole.cpp) ----------------------------------------------
 

@@ -7,15 +7,9 @@
 #include <istream>
 #include <vector>
 
-#include "lightcone/physics/vec.hpp"
+#include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
-
-struct CatalogueStar {
-  Vec3 direction;          // unit, equatorial (physics/celestial.hpp)
-  float magnitude = 0;     // V
-  float colour_index = 0;  // B-V
-};
 
 // The stars of KStars' stars.dat (its fixed columns: right ascension hhmmss.ss, declination
 // +ddmmss.s, ..., V at columns 45-50, B-V at 51-55) brighter than `magnitude_limit`, in the

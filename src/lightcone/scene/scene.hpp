@@ -271,10 +271,26 @@ struct SkyImage {
   std::shared_ptr<const Image> image;  // equirectangular
 };
 
+// A star of a catalogue: a point source far away (docs/design/stars.md).
+struct CatalogueStar {
+  Vec3 direction;          // unit, equatorial: the sky's pattern coordinates (physics/celestial)
+  float magnitude = 0;     // V
+  float colour_index = 0;  // B-V
+};
+
+// The stars drawn over the sky's pattern, in its coordinates (so moving and turning with it).
+struct SkyStars {
+  std::string catalogue = "bright";
+  double magnitude_limit = 6.5;  // stars brighter (smaller V) than this are drawn
+  double exposure = 0;           // EV on every star's flux (StarPhotometry)
+  std::shared_ptr<const std::vector<CatalogueStar>> stars;  // those brighter than the limit
+};
+
 struct Sky {
   std::variant<SolidColor, SkyImage, SkyGrid> pattern = SolidColor{{0, 0, 0}};
   Vec3 velocity;  // the sky's rest frame is the pure boost of W by this velocity
   Mat3 rotation;  // orientation of the pattern in the sky's rest frame
+  std::optional<SkyStars> stars;
 };
 
 // How the Doppler shift changes colour (see docs/design/colour.md).

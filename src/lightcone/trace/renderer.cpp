@@ -11,6 +11,7 @@
 
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/sampler.hpp"
+#include "lightcone/frame/star_field.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/trace/curved_bodies.hpp"
@@ -164,6 +165,12 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
       std::any_of(scene.lights.begin(), scene.lights.end(),
                   [](const Light& l) { return std::holds_alternative<SphereLight>(l.kind); });
 
+  // The stars: deposited over the traced picture where its samples saw the sky (the fraction of
+  // each pixel's samples that did), from each observation in turn.
+  const bool with_stars =
+      scene.sky.stars && scene.sky.stars->stars && !scene.sky.stars->stars->empty();
+  std::vector<float> sky_coverage(with_stars ? pixels : 0), star_rgb(with_stars ? pixels * 3 : 0);
+
   double setup_seconds = 0;
   for (int o = 0; o < observations; ++o) {
     Scene moved;
@@ -207,6 +214,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 pixel_j[lanes++] = j;
               }
             double sums[Tracer::kPacketSize][3] = {};
+            int sky_samples[Tracer::kPacketSize] = {};
             Vec3 directions[Tracer::kPacketSize];
             std::array<double, 2> light[Tracer::kPacketSize];
             std::optional<Hit> hits[Tracer::kPacketSize];
@@ -225,12 +233,14 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                   colours[l] =
                       curved_radiance(resolved, seen.emission, ray, &seen.lighting, light[l]);
                   tile_orders += ray.order;
+                  sky_samples[l] += ray.end == CurvedRayEnd::kSky;
                 }
               } else {
                 seen.tracer.trace(std::span(directions, lanes), std::span(hits, lanes));
                 radiance_of(resolved, seen.emission, std::span(hits, lanes),
                             std::span(directions, lanes), &seen.lighting, std::span(light, lanes),
                             std::span(colours, lanes));
+                for (std::size_t l = 0; l < lanes; ++l) sky_samples[l] += !hits[l];
               }
               for (std::size_t l = 0; l < lanes; ++l) {
                 sums[l][0] += colours[l].r;
@@ -248,6 +258,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 else
                   image.rgb[3 * at + c] = static_cast<float>(sums[l][c] / n);
               }
+              if (with_stars) sky_coverage[at] = static_cast<float>(sky_samples[l]) / count;
               if (with_aovs) {
                 const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
                 for (std::size_t a = 0; a < options.aovs.size(); ++a) {
@@ -265,9 +276,16 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         if (options.progress) options.progress(now, total);
       }
     });
+    if (with_stars) {
+      const StarPhotometry photometry = star_photometry(resolved);
+      const std::vector<StarImage> stars = star_images(resolved, photometry);
+      deposit_stars(stars, resolved.camera, window.x0, window.y0, width, height, sky_coverage,
+                    1.0 / observations, star_rgb);
+    }
   }
   if (observations > 1)
     for (std::size_t v = 0; v < sum.size(); ++v) image.rgb[v] = static_cast<float>(sum[v] / n);
+  for (std::size_t v = 0; v < star_rgb.size(); ++v) image.rgb[v] += star_rgb[v];
 
   const double ev = apply_exposure(image, scene.render);
 

@@ -1,0 +1,187 @@
+#include "lightcone/frame/star_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lightcone/color/spectrum.hpp"
+#include "lightcone/frame/hole_view.hpp"
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/received_colour.hpp"
+#include "lightcone/physics/stars.hpp"
+
+namespace lightcone {
+namespace {
+
+LinearRgb scaled(const LinearRgb& c, double k) {
+  return {c.r * k, c.g * k, c.b * k};
+}
+
+// One axis of the filter for a point at x: the nearest pixel centre m + 1/2 and the weights of
+// pixels m - 1, m, m + 1 (t in [-1/2, 1/2) the point's offset from that centre).
+void filter_axis(double x, int& first, std::array<double, 3>& w) {
+  const double u = x - 0.5;
+  const double m = std::floor(u + 0.5);
+  const double t = u - m;
+  first = static_cast<int>(m) - 1;
+  w = {0.5 * (0.5 - t) * (0.5 - t), 0.75 - t * t, 0.5 * (0.5 + t) * (0.5 + t)};
+}
+
+double filter_1d(double t) {
+  const double a = std::abs(t);
+  if (a <= 0.5) return 0.75 - a * a;
+  if (a < 1.5) return 0.5 * (1.5 - a) * (1.5 - a);
+  return 0;
+}
+
+// The image-plane coordinates (at unit distance along forward) of image point x or y.
+double plane_a(const CameraBasis& b, double x) {
+  return (2.0 * x / b.width - 1.0) * b.tan_half_fov * b.aspect;
+}
+double plane_c(const CameraBasis& b, double y) {
+  return (1.0 - 2.0 * y / b.height) * b.tan_half_fov;
+}
+// The solid angle of the rectangle [0, a] x [0, c] of the unit image plane, signed.
+double corner_solid_angle(double a, double c) {
+  return std::atan(a * c / std::sqrt(1 + a * a + c * c));
+}
+
+}  // namespace
+
+StarPhotometry::StarPhotometry(const SkyStars& sky_stars, const RenderSettings& settings,
+                               double log_shift_lo, double log_shift_hi)
+    : settings_(settings) {
+  if (!sky_stars.stars || sky_stars.stars->empty()) return;
+  const std::vector<CatalogueStar>& stars = *sky_stars.stars;
+  double hottest = 0, coolest = std::numeric_limits<double>::infinity();
+  for (const CatalogueStar& s : stars) {
+    const double t = star_temperature(s.colour_index);
+    hottest = std::max(hottest, t);
+    coolest = std::min(coolest, t);
+  }
+  // s = g tau over every star's tau (<= 1) and every shift, D = 1 included.
+  const DopplerGrid grid = DopplerGrid::covering(
+      std::log(coolest / hottest) + std::min(log_shift_lo, 0.0), std::max(log_shift_hi, 0.0));
+  hottest_ = DopplerXyzTable::of(BlackbodySpectrum{hottest, 1}, grid);
+  const double unit = kMagnitudeZeroFlux * std::exp2(sky_stars.exposure);
+  stars_.reserve(stars.size());
+  for (const CatalogueStar& s : stars) {
+    Star star;
+    star.tau = star_temperature(s.colour_index) / hottest;
+    const Xyz rest = hottest_(grid_position(grid, star.tau));
+    star.scale = unit * magnitude_flux_ratio(s.magnitude) / rest.y;
+    star.rest_rgb =
+        linear_srgb_from_xyz({rest.x * star.scale, rest.y * star.scale, rest.z * star.scale});
+    stars_.push_back(star);
+  }
+}
+
+LinearRgb StarPhotometry::received(std::size_t k, double g, double mu) const {
+  const Star& star = stars_[k];
+  if (settings_.doppler != DopplerModel::kSpectral) {
+    PointEmission at_rest;
+    at_rest.rest_rgb = star.rest_rgb;
+    return scaled(received_colour(at_rest, g, settings_), mu);
+  }
+  const Xyz seen = hottest_(grid_position(hottest_.grid(), g * star.tau));
+  const double k_seen = star.scale * spectral_searchlight(g, settings_.searchlight) * mu;
+  return linear_srgb_from_xyz({seen.x * k_seen, seen.y * k_seen, seen.z * k_seen});
+}
+
+StarPhotometry star_photometry(const ResolvedScene& scene) {
+  const Scene& s = *scene.scene;
+  if (!s.sky.stars) return StarPhotometry(SkyStars{}, s.render, 0, 0);
+  double lo = 0, hi = 0;
+  if (scene.hole) {
+    const LogShiftRange range = sky_log_shift_range(*scene.hole);
+    lo = range.lo, hi = range.hi;
+  } else {
+    // D of the sky seen from F lies within e^(+-rapidity) in every direction.
+    const double rapidity = std::atanh(std::min(length(scene.sky_velocity), 1.0));
+    lo = -rapidity, hi = rapidity;
+  }
+  return StarPhotometry(*s.sky.stars, s.render, lo, hi);
+}
+
+std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry) {
+  std::vector<StarImage> out;
+  const Scene& s = *scene.scene;
+  if (!s.sky.stars || !s.sky.stars->stars || photometry.size() == 0) return out;
+  const std::vector<CatalogueStar>& stars = *s.sky.stars->stars;
+  const CameraBasis& camera = scene.camera;
+  // The filter reaches 1.5 pixels from its point.
+  const auto add = [&](std::size_t k, const Vec3& u, double g, double mu) {
+    const ImagePoint p = project_direction(camera, u);
+    if (!p.in_front ||
+        !(p.x > -1.5 && p.x < camera.width + 1.5 && p.y > -1.5 && p.y < camera.height + 1.5))
+      return;
+    out.push_back({p.x, p.y, photometry.received(k, g, mu)});
+  };
+  if (!scene.hole) {
+    out.reserve(stars.size());
+    for (std::size_t k = 0; k < stars.size(); ++k) {
+      const Vec3 u = scene.look_direction_from_sky(stars[k].direction);
+      const double d = scene.doppler(u, scene.sky_velocity);
+      add(k, u, d, 1 / (d * d));
+    }
+    return out;
+  }
+  if (scene.hole->falling) return out;
+  for (std::size_t k = 0; k < stars.size(); ++k) {
+    const Vec3 in_sky = s.sky.rotation * stars[k].direction;
+    for (int order = 0; order < kStarImageOrders; ++order)
+      if (const auto image = hole_sky_image(*scene.hole, s, in_sky, order))
+        add(k, image->direction, image->shift, image->magnification);
+  }
+  return out;
+}
+
+StarFootprint star_footprint(double x, double y) {
+  StarFootprint f;
+  filter_axis(x, f.i0, f.wx);
+  filter_axis(y, f.j0, f.wy);
+  return f;
+}
+
+double star_filter_weight(double dx, double dy) {
+  return filter_1d(dx) * filter_1d(dy);
+}
+
+double pixel_solid_angle(const CameraBasis& camera, int i, int j) {
+  const double a0 = plane_a(camera, i), a1 = plane_a(camera, i + 1);
+  const double c0 = plane_c(camera, j + 1), c1 = plane_c(camera, j);
+  return corner_solid_angle(a1, c1) - corner_solid_angle(a0, c1) - corner_solid_angle(a1, c0) +
+         corner_solid_angle(a0, c0);
+}
+
+void deposit_stars(std::span<const StarImage> stars, const CameraBasis& camera, int x0, int y0,
+                   int width, int height, std::span<const float> sky_coverage, double weight,
+                   std::span<float> rgb) {
+  for (const StarImage& star : stars) {
+    const StarFootprint f = star_footprint(star.x, star.y);
+    // The corners of the footprint's pixels on the image plane, once each.
+    double corner[4][4];
+    for (int b = 0; b < 4; ++b)
+      for (int a = 0; a < 4; ++a)
+        corner[b][a] = corner_solid_angle(plane_a(camera, f.i0 + a), plane_c(camera, f.j0 + b));
+    for (int b = 0; b < 3; ++b) {
+      const int j = f.j0 + b - y0;
+      if (j < 0 || j >= height) continue;
+      for (int a = 0; a < 3; ++a) {
+        const int i = f.i0 + a - x0;
+        const double w = f.wx[a] * f.wy[b];
+        if (i < 0 || i >= width || w == 0) continue;
+        const std::size_t at = static_cast<std::size_t>(j) * width + i;
+        const double solid_angle =
+            corner[b][a + 1] - corner[b][a] - corner[b + 1][a + 1] + corner[b + 1][a];
+        const double k =
+            w * weight * (sky_coverage.empty() ? 1.0 : sky_coverage[at]) / std::abs(solid_angle);
+        rgb[3 * at] += static_cast<float>(star.flux.r * k);
+        rgb[3 * at + 1] += static_cast<float>(star.flux.g * k);
+        rgb[3 * at + 2] += static_cast<float>(star.flux.b * k);
+      }
+    }
+  }
+}
+
+}  // namespace lightcone
