@@ -341,6 +341,20 @@ TEST_F(CliTest, BadLightValuesNameFileLineAndPathAndWriteNothing) {
                   "--set render.light_source_delay: ", {"unknown mode \"later\""});
 }
 
+// A program without its star catalogue beside it or installed (here a copy of it elsewhere)
+// says which file is missing, where the scene asks for it, and which package provides it.
+TEST_F(CliTest, AMissingStarCatalogueIsNamedWithItsPackage) {
+  const fs::path program = dir_ / "bin" / "lightcone";
+  fs::create_directories(program.parent_path());
+  fs::copy_file(LIGHTCONE_BINARY, program);
+  const fs::path scene =
+      write_scene("{\"camera\": {\"position\": [0, 0, 0]},\n \"sky\": {\"stars\": true}}");
+  const CommandResult r = test::run_command("'" + program.string() + "' render '" + scene.string() +
+                                            "' -o '" + png().string() + "'");
+  expect_rejected(r, scene.string() + ":2: sky.stars: ",
+                  {(dir_ / "bin" / "data" / "stars-bright.lcstars").string(), "kstars-data"});
+}
+
 TEST_F(CliTest, ExampleFromTheBriefCameraVelocityOnLineFour) {
   const fs::path scene = write_scene(
       edited(kScene, "\n    \"velocity\": [0, 0, 0]", "\n    \"velocity\": [0, 0, 1.5]"));

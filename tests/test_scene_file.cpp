@@ -383,6 +383,50 @@ TEST_F(SceneFileTest, SkyGridDefaultsAndSkyColour) {
   expect_rgb(std::get<SolidColor>(plain.sky.pattern).color, 0, 0.5f, 1);
 }
 
+// sky.stars: the bundled catalogue, alone (a black sky) or over a pattern, cut at the magnitude
+// limit; false is none.
+TEST_F(SceneFileTest, SkyStarsReadTheCatalogueBrighterThanTheLimit) {
+  const Scene all = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"stars": true}})");
+  ASSERT_TRUE(all.sky.stars && all.sky.stars->stars);
+  EXPECT_GT(all.sky.stars->stars->size(), 8000u);
+  EXPECT_EQ(all.sky.stars->exposure, 0);
+  expect_rgb(std::get<SolidColor>(all.sky.pattern).color, 0, 0, 0);
+
+  const Scene bright = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"grid": {},
+      "stars": {"catalogue": "bright", "magnitude_limit": 2, "exposure": 1.5}}})");
+  ASSERT_TRUE(bright.sky.stars && bright.sky.stars->stars);
+  EXPECT_TRUE(std::holds_alternative<SkyGrid>(bright.sky.pattern));
+  EXPECT_EQ(bright.sky.stars->exposure, 1.5);
+  EXPECT_GT(bright.sky.stars->stars->size(), 30u);
+  EXPECT_LT(bright.sky.stars->stars->size(), 100u);
+  for (const CatalogueStar& star : *bright.sky.stars->stars) EXPECT_LT(star.magnitude, 2);
+
+  const Scene none = load(R"({"camera": {"position": [0, 0, 0]},
+      "sky": {"color": [0, 0, 1], "stars": false}})");
+  EXPECT_FALSE(none.sky.stars);
+  const Scene set = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"color": [0, 0, 1]}})",
+                         {"sky.stars=true"});
+  EXPECT_TRUE(set.sky.stars && set.sky.stars->stars);
+}
+
+TEST_F(SceneFileTest, BadSkyStarsAreLocated) {
+  const std::string head = R"({"camera": {"position": [0, 0, 0]},
+  "sky": )";
+  expect_error(head + R"({"stars": {"catalogue": "hipparcos"}}})", 2, "sky.stars.catalogue",
+               "unknown catalogue 'hipparcos'");
+  // JSON has no infinities or NaN: a limit beyond the doubles is refused where it is written.
+  expect_error(head + R"({"stars": {"magnitude_limit": 1e999}}})", 2, "(syntax)",
+               "number overflow");
+  expect_error(head + R"({"stars": {"magnitude_limit": "6"}}})", 2, "sky.stars.magnitude_limit",
+               "must be a number");
+  expect_error(head + R"({"stars": {"exposure": null}}})", 2, "sky.stars.exposure",
+               "must be a number");
+  expect_error(head + R"({"stars": {"limit": 6}}})", 2, "sky.stars.limit", "unknown key");
+  expect_error(head + R"({"stars": 1}})", 2, "sky.stars", "must be");
+  expect_error(head + R"({"stars": true, "color": [0, 0, 0], "grid": {}}})", 2, "sky",
+               "exactly one of");
+}
+
 TEST_F(SceneFileTest, BlackbodyAndSpectrumMaterials) {
   const Scene s = load(with_object(R"(
     {"name": "sun", "shape": {"sphere": {"radius": 1}},

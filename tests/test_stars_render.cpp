@@ -1,0 +1,281 @@
+// The stars as point sources in the tracer's pictures (frame/star_field.hpp), against
+// derivations made here: the aberration formula cos(theta') = (cos(theta) + beta) / (1 + beta
+// cos(theta)) for where a star lands; Planck's law for its received flux (a blackbody at T whose
+// spectral flux F_lambda(lambda) becomes D^3 F_lambda(D lambda) is, by B_lambda(D lambda; T) =
+// D^-5 B_lambda(lambda; D T), a blackbody at D T with D^-2 its scale: bolometric D^2); every
+// star's flux kept whole at the picture's edges and across crops, and steady along a camera
+// path; and near a black hole, each image's direction and magnification by a lens solve made
+// here (the orbit equation u'' = 3 M u^2 - u integrated step by step to u = 0).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "lightcone/color/spectrum.hpp"
+#include "lightcone/frame/star_field.hpp"
+#include "lightcone/physics/celestial.hpp"
+#include "lightcone/physics/stars.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Scene star_scene(std::vector<CatalogueStar> stars, int width = 200, int height = 200,
+                 double fov = 40) {
+  Scene s;
+  s.camera.width = width;
+  s.camera.height = height;
+  s.camera.fov_degrees = fov;
+  s.sky.stars = SkyStars{};
+  s.sky.stars->stars = std::make_shared<std::vector<CatalogueStar>>(std::move(stars));
+  return s;
+}
+
+// The flux in a window of a picture: sum of radiance times pixel solid angle (as XYZ), and the
+// flux-weighted centroid of the window's pixel centres.
+struct Measured {
+  Xyz flux;
+  double x = 0, y = 0;
+};
+Measured measure(const Image& image, const CameraBasis& camera, int x0, int y0, int x1, int y1) {
+  Measured m;
+  for (int j = std::max(0, y0); j < std::min(image.height, y1); ++j)
+    for (int i = std::max(0, x0); i < std::min(image.width, x1); ++i) {
+      const float* c = &image.rgb[3 * (static_cast<std::size_t>(j) * image.width + i)];
+      const double omega = pixel_solid_angle(camera, i, j);
+      const Xyz xyz = xyz_from_linear_srgb({c[0] * omega, c[1] * omega, c[2] * omega});
+      m.flux.x += xyz.x, m.flux.y += xyz.y, m.flux.z += xyz.z;
+      m.x += xyz.y * (i + 0.5), m.y += xyz.y * (j + 0.5);
+    }
+  if (m.flux.y > 0) m.x /= m.flux.y, m.y /= m.flux.y;
+  return m;
+}
+Measured measure_all(const Image& image, const CameraBasis& camera) {
+  return measure(image, camera, 0, 0, image.width, image.height);
+}
+
+// A direction d seen by an observer moving with speed beta along unit n: its angle theta from n
+// becomes theta' with cos(theta') = (cos(theta) + beta) / (1 + beta cos(theta)), in the same
+// plane.
+Vec3 aberrated(const Vec3& d, const Vec3& n, double beta) {
+  const double c = dot(d, n);
+  const Vec3 side = d - n * c;
+  const double c2 = (c + beta) / (1 + beta * c);
+  const double s2 = std::sqrt(std::max(0.0, 1 - c2 * c2));
+  return length(side) > 0 ? n * c2 + normalize(side) * s2 : n * c2;
+}
+
+TEST(StarsRender, EachStarLandsWhereTheAberrationFormulaPutsIt) {
+  std::vector<CatalogueStar> stars;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 40; ++k) stars.push_back({normalize(Vec3{u(rng), u(rng), u(rng)}), 2, 0.6f});
+  for (const double beta : {0.0, 0.5, 0.9, 0.99}) {
+    SCOPED_TRACE(beta);
+    const Vec3 n = normalize(Vec3{0.3, -0.2, -1});
+    Scene s = star_scene(stars, 1000, 800, 90);
+    s.camera.world_line.velocity = n * beta;
+    const Image image = render_image(s, {});
+    const CameraBasis camera = camera_basis(s.camera);
+    int checked = 0;
+    for (const CatalogueStar& star : stars) {
+      const ImagePoint p = project_direction(camera, aberrated(star.direction, n, beta));
+      // Stars whose footprints lie inside and apart from every other.
+      if (!p.in_front || p.x < 3 || p.y < 3 || p.x > 997 || p.y > 797) continue;
+      bool alone = true;
+      for (const CatalogueStar& other : stars) {
+        const ImagePoint q = project_direction(camera, aberrated(other.direction, n, beta));
+        if (&other != &star && q.in_front && std::abs(q.x - p.x) < 4 && std::abs(q.y - p.y) < 4)
+          alone = false;
+      }
+      if (!alone) continue;
+      const int i = static_cast<int>(p.x), j = static_cast<int>(p.y);
+      const Measured m = measure(image, camera, i - 2, j - 2, i + 3, j + 3);
+      EXPECT_NEAR(m.x, p.x, 0.1);
+      EXPECT_NEAR(m.y, p.y, 0.1);
+      ++checked;
+    }
+    EXPECT_GE(checked, 5);
+  }
+}
+
+// F_lambda at rest a blackbody at T with CIE Y = F0; seen with D, D^-2 F0 / Y(T) times the
+// blackbody at D T, whose bolometric flux is then D^-2 D^4 = D^2 times the star's
+// (Stefan-Boltzmann).
+TEST(StarsRender, ASingleStarsFluxIsABlackbodyAtDTimesTWithBolometricDSquared) {
+  const double b_minus_v = 0.65, magnitude = 1;
+  const double t = star_temperature(b_minus_v);
+  const double f0 = kMagnitudeZeroFlux * std::pow(10, -0.4 * magnitude);
+  const Vec3 ahead{0, 0, -1};
+  for (const double d : {0.5, 0.8, 1.0, 1.5, 2.5}) {
+    SCOPED_TRACE(d);
+    Scene s = star_scene({{ahead, static_cast<float>(magnitude), static_cast<float>(b_minus_v)}});
+    // Moving toward the star with D = gamma (1 + beta).
+    s.camera.world_line.velocity = ahead * ((d * d - 1) / (d * d + 1));
+    const Measured m = measure_all(render_image(s, {}), camera_basis(s.camera));
+    const Xyz blackbody = xyz_from_spectrum(BlackbodySpectrum{d * t, 1});
+    const double k = f0 / (xyz_from_spectrum(BlackbodySpectrum{t, 1}).y * d * d);
+    EXPECT_NEAR(m.flux.x, k * blackbody.x, 0.01 * k * blackbody.x);
+    EXPECT_NEAR(m.flux.y, k * blackbody.y, 0.01 * k * blackbody.y);
+    EXPECT_NEAR(m.flux.z, k * blackbody.z, 0.01 * k * blackbody.z);
+  }
+}
+
+// A star seen off the camera's motion, where the sky is not the camera's picture's centre: the
+// same law with D = 1 / (gamma (1 - beta cos(theta'))).
+TEST(StarsRender, AnObliqueStarsFluxFollowsItsDopplerFactor) {
+  const double beta = 0.9, gamma = 1 / std::sqrt(1 - beta * beta);
+  const Vec3 star = normalize(Vec3{0.8, 0.1, -1});
+  Scene s = star_scene({{star, 0, 0.0f}}, 300, 300, 60);
+  s.camera.world_line.velocity = {0, 0, -beta};
+  const CameraBasis camera = camera_basis(s.camera);
+  const Vec3 seen = aberrated(star, {0, 0, -1}, beta);
+  const double d = 1 / (gamma * (1 - beta * dot(seen, {0, 0, -1})));
+  const double t = star_temperature(0);
+  const Measured m = measure_all(render_image(s, {}), camera);
+  const double expected = kMagnitudeZeroFlux * xyz_from_spectrum(BlackbodySpectrum{d * t, 1}).y /
+                          (xyz_from_spectrum(BlackbodySpectrum{t, 1}).y * d * d);
+  EXPECT_NEAR(m.flux.y, expected, 0.01 * expected);
+}
+
+// Every star's flux reaches the picture but for the part of its footprint outside it: summed
+// over the whole catalogue, for cameras turned every way, the picture holds exactly the stars'
+// fluxes times their footprints' weights inside (star_footprint, the filter's definition);
+// and four crops of a picture hold exactly what it does.
+TEST(StarsRender, NoStarIsLostAtThePicturesEdgesOrBetweenCrops) {
+  const Scene loaded = test::load_repository_scene("stars.json");
+  const std::vector<CatalogueStar>& stars = *loaded.sky.stars->stars;
+  ASSERT_GT(stars.size(), 8000u);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int turn = 0; turn < 4; ++turn) {
+    Scene s = loaded;
+    s.camera.width = 320, s.camera.height = 200, s.camera.samples = 1;
+    s.camera.forward = normalize(Vec3{u(rng), u(rng), u(rng)});
+    s.camera.up = normalize(Vec3{u(rng), u(rng), u(rng)});
+    s.render.tonemap = ToneMap::kClamp;
+    const Image image = render_image(s, {});
+    const CameraBasis camera = camera_basis(s.camera);
+    double expected = 0;
+    for (const CatalogueStar& star : stars) {
+      const ImagePoint p = project_direction(camera, star.direction);
+      if (!p.in_front) continue;
+      const StarFootprint f = star_footprint(p.x, p.y);
+      double inside = 0;
+      for (int b = 0; b < 3; ++b)
+        for (int a = 0; a < 3; ++a)
+          if (f.i0 + a >= 0 && f.i0 + a < 320 && f.j0 + b >= 0 && f.j0 + b < 200)
+            inside += f.wx[a] * f.wy[b];
+      expected += inside * kMagnitudeZeroFlux * std::pow(10, -0.4 * star.magnitude);
+    }
+    const double total = measure_all(image, camera).flux.y;
+    EXPECT_NEAR(total, expected, 1e-3 * expected);
+    double quarters = 0;
+    for (const PixelWindow w : {PixelWindow{0, 0, 160, 100}, PixelWindow{160, 0, 320, 100},
+                                PixelWindow{0, 100, 160, 200}, PixelWindow{160, 100, 320, 200}}) {
+      RenderOptions crop;
+      crop.crop = w;
+      const Image part = render_image(s, crop);
+      for (int j = 0; j < part.height; ++j)
+        for (int i = 0; i < part.width; ++i) {
+          const float* c = &part.rgb[3 * (static_cast<std::size_t>(j) * part.width + i)];
+          const float* whole =
+              &image.rgb[3 * (static_cast<std::size_t>(j + w.y0) * 320 + i + w.x0)];
+          ASSERT_EQ(c[1], whole[1]);
+          const double omega = pixel_solid_angle(camera, i + w.x0, j + w.y0);
+          quarters += xyz_from_linear_srgb({c[0] * omega, c[1] * omega, c[2] * omega}).y;
+        }
+    }
+    EXPECT_NEAR(quarters, total, 1e-6 * total);
+  }
+}
+
+// Along a 60-frame pan at rest a star's summed flux stays the same to under 1 % (it is the same
+// star), while its peak pixel moves across pixels.
+TEST(StarsRender, AStarsFluxDoesNotFlickerAlongACameraPath) {
+  Scene s = star_scene({{normalize(Vec3{0.02, 0.01, -1}), 1, 0.3f}}, 160, 120, 30);
+  double lo = 1e300, hi = 0;
+  for (int frame = 0; frame < 60; ++frame) {
+    const double angle = 0.0011 * frame;  // about a third of a pixel a frame
+    s.camera.forward = {std::sin(angle), 0.3 * std::sin(angle), -std::cos(angle)};
+    const double flux = measure_all(render_image(s, {}), camera_basis(s.camera)).flux.y;
+    lo = std::min(lo, flux), hi = std::max(hi, flux);
+  }
+  EXPECT_LT((hi - lo) / hi, 0.01);
+  EXPECT_GT(lo, 0);
+}
+
+// A body in front of a star hides it; beside the body the star is seen whole.
+TEST(StarsRender, BodiesHideTheStarsBehindThem) {
+  const Vec3 star = normalize(Vec3{0, 0, -1});
+  Scene s = star_scene({{star, 0, 0.5f}}, 100, 100, 30);
+  Object ball;
+  ball.shape = Sphere{1};
+  ball.world_line.position = {0, 0, -10};
+  ball.material.unlit = true;
+  ball.material.pattern = SolidColor{{0, 0, 0}};
+  s.objects.push_back(ball);
+  const CameraBasis camera = camera_basis(s.camera);
+  EXPECT_EQ(measure_all(render_image(s, {}), camera).flux.y, 0);
+  s.objects[0].world_line.position = {3, 0, -10};
+  const double expected = kMagnitudeZeroFlux;
+  EXPECT_NEAR(measure_all(render_image(s, {}), camera).flux.y, expected, 1e-3 * expected);
+}
+
+// The look angle alpha (from the outward radial direction, static frame at r0) of the ray that
+// reaches infinity after sweeping `sweep` about a hole of mass 1: u(sweep) = 0 on the orbit
+// integrated from the camera, by bisection (u(sweep) < 0 for rays that escape sooner, > 0 for
+// those that sweep further or are captured).
+double look_angle_to_infinity(double r0, double sweep, double lo, double hi) {
+  const auto u_at_sweep = [&](double alpha) {
+    return 1 / test::integrate_orbit_from(1, r0, std::cos(alpha), std::sin(alpha), sweep, 20000).r;
+  };
+  for (int i = 0; i < 50; ++i) {
+    const double mid = (lo + hi) / 2;
+    (u_at_sweep(mid) < 0 ? lo : hi) = mid;
+  }
+  return (lo + hi) / 2;
+}
+
+// A star behind a hole seen by a static camera at r0 = 15 M: its primary and secondary images lie
+// where the integrated orbits leave the camera, and their fluxes are in the ratio of their
+// magnifications, sin(alpha) |d alpha| / (sin(psi) |d psi|) (both are seen with the same shift).
+TEST(StarsRender, AStarBehindAHoleHasItsLensedImagesWhereTheOrbitsPutThem) {
+  const double r0 = 15, epsilon = 0.25;  // the star's angle from the axis behind the hole
+  const Vec3 toward{std::sin(epsilon), 0, -std::cos(epsilon)};
+  Scene s = star_scene({{toward, 0, 0.3f}}, 1000, 1000, 90);
+  s.camera.world_line.position = {0, 0, r0};
+  s.black_hole = BlackHole{{0, 0, 0}, 1, std::nullopt};
+  const Image image = render_image(s, {});
+  const CameraBasis camera = camera_basis(s.camera);
+  const double psi = kPi - epsilon;
+  // The shadow's edge: alpha_edge = pi - asin(3 sqrt(3) sqrt(f) / r0) (Synge 1966).
+  const double edge = kPi - std::asin(3 * std::sqrt(3.0) * std::sqrt(1 - 2 / r0) / r0);
+  double flux[2];
+  for (int order = 0; order < 2; ++order) {
+    SCOPED_TRACE(order);
+    const auto alpha_of = [&](double p) {
+      return look_angle_to_infinity(r0, order == 0 ? p : 2 * kPi - p, 0.01, edge - 1e-9);
+    };
+    const double alpha = alpha_of(psi), h = 1e-4;
+    const double magnification =
+        std::sin(alpha) * std::abs(alpha_of(psi + h) - alpha_of(psi - h)) / (2 * h) / std::sin(psi);
+    // Even orders leave toward the star's side (+x), odd ones round the other side.
+    const Vec3 look{(order == 0 ? 1 : -1) * std::sin(alpha), 0, std::cos(alpha)};
+    const ImagePoint p = project_direction(camera, look);
+    ASSERT_TRUE(p.in_front);
+    const int i = static_cast<int>(p.x), j = static_cast<int>(p.y);
+    const Measured m = measure(image, camera, i - 3, j - 3, i + 4, j + 4);
+    EXPECT_NEAR(m.x, p.x, 0.1);
+    EXPECT_NEAR(m.y, p.y, 0.1);
+    flux[order] = m.flux.y / magnification;
+  }
+  EXPECT_NEAR(flux[1] / flux[0], 1, 0.01);
+}
+
+}  // namespace
+}  // namespace lightcone
