@@ -593,7 +593,9 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"sky-hole.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,
        "#define LIGHTCONE_BLACK_HOLE 1\n"},
       {"sky-hole-image.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,
-       "#define LIGHTCONE_BLACK_HOLE 1\n#define LIGHTCONE_SKY_IMAGE 1\n"}};
+       "#define LIGHTCONE_BLACK_HOLE 1\n#define LIGHTCONE_SKY_IMAGE 1\n"},
+      {"star.vert", shader_sources::star_vert, false},
+      {"star.frag", shader_sources::star_frag, true}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;
     test::write_text(file, std::string("#version 300 es\nprecision highp float;\nprecision highp "

@@ -194,15 +194,9 @@ std::vector<std::string> tangent_warnings(const Scene& scene) {
   return warnings;
 }
 
-Vec3 ResolvedScene::look_direction_from_sky(const Vec3& pattern_direction) const {
-  // Solve sky_time_column * ray_time + sky_spatial * u = lambda d for u (unit).
-  const Mat3 inv = sky_spatial.inverse();
-  const Vec3 a = inv * pattern_direction;           // the lambda part
-  const Vec3 b = inv * sky_time_column * ray_time;  // the fixed part: u = lambda a - b
-  // |lambda a - b| = 1, lambda > 0.
-  const double aa = dot(a, a), ab = dot(a, b), bb = dot(b, b);
-  const double lambda = (ab + std::sqrt(ab * ab - aa * (bb - 1.0))) / aa;
-  return normalize(a * lambda - b);
+SkyToLook ResolvedScene::sky_to_look() const {
+  const Mat3 inverse = sky_spatial.inverse();
+  return {inverse, inverse * sky_time_column * ray_time};
 }
 
 ResolvedScene resolve_scene(const Scene& true_scene) {

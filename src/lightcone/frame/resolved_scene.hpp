@@ -177,6 +177,21 @@ Bounds3 label_step_bounds(const LabelledBounds& bounds, const ShadowLight& light
 // event: the camera's light cone, or its time).
 bool lit_from_retarded_event(const RenderSettings& settings);
 
+// The look direction u whose ray looks along d in the sky's pattern coordinates: the unit u
+// with sky_time_column * ray_time + sky_spatial * u = lambda d, lambda > 0, which is
+// u = lambda a - b with a = sky_spatial^-1 d, b = sky_spatial^-1 sky_time_column ray_time and
+// |lambda a - b| = 1.
+struct SkyToLook {
+  Mat3 inverse;  // sky_spatial^-1
+  Vec3 fixed;    // b
+  Vec3 operator()(const Vec3& d) const {
+    const Vec3 a = inverse * d;
+    const double aa = dot(a, a), ab = dot(a, fixed), bb = dot(fixed, fixed);
+    const double lambda = (ab + std::sqrt(ab * ab - aa * (bb - 1.0))) / aa;
+    return normalize(a * lambda - fixed);
+  }
+};
+
 struct ResolvedScene {
   // The scene the renderers read: the true-state scene, or, when bodies or lights move
   // non-inertially, tangent_scene (owned here): the same scene with each of them on the
@@ -211,8 +226,11 @@ struct ResolvedScene {
     return normalize(sky_time_column * ray_time + sky_spatial * u);
   }
   // Its inverse: the look direction whose ray looks along `pattern_direction` (unit) in the
-  // sky's pattern coordinates.
-  Vec3 look_direction_from_sky(const Vec3& pattern_direction) const;
+  // sky's pattern coordinates (for many directions, sky_to_look() once).
+  Vec3 look_direction_from_sky(const Vec3& pattern_direction) const {
+    return sky_to_look()(pattern_direction);
+  }
+  SkyToLook sky_to_look() const;
 };
 
 ResolvedScene resolve_scene(const Scene& scene);

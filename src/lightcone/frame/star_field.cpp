@@ -50,7 +50,11 @@ double corner_solid_angle(double a, double c) {
 
 StarPhotometry::StarPhotometry(const SkyStars& sky_stars, const RenderSettings& settings,
                                double log_shift_lo, double log_shift_hi)
-    : settings_(settings) {
+    : catalogue_(sky_stars.stars.get()),
+      exposure_(sky_stars.exposure),
+      settings_(settings),
+      log_shift_lo_(log_shift_lo),
+      log_shift_hi_(log_shift_hi) {
   if (!sky_stars.stars || sky_stars.stars->empty()) return;
   const std::vector<CatalogueStar>& stars = *sky_stars.stars;
   double hottest = 0, coolest = std::numeric_limits<double>::infinity();
@@ -88,19 +92,34 @@ LinearRgb StarPhotometry::received(std::size_t k, double g, double mu) const {
   return linear_srgb_from_xyz({seen.x * k_seen, seen.y * k_seen, seen.z * k_seen});
 }
 
-StarPhotometry star_photometry(const ResolvedScene& scene) {
+namespace {
+
+// The range of ln g with which the scene's sky can be seen, in every direction.
+LogShiftRange star_log_shift_range(const ResolvedScene& scene) {
+  if (scene.hole) return sky_log_shift_range(*scene.hole);
+  // D of the sky seen from F lies within e^(+-rapidity).
+  const double rapidity = std::atanh(std::min(length(scene.sky_velocity), 1.0));
+  return {-rapidity, rapidity};
+}
+
+}  // namespace
+
+bool StarPhotometry::serves(const ResolvedScene& scene) const {
+  const Scene& s = *scene.scene;
+  const SkyStars none;
+  const SkyStars& stars = s.sky.stars ? *s.sky.stars : none;
+  const LogShiftRange range = star_log_shift_range(scene);
+  return catalogue_ == stars.stars.get() && exposure_ == stars.exposure &&
+         settings_.doppler == s.render.doppler && settings_.searchlight == s.render.searchlight &&
+         settings_.hue_loop == s.render.hue_loop && log_shift_lo_ <= range.lo &&
+         range.hi <= log_shift_hi_;
+}
+
+StarPhotometry star_photometry(const ResolvedScene& scene, double margin) {
   const Scene& s = *scene.scene;
   if (!s.sky.stars) return StarPhotometry(SkyStars{}, s.render, 0, 0);
-  double lo = 0, hi = 0;
-  if (scene.hole) {
-    const LogShiftRange range = sky_log_shift_range(*scene.hole);
-    lo = range.lo, hi = range.hi;
-  } else {
-    // D of the sky seen from F lies within e^(+-rapidity) in every direction.
-    const double rapidity = std::atanh(std::min(length(scene.sky_velocity), 1.0));
-    lo = -rapidity, hi = rapidity;
-  }
-  return StarPhotometry(*s.sky.stars, s.render, lo, hi);
+  const LogShiftRange range = star_log_shift_range(scene);
+  return StarPhotometry(*s.sky.stars, s.render, range.lo - margin, range.hi + margin);
 }
 
 std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry) {
@@ -119,8 +138,9 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
   };
   if (!scene.hole) {
     out.reserve(stars.size());
+    const SkyToLook to_look = scene.sky_to_look();
     for (std::size_t k = 0; k < stars.size(); ++k) {
-      const Vec3 u = scene.look_direction_from_sky(stars[k].direction);
+      const Vec3 u = to_look(stars[k].direction);
       const double d = scene.doppler(u, scene.sky_velocity);
       add(k, u, d, 1 / (d * d));
     }

@@ -37,6 +37,9 @@ class StarPhotometry {
                  double log_shift_hi);
 
   std::size_t size() const { return stars_.size(); }
+  // Whether it is the photometry of the scene's stars under its colour models and covers every
+  // shift they can be seen with (a renderer keeps it from frame to frame while it does).
+  bool serves(const ResolvedScene& scene) const;
   // The received flux of star k seen with shift g and solid-angle ratio mu.
   LinearRgb received(std::size_t k, double g, double mu) const;
 
@@ -46,7 +49,10 @@ class StarPhotometry {
     double scale = 0;    // the rest flux's Y over the hottest blackbody's at tau (tabulated)
     LinearRgb rest_rgb;  // its flux at rest (the non-spectral models)
   };
+  const std::vector<CatalogueStar>* catalogue_ = nullptr;
+  double exposure_ = 0;
   RenderSettings settings_;
+  double log_shift_lo_ = 0, log_shift_hi_ = 0;
   DopplerXyzTable hottest_;  // the hottest star's blackbody seen with factor s
   std::vector<Star> stars_;
 };
@@ -58,8 +64,8 @@ struct StarImage {
 };
 
 // The photometry of a resolved scene's stars (none without sky.stars): over every ln g its sky
-// can be seen with.
-StarPhotometry star_photometry(const ResolvedScene& scene);
+// can be seen with, widened by `margin` on each side.
+StarPhotometry star_photometry(const ResolvedScene& scene, double margin = 0);
 
 // Every image of every star of the scene's sky whose pixel filter reaches into the camera's
 // picture. In flat space one per star, at its exactly aberrated direction (the inverse of the

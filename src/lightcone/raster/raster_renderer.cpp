@@ -21,6 +21,7 @@
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/shader_sources.hpp"
+#include "lightcone/raster/star_pass.hpp"
 
 namespace lightcone {
 
@@ -85,6 +86,8 @@ struct RasterRenderer::Impl {
   std::unique_ptr<BlackHolePass> black_hole;
   // The bodies near a black hole: built with the first frame that has them.
   std::unique_ptr<HoleBodiesPass> hole_bodies;
+  // The stars: built with the first frame that has them.
+  std::unique_ptr<StarPass> stars;
   int disk_row = 0;
   double disk_floor = 0;
   // The same with tessellation shaders (OpenGL 4), where the context has them.
@@ -571,6 +574,8 @@ struct RasterRenderer::Impl {
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, table_camera_nodes, std::max(table_rows, 2), 0,
                  GL_RGB, GL_FLOAT, table_texels.data());
 
+    if (resolved.scene->sky.stars && !stars) stars = std::make_unique<StarPass>();
+    if (stars) stars->prepare(resolved);
     check_gl("uploading the frame");
     return stats;
   }
@@ -782,6 +787,7 @@ struct RasterRenderer::Impl {
     glDepthFunc(GL_LEQUAL);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     check_gl("drawing the sky");
+    if (stars) stars->draw(resolved);
   }
 };
 

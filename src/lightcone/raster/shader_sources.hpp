@@ -19,5 +19,7 @@ extern const char* const fullscreen_vert;
 extern const char* const display_frag;
 extern const char* const sky_frag;
 extern const char* const black_hole_glsl;
+extern const char* const star_vert;
+extern const char* const star_frag;
 
 }  // namespace lightcone::shader_sources

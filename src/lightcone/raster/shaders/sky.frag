@@ -69,10 +69,13 @@ void main() {
   int row = colour_row + (pattern == 1 && on_grid_line(d) ? 1 : 0);
   received = received_colour(row, doppler);
 #endif
+  // Alpha: whether the sky is seen here (the stars are drawn where it is, star.frag).
+  float sky_seen = 1.0;
 #if defined(LIGHTCONE_BLACK_HOLE)
   // Chosen after the sky is read everywhere, so that its gradients stay defined.
   if (ray.end == kHoleDisk) received = disk_colour(ray.disk_radius, ray.shift);
   if (ray.end == kHoleHorizon) received = vec3(0.0);
+  if (ray.end != kHoleSky) sky_seen = 0.0;
 #endif
-  colour = vec4(received, 1.0);
+  colour = vec4(received, sky_seen);
 }

@@ -1,0 +1,81 @@
+#include "lightcone/raster/star_pass.hpp"
+
+#include <vector>
+
+#include "lightcone/raster/shader_sources.hpp"
+
+namespace lightcone {
+namespace {
+
+constexpr int kFloatsPerStar = 5;  // image point, flux
+
+}  // namespace
+
+StarPass::StarPass() {
+  const std::string version = "#version 330 core\n";
+  program_ = link_program(version + shader_sources::common_glsl + shader_sources::star_vert,
+                          version + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" +
+                              shader_sources::common_glsl + shader_sources::star_frag);
+  glGenVertexArrays(1, &vertex_array_);
+  glGenBuffers(1, &buffer_);
+  glBindVertexArray(vertex_array_);
+  glBindBuffer(GL_ARRAY_BUFFER, buffer_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kFloatsPerStar * sizeof(float), nullptr);
+  glVertexAttribDivisor(0, 1);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, kFloatsPerStar * sizeof(float),
+                        reinterpret_cast<const void*>(2 * sizeof(float)));
+  glVertexAttribDivisor(1, 1);
+  glBindVertexArray(0);
+  check_gl("creating the star pass");
+}
+
+StarPass::~StarPass() {
+  glDeleteBuffers(1, &buffer_);
+  glDeleteVertexArrays(1, &vertex_array_);
+  glDeleteProgram(program_);
+}
+
+void StarPass::prepare(const ResolvedScene& scene) {
+  count_ = 0;
+  if (!scene.scene->sky.stars) return;
+  // A margin of one unit of ln g: a camera that speeds up keeps the table for a while.
+  if (!photometry_ || !photometry_->serves(scene)) photometry_ = star_photometry(scene, 1.0);
+  const std::vector<StarImage> stars = star_images(scene, *photometry_);
+  std::vector<float> data;
+  data.reserve(stars.size() * kFloatsPerStar);
+  for (const StarImage& s : stars)
+    for (const double v : {s.x, s.y, s.flux.r, s.flux.g, s.flux.b})
+      data.push_back(static_cast<float>(v));
+  glBindBuffer(GL_ARRAY_BUFFER, buffer_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(),
+               GL_STREAM_DRAW);
+  count_ = stars.size();
+  check_gl("uploading the stars");
+}
+
+void StarPass::draw(const ResolvedScene& scene) const {
+  if (count_ == 0) return;
+  const CameraBasis& c = scene.camera;
+  glUseProgram(program_);
+  glUniform2f(uniform(program_, "image_size"), static_cast<float>(c.width),
+              static_cast<float>(c.height));
+  glUniform2f(uniform(program_, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
+              static_cast<float>(c.tan_half_fov));
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  // colour += star * destination alpha; the alpha stays.
+  glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE);
+  glBindVertexArray(vertex_array_);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count_));
+  glBindVertexArray(0);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  check_gl("drawing the stars");
+}
+
+}  // namespace lightcone
