@@ -8,6 +8,9 @@ namespace lightcone {
 namespace {
 
 constexpr int kFloatsPerStar = 5;  // image point, flux
+// GL points are clipped whole when their centre leaves the viewport: it reaches this many pixels
+// past each edge of the picture, more than a sprite's half width.
+constexpr int kViewportMargin = 2;
 
 }  // namespace
 
@@ -22,11 +25,9 @@ StarPass::StarPass() {
   glBindBuffer(GL_ARRAY_BUFFER, buffer_);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, kFloatsPerStar * sizeof(float), nullptr);
-  glVertexAttribDivisor(0, 1);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, kFloatsPerStar * sizeof(float),
                         reinterpret_cast<const void*>(2 * sizeof(float)));
-  glVertexAttribDivisor(1, 1);
   glBindVertexArray(0);
   check_gl("creating the star pass");
 }
@@ -63,6 +64,7 @@ void StarPass::draw(const ResolvedScene& scene) const {
               static_cast<float>(c.height));
   glUniform2f(uniform(program_, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
               static_cast<float>(c.tan_half_fov));
+  glUniform2f(uniform(program_, "viewport_margin"), kViewportMargin, kViewportMargin);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
@@ -70,8 +72,14 @@ void StarPass::draw(const ResolvedScene& scene) const {
   glBlendEquation(GL_FUNC_ADD);
   // colour += star * destination alpha; the alpha stays.
   glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glViewport(viewport[0] - kViewportMargin, viewport[1] - kViewportMargin,
+             viewport[2] + 2 * kViewportMargin, viewport[3] + 2 * kViewportMargin);
   glBindVertexArray(vertex_array_);
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count_));
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count_));
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   glBindVertexArray(0);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
