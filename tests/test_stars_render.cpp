@@ -347,5 +347,22 @@ TEST(StarsRender, TheRasterRendererDrawsTheTracersStars) {
   }
 }
 
+// Stars whose filters straddle the picture's edges and corners: the raster renderer's sprites
+// keep the part inside as the tracer does (a GL point whose centre leaves the viewport would be
+// clipped whole).
+TEST(StarsRender, TheRasterRendererKeepsStarsAtThePicturesEdges) {
+  Scene s = star_scene({}, 120, 80, 50);
+  const CameraBasis camera = camera_basis(s.camera);
+  std::vector<CatalogueStar> stars;
+  for (const double x : {-1.3, -0.6, -0.1, 0.4, 119.7, 120.2, 121.1})
+    for (const double y : {-1.2, 0.3, 40.0, 79.9, 80.6})
+      stars.push_back({look_direction(camera, x, y), 1, 0.5f});
+  s.sky.stars->stars = std::make_shared<std::vector<CatalogueStar>>(stars);
+  const double traced = measure_all(render_image(s, {}), camera).flux.y;
+  const double rastered = measure_all(render_raster(s), camera).flux.y;
+  ASSERT_GT(traced, 0);
+  EXPECT_NEAR(rastered, traced, 1e-3 * traced);
+}
+
 }  // namespace
 }  // namespace lightcone

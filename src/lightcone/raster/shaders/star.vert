@@ -1,28 +1,22 @@
 // A star's image as a point sprite (frame/star_field.hpp): three pixels wide about its exact
 // image point, the support of the pixel filter (the pixels whose centres it holds are those the
-// filter weighs; one on its edge would get none). The star's flux over a pixel's solid angle is
-// found here once; few values pass to the fragments (on a software rasteriser each costs every
-// sprite's setup).
+// filter weighs; one on its edge would get none). Few values pass to the fragments: on a
+// software rasteriser each costs every sprite's setup.
 layout(location = 0) in vec2 image_point;  // pixels, y down (pixel (i, j) centred at i+.5, j+.5)
 layout(location = 1) in vec3 flux;         // received flux
 
 uniform vec2 viewport_margin;  // pixels of the viewport past each edge of the picture
 
-flat out vec3 star_radiance;  // the flux over the solid angle of a pixel at the image point
+flat out vec3 star_radiance;  // the flux over a pixel's area on the image plane
 flat out vec2 star_window;    // the image point in window coordinates (y up)
 
 void main() {
   vec2 at = vec2(image_point.x, image_size.y - image_point.y);  // window coordinates, y up
   star_window = at;
-  // A pixel's solid angle there: its area on the image plane at unit distance times cos^3 of its
-  // angle from the forward direction. Across the three pixels it changes linearly to first
-  // order, which weights that reproduce linear functions average out: the flux summed over the
-  // pixels' own solid angles (frame/star_field.cpp's pixel_solid_angle) is the star's to a part
-  // in (pixel / focal length)^2.
-  vec2 plane = (at / image_size * 2.0 - 1.0) * camera_tan_half;
+  // Over a pixel's solid angle at unit distance: its area on the image plane (star.frag divides
+  // by cos^3 of each pixel's angle from the forward direction).
   vec2 size = 2.0 * camera_tan_half / image_size;
-  float q = 1.0 + dot(plane, plane);
-  star_radiance = flux * (q * sqrt(q) / (size.x * size.y));
+  star_radiance = flux / (size.x * size.y);
   // At the far end of the depth range, as the sky: bodies in front hide it. The viewport reaches
   // past the picture's edges, so that no point whose sprite reaches into the picture is clipped
   // by its centre.
