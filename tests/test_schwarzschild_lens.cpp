@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "lightcone/physics/schwarzschild_lens.hpp"
@@ -77,6 +78,37 @@ TEST(SchwarzschildLens, PointExactlyBehindIsSeenOnTheEinsteinRing) {
   EXPECT_NEAR(primary->sin_a, secondary->sin_a, 1e-12);
   const double ring = std::sqrt(4 * m * r_e / (r0 * (r0 + r_e)));
   EXPECT_NEAR(primary->sin_a, ring, 2e-3 * ring);  // to first order in M/b
+}
+
+}  // namespace
+}  // namespace lightcone
+
+namespace lightcone {
+namespace {
+
+// The table of images of directions far away against ray_between's exact solve between its
+// nodes: the look angle to 1e-9 rad, the solid-angle ratio (sin(alpha) / (sin(psi) |dsweep /
+// dalpha|) from the exact solve: f times its focusing) to 1e-5, for cameras outside and inside
+// the photon sphere; and no second image without a hole.
+TEST(SchwarzschildLens, TheFarImageTableFollowsTheExactSolve) {
+  for (const double r0 : {2.5, 6.0, 60.0}) {
+    const FarImageTable table(1, r0, 3);
+    const double f = 1 - 2 / r0;
+    for (int order = 0; order < 3; ++order)
+      for (double psi = 0.0137; psi < kPi; psi += 0.0917) {
+        SCOPED_TRACE(testing::Message() << r0 << " " << order << " " << psi);
+        const auto exact = ray_between(1, r0, std::numeric_limits<double>::infinity(), psi, order);
+        const auto image = table.at(psi, order);
+        ASSERT_TRUE(exact && image);
+        EXPECT_NEAR(image->alpha, std::atan2(exact->sin_a, exact->cos_a), 1e-9);
+        EXPECT_NEAR(image->solid_angle_ratio, f * exact->focusing, 1e-5 * f * exact->focusing);
+      }
+  }
+  const FarImageTable flat(0, 10, 2);
+  ASSERT_TRUE(flat.at(1.0, 0));
+  EXPECT_NEAR(flat.at(1.0, 0)->alpha, 1.0, 1e-12);
+  EXPECT_NEAR(flat.at(1.0, 0)->solid_angle_ratio, 1.0, 1e-9);
+  EXPECT_FALSE(flat.at(1.0, 1));
 }
 
 }  // namespace

@@ -142,20 +142,30 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
   return out;
 }
 
+HoleSkyImage hole_sky_image_seen(const HoleView& hole, const Vec3& toward, const Vec3& direction,
+                                 double solid_angle_ratio) {
+  HoleSkyImage image;
+  image.direction = direction;
+  image.shift = camera_photon_energy(hole, image.direction) / sky_photon_energy(hole, toward);
+  // Solid angles go as the inverse square of the photon's energy in each frame: the static
+  // observer's 1 / sqrt(f) against the camera's, W's 1 far away against the sky's.
+  image.magnification =
+      solid_angle_ratio / (hole.camera_lapse * hole.camera_lapse * image.shift * image.shift);
+  return image;
+}
+
 std::optional<HoleSkyImage> hole_sky_image(const HoleView& hole, const Scene& scene,
                                            const Vec3& sky_direction, int order) {
   const Vec3 toward = aberrate_out_of_moving_frame(sky_direction, scene.sky.velocity);
   const auto ray = hole_image_ray(hole, std::numeric_limits<double>::infinity(), toward, order);
   if (!ray) return std::nullopt;
-  HoleSkyImage image;
-  image.direction =
-      aberrate_into_moving_frame(ray->static_direction, scene.camera.world_line.velocity);
-  image.shift = camera_photon_energy(hole, image.direction) / sky_photon_energy(hole, toward);
-  // Solid angles go as the inverse square of the photon's energy in each frame, and the lens
-  // maps the static observer's at the camera to W's far away as f times `focusing`: the
-  // energies 1 / sqrt(f) (static) and 1 (W) cancel that f, leaving focusing / g^2.
-  image.magnification = ray->lens.focusing / (image.shift * image.shift);
-  return image;
+  // `focusing` is the plane wave's dA_far / dA_camera: the bundle's solid angle at the camera
+  // over that far away is f times it.
+  const double f = hole.camera_lapse * hole.camera_lapse;
+  return hole_sky_image_seen(
+      hole, toward,
+      aberrate_into_moving_frame(ray->static_direction, scene.camera.world_line.velocity),
+      f * ray->lens.focusing);
 }
 
 namespace {

@@ -87,5 +87,11 @@ struct HoleSkyImage {
 };
 std::optional<HoleSkyImage> hole_sky_image(const HoleView& hole, const Scene& scene,
                                            const Vec3& sky_direction, int order);
+// The same from what a lens solve gives: `toward`, W's direction far away (the sky's direction
+// carried out of its frame), the image's look direction (the static observer's at the camera
+// carried into the camera's frame by the flat aberration law), and the ratio of a bundle's solid
+// angle in the static observer's frame to that far away (FarImageTable's).
+HoleSkyImage hole_sky_image_seen(const HoleView& hole, const Vec3& toward, const Vec3& direction,
+                                 double solid_angle_ratio);
 
 }  // namespace lightcone

@@ -8,6 +8,7 @@
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/received_colour.hpp"
+#include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/stars.hpp"
 
 namespace lightcone {
@@ -122,38 +123,67 @@ StarPhotometry star_photometry(const ResolvedScene& scene, double margin) {
   return StarPhotometry(*s.sky.stars, s.render, range.lo - margin, range.hi + margin);
 }
 
-std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry) {
+std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry,
+                                   const FarImageTable* lens) {
   std::vector<StarImage> out;
   const Scene& s = *scene.scene;
   if (!s.sky.stars || !s.sky.stars->stars || photometry.size() == 0) return out;
   const std::vector<CatalogueStar>& stars = *s.sky.stars->stars;
   const CameraBasis& camera = scene.camera;
   // The filter reaches 1.5 pixels from its point.
-  const auto add = [&](std::size_t k, const Vec3& u, double g, double mu) {
+  // The image point of look direction u, where the filter (1.5 pixels from its point) reaches
+  // into the picture.
+  const auto seen = [&](const Vec3& u) -> std::optional<ImagePoint> {
     const ImagePoint p = project_direction(camera, u);
     if (!p.in_front ||
         !(p.x > -1.5 && p.x < camera.width + 1.5 && p.y > -1.5 && p.y < camera.height + 1.5))
-      return;
-    out.push_back({p.x, p.y, photometry.received(k, g, mu)});
+      return std::nullopt;
+    return p;
   };
   if (!scene.hole) {
     out.reserve(stars.size());
     const SkyToLook to_look = scene.sky_to_look();
     for (std::size_t k = 0; k < stars.size(); ++k) {
       const Vec3 u = to_look(stars[k].direction);
+      const auto p = seen(u);
+      if (!p) continue;
       const double d = scene.doppler(u, scene.sky_velocity);
-      add(k, u, d, 1 / (d * d));
+      out.push_back({p->x, p->y, photometry.received(k, d, 1 / (d * d))});
     }
     return out;
   }
-  if (scene.hole->falling) return out;
+  const HoleView& hole = *scene.hole;
+  if (hole.falling) return out;
+  std::optional<FarImageTable> own;
+  if (!lens || lens->mass() != hole.mass || lens->radius() != hole.camera_radius)
+    lens = &own.emplace(star_lens_table(hole));
+  const Vec3& e1 = hole.outward;
+  const Vec3& camera_velocity = s.camera.world_line.velocity;
   for (std::size_t k = 0; k < stars.size(); ++k) {
-    const Vec3 in_sky = s.sky.rotation * stars[k].direction;
-    for (int order = 0; order < kStarImageOrders; ++order)
-      if (const auto image = hole_sky_image(*scene.hole, s, in_sky, order))
-        add(k, image->direction, image->shift, image->magnification);
+    // As locate's ray toward a direction far away: the look direction sweeps from e1 toward
+    // the star (even orders) or round the other side, at the table's angle.
+    const Vec3 toward =
+        aberrate_out_of_moving_frame(s.sky.rotation * stars[k].direction, s.sky.velocity);
+    const double psi = std::acos(std::clamp(dot(e1, toward), -1.0, 1.0));
+    const Vec3 side = toward - e1 * dot(e1, toward);
+    const Vec3 t = length(side) > 0 ? normalize(side) : any_perpendicular(e1);
+    for (int order = 0; order < kStarImageOrders; ++order) {
+      const auto image = lens->at(psi, order);
+      if (!image) continue;
+      const Vec3 turn = order % 2 == 0 ? t : t * -1.0;
+      const Vec3 u = aberrate_into_moving_frame(
+          e1 * std::cos(image->alpha) + turn * std::sin(image->alpha), camera_velocity);
+      const auto p = seen(u);
+      if (!p) continue;
+      const HoleSkyImage i = hole_sky_image_seen(hole, toward, u, image->solid_angle_ratio);
+      out.push_back({p->x, p->y, photometry.received(k, i.shift, i.magnification)});
+    }
   }
   return out;
+}
+
+FarImageTable star_lens_table(const HoleView& hole) {
+  return FarImageTable(hole.mass, hole.camera_radius, kStarImageOrders);
 }
 
 StarFootprint star_footprint(double x, double y) {

@@ -12,6 +12,7 @@
 #include "lightcone/color/doppler_table.hpp"
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/physics/schwarzschild_lens.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
@@ -69,11 +70,16 @@ StarPhotometry star_photometry(const ResolvedScene& scene, double margin = 0);
 
 // Every image of every star of the scene's sky whose pixel filter reaches into the camera's
 // picture. In flat space one per star, at its exactly aberrated direction (the inverse of the
-// sky lookup the camera's rays make), with g = D; near a black hole (a camera outside the
-// horizon that is not falling) the images of orders 0 to kStarImageOrders - 1, each on its exact
-// ray (hole_sky_image) with its magnification.
+// sky lookup the camera's rays make), with g = D and the solid-angle ratio 1 / D^2. Near a black
+// hole (a camera outside the horizon that is not falling) the images of orders 0 to
+// kStarImageOrders - 1 from the lens table of the camera's radius (star_lens_table: `lens`,
+// made here when it is null or of another radius), carried into the camera's frame as locate's
+// (hole_sky_image_seen), with their magnifications.
 inline constexpr int kStarImageOrders = 3;
-std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry);
+std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry,
+                                   const FarImageTable* lens = nullptr);
+// The lens table the stars are found with: orders 0 to kStarImageOrders - 1 at 256 angles.
+FarImageTable star_lens_table(const HoleView& hole);
 
 // The pixel filter: the quadratic B-spline, separable, three pixels wide. A point at (x, y)
 // gives pixel (i0 + a, j0 + b) the weight wx[a] wy[b]; the weights sum to 1 wherever the point

@@ -122,6 +122,7 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
   // within 1e-6, the limit is taken (off by its square), not the ratio of two angles whose
   // sweep is accurate only to some 1e-14 absolutely.
   const double ratio = target > 1e-6 ? std::sin(psi) / sin_inner : rate;
+  ray.sweep_rate = rate;
   if (std::isinf(outer)) {
     ray.focusing = ratio > 0 ? 1 / (f_rho * ratio * rate) : 0.0;
     return ray;
@@ -131,6 +132,59 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
   ray.spread_a_to_b = a_inner ? spread_out : spread_in;
   ray.spread_b_to_a = a_inner ? spread_in : spread_out;
   return ray;
+}
+
+FarImageTable::FarImageTable(double mass, double r0, int orders, int nodes)
+    : mass_(mass), r0_(r0), step_(kPi / (nodes - 1)), nodes_(nodes) {
+  present_.assign(orders, true);
+  alpha_.assign(static_cast<std::size_t>(orders) * nodes, kNaN);
+  slope_.assign(alpha_.size(), kNaN);
+  for (int k = 0; k < orders; ++k)
+    for (int i = 0; i < nodes; ++i) {
+      const double psi = std::min(i * step_, kPi);
+      const std::size_t at = static_cast<std::size_t>(k) * nodes + i;
+      if (mass == 0 && k == 0) {  // straight lines, the one through the centre too
+        alpha_[at] = psi;
+        slope_[at] = 1;
+        continue;
+      }
+      const auto ray = ray_between(mass, r0, kInf, psi, k);
+      if (!ray) {
+        present_[k] = false;
+        break;
+      }
+      alpha_[at] = std::atan2(ray->sin_a, ray->cos_a);
+      slope_[at] = (k % 2 == 0 ? 1 : -1) / ray->sweep_rate;
+    }
+}
+
+std::optional<FarImageTable::Image> FarImageTable::at(double psi, int order) const {
+  if (order >= static_cast<int>(present_.size()) || !present_[order] || !(psi >= 0 && psi <= kPi))
+    return std::nullopt;
+  const double x = psi / step_;
+  const int i = std::min(static_cast<int>(x), nodes_ - 2);
+  const double t = x - i;
+  const std::size_t at = static_cast<std::size_t>(order) * nodes_ + i;
+  const double a0 = alpha_[at], a1 = alpha_[at + 1];
+  const double m0 = slope_[at] * step_, m1 = slope_[at + 1] * step_;
+  // Cubic Hermite on [0, 1], and its derivative.
+  const double t2 = t * t, t3 = t2 * t;
+  const double alpha = (2 * t3 - 3 * t2 + 1) * a0 + (t3 - 2 * t2 + t) * m0 +
+                       (-2 * t3 + 3 * t2) * a1 + (t3 - t2) * m1;
+  const double slope = ((6 * t2 - 6 * t) * a0 + (3 * t2 - 4 * t + 1) * m0 + (-6 * t2 + 6 * t) * a1 +
+                        (3 * t2 - 2 * t) * m1) /
+                       step_;
+  const double sin_psi = std::sin(psi), sin_alpha = std::sin(alpha);
+  Image image;
+  image.alpha = alpha;
+  if (sin_psi > 1e-12) {
+    image.solid_angle_ratio = sin_alpha * std::abs(slope) / sin_psi;
+  } else if (std::abs(sin_alpha) < 1e-9) {
+    image.solid_angle_ratio = slope * slope;
+  } else {
+    return std::nullopt;
+  }
+  return image;
 }
 
 }  // namespace lightcone

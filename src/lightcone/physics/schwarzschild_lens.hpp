@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 namespace lightcone {
 
@@ -43,7 +44,39 @@ struct RayBetween {
   // r_b = infinity: a plane wave from there is focused at a by dA_far / dA_a =
   // sin(alpha) / (f_a sin(psi) |dsweep / dalpha|) (the areas across the ray).
   double focusing = 0;
+  // |dsweep / dalpha| at the inner end.
+  double sweep_rate = 0;
 };
 std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order);
+
+// The images of directions far away seen by the static observer at radius r0 (> 2M), orders 0
+// to orders - 1, for many directions: ray_between's look angle alpha_k(psi) tabulated at `nodes`
+// equal steps of psi over [0, pi] and interpolated by cubic Hermite, with the exact slopes
+// d alpha / d psi = +-1 / |dsweep / dalpha| at the nodes (+ for even orders, whose sweep grows
+// with psi; the sweep to infinity grows with alpha over every escaping ray). Between nodes
+// h = pi / (nodes - 1) apart its error is of order h^4 in alpha and h^3 in the slope.
+class FarImageTable {
+ public:
+  FarImageTable(double mass, double r0, int orders, int nodes = 256);
+  double mass() const { return mass_; }
+  double radius() const { return r0_; }
+  struct Image {
+    double alpha = 0;
+    // The solid angle a small bundle subtends at r0, in the static observer's frame, over what
+    // it subtends far away: sin(alpha) |d alpha / d psi| / sin(psi) (its limit (d alpha /
+    // d psi)^2 on the axis where alpha -> 0 too).
+    double solid_angle_ratio = 1;
+  };
+  // None where the order has no image (M = 0 beyond the primary), and on the caustic (psi = 0 or
+  // pi with alpha off the axis: a point there is seen as a ring).
+  std::optional<Image> at(double psi, int order) const;
+
+ private:
+  double mass_, r0_, step_;
+  int nodes_;
+  std::vector<bool> present_;  // per order
+  std::vector<double> alpha_;  // order-major
+  std::vector<double> slope_;  // d alpha / d psi
+};
 
 }  // namespace lightcone

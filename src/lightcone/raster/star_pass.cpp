@@ -43,7 +43,11 @@ void StarPass::prepare(const ResolvedScene& scene) {
   if (!scene.scene->sky.stars) return;
   // A margin of one unit of ln g: a camera that speeds up keeps the table for a while.
   if (!photometry_ || !photometry_->serves(scene)) photometry_ = star_photometry(scene, 1.0);
-  const std::vector<StarImage> stars = star_images(scene, *photometry_);
+  if (scene.hole && !scene.hole->falling &&
+      (!lens_ || lens_->mass() != scene.hole->mass || lens_->radius() != scene.hole->camera_radius))
+    lens_ = star_lens_table(*scene.hole);
+  const std::vector<StarImage> stars =
+      star_images(scene, *photometry_, scene.hole && lens_ ? &*lens_ : nullptr);
   std::vector<float> data;
   data.reserve(stars.size() * kFloatsPerStar);
   for (const StarImage& s : stars)

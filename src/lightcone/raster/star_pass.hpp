@@ -21,7 +21,8 @@ class StarPass {
   StarPass& operator=(const StarPass&) = delete;
 
   // The frame's star images (none without sky.stars), uploaded. The photometry is kept from
-  // frame to frame while it serves (StarPhotometry::serves).
+  // frame to frame while it serves (StarPhotometry::serves), the lens table near a hole while
+  // the camera's radius stays.
   void prepare(const ResolvedScene& scene);
   std::size_t count() const { return count_; }
 
@@ -34,6 +35,7 @@ class StarPass {
   GLuint program_ = 0, vertex_array_ = 0, buffer_ = 0;
   std::size_t count_ = 0;
   std::optional<StarPhotometry> photometry_;
+  std::optional<FarImageTable> lens_;  // near a hole: kept while the camera's radius is
 };
 
 }  // namespace lightcone
