@@ -1468,6 +1468,17 @@ std::vector<std::string> keys_of(const nlohmann::json& object) {
   return keys;
 }
 
+// The schema's sky.stars: a boolean or the loader's three keys, its one catalogue.
+TEST(SceneSchema, ListsTheSkysStars) {
+  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  const auto& stars = schema.at("$defs").at("sky").at("properties").at("stars").at("oneOf");
+  EXPECT_EQ(stars.at(0).at("type"), "boolean");
+  EXPECT_EQ(keys_of(stars.at(1).at("properties")),
+            (std::vector<std::string>{"catalogue", "exposure", "magnitude_limit"}));
+  EXPECT_EQ(stars.at(1).at("properties").at("catalogue").at("enum"),
+            nlohmann::json::parse(R"(["bright"])"));
+}
+
 // The schema names the same colour keys and model names as the loader accepts.
 TEST(SceneSchema, ListsTheColourKeysAndModels) {
   const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
