@@ -10,8 +10,8 @@ flags="-fsanitize=fuzzer-no-link,address,undefined,float-cast-overflow -fno-sani
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DLIGHTCONE_FUZZ=ON -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_scene fuzz_mesh fuzz_image
-for harness in scene mesh image; do
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_scene fuzz_mesh fuzz_image fuzz_stars
+for harness in scene mesh image stars; do
   work=$(mktemp -d)
   cp -r "fuzz/corpus/$harness/." "$work/"
   dict=()
