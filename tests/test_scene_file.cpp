@@ -721,6 +721,18 @@ TEST_F(SceneFileTest, OverridesReplaceValues) {
   EXPECT_EQ(s.objects.at(0).name, "renamed");  // not JSON, so taken as a string
 }
 
+// Numbers separated by commas are an array, as locate's --direction x,y,z; other text that is
+// not JSON stays a string.
+TEST_F(SceneFileTest, OverridesReadCommaSeparatedNumbersAsArrays) {
+  const Scene s = load(kOverrideScene, {"camera.velocity=0,0,-0.99", "objects.0.position=1, 2,3e-1",
+                                        "objects.0.name=a,b"});
+  expect_vec(s.camera.world_line.velocity, 0, 0, -0.99);
+  expect_vec(s.objects.at(0).world_line.position, 1, 2, 0.3);
+  EXPECT_EQ(s.objects.at(0).name, "a,b");
+  expect_set_error(kOverrideScene, {"camera.velocity=0,0,x"}, "camera.velocity",
+                   "string \"0,0,x\"");
+}
+
 TEST_F(SceneFileTest, OverridesCreateMissingObjectsAndAppendElements) {
   const Scene s =
       load(kOverrideScene, {"sky.grid.spacing=10", "render.exposure=2",

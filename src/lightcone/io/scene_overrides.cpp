@@ -32,7 +32,15 @@ std::string apply_scene_override(SceneJson& document, const std::string& overrid
     fail("empty component in the key path");
 
   SceneJson value = SceneJson::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (value.is_discarded()) value = text;
+  if (value.is_discarded()) {
+    // "0,0,-0.99" is the array [0, 0, -0.99] (as locate's --direction x,y,z); other text that is
+    // not JSON is a string.
+    SceneJson list = SceneJson::parse("[" + text + "]", nullptr, /*allow_exceptions=*/false);
+    const bool numbers =
+        !list.is_discarded() && list.size() > 1 &&
+        std::all_of(list.begin(), list.end(), [](const SceneJson& v) { return v.is_number(); });
+    value = numbers ? std::move(list) : SceneJson(text);
+  }
 
   SceneJson* node = &document;
   std::string path;
