@@ -51,10 +51,9 @@ render black-hole black-hole.json
 render stars stars.json
 # The strip of the guide: flying toward Orion at 0, 0.5, 0.9 and 0.99c.
 render stars-0 stars.json --width 480 --height 270
-render stars-0.5 stars.json --width 480 --height 270 --set 'camera.velocity=[-0.49725,0,-0.05225]'
-render stars-0.9 stars.json --width 480 --height 270 --set 'camera.velocity=[-0.89505,0,-0.09405]'
-render stars-0.99 stars.json --width 480 --height 270 \
-  --set 'camera.velocity=[-0.984555,0,-0.103455]'
+render stars-0.5 stars.json --width 480 --height 270 --set camera.velocity=0,0,-0.5
+render stars-0.9 stars.json --width 480 --height 270 --set camera.velocity=0,0,-0.9
+render stars-0.99 stars.json --width 480 --height 270 --set camera.velocity=0,0,-0.99
 render black-hole-order black-hole.json --map image_order
 render lensed-clock lensed-clock.json
 render infall infall.json
