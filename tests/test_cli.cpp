@@ -1635,6 +1635,20 @@ TEST_F(CliTest, InfoJsonReportsSpeedsGammaDopplerAndTimeWindow) {
   EXPECT_NE(text.out.find("gamma 1.25"), std::string::npos) << text.out;
 }
 
+// The stars a scene draws: how many, from which catalogue, to which magnitude.
+TEST_F(CliTest, InfoCountsTheStars) {
+  const CommandResult r =
+      run_lightcone("info " + quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/stars.json") +
+                    " --json --set sky.stars.magnitude_limit=3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto stars = nlohmann::json::parse(r.out).at("stars");
+  EXPECT_EQ(stars.at("catalogue"), "bright");
+  EXPECT_EQ(stars.at("magnitude_limit").get<double>(), 3);
+  // The Bright Star Catalogue has some 170 stars brighter than V = 3.
+  EXPECT_GT(stars.at("count").get<int>(), 150);
+  EXPECT_LT(stars.at("count").get<int>(), 190);
+}
+
 TEST_F(CliTest, LocateBehindTheCameraHasNoPixel) {
   const fs::path scene = write_scene(kScene);
   const auto behind = locate_output(locate(scene, "--world-point 0,0,10"));

@@ -363,6 +363,11 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
         {"memory_bytes", info.memory_bytes}};
     if (info.emission_time_min)
       out["emission_time"] = {*info.emission_time_min, *info.emission_time_max};
+    if (const auto& stars = scene.sky.stars)
+      out["stars"] = {{"catalogue", stars->catalogue},
+                      {"count", stars->stars ? stars->stars->size() : 0},
+                      {"magnitude_limit", stars->magnitude_limit},
+                      {"exposure", stars->exposure}};
     if (const auto& h = info.hole)
       out["black_hole"] = {{"mass", h->mass},
                            {"horizon", h->horizon},
@@ -407,6 +412,10 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
   if (info.emission_time_min)
     std::printf("light seen left the scene between t = %.6g and %.6g (observed at t = %.6g)\n",
                 *info.emission_time_min, *info.emission_time_max, info.observation_time);
+  if (const auto& stars = scene.sky.stars)
+    std::printf("%zu stars of the \"%s\" catalogue, brighter than V %.3g, exposure %+.3g EV\n",
+                stars->stars ? stars->stars->size() : 0, stars->catalogue.c_str(),
+                stars->magnitude_limit, stars->exposure);
   std::printf("%llu triangles; about %.1f MB to render\n",
               static_cast<unsigned long long>(info.triangles), info.memory_bytes / 1e6);
   return 0;
