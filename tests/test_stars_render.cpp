@@ -13,10 +13,13 @@
 #include <random>
 
 #include "lightcone/color/spectrum.hpp"
+#include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/star_field.hpp"
+#include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/celestial.hpp"
 #include "lightcone/physics/stars.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 
@@ -363,6 +366,87 @@ TEST(StarsRender, TheRasterRendererKeepsStarsAtThePicturesEdges) {
   const double rastered = measure_all(render_raster(s), camera).flux.y;
   ASSERT_GT(traced, 0);
   EXPECT_NEAR(rastered, traced, 1e-3 * traced);
+}
+
+// Near a hole each image of a star lies where the tracer's own camera ray reaches that star's
+// direction far away, with that ray's image order and shift: for a static camera, one moving
+// across the hole's direction, one falling radially (outside the horizon), and a sky that
+// moves and is turned.
+TEST(StarsRender, EachLensedImageIsWhereACameraRayMeetsItsStar) {
+  std::vector<CatalogueStar> stars;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 400; ++k) stars.push_back({normalize(Vec3{u(rng), u(rng), u(rng)}), 1, 0.5f});
+  struct Case {
+    const char* name;
+    const char* overrides[3];
+  };
+  const Case cases[] = {
+      {"static", {"camera.position=0,0,12", "camera.fov=120", ""}},
+      {"moving", {"camera.position=0,0,12", "camera.velocity=0.6,0,0", "camera.fov=120"}},
+      {"falling",
+       {R"(camera.motion={"fall": {"from": 30, "direction": [0, 0, 1]}})", "camera.proper_time=100",
+        "camera.fov=120"}},
+      {"sky moving and turned",
+       {"camera.position=0,0,12", "sky.velocity=0,0.5,0",
+        R"(sky.rotation={"axis": [1, 1, 0], "degrees": 40})"}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    std::vector<std::string> overrides = {"camera.width=300", "camera.height=300",
+                                          "camera.forward=0,0,-1", "camera.up=0,1,0"};
+    for (const char* o : c.overrides)
+      if (*o) overrides.push_back(o);
+    SceneLoadReport report;
+    const auto dir = test::fresh_temp_dir("lensed-stars");
+    test::write_text(dir / "scene.json", R"({"camera": {},
+        "black_hole": {"mass": 1}, "sky": {"stars": true}})");
+    const Scene loaded = load_scene_file(dir / "scene.json", overrides, report);
+    std::filesystem::remove_all(dir);
+    Scene s = loaded;
+    s.sky.stars->stars = std::make_shared<std::vector<CatalogueStar>>(stars);
+    const ResolvedScene resolved = resolve_scene(s);
+    ASSERT_TRUE(resolved.hole);
+    const StarPhotometry photometry = star_photometry(resolved);
+    const std::vector<StarImage> images = star_images(resolved, photometry);
+    ASSERT_GT(images.size(), 20u);
+    int secondary = 0;
+    for (const StarImage& image : images) {
+      if (image.x < 0 || image.y < 0 || image.x > 300 || image.y > 300) continue;
+      const Vec3 look = look_direction(resolved.camera, image.x, image.y);
+      const CurvedRay ray = follow_curved_ray(*resolved.hole, look);
+      ASSERT_EQ(ray.end, CurvedRayEnd::kSky);
+      // The star whose direction (in the sky's pattern coordinates) the ray reaches.
+      double best = -2;
+      for (const CatalogueStar& star : stars)
+        best = std::max(best, dot(star.direction, ray.sky_direction));
+      EXPECT_GT(best, std::cos(1e-6)) << image.x << " " << image.y << " order " << ray.order;
+      secondary += ray.order >= 1;
+    }
+    EXPECT_GT(secondary, 5);
+  }
+}
+
+// locate --direction takes a direction in the sky's rest frame near a hole as in flat space: the
+// ray through each image it gives reaches that direction, which the pattern (and the stars)
+// have at sky.rotation^T of it.
+TEST(StarsRender, LocateADirectionNearAHoleInTheSkysFrame) {
+  Scene s;
+  s.camera.world_line.position = {0, 0, 12};
+  s.black_hole = BlackHole{{0, 0, 0}, 1, std::nullopt};
+  s.sky.rotation = Mat3::rotation(normalize(Vec3{1, 1, 0}), 0.7);
+  const Vec3 d = normalize(Vec3{0.3, 0.2, -1});
+  LocateQuery query;
+  query.kind = LocateQuery::Kind::SkyDirection;
+  query.value = d;
+  const LocateResult result = locate(s, query);
+  ASSERT_GE(result.images.size(), 2u);
+  const ResolvedScene resolved = resolve_scene(s);
+  for (const LocateImage& image : result.images) {
+    const CurvedRay ray = follow_curved_ray(*resolved.hole, image.direction);
+    ASSERT_EQ(ray.end, CurvedRayEnd::kSky);
+    EXPECT_GT(dot(ray.sky_direction, s.sky.rotation.transposed() * d), std::cos(1e-7));
+    EXPECT_EQ(ray.order, image.order);
+  }
 }
 
 }  // namespace

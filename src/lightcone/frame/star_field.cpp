@@ -153,12 +153,18 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
     return out;
   }
   const HoleView& hole = *scene.hole;
-  if (hole.falling) return out;
+  // The camera's velocity against the static observer at its event; a falling camera's frame is
+  // the static one boosted radially by u^r / E (physics/radial_observer.hpp), and inside the
+  // horizon there is no static observer to carry the lens table's angles from.
+  Vec3 camera_velocity = s.camera.world_line.velocity;
+  if (hole.falling) {
+    if (!(hole.camera_radius > 2 * hole.mass)) return out;
+    camera_velocity = hole.outward * (hole.falling->radial_velocity / hole.falling->energy);
+  }
   std::optional<FarImageTable> own;
   if (!lens || lens->mass() != hole.mass || lens->radius() != hole.camera_radius)
     lens = &own.emplace(star_lens_table(hole));
   const Vec3& e1 = hole.outward;
-  const Vec3& camera_velocity = s.camera.world_line.velocity;
   for (std::size_t k = 0; k < stars.size(); ++k) {
     // As locate's ray toward a direction far away: the look direction sweeps from e1 toward
     // the star (even orders) or round the other side, at the table's angle.

@@ -71,7 +71,7 @@ StarPhotometry star_photometry(const ResolvedScene& scene, double margin = 0);
 // Every image of every star of the scene's sky whose pixel filter reaches into the camera's
 // picture. In flat space one per star, at its exactly aberrated direction (the inverse of the
 // sky lookup the camera's rays make), with g = D and the solid-angle ratio 1 / D^2. Near a black
-// hole (a camera outside the horizon that is not falling) the images of orders 0 to
+// hole (a camera outside the horizon) the images of orders 0 to
 // kStarImageOrders - 1 from the lens table of the camera's radius (star_lens_table: `lens`,
 // made here when it is null or of another radius), carried into the camera's frame as locate's
 // (hole_sky_image_seen), with their magnifications.

@@ -43,7 +43,7 @@ void StarPass::prepare(const ResolvedScene& scene) {
   if (!scene.scene->sky.stars) return;
   // A margin of one unit of ln g: a camera that speeds up keeps the table for a while.
   if (!photometry_ || !photometry_->serves(scene)) photometry_ = star_photometry(scene, 1.0);
-  if (scene.hole && !scene.hole->falling &&
+  if (scene.hole && scene.hole->camera_radius > 2 * scene.hole->mass &&
       (!lens_ || lens_->mass() != scene.hole->mass || lens_->radius() != scene.hole->camera_radius))
     lens_ = star_lens_table(*scene.hole);
   const std::vector<StarImage> stars =
