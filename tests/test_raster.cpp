@@ -15,6 +15,7 @@
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/star_field.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/light_path.hpp"
@@ -90,6 +91,19 @@ TEST_F(GlslKernels, RetardedEventMatchesMeetWorldLineToOnePartIn1e5) {
     const double want = retarded_delay(lines[i].position_at_zero, lines[i].velocity);
     EXPECT_NEAR(delays[i][0], want, 1e-5 * want) << i;
   }
+}
+
+// The stars' pixel filter in star_filter.glsl is frame/star_field.cpp's, over and past its
+// support.
+TEST_F(GlslKernels, StarFilterMatchesTheTracers) {
+  std::vector<std::array<float, 9>> inputs;
+  for (double dx = -1.75; dx <= 1.75; dx += 0.125)
+    for (double dy = -1.75; dy <= 1.75; dy += 0.25)
+      inputs.push_back({static_cast<float>(dx), static_cast<float>(dy), 0, 0, 0, 0, 0, 0, 0});
+  const auto out =
+      evaluate_glsl("vec4(star_filter_weight(a.xy))", inputs, shader_sources::star_filter_glsl);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    EXPECT_NEAR(out[i][0], star_filter_weight(inputs[i][0], inputs[i][1]), 1e-7) << i;
 }
 
 TEST_F(GlslKernels, DopplerFactorMatchesTheFourVectorFormWithinItsConditionNumber) {
@@ -595,7 +609,7 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"sky-hole-image.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,
        "#define LIGHTCONE_BLACK_HOLE 1\n#define LIGHTCONE_SKY_IMAGE 1\n"},
       {"star.vert", shader_sources::star_vert, false},
-      {"star.frag", shader_sources::star_frag, true}};
+      {"star.frag", shader_sources::star_frag, true, shader_sources::star_filter_glsl}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;
     test::write_text(file, std::string("#version 300 es\nprecision highp float;\nprecision highp "

@@ -18,21 +18,19 @@ LinearRgb scaled(const LinearRgb& c, double k) {
   return {c.r * k, c.g * k, c.b * k};
 }
 
-// One axis of the filter for a point at x: the nearest pixel centre m + 1/2 and the weights of
-// pixels m - 1, m, m + 1 (t in [-1/2, 1/2) the point's offset from that centre).
-void filter_axis(double x, int& first, std::array<double, 3>& w) {
-  const double u = x - 0.5;
-  const double m = std::floor(u + 0.5);
-  const double t = u - m;
-  first = static_cast<int>(m) - 1;
-  w = {0.5 * (0.5 - t) * (0.5 - t), 0.75 - t * t, 0.5 * (0.5 + t) * (0.5 + t)};
-}
-
 double filter_1d(double t) {
   const double a = std::abs(t);
   if (a <= 0.5) return 0.75 - a * a;
   if (a < 1.5) return 0.5 * (1.5 - a) * (1.5 - a);
   return 0;
+}
+
+// One axis of the filter for a point at x: the pixel m whose centre m + 1/2 is nearest and the
+// weights of pixels m - 1, m, m + 1 (the only ones within 1.5 of it).
+void filter_axis(double x, int& first, std::array<double, 3>& w) {
+  const double m = std::floor(x);
+  first = static_cast<int>(m) - 1;
+  for (int k = 0; k < 3; ++k) w[k] = filter_1d(m - 0.5 + k - x);
 }
 
 // The image-plane coordinates (at unit distance along forward) of image point x or y.
@@ -130,7 +128,6 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
   if (!s.sky.stars || !s.sky.stars->stars || photometry.size() == 0) return out;
   const std::vector<CatalogueStar>& stars = *s.sky.stars->stars;
   const CameraBasis& camera = scene.camera;
-  // The filter reaches 1.5 pixels from its point.
   // The image point of look direction u, where the filter (1.5 pixels from its point) reaches
   // into the picture.
   const auto seen = [&](const Vec3& u) -> std::optional<ImagePoint> {

@@ -21,5 +21,6 @@ extern const char* const sky_frag;
 extern const char* const black_hole_glsl;
 extern const char* const star_vert;
 extern const char* const star_frag;
+extern const char* const star_filter_glsl;
 
 }  // namespace lightcone::shader_sources

@@ -16,9 +16,10 @@ constexpr int kViewportMargin = 2;
 
 StarPass::StarPass() {
   const std::string version = "#version 330 core\n";
-  program_ = link_program(version + shader_sources::common_glsl + shader_sources::star_vert,
-                          version + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" +
-                              shader_sources::common_glsl + shader_sources::star_frag);
+  program_ =
+      link_program(version + shader_sources::common_glsl + shader_sources::star_vert,
+                   version + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + shader_sources::common_glsl +
+                       shader_sources::star_filter_glsl + shader_sources::star_frag);
   glGenVertexArrays(1, &vertex_array_);
   glGenBuffers(1, &buffer_);
   glBindVertexArray(vertex_array_);
