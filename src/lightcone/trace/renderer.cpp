@@ -169,9 +169,11 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   // each pixel's samples that did), from each observation in turn.
   const bool with_stars =
       scene.sky.stars && scene.sky.stars->stars && !scene.sky.stars->stars->empty();
-  std::vector<float> sky_coverage(with_stars ? pixels : 0), star_rgb(with_stars ? pixels * 3 : 0);
+  // With a shutter they are summed apart, as the observations' radiance is; else added at once.
+  std::vector<float> sky_coverage(with_stars ? pixels : 0),
+      star_rgb(with_stars && observations > 1 ? pixels * 3 : 0);
 
-  double setup_seconds = 0;
+  double setup_seconds = 0, stars_seconds = 0;
   for (int o = 0; o < observations; ++o) {
     Scene moved;
     if (observations > 1) {
@@ -277,10 +279,13 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
       }
     });
     if (with_stars) {
+      const auto stars_start = std::chrono::steady_clock::now();
       const StarPhotometry photometry = star_photometry(resolved);
       const std::vector<StarImage> stars = star_images(resolved, photometry);
       deposit_stars(stars, resolved.camera, window.x0, window.y0, width, height, sky_coverage,
-                    1.0 / observations, star_rgb);
+                    1.0 / observations, observations > 1 ? star_rgb : image.rgb);
+      stars_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - stars_start).count();
     }
   }
   if (observations > 1)
@@ -292,6 +297,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   if (stats) {
     stats->exposure = ev;
     stats->setup_seconds = setup_seconds;
+    stats->stars_seconds = stars_seconds;
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->rays = static_cast<std::uint64_t>(width) * height * n;

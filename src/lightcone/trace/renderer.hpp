@@ -43,6 +43,7 @@ struct RenderOptions {
 struct RenderStats {
   double seconds = 0;
   double setup_seconds = 0;  // of those, resolving the scene and building its tables and BVHs
+  double stars_seconds = 0;  // and finding the stars' images and depositing them
   std::uint64_t rays = 0;    // camera rays traced
   double exposure = 0;       // EV applied
   bool cancelled = false;    // some tiles were skipped (RenderOptions::cancel)
