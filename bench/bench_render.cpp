@@ -13,7 +13,6 @@
 
 #include <array>
 #include <map>
-#include <random>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/scene_file.hpp"
@@ -22,7 +21,7 @@
 #include "meshes.hpp"
 
 using namespace lightcone;
-using lightcone::bench::icosphere;
+using lightcone::bench::swarm_scene;
 
 namespace {
 
@@ -36,33 +35,6 @@ Scene street(bool relativity, bool moving) {
   s.render.doppler = DopplerModel::kOff;
   s.render.searchlight = SearchlightModel::kOff;
   if (!moving) s.camera.world_line.velocity = {};
-  return s;
-}
-
-// `count` instances of one ~1280-triangle mesh, moving in random directions at up to 0.9c.
-Scene swarm(int count, bool relativity, int width = 1920, int height = 1080) {
-  static const std::shared_ptr<const Mesh> mesh = icosphere(3);
-  Scene s;
-  s.camera.width = width;
-  s.camera.height = height;
-  s.camera.fov_degrees = 70;
-  s.render.relativity = relativity;
-  s.render.doppler = DopplerModel::kOff;  // geometry only, like the street comparison
-  s.render.searchlight = SearchlightModel::kOff;
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int i = 0; i < count; ++i) {
-    Object o;
-    o.name = "body-" + std::to_string(i);
-    o.shape = MeshShape{mesh};
-    o.world_line.position = {u(rng) * 40, u(rng) * 22, -30 + u(rng) * 25};
-    Vec3 dir{u(rng), u(rng), u(rng)};
-    o.world_line.velocity = normalize(dir) * (0.9 * std::abs(u(rng)));
-    o.scale = {1.2, 1.2, 1.2};
-    o.material.pattern = SolidColor{{0.8f, 0.6f, 0.3f}};
-    s.objects.push_back(o);
-  }
-  s.sky.pattern = SolidColor{{0.05f, 0.05f, 0.1f}};
   return s;
 }
 
@@ -149,7 +121,7 @@ void BM_StaticStreet(benchmark::State& state) {
 BENCHMARK(BM_StaticStreet)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 void BM_Swarm(benchmark::State& state) {
-  render_and_count(state, swarm(1000, state.range(0) != 0));
+  render_and_count(state, swarm_scene(1000, state.range(0) != 0));
 }
 BENCHMARK(BM_Swarm)
     ->ArgName("relativistic")
@@ -161,7 +133,7 @@ BENCHMARK(BM_Swarm)
 
 // Memory for `instances` uses of one mesh: Embree's acceleration structures plus the mesh.
 void BM_Memory(benchmark::State& state) {
-  const Scene scene = swarm(static_cast<int>(state.range(0)), true, 64, 64);
+  const Scene scene = swarm_scene(static_cast<int>(state.range(0)), true, 64, 64);
   std::size_t bytes = 0;
   for (auto _ : state) {
     const ResolvedScene resolved = resolve_scene(scene);

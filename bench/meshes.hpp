@@ -1,4 +1,4 @@
-// Meshes the benchmarks share.
+// Meshes and scenes the benchmarks share.
 #pragma once
 
 #include <algorithm>
@@ -6,6 +6,8 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "lightcone/scene/scene.hpp"
@@ -40,6 +42,33 @@ inline std::shared_ptr<const Mesh> icosphere(int levels) {
     mesh->triangles = std::move(finer);
   }
   return mesh;
+}
+
+// `count` instances of one ~1280-triangle mesh, moving in random directions at up to 0.9c.
+inline Scene swarm_scene(int count, bool relativity, int width = 1920, int height = 1080) {
+  static const std::shared_ptr<const Mesh> mesh = icosphere(3);
+  Scene s;
+  s.camera.width = width;
+  s.camera.height = height;
+  s.camera.fov_degrees = 70;
+  s.render.relativity = relativity;
+  s.render.doppler = DopplerModel::kOff;  // geometry only, like the street comparison
+  s.render.searchlight = SearchlightModel::kOff;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < count; ++i) {
+    Object o;
+    o.name = "body-" + std::to_string(i);
+    o.shape = MeshShape{mesh};
+    o.world_line.position = {u(rng) * 40, u(rng) * 22, -30 + u(rng) * 25};
+    Vec3 dir{u(rng), u(rng), u(rng)};
+    o.world_line.velocity = normalize(dir) * (0.9 * std::abs(u(rng)));
+    o.scale = {1.2, 1.2, 1.2};
+    o.material.pattern = SolidColor{{0.8f, 0.6f, 0.3f}};
+    s.objects.push_back(o);
+  }
+  s.sky.pattern = SolidColor{{0.05f, 0.05f, 0.1f}};
+  return s;
 }
 
 }  // namespace lightcone::bench

@@ -21,6 +21,8 @@
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
+#include "lightcone/raster/baseline_pass.hpp"
+#include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
@@ -573,6 +575,28 @@ TEST(RasterRelativity, TheSameSceneFromAnotherFrameRendersTheSameImage) {
     const Image a = render_raster(scene), b = render_raster(other);
     EXPECT_LT(test::fraction_differing(a, b), 0.003) << frame.x;
   }
+}
+
+// The pass-through baseline of bench/bench_raster.cpp draws the triangles the frame it mirrors
+// drew (its own picture: the bodies' silhouettes where they are at F's time 0).
+TEST(RasterBaseline, DrawsTheFramesTriangles) {
+  Scene scene = test::load_repository_scene("street.json");
+  scene.camera.width = 160, scene.camera.height = 90, scene.camera.samples = 1;
+  const HeadlessGlContext context;
+  RasterRenderer renderer;
+  const FloatTarget target(160, 90);
+  target.bind();
+  const ResolvedScene resolved = resolve_scene(scene);
+  const EmissionTable emission(resolved);
+  const std::size_t triangles =
+      renderer.prepare(resolved, emission, {}, /*on_gpu=*/false).triangles;
+  ASSERT_GT(triangles, 1000u);
+  const BaselinePass baseline;
+  EXPECT_EQ(baseline.draw(resolved, renderer), triangles);
+  const Image drawn = target.read();
+  std::size_t covered = 0;
+  for (std::size_t p = 0; p < drawn.rgb.size() / 3; ++p) covered += drawn.rgb[3 * p] == 1.0f;
+  EXPECT_GT(covered, 160u * 90 / 10);  // the street's houses fill much of the view
 }
 
 // ---------------------------------------------------------------------------------------------

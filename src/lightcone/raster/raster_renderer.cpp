@@ -20,6 +20,7 @@
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
+#include "lightcone/raster/shader_build.hpp"
 #include "lightcone/raster/shader_sources.hpp"
 #include "lightcone/raster/star_pass.hpp"
 
@@ -34,20 +35,6 @@ constexpr double kLogDopplerStep = 1.0 / 512;
 constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
-
-// GLSL 330 for the CPU tessellation path, 400 for the GPU one (tessellation shaders).
-std::string version_line(bool tessellation) {
-  return tessellation ? "#version 400 core\n" : "#version 330 core\n";
-}
-std::string vertex_shader(const char* source, bool tessellation = false) {
-  return version_line(tessellation) + shader_sources::common_glsl +
-         shader_sources::body_projection_glsl + source;
-}
-std::string fragment_shader(const char* source, const std::string& extra = "",
-                            const char* defines = "", bool tessellation = false) {
-  return version_line(tessellation) + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + defines +
-         shader_sources::common_glsl + extra + source;
-}
 
 // Same emission, same row.
 using EmissionKey = std::tuple<float, float, float, const DopplerXyzTable*, const DopplerXyzTable*,
@@ -790,6 +777,14 @@ struct RasterRenderer::Impl {
     if (stars) stars->draw(resolved);
   }
 };
+
+RasterRenderer::TessellatedBodies RasterRenderer::tessellated_bodies() const {
+  TessellatedBodies out{impl_->vertex_array, impl_->vertex_buffer, kFloatsPerVertex, {}};
+  if (!impl_->gpu_tessellation)
+    for (const Impl::BodyDraw& d : impl_->draws)
+      out.draws.push_back({d.body, d.first_vertex, d.vertex_count});
+  return out;
+}
 
 RasterRenderer::RasterRenderer() : impl_(std::make_unique<Impl>()) {}
 RasterRenderer::~RasterRenderer() = default;

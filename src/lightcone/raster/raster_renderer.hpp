@@ -74,6 +74,18 @@ class RasterRenderer {
   // the point on sphere lights) moves each pixel's shading to its own sample.
   void pass(double pixel_offset_x = 0.5, double pixel_offset_y = 0.5,
             const std::vector<float>* shading_offsets = nullptr);
+  // The prepared frame's bodies as tessellated on the CPU (none on the GPU path): the vertex
+  // array and buffer, its vertices' size in floats (the shape point first), and each body's
+  // range of vertices, for BaselinePass.
+  struct TessellatedBodies {
+    unsigned vertex_array = 0, vertex_buffer = 0;
+    int floats_per_vertex = 0;
+    struct Draw {
+      std::size_t body = 0, first_vertex = 0, vertex_count = 0;
+    };
+    std::vector<Draw> draws;
+  };
+  TessellatedBodies tessellated_bodies() const;
 
  private:
   struct Impl;

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "lightcone/raster/shader_sources.hpp"
+#include "lightcone/raster/shader_build.hpp"
 
 namespace lightcone {
 namespace {
@@ -15,11 +15,9 @@ constexpr int kViewportMargin = 2;
 }  // namespace
 
 StarPass::StarPass() {
-  const std::string version = "#version 330 core\n";
   program_ =
-      link_program(version + shader_sources::common_glsl + shader_sources::star_vert,
-                   version + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + shader_sources::common_glsl +
-                       shader_sources::star_filter_glsl + shader_sources::star_frag);
+      link_program(vertex_shader(shader_sources::star_vert),
+                   fragment_shader(shader_sources::star_frag, shader_sources::star_filter_glsl));
   glGenVertexArrays(1, &vertex_array_);
   glGenBuffers(1, &buffer_);
   glBindVertexArray(vertex_array_);

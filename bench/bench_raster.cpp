@@ -1,0 +1,97 @@
+// The raster renderer against the limit its geometry sets (issue: "In bench/, the same
+// tessellated triangles of a frame drawn by a pass-through shader into the same targets. Report
+// lightcone's frame time over it"):
+//   RasterFrame/<scene>     one frame as the viewer draws it: resolve the scene, its emission
+//                           tables, prepare (tessellation, colour rows, lights), one pass,
+//                           glFinish; headless through EGL (llvmpipe here).
+//   RasterBaseline/<scene>  the same prepared triangles drawn by BaselinePass (pass-through
+//                           vertices, one colour) into the same target, glFinish.
+// The ratio of the two times is the figure; `triangles` counts both. Scenes: street.json at
+// 640x360 and 1280x720, street-lit.json (shadows asked for; the raster renderer casts none) at
+// 640x360, and the 1,000-body swarm (1.28M triangles) at 1280x720.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/io/scene_file.hpp"
+#include "lightcone/raster/baseline_pass.hpp"
+#include "lightcone/raster/frame_target.hpp"
+#include "lightcone/raster/gl.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
+#include "meshes.hpp"
+
+using namespace lightcone;
+
+namespace {
+
+Scene raster_scene(const std::string& name, int width, int height) {
+  if (name == "swarm") {
+    Scene s = bench::swarm_scene(1000, true, width, height);
+    s.camera.samples = 1;
+    return s;
+  }
+  SceneLoadReport report;
+  return load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/" + name,
+                         {"camera.width=" + std::to_string(width),
+                          "camera.height=" + std::to_string(height), "camera.samples=1"},
+                         report);
+}
+
+void RasterFrame(benchmark::State& state, const std::string& name, int width, int height) {
+  const Scene scene = raster_scene(name, width, height);
+  const HeadlessGlContext context;
+  RasterRenderer renderer;
+  const FloatTarget target(width, height);
+  target.bind();
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const ResolvedScene resolved = resolve_scene(scene);
+    const EmissionTable emission(resolved);
+    triangles = renderer.prepare(resolved, emission).triangles;
+    renderer.pass();
+    glFinish();
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+
+void RasterBaseline(benchmark::State& state, const std::string& name, int width, int height) {
+  const Scene scene = raster_scene(name, width, height);
+  const HeadlessGlContext context;
+  RasterRenderer renderer;
+  const FloatTarget target(width, height);
+  target.bind();
+  const ResolvedScene resolved = resolve_scene(scene);
+  const EmissionTable emission(resolved);
+  renderer.prepare(resolved, emission);
+  const BaselinePass baseline;
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    triangles = baseline.draw(resolved, renderer);
+    glFinish();
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+
+void register_pair(const std::string& label, const std::string& scene, int width, int height) {
+  benchmark::RegisterBenchmark(("RasterFrame/" + label).c_str(), RasterFrame, scene, width, height)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark(("RasterBaseline/" + label).c_str(), RasterBaseline, scene, width,
+                               height)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+}
+
+const bool registered = [] {
+  register_pair("street/640x360", "street.json", 640, 360);
+  register_pair("street/1280x720", "street.json", 1280, 720);
+  register_pair("street-lit/640x360", "street-lit.json", 640, 360);
+  register_pair("swarm/1280x720", "swarm", 1280, 720);
+  return true;
+}();
+
+}  // namespace

@@ -1,0 +1,56 @@
+#include "lightcone/raster/baseline_pass.hpp"
+
+#include <cmath>
+
+#include "lightcone/raster/shader_build.hpp"
+#include "lightcone/raster/tessellation.hpp"
+
+namespace lightcone {
+
+BaselinePass::BaselinePass() {
+  program_ = link_program(vertex_shader(shader_sources::baseline_vert),
+                          fragment_shader(shader_sources::baseline_frag));
+}
+
+BaselinePass::~BaselinePass() {
+  glDeleteProgram(program_);
+}
+
+std::size_t BaselinePass::draw(const ResolvedScene& scene, const RasterRenderer& renderer) const {
+  const RasterRenderer::TessellatedBodies bodies = renderer.tessellated_bodies();
+  const CameraBasis& c = scene.camera;
+  glClearColor(0, 0, 0, 0);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_BLEND);
+  glUseProgram(program_);
+  set_vec3(program_, "camera_forward", c.forward);
+  set_vec3(program_, "camera_right", c.right);
+  set_vec3(program_, "camera_up", c.up);
+  glUniform2f(uniform(program_, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
+              static_cast<float>(c.tan_half_fov));
+  glUniform2f(uniform(program_, "image_size"), static_cast<float>(c.width),
+              static_cast<float>(c.height));
+  glUniform2f(uniform(program_, "pixel_offset"), 0.5f, 0.5f);
+  glUniform2f(uniform(program_, "depth_range"), static_cast<float>(std::log(kDepthNear)),
+              static_cast<float>(std::log(kDepthFar)));
+  glBindVertexArray(bodies.vertex_array);
+  glBindBuffer(GL_ARRAY_BUFFER, bodies.vertex_buffer);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE,
+                        static_cast<GLsizei>(bodies.floats_per_vertex * sizeof(float)), nullptr);
+  std::size_t triangles = 0;
+  for (const RasterRenderer::TessellatedBodies::Draw& d : bodies.draws) {
+    const BodyView view = body_view(scene, scene.bodies[d.body]);
+    set_mat3(program_, "shape_to_trace", view.shape_to_trace);
+    set_vec3(program_, "shape_origin", view.shape_origin);
+    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(d.first_vertex),
+                 static_cast<GLsizei>(d.vertex_count));
+    triangles += d.vertex_count / 3;
+  }
+  check_gl("drawing the baseline");
+  return triangles;
+}
+
+}  // namespace lightcone
