@@ -632,7 +632,9 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_BLACK_HOLE 1\n"},
       {"sky-hole-image.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,
        "#define LIGHTCONE_BLACK_HOLE 1\n#define LIGHTCONE_SKY_IMAGE 1\n"},
-      {"star.vert", shader_sources::star_vert, false},
+      {"star.vert", shader_sources::star_vert, false, shader_sources::body_projection_glsl},
+      {"baseline.vert", shader_sources::baseline_vert, false, shader_sources::body_projection_glsl},
+      {"baseline.frag", shader_sources::baseline_frag, true},
       {"star.frag", shader_sources::star_frag, true, shader_sources::star_filter_glsl}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;
