@@ -3,7 +3,8 @@
 // lightcone's frame time over it"):
 //   RasterFrame/<scene>     one frame as the viewer draws it: resolve the scene, its emission
 //                           tables, prepare (tessellation, colour rows, lights), one pass,
-//                           glFinish; headless through EGL (llvmpipe here).
+//                           glFinish; headless through EGL (llvmpipe here). prepare_ms and
+//                           pass_ms split it.
 //   RasterBaseline/<scene>  the same prepared triangles drawn by BaselinePass (pass-through
 //                           vertices, one colour) into the same target, glFinish.
 // The ratio of the two times is the figure; `triangles` counts both. Scenes: street.json at
@@ -11,6 +12,7 @@
 // 640x360, and the 1,000-body swarm (1.28M triangles) at 1280x720.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -48,14 +50,23 @@ void RasterFrame(benchmark::State& state, const std::string& name, int width, in
   const FloatTarget target(width, height);
   target.bind();
   std::size_t triangles = 0;
+  double prepare_s = 0, pass_s = 0;
   for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
     const ResolvedScene resolved = resolve_scene(scene);
     const EmissionTable emission(resolved);
     triangles = renderer.prepare(resolved, emission).triangles;
+    glFinish();
+    const auto t1 = std::chrono::steady_clock::now();
     renderer.pass();
     glFinish();
+    prepare_s += std::chrono::duration<double>(t1 - t0).count();
+    pass_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   }
+  const double n = static_cast<double>(state.iterations());
   state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["prepare_ms"] = 1e3 * prepare_s / n;
+  state.counters["pass_ms"] = 1e3 * pass_s / n;
 }
 
 void RasterBaseline(benchmark::State& state, const std::string& name, int width, int height) {

@@ -26,6 +26,7 @@
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/shader_build.hpp"
 #include "lightcone/raster/shader_sources.hpp"
 #include "lightcone/scene/reframe.hpp"
 #include "lightcone/trace/renderer.hpp"
@@ -599,6 +600,53 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
   EXPECT_GT(covered, 160u * 90 / 10);  // the street's houses fill much of the view
 }
 
+// A frame's body programs hold only the features its bodies use (raster/shader_build.hpp,
+// body_variant_defines); each such frame is drawn exactly as by the programs with every feature:
+// street.json (none), the spinning wheel, the twin paradox's clocks, street-lit.json (lit), and
+// the cubes with several samples a pixel (per-pixel shading offsets).
+TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
+  const auto draw = [](const Scene& scene, bool specialise, bool offsets) {
+    const HeadlessGlContext context;
+    RasterRenderer renderer;
+    renderer.set_specialised_programs(specialise);
+    const FloatTarget target(scene.camera.width, scene.camera.height);
+    target.bind();
+    const ResolvedScene resolved = resolve_scene(scene);
+    const EmissionTable emission(resolved);
+    renderer.prepare(resolved, emission, {}, /*on_gpu=*/false);
+    // Offsets: each pixel shaded at a point of its own (the second of four samples).
+    std::vector<float> shading(4 * static_cast<std::size_t>(scene.camera.width) *
+                               scene.camera.height);
+    for (std::size_t i = 0; i < shading.size(); i += 4) {
+      shading[i] = 0.3f + 0.4f * static_cast<float>((i / 4) % 7) / 7;
+      shading[i + 1] = 0.6f;
+      shading[i + 2] = shading[i + 3] = 0.5f;
+    }
+    renderer.pass(0.5, 0.5, offsets ? &shading : nullptr);
+    return target.read();
+  };
+  struct Case {
+    const char* scene;
+    bool offsets;
+  };
+  for (const Case c :
+       {Case{"street.json", false}, Case{"wheel.json", false}, Case{"twin-paradox.json", false},
+        Case{"street-lit.json", false}, Case{"cubes.json", true}}) {
+    SCOPED_TRACE(c.scene);
+    Scene scene = test::load_repository_scene(c.scene);
+    scene.camera.width = 160, scene.camera.height = 90;
+    const Image specialised = draw(scene, true, c.offsets), full = draw(scene, false, c.offsets);
+    ASSERT_EQ(specialised.rgb.size(), full.rgb.size());
+    std::size_t differing = 0, lit = 0;
+    for (std::size_t i = 0; i < full.rgb.size(); ++i) {
+      differing += std::abs(specialised.rgb[i] - full.rgb[i]) > 1e-6f * (1 + std::abs(full.rgb[i]));
+      lit += full.rgb[i] > 0;
+    }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_GT(lit, full.rgb.size() / 10);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // The shaders as GLSL ES 3.00 (WebGL 2): the same sources with only the version and precision
 // lines changed, through the reference compiler.
@@ -614,6 +662,9 @@ TEST(RasterShaders, CompileAsGlslEs300) {
   };
   const std::string patterns = shader_sources::patterns_glsl;
   const std::string patterns_and_lighting = patterns + shader_sources::lighting_glsl;
+  const std::string stripped = body_variant_defines(0);
+  const std::string stripped_textured = "#define LIGHTCONE_TEXTURED 1\n" + stripped;
+  const std::string stripped_lit = "#define LIGHTCONE_LIT 1\n" + stripped;
   const Stage stages[] = {
       {"body.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl},
       {"body.frag", shader_sources::body_frag, true, patterns.c_str()},
@@ -621,6 +672,13 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_TEXTURED 1\n"},
       {"body-lit.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
        "#define LIGHTCONE_LIT 1\n"},
+      // Each with every feature a frame may leave out left out (body_variant_defines).
+      {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
+       stripped.c_str()},
+      {"body-textured-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
+       stripped_textured.c_str()},
+      {"body-lit-specialised.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+       stripped_lit.c_str()},
       {"hole_body.vert", shader_sources::hole_body_vert, false,
        shader_sources::body_projection_glsl},
       {"hole_body.frag", shader_sources::hole_body_frag, true, patterns.c_str()},

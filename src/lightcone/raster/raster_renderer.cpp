@@ -66,7 +66,14 @@ struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
   // image): small programs run faster than one with every branch.
   enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
-  GLuint body_programs[3] = {0, 0, 0}, sky_programs[2] = {0, 0};
+  // And one per path (CPU or GPU tessellation) and set of features its frame uses: a frame runs
+  // only the code its bodies need, since a branch on a uniform still costs a software
+  // rasteriser every fragment it masks (twice the time of street.json's frame). Each is built
+  // the first time a frame asks for it.
+  std::map<int, GLuint> body_program_cache;
+  int frame_features = 0;  // of the prepared frame's bodies (kBodySpin, kBodyTimedPattern)
+  bool specialise = true;  // false: every body program has every feature (the tests' reference)
+  GLuint sky_programs[2] = {0, 0};
   // The sky near a black hole (plain or grid, and image; the disk's colour model spectral or
   // not): each built with the first frame that needs it.
   GLuint hole_sky_programs[2][2] = {{0, 0}, {0, 0}};
@@ -77,8 +84,6 @@ struct RasterRenderer::Impl {
   std::unique_ptr<StarPass> stars;
   int disk_row = 0;
   double disk_floor = 0;
-  // The same with tessellation shaders (OpenGL 4), where the context has them.
-  GLuint patch_programs[3] = {0, 0, 0};
   GlDriver driver;
   bool gpu_tessellation = false;  // which path the frame is prepared for
   GLuint body_program = 0;        // the one in use
@@ -92,29 +97,30 @@ struct RasterRenderer::Impl {
            (variant == kLit ? shader_sources::lighting_glsl : "");
   }
 
+  // The body program of a kind of material, path and features (body_variant_defines).
+  GLuint body_program_for(int variant, bool gpu, int features) {
+    GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 8 + features];
+    if (program) return program;
+    const std::string defines =
+        std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
+                    : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
+                                           : "") +
+        body_variant_defines(features);
+    const std::string fragment = fragment_shader(
+        shader_sources::body_frag, body_fragment_extra(variant), defines.c_str(), gpu);
+    if (!gpu) return program = link_program(vertex_shader(shader_sources::body_vert), fragment);
+    const std::string common =
+        version_line(true) + shader_sources::common_glsl + shader_sources::body_projection_glsl;
+    return program =
+               link_program(common + shader_sources::patch_vert, fragment,
+                            common + shader_sources::body_tesc, common + shader_sources::body_tese);
+  }
+
   Impl() {
-    for (int v = 0; v < 3; ++v)
-      body_programs[v] =
-          link_program(vertex_shader(shader_sources::body_vert),
-                       fragment_shader(shader_sources::body_frag, body_fragment_extra(v),
-                                       v == kLit        ? "#define LIGHTCONE_LIT 1\n"
-                                       : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
-                                                        : ""));
     driver.tessellation_shaders = gl_has_tessellation_shaders();
     driver.renderer = gl_renderer();
-    if (driver.tessellation_shaders) {
-      const std::string common =
-          version_line(true) + shader_sources::common_glsl + shader_sources::body_projection_glsl;
-      for (int v = 0; v < 3; ++v)
-        patch_programs[v] =
-            link_program(common + shader_sources::patch_vert,
-                         fragment_shader(shader_sources::body_frag, body_fragment_extra(v),
-                                         v == kLit        ? "#define LIGHTCONE_LIT 1\n"
-                                         : v == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
-                                                          : "",
-                                         true),
-                         common + shader_sources::body_tesc, common + shader_sources::body_tese);
-    }
+    // The common programs now, so that the first frame does not wait for them.
+    for (int v = 0; v < 3; ++v) body_program_for(v, false, 0);
     for (int v = 0; v < 2; ++v)
       sky_programs[v] =
           link_program(vertex_shader(shader_sources::fullscreen_vert),
@@ -143,9 +149,7 @@ struct RasterRenderer::Impl {
     glDeleteTextures(1, &tables_texture);
     glDeleteBuffers(1, &vertex_buffer);
     glDeleteVertexArrays(1, &vertex_array);
-    for (GLuint program : body_programs) glDeleteProgram(program);
-    for (GLuint program : patch_programs)
-      if (program) glDeleteProgram(program);
+    for (const auto& [key, program] : body_program_cache) glDeleteProgram(program);
     glDeleteBuffers(1, &patch_buffer);
     for (GLuint program : sky_programs) glDeleteProgram(program);
     for (const auto& programs : hole_sky_programs)
@@ -355,6 +359,7 @@ struct RasterRenderer::Impl {
     std::map<ReflectionKey, int> reflection_rows, reflection_tables;
 
     draws.clear();
+    frame_features = 0;
     hole_body_list.clear();
     std::map<const void*, RestMesh> meshes;  // per shape, for this frame
     for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
@@ -372,6 +377,8 @@ struct RasterRenderer::Impl {
                      : std::holds_alternative<Blink>(m.pattern) ? 3
                      : std::holds_alternative<Clock>(m.pattern) ? 4
                                                                 : 0;
+      if (draw.pattern >= 3) frame_features |= kBodyTimedPattern;
+      if (body.spin >= 0) frame_features |= kBodySpin;
       if (textured) {
         draw.first_row = emission_row(kBlack);
         const bool drawable = m.unlit && !std::holds_alternative<MeshShape>(body.object->shape) &&
@@ -671,7 +678,9 @@ struct RasterRenderer::Impl {
                           reinterpret_cast<const void*>(3 * sizeof(float)));
     if (gpu_tessellation) glPatchParameteri(GL_PATCH_VERTICES, 3);
     for (const Variant variant : {kEmitter, kTextured, kLit}) {
-      body_program = gpu_tessellation ? patch_programs[variant] : body_programs[variant];
+      body_program = body_program_for(
+          variant, gpu_tessellation,
+          specialise ? frame_features | (offsets ? kBodySampleOffsets : 0) : kAllBodyFeatures);
       glUseProgram(body_program);
       set_common(body_program, resolved, first_log_doppler, ox, oy);
       // Depth: the light travel distance on a log scale between these.
@@ -792,6 +801,10 @@ RasterRenderer::~RasterRenderer() = default;
 RasterFrameStats RasterRenderer::prepare(const ResolvedScene& scene, const EmissionTable& emission,
                                          const TessellationLimits& limits, bool on_gpu) {
   return impl_->prepare(scene, emission, limits, on_gpu);
+}
+
+void RasterRenderer::set_specialised_programs(bool specialise) {
+  impl_->specialise = specialise;
 }
 
 const GlDriver& RasterRenderer::driver() const {

@@ -67,6 +67,9 @@ class RasterRenderer {
                            const TessellationLimits& limits = {}, bool on_gpu = false);
   // The current context's driver, for tessellate_on_gpu.
   const GlDriver& driver() const;
+  // Whether each frame's body programs hold only the features its bodies use (the default) or
+  // every feature (the reference the tests hold the specialised ones against).
+  void set_specialised_programs(bool specialise);
   // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
   // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The
   // viewport must be the camera's image size.

@@ -23,4 +23,21 @@ inline std::string fragment_shader(const char* source, const std::string& extra 
          shader_sources::common_glsl + extra + source;
 }
 
+// What a body program may leave out when no body of the frame uses it (shaders/body.frag,
+// patterns.glsl, common.glsl): spinning bodies, blinks and clocks, and shading at per-pixel
+// sample offsets (several samples a pixel). The defines take out those a frame does not use.
+enum BodyFeature {
+  kBodySpin = 1,
+  kBodyTimedPattern = 2,
+  kBodySampleOffsets = 4,
+  kAllBodyFeatures = 7,
+};
+inline std::string body_variant_defines(int features) {
+  std::string defines;
+  if (!(features & kBodySpin)) defines += "#define LIGHTCONE_NO_SPIN 1\n";
+  if (!(features & kBodyTimedPattern)) defines += "#define LIGHTCONE_NO_TIMED_PATTERNS 1\n";
+  if (!(features & kBodySampleOffsets)) defines += "#define LIGHTCONE_NO_SAMPLE_OFFSETS 1\n";
+  return defines;
+}
+
 }  // namespace lightcone

@@ -132,6 +132,7 @@ void main() {
   vec3 velocity = doppler_velocity;
   float gamma = doppler_gamma;
   float spin_angle = 0.0;
+#if !defined(LIGHTCONE_NO_SPIN)
   if (spinning == 1) {
     // The point's own velocity, rate axis x r in the rest frame, carried to F.
     SpinHit hit = spinning_hit(shape_origin, direction, proper_time_origin, tau1, spin_round == 1);
@@ -142,7 +143,9 @@ void main() {
     vec4 moving = trace_from_rest * vec4(1.0, spin_rate * cross(spin_axis, hit.rest_point));
     velocity = moving.yzw / moving.x;
     gamma = inversesqrt(max(1.0 - dot(velocity, velocity), 1e-12));
-  } else {
+  } else
+#endif
+  {
     s = max(surface_parameter(shape_origin, direction), 0.0);
     p = surface_point(shape_origin + direction * s);
   }
@@ -155,11 +158,13 @@ void main() {
 #if defined(LIGHTCONE_LIT)
   vec3 normal = normalize(normal_to_rest * shape_normal(p, direction));
   vec3 surface_velocity = surface_velocity_of_body;
+#if !defined(LIGHTCONE_NO_SPIN)
   if (spinning == 1) {
     normal = turned(spin_axis, spin_angle, normal);
     vec4 moving = trace_to_world * vec4(1.0, velocity);
     surface_velocity = relativity == 1 ? moving.yzw / moving.x : vec3(0.0);
   }
+#endif
   vec3 c = lit_colour(albedo[k], k, u, s, d, surface_velocity, normal, fragment_light_sample());
   colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, 1.0);
 #elif defined(LIGHTCONE_TEXTURED)

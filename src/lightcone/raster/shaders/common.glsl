@@ -72,17 +72,25 @@ uniform sampler2D sample_offsets;
 
 // The fragment's look direction through its shading position.
 vec3 fragment_look_direction() {
+#if defined(LIGHTCONE_NO_SAMPLE_OFFSETS)  // one sample a pixel
+  vec2 offset = pixel_offset;
+#else
   vec2 offset = shade_at_sample_offsets == 1
                     ? texelFetch(sample_offsets, ivec2(gl_FragCoord.xy), 0).rg
                     : pixel_offset;
+#endif
   vec2 p = vec2(floor(gl_FragCoord.x), image_size.y - 1.0 - floor(gl_FragCoord.y)) + offset;
   return look_direction(p);
 }
 
 // The fragment's point on sphere lights (one sample a pixel: the same for every pixel).
 vec2 fragment_light_sample() {
+#if defined(LIGHTCONE_NO_SAMPLE_OFFSETS)
+  return vec2(0.5);
+#else
   return shade_at_sample_offsets == 1 ? texelFetch(sample_offsets, ivec2(gl_FragCoord.xy), 0).ba
                                       : vec2(0.5);
+#endif
 }
 #endif
 

@@ -53,9 +53,14 @@ vec2 surface_uv(vec3 p) {
 }
 
 // Which of the pattern's colours (0 or 1) surface point p shows at the body's clock.
+// (LIGHTCONE_NO_TIMED_PATTERNS: a frame without blinks and clocks.)
 int pattern_index(vec3 p, float proper_time) {
+#if defined(LIGHTCONE_NO_TIMED_PATTERNS)
+  return pattern == 1 ? checker_index(p, checker_size) : 0;
+#else
   return pattern == 1                     ? checker_index(p, checker_size)
          : pattern == 3                   ? blink_index(proper_time)
          : pattern == 4 && shape_kind > 0 ? clock_index(surface_uv(p), proper_time)
                                           : 0;
+#endif
 }
