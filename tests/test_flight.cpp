@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "viewer/flight.hpp"
+#include "viewer/frame_rate.hpp"
 
 namespace lightcone {
 namespace {
@@ -107,6 +108,45 @@ TEST(Flight, SceneCameraOnAGeodesicGoesOnAlongIt) {
   EXPECT_EQ(flight.mode, Flight::Mode::kOrbit);
   ASSERT_TRUE(flight.advance(5));
   EXPECT_NEAR(length(flight.camera.world_line.position), 8, 1e-9);
+}
+
+}  // namespace
+}  // namespace lightcone
+
+namespace lightcone {
+namespace {
+
+// The viewer's first impression (viewer/frame_rate.hpp): the rate over two seconds after three
+// warm-up frames, and advice below 20 fps naming the window's size, the GPU's tessellation where
+// a hardware GPU could take it, and the split view.
+TEST(FrameRate, MeasuredOnceAfterTheWarmUp) {
+  FrameRateProbe probe;
+  double t = 0;
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(probe.frame(t += 1.0));  // slow first frames
+  bool ended = false;
+  int frames = 0;
+  while (!ended) {
+    ended = probe.frame(t += 0.125);  // eight frames a second, in steps exact in binary
+    ++frames;
+  }
+  ASSERT_TRUE(probe.measured());
+  EXPECT_EQ(*probe.measured(), 8.0);
+  EXPECT_EQ(frames, 16);
+  EXPECT_FALSE(probe.frame(t += 0.125));
+}
+
+TEST(FrameRate, AdviceNamesWhatToLower) {
+  EXPECT_FALSE(slow_viewer_advice(25, 640, 360, false, true, false));
+  const auto cpu = slow_viewer_advice(12.5, 1280, 720, false, true, true);
+  ASSERT_TRUE(cpu);
+  EXPECT_NE(cpu->find("12.5 frames a second"), std::string::npos) << *cpu;
+  EXPECT_NE(cpu->find("1280x720"), std::string::npos);
+  EXPECT_NE(cpu->find("--tessellation gpu"), std::string::npos);
+  EXPECT_NE(cpu->find("split"), std::string::npos);
+  const auto software = slow_viewer_advice(12.5, 640, 360, false, false, false);
+  ASSERT_TRUE(software);
+  EXPECT_EQ(software->find("--tessellation"), std::string::npos);
+  EXPECT_EQ(software->find("split"), std::string::npos);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
@@ -27,6 +28,7 @@
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "viewer/flight.hpp"
+#include "viewer/frame_rate.hpp"
 
 namespace lightcone {
 namespace {
@@ -133,7 +135,13 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     double time_scale = options.time_scale;
     double exposure = scene.render.auto_exposure ? 0.0 : scene.render.exposure;
     auto last = std::chrono::steady_clock::now();
+    const auto started = last;
     double fps = 0;
+    // The first impression: the rate this machine reaches, measured once, and what to lower.
+    FrameRateProbe probe;
+    std::optional<std::string> slow;
+    const bool gpu_available =
+        renderer.driver().tessellation_shaders && !software_rasteriser(renderer.driver().renderer);
     double last_x = 0, last_y = 0;
     bool dragging = false;
     FrameDraw drawn;
@@ -238,6 +246,11 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         std::fprintf(stderr, "lightcone: wrote %s\n", file.string().c_str());
       }
 
+      if (probe.frame(std::chrono::duration<double>(now - started).count())) {
+        slow = slow_viewer_advice(*probe.measured(), width, height, on_gpu, gpu_available, split);
+        if (slow) std::fprintf(stderr, "lightcone: warning: %s\n", slow->c_str());
+      }
+
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
       glViewport(0, 0, width, height);
       display_pass.draw(*relativistic, split ? classical.get() : nullptr, exposure,
@@ -254,6 +267,14 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         ImGui::Text("Doppler on screen %.3g to %.3g", drawn.doppler_min, drawn.doppler_max);
         ImGui::Text("%.1f fps, %zu triangles (%s)", fps, drawn.triangles,
                     on_gpu ? "cut on the GPU" : "tessellated on the CPU");
+        if (const auto measured = probe.measured())
+          ImGui::Text("this machine: %.1f fps over the first %.0f s", *measured,
+                      FrameRateProbe::kSeconds);
+        if (slow) {
+          ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28);
+          ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.3f, 1.0f), "%s", slow->c_str());
+          ImGui::PopTextWrapPos();
+        }
         float speed = static_cast<float>(flight.speed);
         if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
         if (scene.black_hole) {
