@@ -552,3 +552,46 @@ TEST(Sampler, DimensionsArePixelsAreAndSeedsAreDecorrelated) {
 
 }  // namespace
 }  // namespace lightcone
+
+namespace lightcone {
+namespace {
+
+// Emission tables built with a margin serve the next frames of the same Scene object while its
+// factors stay inside them (the viewer keeps them), and give the colours a table built for each
+// frame gives; another Scene, another colour model or a factor beyond the margin needs new ones.
+TEST(EmissionTableReuse, ServesTheNextFramesOfTheSameScene) {
+  Scene scene = test::load_repository_scene("street.json");
+  scene.camera.width = 64, scene.camera.height = 36;
+  const ResolvedScene first = resolve_scene(scene);
+  const EmissionTable kept(first, 0.25);
+  EXPECT_TRUE(kept.serves(first));
+
+  scene.camera.forward = normalize(Vec3{0.05, 0, -1});  // the next frame turns a little
+  const ResolvedScene next = resolve_scene(scene);
+  ASSERT_TRUE(kept.serves(next));
+  const EmissionTable fresh(next);
+  // Over the factors the fresh tables hold inside their ends (the nodes of both are the same).
+  const DopplerGrid& grid = fresh.white_table().grid();
+  int compared = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); i += 7)
+    for (double log_d = (grid.first + 2) * DopplerGrid::kStep;
+         log_d <= (grid.last - 2) * DopplerGrid::kStep; log_d += 0.0137) {
+      const Xyz a = kept.object_colour(i, 0).seen_with_doppler(std::exp(log_d));
+      const Xyz b = fresh.object_colour(i, 0).seen_with_doppler(std::exp(log_d));
+      EXPECT_NEAR(a.y, b.y, 1e-12 * b.y) << i << " " << log_d;
+      EXPECT_NEAR(a.z, b.z, 1e-12 * b.z) << i << " " << log_d;
+      ++compared;
+    }
+  EXPECT_GT(compared, 50);
+
+  Scene copy = scene;  // the same content, another object
+  EXPECT_FALSE(kept.serves(resolve_scene(copy)));
+  scene.render.doppler = DopplerModel::kRgb3;
+  EXPECT_FALSE(kept.serves(resolve_scene(scene)));
+  scene.render.doppler = DopplerModel::kSpectral;
+  scene.camera.world_line.velocity = {0, 0, -0.95};  // from 0.8c: ln D grows by 0.4 ahead
+  EXPECT_FALSE(kept.serves(resolve_scene(scene)));
+}
+
+}  // namespace
+}  // namespace lightcone

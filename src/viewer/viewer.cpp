@@ -39,13 +39,21 @@ struct FrameDraw {
   double doppler_min = 1, doppler_max = 1;
 };
 
+// A frame's emission tables, kept from frame to frame while they serve (EmissionTable::serves):
+// they are built over a wider range of the Doppler factor than a frame needs, for the same Scene
+// object, which the viewer keeps and changes only in its camera and render settings.
+constexpr double kEmissionMargin = 0.25;
+
 FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target,
-                     bool on_gpu) {
+                     bool on_gpu, std::unique_ptr<EmissionTable>& emission) {
   const ResolvedScene resolved = resolve_scene(scene);
-  const EmissionTable emission(resolved);
+  if (!emission || !emission->serves(resolved)) {
+    emission.reset();  // (the old tables go before the new are built)
+    emission = std::make_unique<EmissionTable>(resolved, kEmissionMargin);
+  }
   target.bind();
   FrameDraw draw;
-  draw.triangles = renderer.prepare(resolved, emission, {}, on_gpu).triangles;
+  draw.triangles = renderer.prepare(resolved, *emission, {}, on_gpu).triangles;
   renderer.pass();
   const LogDopplerRange seen = visible_log_doppler(resolved, false);
   draw.doppler_min = std::exp(seen.lo);
@@ -138,6 +146,10 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     const auto started = last;
     double fps = 0;
     // The first impression: the rate this machine reaches, measured once, and what to lower.
+    // The scene as drawn (the flight's camera, the panel's settings) and, for the split view,
+    // its classical picture: each kept, with its emission tables, from frame to frame.
+    Scene frame = scene, still = scene;
+    std::unique_ptr<EmissionTable> frame_emission, still_emission;
     FrameRateProbe probe;
     std::optional<std::string> slow;
     const bool gpu_available =
@@ -216,15 +228,16 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         relativistic = std::make_unique<FloatTarget>(width, height);
         classical = std::make_unique<FloatTarget>(width, height);
       }
-      Scene frame = scene;
       frame.camera = flight.camera;
       frame.camera.width = width;
       frame.camera.height = height;
-      drawn = draw_scene(renderer, frame, *relativistic, on_gpu);
+      frame.render = scene.render;
+      drawn = draw_scene(renderer, frame, *relativistic, on_gpu, frame_emission);
       if (split) {
-        Scene still = frame;
+        still.camera = frame.camera;
+        still.render = scene.render;
         still.render.relativity = false;
-        draw_scene(renderer, still, *classical, on_gpu);
+        draw_scene(renderer, still, *classical, on_gpu, still_emission);
       }
 
       // F12: the view as a PNG, as `lightcone render` would write it (no panel).
@@ -329,14 +342,15 @@ int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellatio
   // third, turning a little each frame.
   Flight flight(scene.camera);
   std::size_t triangles = 0;
+  Scene frame = scene;
+  std::unique_ptr<EmissionTable> emission;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < frames; ++i) {
     flight.set_speed(0.9 * std::min(1.0, 3.0 * i / std::max(frames, 1)));
     flight.turn(0.002, 0);
     flight.advance(1.0 / 30, scene.black_hole ? &*scene.black_hole : nullptr);
-    Scene frame = scene;
     frame.camera = flight.camera;
-    triangles += draw_scene(renderer, frame, target, on_gpu).triangles;
+    triangles += draw_scene(renderer, frame, target, on_gpu, emission).triangles;
     glFinish();
   }
   glFinish();

@@ -78,12 +78,13 @@ struct ParallelNodes {
 
 }  // namespace
 
-EmissionTable::EmissionTable(const ResolvedScene& resolved)
+EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
     : scene_(*resolved.scene),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
+      has_hole_(resolved.hole.has_value()),
       grid_([&] {
         const LogDopplerRange r = visible_log_doppler(resolved, false);
-        return DopplerGrid::covering(r.lo, r.hi);
+        return DopplerGrid::covering(r.lo - margin, r.hi + margin);
       }()) {
   if (spectral_) {
     illuminant_ = illuminant_samples([](double l) { return reference_illuminant(l); }, grid_,
@@ -110,6 +111,15 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved)
     sky_.colours[0] = fixed_rgb(g->background);
     sky_.colours[1] = fixed_rgb(g->line_color);
   }
+}
+
+bool EmissionTable::serves(const ResolvedScene& next) const {
+  if (&scene_ != next.scene || has_hole_ || next.hole ||
+      spectral_ != (next.scene->render.doppler == DopplerModel::kSpectral))
+    return false;
+  const LogDopplerRange r = visible_log_doppler(next, false);
+  const DopplerGrid needed = DopplerGrid::covering(r.lo, r.hi);
+  return grid_.first <= needed.first && needed.last <= grid_.last;
 }
 
 // The disk's hottest ring, tabulated in every colour model (the others need its colour at rest

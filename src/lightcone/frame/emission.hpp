@@ -70,9 +70,17 @@ class EmissionTable {
  public:
   static constexpr std::size_t kMaxColourTables = 4096;
 
-  explicit EmissionTable(const ResolvedScene& scene);
+  // `margin`: the tables cover the factors the scene is seen with widened by this much of ln D
+  // on each side, so that a renderer can keep them for the next frames (serves()).
+  explicit EmissionTable(const ResolvedScene& scene, double margin = 0);
   EmissionTable(const EmissionTable&) = delete;  // emissions point into its tables
   EmissionTable& operator=(const EmissionTable&) = delete;
+
+  // Whether these tables are those `next` would build, but for their range: the same Scene
+  // object (so the same materials and sky; a viewer keeps one and changes only its camera and
+  // render settings), the same colour model, no black hole (its disk's table follows the
+  // camera), and every factor `next` is seen with inside the tables' range.
+  bool serves(const ResolvedScene& next) const;
 
   PointEmission surface(std::size_t object_index, const Hit& hit) const;
   PointEmission sky(const Vec3& pattern_direction) const;
@@ -107,6 +115,7 @@ class EmissionTable {
 
   const Scene& scene_;
   bool spectral_;
+  bool has_hole_;
   DopplerGrid grid_;
   std::vector<double> illuminant_;  // the reference illuminant on the grid (illuminant_samples)
   DopplerXyzTable white_;
