@@ -145,11 +145,11 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     auto last = std::chrono::steady_clock::now();
     const auto started = last;
     double fps = 0;
-    // The first impression: the rate this machine reaches, measured once, and what to lower.
     // The scene as drawn (the flight's camera, the panel's settings) and, for the split view,
     // its classical picture: each kept, with its emission tables, from frame to frame.
     Scene frame = scene, still = scene;
     std::unique_ptr<EmissionTable> frame_emission, still_emission;
+    // The first impression: the rate this machine reaches, measured once, and what to lower.
     FrameRateProbe probe;
     std::optional<std::string> slow;
     const bool gpu_available =
