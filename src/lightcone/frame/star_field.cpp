@@ -1,5 +1,7 @@
 #include "lightcone/frame/star_field.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -43,6 +45,23 @@ double plane_c(const CameraBasis& b, double y) {
 // The solid angle of the rectangle [0, a] x [0, c] of the unit image plane, signed.
 double corner_solid_angle(double a, double c) {
   return std::atan(a * c / std::sqrt(1 + a * a + c * c));
+}
+
+// Runs one(k, images) for every star k < count, blocks of stars in parallel, and returns the
+// images in the stars' order (so that a picture adds them up the same way every run).
+template <class One>
+std::vector<StarImage> over_stars(std::size_t count, const One& one) {
+  constexpr std::size_t kBlock = 512;
+  std::vector<std::vector<StarImage>> parts((count + kBlock - 1) / kBlock);
+  tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t b) {
+    for (std::size_t k = b * kBlock; k < std::min(count, (b + 1) * kBlock); ++k) one(k, parts[b]);
+  });
+  std::size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  std::vector<StarImage> out;
+  out.reserve(total);
+  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+  return out;
 }
 
 }  // namespace
@@ -138,16 +157,14 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
     return p;
   };
   if (!scene.hole) {
-    out.reserve(stars.size());
     const SkyToLook to_look = scene.sky_to_look();
-    for (std::size_t k = 0; k < stars.size(); ++k) {
+    return over_stars(stars.size(), [&](std::size_t k, std::vector<StarImage>& images) {
       const Vec3 u = to_look(stars[k].direction);
       const auto p = seen(u);
-      if (!p) continue;
+      if (!p) return;
       const double d = scene.doppler(u, scene.sky_velocity);
-      out.push_back({p->x, p->y, photometry.received(k, d, 1 / (d * d))});
-    }
-    return out;
+      images.push_back({p->x, p->y, photometry.received(k, d, 1 / (d * d))});
+    });
   }
   const HoleView& hole = *scene.hole;
   // The camera's velocity against the static observer at its event; a falling camera's frame is
@@ -162,7 +179,7 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
   if (!lens || lens->mass() != hole.mass || lens->radius() != hole.camera_radius)
     lens = &own.emplace(star_lens_table(hole));
   const Vec3& e1 = hole.outward;
-  for (std::size_t k = 0; k < stars.size(); ++k) {
+  return over_stars(stars.size(), [&](std::size_t k, std::vector<StarImage>& images) {
     // As locate's ray toward a direction far away: the look direction sweeps from e1 toward
     // the star (even orders) or round the other side, at the table's angle.
     const Vec3 toward =
@@ -179,10 +196,9 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
       const auto p = seen(u);
       if (!p) continue;
       const HoleSkyImage i = hole_sky_image_seen(hole, toward, u, image->solid_angle_ratio);
-      out.push_back({p->x, p->y, photometry.received(k, i.shift, i.magnification)});
+      images.push_back({p->x, p->y, photometry.received(k, i.shift, i.magnification)});
     }
-  }
-  return out;
+  });
 }
 
 FarImageTable star_lens_table(const HoleView& hole) {
