@@ -44,23 +44,32 @@ Scene raster_scene(const std::string& name, int width, int height) {
                          report);
 }
 
-void RasterFrame(benchmark::State& state, const std::string& name, int width, int height) {
-  const Scene scene = raster_scene(name, width, height);
-  const HeadlessGlContext context;
+// What both benchmarks draw with: the scene, a headless context and a renderer drawing into a
+// float target of the scene's size (bound).
+struct RasterSetup {
+  RasterSetup(const std::string& name, int width, int height)
+      : scene(raster_scene(name, width, height)), target(width, height) {
+    target.bind();
+  }
+  const Scene scene;
+  const HeadlessGlContext context;  // before the GL objects below
   RasterRenderer renderer;
-  const FloatTarget target(width, height);
-  target.bind();
+  const FloatTarget target;
+};
+
+void RasterFrame(benchmark::State& state, const std::string& name, int width, int height) {
+  RasterSetup setup(name, width, height);
   std::size_t triangles = 0;
   double prepare_s = 0, pass_s = 0, tables_s = 0;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    const ResolvedScene resolved = resolve_scene(scene);
+    const ResolvedScene resolved = resolve_scene(setup.scene);
     const EmissionTable emission(resolved);
     tables_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    triangles = renderer.prepare(resolved, emission).triangles;
+    triangles = setup.renderer.prepare(resolved, emission).triangles;
     glFinish();
     const auto t1 = std::chrono::steady_clock::now();
-    renderer.pass();
+    setup.renderer.pass();
     glFinish();
     prepare_s += std::chrono::duration<double>(t1 - t0).count();
     pass_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -73,18 +82,14 @@ void RasterFrame(benchmark::State& state, const std::string& name, int width, in
 }
 
 void RasterBaseline(benchmark::State& state, const std::string& name, int width, int height) {
-  const Scene scene = raster_scene(name, width, height);
-  const HeadlessGlContext context;
-  RasterRenderer renderer;
-  const FloatTarget target(width, height);
-  target.bind();
-  const ResolvedScene resolved = resolve_scene(scene);
+  RasterSetup setup(name, width, height);
+  const ResolvedScene resolved = resolve_scene(setup.scene);
   const EmissionTable emission(resolved);
-  renderer.prepare(resolved, emission);
+  setup.renderer.prepare(resolved, emission);
   const BaselinePass baseline;
   std::size_t triangles = 0;
   for (auto _ : state) {
-    triangles = baseline.draw(resolved, renderer);
+    triangles = baseline.draw(resolved, setup.renderer);
     glFinish();
   }
   state.counters["triangles"] = static_cast<double>(triangles);

@@ -73,6 +73,51 @@ Vec3 aberrated(const Vec3& d, const Vec3& n, double beta) {
   return length(side) > 0 ? n * c2 + normalize(side) * s2 : n * c2;
 }
 
+// The pixel filter against its defining properties: wherever the point lies its weights sum to
+// one and their centroid is the point (a quadratic B-spline reproduces linear functions), and
+// each is the kernel B(dx) B(dy) at its pixel's centre.
+TEST(StarsRender, TheFilterKeepsFluxAndCentroid) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-40, 40);
+  for (int k = 0; k < 1000; ++k) {
+    const double x = u(rng), y = u(rng);
+    const StarFootprint f = star_footprint(x, y);
+    double sum = 0, cx = 0, cy = 0;
+    for (int b = 0; b < 3; ++b)
+      for (int a = 0; a < 3; ++a) {
+        const double w = f.wx[a] * f.wy[b];
+        const double px = f.i0 + a + 0.5, py = f.j0 + b + 0.5;
+        EXPECT_NEAR(w, star_filter_weight(px - x, py - y), 1e-15);
+        sum += w, cx += w * px, cy += w * py;
+      }
+    EXPECT_NEAR(sum, 1, 1e-14);
+    EXPECT_NEAR(cx, x, 1e-12);
+    EXPECT_NEAR(cy, y, 1e-12);
+  }
+}
+
+// A pixel's solid angle against the integral of cos^3(theta) dA / f^2 over it, taken here on a
+// 64 x 64 grid of its area, for pixels at the centre, an edge and a corner of a wide view.
+TEST(StarsRender, APixelsSolidAngleIsTheIntegralOverIt) {
+  Camera cam;
+  cam.width = 40, cam.height = 30, cam.fov_degrees = 100;
+  const CameraBasis camera = camera_basis(cam);
+  for (const auto [i, j] : {std::pair{20, 15}, std::pair{0, 15}, std::pair{39, 0}}) {
+    // The pixel on the image plane at unit distance.
+    const double w = 2 * camera.tan_half_fov * camera.aspect / camera.width;
+    const double h = 2 * camera.tan_half_fov / camera.height;
+    const double a0 = -camera.tan_half_fov * camera.aspect + i * w;
+    const double c0 = camera.tan_half_fov - (j + 1) * h;
+    double integral = 0;
+    for (int p = 0; p < 64; ++p)
+      for (int q = 0; q < 64; ++q) {
+        const double a = a0 + (p + 0.5) * w / 64, c = c0 + (q + 0.5) * h / 64;
+        integral += std::pow(1 + a * a + c * c, -1.5) * (w / 64) * (h / 64);
+      }
+    EXPECT_NEAR(pixel_solid_angle(camera, i, j), integral, 1e-6 * integral) << i << " " << j;
+  }
+}
+
 TEST(StarsRender, EachStarLandsWhereTheAberrationFormulaPutsIt) {
   std::vector<CatalogueStar> stars;
   std::mt19937 rng(7);

@@ -81,7 +81,6 @@ struct ParallelNodes {
 EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
     : scene_(*resolved.scene),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
-      has_hole_(resolved.hole.has_value()),
       grid_([&] {
         const LogDopplerRange r = visible_log_doppler(resolved, false);
         return DopplerGrid::covering(r.lo - margin, r.hi + margin);
@@ -114,7 +113,8 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
 }
 
 bool EmissionTable::serves(const ResolvedScene& next) const {
-  if (&scene_ != next.scene || has_hole_ || next.hole ||
+  // (The same Scene has a hole both times or neither.)
+  if (&scene_ != next.scene || next.hole ||
       spectral_ != (next.scene->render.doppler == DopplerModel::kSpectral))
     return false;
   const LogDopplerRange r = visible_log_doppler(next, false);

@@ -115,7 +115,6 @@ class EmissionTable {
 
   const Scene& scene_;
   bool spectral_;
-  bool has_hole_;
   DopplerGrid grid_;
   std::vector<double> illuminant_;  // the reference illuminant on the grid (illuminant_samples)
   DopplerXyzTable white_;

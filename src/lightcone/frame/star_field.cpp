@@ -176,8 +176,7 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
     camera_velocity = hole.outward * (hole.falling->radial_velocity / hole.falling->energy);
   }
   std::optional<FarImageTable> own;
-  if (!lens || lens->mass() != hole.mass || lens->radius() != hole.camera_radius)
-    lens = &own.emplace(star_lens_table(hole));
+  if (!lens || !star_lens_serves(*lens, hole)) lens = &own.emplace(star_lens_table(hole));
   const Vec3& e1 = hole.outward;
   return over_stars(stars.size(), [&](std::size_t k, std::vector<StarImage>& images) {
     // As locate's ray toward a direction far away: the look direction sweeps from e1 toward
@@ -203,6 +202,10 @@ std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotome
 
 FarImageTable star_lens_table(const HoleView& hole) {
   return FarImageTable(hole.mass, hole.camera_radius, kStarImageOrders);
+}
+
+bool star_lens_serves(const FarImageTable& lens, const HoleView& hole) {
+  return lens.mass() == hole.mass && lens.radius() == hole.camera_radius;
 }
 
 StarFootprint star_footprint(double x, double y) {

@@ -78,8 +78,10 @@ StarPhotometry star_photometry(const ResolvedScene& scene, double margin = 0);
 inline constexpr int kStarImageOrders = 3;
 std::vector<StarImage> star_images(const ResolvedScene& scene, const StarPhotometry& photometry,
                                    const FarImageTable* lens = nullptr);
-// The lens table the stars are found with: orders 0 to kStarImageOrders - 1 at 256 angles.
+// The lens table the stars are found with: orders 0 to kStarImageOrders - 1 at 256 angles; and
+// whether one is the table of this hole's mass and camera radius.
 FarImageTable star_lens_table(const HoleView& hole);
+bool star_lens_serves(const FarImageTable& lens, const HoleView& hole);
 
 // The pixel filter: the quadratic B-spline, separable, three pixels wide. A point at (x, y)
 // gives pixel (i0 + a, j0 + b) the weight wx[a] wy[b]; the weights sum to 1 wherever the point

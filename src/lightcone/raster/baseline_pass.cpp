@@ -18,7 +18,6 @@ BaselinePass::~BaselinePass() {
 
 std::size_t BaselinePass::draw(const ResolvedScene& scene, const RasterRenderer& renderer) const {
   const RasterRenderer::TessellatedBodies bodies = renderer.tessellated_bodies();
-  const CameraBasis& c = scene.camera;
   glClearColor(0, 0, 0, 0);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -26,14 +25,7 @@ std::size_t BaselinePass::draw(const ResolvedScene& scene, const RasterRenderer&
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
   glUseProgram(program_);
-  set_vec3(program_, "camera_forward", c.forward);
-  set_vec3(program_, "camera_right", c.right);
-  set_vec3(program_, "camera_up", c.up);
-  glUniform2f(uniform(program_, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
-              static_cast<float>(c.tan_half_fov));
-  glUniform2f(uniform(program_, "image_size"), static_cast<float>(c.width),
-              static_cast<float>(c.height));
-  glUniform2f(uniform(program_, "pixel_offset"), 0.5f, 0.5f);
+  set_camera_uniforms(program_, scene.camera);
   glUniform2f(uniform(program_, "depth_range"), static_cast<float>(std::log(kDepthNear)),
               static_cast<float>(std::log(kDepthFar)));
   glBindVertexArray(bodies.vertex_array);

@@ -159,15 +159,7 @@ struct RasterRenderer::Impl {
 
   void set_common(GLuint program, const ResolvedScene& scene, double first_log_doppler, double ox,
                   double oy) {
-    const CameraBasis& c = scene.camera;
-    set_vec3(program, "camera_forward", c.forward);
-    set_vec3(program, "camera_right", c.right);
-    set_vec3(program, "camera_up", c.up);
-    glUniform2f(uniform(program, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
-                static_cast<float>(c.tan_half_fov));
-    glUniform2f(uniform(program, "image_size"), static_cast<float>(c.width),
-                static_cast<float>(c.height));
-    glUniform2f(uniform(program, "pixel_offset"), static_cast<float>(ox), static_cast<float>(oy));
+    set_camera_uniforms(program, scene.camera, ox, oy);
     glUniform1i(uniform(program, "colour_rows"), 0);
     glUniform1i(uniform(program, "sample_offsets"), 1);
     glUniform1i(uniform(program, "shade_at_sample_offsets"), shading_offsets ? 1 : 0);

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/shader_sources.hpp"
 
 namespace lightcone {
@@ -21,6 +23,21 @@ inline std::string fragment_shader(const char* source, const std::string& extra 
                                    const char* defines = "", bool tessellation = false) {
   return version_line(tessellation) + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + defines +
          shader_sources::common_glsl + extra + source;
+}
+
+// common.glsl's pinhole uniforms on `program` (in use): the camera's axes, its half-field
+// tangents, the image size, and this pass's sample offset within each pixel.
+inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double offset_x = 0.5,
+                                double offset_y = 0.5) {
+  set_vec3(program, "camera_forward", c.forward);
+  set_vec3(program, "camera_right", c.right);
+  set_vec3(program, "camera_up", c.up);
+  glUniform2f(uniform(program, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
+              static_cast<float>(c.tan_half_fov));
+  glUniform2f(uniform(program, "image_size"), static_cast<float>(c.width),
+              static_cast<float>(c.height));
+  glUniform2f(uniform(program, "pixel_offset"), static_cast<float>(offset_x),
+              static_cast<float>(offset_y));
 }
 
 // What a body program may leave out when no body of the frame uses it (shaders/body.frag,

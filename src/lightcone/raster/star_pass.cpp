@@ -43,7 +43,7 @@ void StarPass::prepare(const ResolvedScene& scene) {
   // A margin of one unit of ln g: a camera that speeds up keeps the table for a while.
   if (!photometry_ || !photometry_->serves(scene)) photometry_ = star_photometry(scene, 1.0);
   if (scene.hole && scene.hole->camera_radius > 2 * scene.hole->mass &&
-      (!lens_ || lens_->mass() != scene.hole->mass || lens_->radius() != scene.hole->camera_radius))
+      !(lens_ && star_lens_serves(*lens_, *scene.hole)))
     lens_ = star_lens_table(*scene.hole);
   const std::vector<StarImage> stars =
       star_images(scene, *photometry_, scene.hole && lens_ ? &*lens_ : nullptr);
@@ -61,12 +61,8 @@ void StarPass::prepare(const ResolvedScene& scene) {
 
 void StarPass::draw(const ResolvedScene& scene) const {
   if (count_ == 0) return;
-  const CameraBasis& c = scene.camera;
   glUseProgram(program_);
-  glUniform2f(uniform(program_, "image_size"), static_cast<float>(c.width),
-              static_cast<float>(c.height));
-  glUniform2f(uniform(program_, "camera_tan_half"), static_cast<float>(c.tan_half_fov * c.aspect),
-              static_cast<float>(c.tan_half_fov));
+  set_camera_uniforms(program_, scene.camera);
   glUniform2f(uniform(program_, "viewport_margin"), kViewportMargin, kViewportMargin);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
