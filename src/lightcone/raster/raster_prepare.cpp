@@ -1,0 +1,375 @@
+// One frame's preparation for the raster renderer: the colour rows every body, the sky and the
+// lights read, each body's tessellation, and the tables lit surfaces read.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <tuple>
+
+#include "lightcone/color/sigmoid_polynomial.hpp"
+#include "lightcone/frame/lighting.hpp"
+#include "lightcone/frame/received_colour.hpp"
+#include "lightcone/frame/shading.hpp"
+#include "lightcone/raster/body_patterns.hpp"
+#include "lightcone/raster/raster_renderer_impl.hpp"
+#include "lightcone/raster/shader_build.hpp"
+#include "lightcone/raster/shader_sources.hpp"
+
+namespace lightcone {
+
+namespace {
+
+// Same emission, same row.
+using EmissionKey = std::tuple<float, float, float, const DopplerXyzTable*, const DopplerXyzTable*,
+                               const DopplerXyzTable*, double, double, double, int>;
+EmissionKey key_of(const PointEmission& e) {
+  return {static_cast<float>(e.rest_rgb.r),
+          static_cast<float>(e.rest_rgb.g),
+          static_cast<float>(e.rest_rgb.b),
+          e.tables[0],
+          e.tables[1],
+          e.tables[2],
+          e.weights[0],
+          e.weights[1],
+          e.weights[2],
+          e.table_count};
+}
+
+}  // namespace
+
+RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
+                                               const EmissionTable& emission,
+                                               const TessellationLimits& limits, bool on_gpu) {
+  scene = &resolved;
+  // Spinning bodies' points each turn on their own world-line, which only the CPU path solves.
+  gpu_tessellation = on_gpu && driver.tessellation_shaders && resolved.spins.empty();
+  tessellation_limits = limits;
+  const Scene& s = *resolved.scene;
+  const RenderSettings& settings = s.render;
+  const Lighting lighting(resolved, nullptr);
+  const bool spectral = settings.doppler == DopplerModel::kSpectral;
+  // Rows: each a colour against D, tabulated over the frame's range of ln D.
+  std::vector<std::function<LinearRgb(double)>> rows;
+  const auto add_row = [&](std::function<LinearRgb(double)> f) {
+    rows.push_back(std::move(f));
+    return static_cast<int>(rows.size() - 1);
+  };
+  std::map<EmissionKey, int> row_of;
+  const auto emission_row = [&](const PointEmission& e) {
+    const auto [it, added] = row_of.emplace(key_of(e), static_cast<int>(rows.size()));
+    if (added) add_row([&e, &settings](double d) { return received_colour(e, d, settings); });
+    return it->second;
+  };
+  static const PointEmission kBlack{};
+
+  // The lights, relative to the observation event in W.
+  const Vec4& observation = resolved.observation_event;
+  lights.clear();
+  RenderSettings unshifted = settings;  // the light's colour shift alone
+  unshifted.searchlight = SearchlightModel::kOff;
+  for (std::size_t l = 0; l < s.lights.size() && l < kRasterMaxLights; ++l) {
+    const Light& light = s.lights[l];
+    LightDraw d;
+    d.velocity = settings.relativity ? light.world_line.velocity : Vec3{};
+    d.position = light.world_line.position - observation.x;
+    d.time = light.world_line.time - observation.t;
+    d.intensity = light.intensity;
+    if (const auto* spot = std::get_if<SpotLight>(&light.kind)) {
+      d.kind = 1;
+      d.axis = normalize(spot->direction);
+      d.half_cone = spot->cone_degrees / 2;
+      d.falloff = spot->falloff_degrees;
+    } else if (const auto* sun = std::get_if<DirectionalLight>(&light.kind)) {
+      d.kind = 2;
+      d.axis = normalize(sun->direction);
+      d.intensity = sun->irradiance;
+    } else if (const auto* sphere = std::get_if<SphereLight>(&light.kind)) {
+      d.kind = 3;
+      d.radius = sphere->radius;
+    }
+    // The emission event, where it does not depend on the lit point (Lighting's own).
+    if (const auto& fixed = lighting.fixed_emission_event(l)) {
+      d.fixed_event = 1;
+      d.event = *fixed - observation;
+    }
+    if (spectral) {
+      d.row = add_row(
+          [&lighting, l](double x) { return linear_srgb_from_xyz(lighting.light_seen(l, x)); });
+    } else {
+      const LinearRgb rgb = lighting.light_rgb(l);
+      d.row = add_row([rgb, &unshifted](double x) {
+        return received_colour(PointEmission{rgb}, x, unshifted);
+      });
+    }
+    lights.push_back(d);
+  }
+  // The colour models other than spectral: the received colour of outgoing radiance.
+  for (int c = 0; c < 3; ++c) {
+    const LinearRgb unit{c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
+    final_rows[c] = add_row(
+        [unit, &settings](double x) { return received_colour(PointEmission{unit}, x, settings); });
+  }
+
+  // Textures and sky images, spectral model: the RGB white's and the emitter nodes' rows,
+  // which received_rgb (common.glsl) combines per sample.
+  const bool per_sample_colours =
+      std::holds_alternative<SkyImage>(s.sky.pattern) ||
+      std::any_of(s.objects.begin(), s.objects.end(), [](const Object& o) {
+        return o.material.unlit && std::holds_alternative<Texture>(o.material.pattern);
+      });
+  basis_first_row = 0;
+  if (spectral && per_sample_colours) {
+    const auto basis_row = [&](const DopplerXyzTable& table) {
+      PointEmission e;
+      e.rest_rgb = linear_srgb_from_xyz(table.at_rest());
+      e.tables[0] = &table;
+      e.weights[0] = 1;
+      e.table_count = 1;
+      return add_row([e, &settings](double d) { return received_colour(e, d, settings); });
+    };
+    basis_first_row = basis_row(emission.white_table());
+    for (int c = 0; c < kRgbEmitterCases; ++c)
+      for (int n = 0; n < kRgbToSpectrumRes; ++n) basis_row(emission.emitter_node_table(c, n));
+  }
+
+  // Lit bodies' reflection rows (co-moving lights) and tables (moving lights).
+  const LogDopplerRange unlit = visible_log_doppler(resolved, false);
+  const LogDopplerRange lit_range = visible_log_doppler(resolved, true);
+  const double reach = lighting.light_rapidity();
+  table_camera_first = (lit_range.empty ? 0.0 : lit_range.lo) - 2 * kTableCameraStep;
+  const double table_camera_last = (lit_range.empty ? 0.0 : lit_range.hi) + 2 * kTableCameraStep;
+  const int table_camera_nodes = std::max(
+      2,
+      static_cast<int>(std::ceil((table_camera_last - table_camera_first) / kTableCameraStep)) + 1);
+  table_light_first = -reach - 2 * kTableLightStep;
+  table_light_nodes = std::max(
+      2, static_cast<int>(std::ceil(2 * (reach + 2 * kTableLightStep) / kTableLightStep)) + 1);
+  std::vector<float> table_texels;
+  int table_rows = 0;
+  struct ReflectionKey {
+    float r, g, b;
+    std::size_t light;
+    bool operator<(const ReflectionKey& o) const {
+      return std::tie(r, g, b, light) < std::tie(o.r, o.g, o.b, o.light);
+    }
+  };
+  std::map<ReflectionKey, int> reflection_rows, reflection_tables;
+
+  draws.clear();
+  frame_features = 0;
+  hole_body_list.clear();
+  std::map<const void*, RestMesh> meshes;  // per shape, for this frame
+  for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
+    const ResolvedBody& body = resolved.bodies[i];
+    // Bodies out of view need neither rows nor triangles (near a black hole their images can
+    // be anywhere).
+    if (!resolved.hole && !may_be_in_view(resolved.camera, body.trace_bounds)) continue;
+    BodyDraw draw;
+    draw.body = i;
+    const Material& m = body.object->material;
+    Rgb colours[2];
+    const bool two_colours = pattern_colours(m, colours) == 2;
+    const bool textured = std::holds_alternative<Texture>(m.pattern);
+    draw.pattern = std::holds_alternative<Checker>(m.pattern) ? 1
+                   : std::holds_alternative<Blink>(m.pattern) ? 3
+                   : std::holds_alternative<Clock>(m.pattern) ? 4
+                                                              : 0;
+    if (draw.pattern >= 3) frame_features |= kBodyTimedPattern;
+    if (body.spin >= 0) frame_features |= kBodySpin;
+    if (textured) {
+      draw.first_row = emission_row(kBlack);
+      const bool drawable = m.unlit && !std::holds_alternative<MeshShape>(body.object->shape) &&
+                            settings.doppler != DopplerModel::kHue;
+      draw.pattern = drawable ? 2 : 0;
+      if (drawable) upload(*std::get<Texture>(m.pattern).image);
+    } else if (m.unlit) {
+      if (two_colours) {
+        // A checker's (blink's, clock's) two colours take consecutive rows of their own.
+        const PointEmission& a = emission.object_colour(i, 0);
+        const PointEmission& b = emission.object_colour(i, 1);
+        draw.first_row =
+            add_row([&a, &settings](double d) { return received_colour(a, d, settings); });
+        add_row([&b, &settings](double d) { return received_colour(b, d, settings); });
+      } else {
+        draw.first_row = emission_row(emission.object_colour(i, 0));
+      }
+    } else {
+      draw.lit = true;
+      const std::size_t object = static_cast<std::size_t>(body.object - s.objects.data());
+      // (Near a black hole lit bodies are coloured per vertex: raster/hole_bodies.hpp.)
+      for (int k = 0; k < (two_colours ? 2 : 1) && spectral && !resolved.hole; ++k) {
+        const Rgb albedo = colours[k];
+        for (std::size_t l = 0; l < lights.size(); ++l) {
+          const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
+          const std::size_t slot = kRasterMaxLights * static_cast<std::size_t>(k) + l;
+          if (lighting.co_moving(object, l)) {
+            auto [it, added] = reflection_rows.emplace(key, 0);
+            if (added)
+              it->second = add_row([&lighting, object, k, l](double d) {
+                return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
+              });
+            draw.reflection_row[slot] = it->second;
+          } else {
+            auto [it, added] = reflection_tables.emplace(key, table_rows);
+            if (added) {
+              for (int jl = 0; jl < table_light_nodes; ++jl, ++table_rows)
+                for (int jc = 0; jc < table_camera_nodes; ++jc) {
+                  const LinearRgb c = linear_srgb_from_xyz(lighting.reflected(
+                      object, k, l, std::exp(table_camera_first + jc * kTableCameraStep),
+                      std::exp(table_light_first + jl * kTableLightStep)));
+                  table_texels.insert(
+                      table_texels.end(),
+                      {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)});
+                }
+            }
+            draw.reflection_row[slot] = it->second;
+            draw.reflection_moving[slot] = 1;
+          }
+        }
+      }
+    }
+    const Shape& shape = body.object->shape;
+    const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
+    auto it = meshes.find(shape_key);
+    if (it == meshes.end())
+      it = meshes.emplace(shape_key, rest_mesh(shape, gpu_tessellation && !resolved.hole ? 8 : 2))
+               .first;
+    draw.mesh = &it->second;
+    if (resolved.hole)
+      hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern, draw.lit});
+    else
+      draws.push_back(draw);
+  }
+  RasterFrameStats stats;
+  if (resolved.hole && !hole_body_list.empty()) {
+    if (!hole_bodies)
+      hole_bodies = std::make_unique<HoleBodiesPass>(link_program(
+          vertex_shader(shader_sources::hole_body_vert),
+          fragment_shader(shader_sources::hole_body_frag, shader_sources::patterns_glsl)));
+    stats.triangles += hole_bodies->prepare(resolved, hole_body_list, emission, lighting, limits);
+  }
+  if (gpu_tessellation) {
+    // Each shape's untessellated triangles, once; the tessellation shaders cut them per body.
+    std::map<const RestMesh*, std::pair<std::size_t, std::size_t>> ranges;
+    std::vector<float> patches;
+    for (BodyDraw& draw : draws) {
+      auto [it, added] = ranges.emplace(draw.mesh, std::pair<std::size_t, std::size_t>{});
+      if (added) {
+        const std::size_t first = patches.size() / kFloatsPerVertex;
+        TessellationLimits none;
+        none.max_level = 0;
+        tessellate(resolved, body_view(resolved, resolved.bodies[draw.body]), *draw.mesh, none,
+                   patches);
+        it->second = {first, patches.size() / kFloatsPerVertex - first};
+      }
+      draw.first_vertex = it->second.first;
+      draw.vertex_count = it->second.second;
+      draw.sphere_radius = draw.mesh->sphere_radius;
+      stats.triangles += draw.vertex_count / 3;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, patch_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(patches.size() * sizeof(float)),
+                 patches.data(), GL_STATIC_DRAW);
+  } else {
+    // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
+    std::vector<std::vector<float>> parts(draws.size());
+    tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
+      tessellate(resolved, body_view(resolved, resolved.bodies[draws[d].body]), *draws[d].mesh,
+                 limits, parts[d]);
+    });
+    std::size_t total = 0;
+    for (std::size_t d = 0; d < draws.size(); ++d) {
+      draws[d].first_vertex = total;
+      draws[d].vertex_count = parts[d].size() / kFloatsPerVertex;
+      total += draws[d].vertex_count;
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total * kFloatsPerVertex * sizeof(float)),
+                 nullptr, GL_STATIC_DRAW);
+    for (std::size_t d = 0; d < draws.size(); ++d)
+      if (!parts[d].empty())
+        glBufferSubData(
+            GL_ARRAY_BUFFER,
+            static_cast<GLintptr>(draws[d].first_vertex * kFloatsPerVertex * sizeof(float)),
+            static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
+    stats.triangles += total / 3;
+  }
+  const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
+  const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);
+  if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image);
+  const PointEmission& sky0 = sky_image ? kBlack : emission.sky_colour(0);
+  const PointEmission& sky1 = grid ? emission.sky_colour(1) : sky0;
+  sky_first_row =
+      add_row([&sky0, &settings](double d) { return received_colour(sky0, d, settings); });
+  add_row([&sky1, &settings](double d) { return received_colour(sky1, d, settings); });
+
+  // Near a black hole: the frame's rays, and the disk's row against ln s.
+  std::optional<LogRange> disk_range;
+  if (resolved.hole) {
+    if (!black_hole) black_hole = std::make_unique<BlackHolePass>();
+    GLuint& program = hole_sky_programs[sky_variant(s)][spectral ? 1 : 0];
+    if (!program) {
+      const std::string defines = std::string("#define LIGHTCONE_BLACK_HOLE 1\n") +
+                                  (sky_variant(s) == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : "") +
+                                  (spectral ? "#define LIGHTCONE_SPECTRAL_DISK 1\n" : "");
+      program = link_program(vertex_shader(shader_sources::fullscreen_vert),
+                             fragment_shader(shader_sources::sky_frag,
+                                             shader_sources::black_hole_glsl, defines.c_str()));
+    }
+    black_hole->prepare(*resolved.hole);
+    if (resolved.hole->disk) {
+      const ThermalEmission& disk = emission.disk();
+      disk_row = add_row([&disk](double s) { return disk_row_colour(disk, s); });
+      disk_range = disk_row_range(*resolved.hole, disk);
+      disk_floor = disk.floor;
+    }
+  }
+
+  // The rows' nodes cover every factor a fragment can ask for: the camera's of emitters, the
+  // sky and lit bodies, the lights' on their legs, and the glossy lobe's product of both.
+  double lo = std::min(unlit.lo, lit_range.empty ? unlit.lo : lit_range.lo);
+  double hi = std::max(unlit.hi, lit_range.empty ? unlit.hi : lit_range.hi);
+  if (!lights.empty()) {
+    lo = std::min(lo - reach, -reach);
+    hi = std::max(hi + reach, reach);
+  }
+  if (disk_range) {
+    lo = std::min(lo, disk_range->lo);
+    hi = std::max(hi, disk_range->hi);
+  }
+  lo -= 2 * kLogDopplerStep;
+  hi += 2 * kLogDopplerStep;
+  first_log_doppler = lo;
+  const int nodes = std::max(2, static_cast<int>(std::ceil((hi - lo) / kLogDopplerStep)) + 1);
+  std::vector<float> texels(static_cast<std::size_t>(nodes) * rows.size() * 3);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (int k = 0; k < nodes; ++k) {
+      const LinearRgb c = rows[r](std::exp(lo + k * kLogDopplerStep));
+      float* t = &texels[3 * (r * nodes + k)];
+      t[0] = static_cast<float>(c.r);
+      t[1] = static_cast<float>(c.g);
+      t[2] = static_cast<float>(c.b);
+    }
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, rows_texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, nodes, static_cast<GLsizei>(rows.size()), 0, GL_RGB,
+               GL_FLOAT, texels.data());
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, tables_texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  if (table_rows == 0) table_texels.assign(3 * 2 * table_camera_nodes, 0.0f);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, table_camera_nodes, std::max(table_rows, 2), 0, GL_RGB,
+               GL_FLOAT, table_texels.data());
+
+  if (resolved.scene->sky.stars && !stars) stars = std::make_unique<StarPass>();
+  if (stars) stars->prepare(resolved);
+  check_gl("uploading the frame");
+  return stats;
+}
+
+}  // namespace lightcone

@@ -1,0 +1,123 @@
+// The raster renderer's state, private to src/lightcone/raster: raster_renderer.cpp builds its
+// programs and draws the passes, raster_prepare.cpp prepares each frame (the colour rows, the
+// tessellation, the lighting tables).
+#pragma once
+
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lightcone/raster/black_hole_pass.hpp"
+#include "lightcone/raster/gl.hpp"
+#include "lightcone/raster/hole_bodies.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/star_pass.hpp"
+
+namespace lightcone {
+
+// Received colour rows: nodes in ln D over the factors the image shows, two spare nodes past
+// each end; linear interpolation between nodes 1/512 of a unit of ln D apart is far below
+// what 8 bits show.
+constexpr double kLogDopplerStep = 1.0 / 512;
+constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
+// A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
+constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
+
+// The sky program: 1 for a sky image the colour model draws, else 0 (one colour or a grid).
+inline int sky_variant(const Scene& scene) {
+  return std::holds_alternative<SkyImage>(scene.sky.pattern) &&
+                 scene.render.doppler != DopplerModel::kHue
+             ? 1
+             : 0;
+}
+
+struct RasterRenderer::Impl {
+  // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
+  // image): small programs run faster than one with every branch.
+  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
+  // And one per path (CPU or GPU tessellation) and set of features its frame uses: a frame runs
+  // only the code its bodies need, since a branch on a uniform still costs a software
+  // rasteriser every fragment it masks (twice the time of street.json's frame). Each is built
+  // the first time a frame asks for it.
+  std::map<int, GLuint> body_program_cache;
+  int frame_features = 0;  // of the prepared frame's bodies (kBodySpin, kBodyTimedPattern)
+  bool specialise = true;  // false: every body program has every feature (the tests' reference)
+  GLuint sky_programs[2] = {0, 0};
+  // The sky near a black hole (plain or grid, and image; the disk's colour model spectral or
+  // not): each built with the first frame that needs it.
+  GLuint hole_sky_programs[2][2] = {{0, 0}, {0, 0}};
+  std::unique_ptr<BlackHolePass> black_hole;
+  // The bodies near a black hole: built with the first frame that has them.
+  std::unique_ptr<HoleBodiesPass> hole_bodies;
+  // The stars: built with the first frame that has them.
+  std::unique_ptr<StarPass> stars;
+  int disk_row = 0;
+  double disk_floor = 0;
+  GlDriver driver;
+  bool gpu_tessellation = false;  // which path the frame is prepared for
+  GLuint body_program = 0;        // the one in use
+  GLuint patch_buffer = 0;
+  GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
+         tables_texture = 0;
+
+  // The body program of a kind of material, path and features (body_variant_defines).
+  GLuint body_program_for(int variant, bool gpu, int features);
+
+  Impl();
+
+  ~Impl();
+
+  void set_common(GLuint program, const ResolvedScene& scene, double first_log_doppler, double ox,
+                  double oy);
+
+  // What one frame keeps between its passes.
+  struct BodyDraw {
+    std::size_t body = 0, first_vertex = 0, vertex_count = 0;
+    int first_row = 0, pattern = 0;
+    bool lit = false;
+    std::array<int, 2 * kRasterMaxLights> reflection_row{}, reflection_moving{};
+    const RestMesh* mesh = nullptr;  // during prepare()
+    double sphere_radius = 0;        // the GPU path's: its mesh's
+  };
+  struct LightDraw {
+    int kind = 0, fixed_event = 0, row = 0;
+    Vec4 event;  // relative to the observation event
+    Vec3 position, velocity, axis;
+    double time = 0, intensity = 0, radius = 0, half_cone = 0, falloff = 0;
+  };
+  const ResolvedScene* scene = nullptr;
+  std::vector<BodyDraw> draws;
+  std::vector<HoleBodiesPass::Body> hole_body_list;
+  std::vector<LightDraw> lights;
+  std::array<int, 3> final_rows{};
+  int basis_first_row = 0;
+  std::map<const Image*, GLuint> images;  // textures and sky images, uploaded once
+  double first_log_doppler = 0;
+  int sky_first_row = 0;
+  double table_camera_first = 0, table_light_first = 0;
+  int table_light_nodes = 2;
+
+  // A texture or sky image as a float texture (once per image), with mip levels for the sky's
+  // filtered lookups (exact lookups read level 0 texel by texel, whatever the filter).
+  GLuint upload(const Image& image);
+
+  // Tessellates every body and tabulates the colour rows for one frame (raster_prepare.cpp).
+  RasterFrameStats prepare(const ResolvedScene& resolved, const EmissionTable& emission,
+                           const TessellationLimits& limits, bool on_gpu);
+
+  const std::vector<float>* shading_offsets = nullptr;
+  TessellationLimits tessellation_limits;
+
+  // The lights and what lit bodies share (lighting.glsl's uniforms).
+  void set_lights(const ResolvedScene& resolved);
+
+  // A body's own lighting uniforms.
+  void set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw);
+
+  // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
+  void pass(double ox, double oy, const std::vector<float>* offsets);
+};
+
+}  // namespace lightcone
