@@ -28,6 +28,7 @@
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/raster/shader_build.hpp"
 #include "lightcone/raster/shader_sources.hpp"
+#include "lightcone/raster/tessellation.hpp"
 #include "lightcone/scene/reframe.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/glsl_eval.hpp"
@@ -360,8 +361,8 @@ TEST(RasterAgreement, LitScenesMatchTheRayTracerWithoutShadows) {
     expect_agreement(scene, "--set render.shadows=false", 4);
 }
 
-// Textured emitters on a sphere, a box and a plane, and a sky image, all in motion: the colour
-// of every sample looked up per sample and combined from the white's and the emitter nodes'
+// Textured emitters on a sphere, a box, a mesh and a plane, and a sky image, all in motion: the
+// colour of every sample looked up per sample and combined from the white's and the emitter nodes'
 // tables (spectral) or from the primaries (the other models).
 TEST(RasterAgreement, TexturesAndSkyImagesMatchTheRayTracer) {
   const fs::path dir = test::fresh_temp_dir("textures");
@@ -392,12 +393,44 @@ TEST(RasterAgreement, TexturesAndSkyImagesMatchTheRayTracer) {
      "velocity": [0.6, 0, 0], "material": {"texture": "texture.exr"}},
     {"name": "crate", "shape": {"box": {"size": [1.6, 1.6, 1.6]}}, "position": [2, 1, -1],
      "velocity": [0, 0.3, 0.4], "material": {"texture": "texture.exr"}},
+    {"name": "pyramid", "shape": {"mesh": {"file": "pyramid.obj"}}, "position": [0.6, -0.4, 2.2],
+     "scale": [2.2, 2.2, 2.2], "rotation": {"axis": [0, 1, 0], "degrees": 30},
+     "velocity": [-0.5, 0, 0],
+     "material": {"texture": "texture.exr"}},
     {"name": "floor", "shape": {"plane": {"size": [30, 30]}}, "position": [0, -0.5, -4],
      "material": {"texture": "texture.exr"}}
   ],
   "sky": {"image": "sky.exr", "velocity": [0, 0, 0.5]}
 })");
-  for (const char* settings : {"", "--set render.doppler=rgb3", "--set render.doppler=off"}) {
+  // A textured mesh in motion: a pyramid whose faces each take their own part of the texture,
+  // read at the barycentric texture coordinates of each sample's exact surface point.
+  test::write_text(dir / "pyramid.obj", R"(v -0.8 0 -0.8
+v 0.8 0 -0.8
+v 0.8 0 0.8
+v -0.8 0 0.8
+v 0 1.4 0
+vt 0.05 0.9
+vt 0.45 0.9
+vt 0.25 0.1
+vt 0.55 0.95
+vt 0.95 0.6
+vt 0.7 0.05
+vt 0.1 0.4
+vt 0.6 0.45
+f 1/1 2/2 5/3
+f 2/4 3/5 5/6
+f 3/1 4/2 5/6
+f 4/7 1/8 5/3
+f 1/7 3/5 2/8
+f 1/7 4/4 3/5
+)");
+
+  // The searchlight brightens most of the picture past white; without it every texture shows.
+  // The last cuts the edges in tessellation shaders (the texture maps pass through them).
+  for (const char* settings : {"", "--set render.searchlight=off",
+                               "--set render.doppler=rgb3 --set render.searchlight=off",
+                               "--set render.doppler=off --set render.searchlight=off",
+                               "--tessellation gpu --set render.searchlight=off"}) {
     const Agreement a = agreement((dir / "scene.json").string(), 16, settings);
     EXPECT_GE(a.within, 0.99) << settings << ": " << a.compared << " pixels compared";
     EXPECT_EQ(a.raster_err, "") << settings;
@@ -552,6 +585,42 @@ TEST(RasterTessellation, ABentPoleStaysWithinAPixelOfTheRayTracersOutline) {
 // ---------------------------------------------------------------------------------------------
 // The principle of relativity: one scene described in two frames, one picture.
 
+// A mesh face's texture coordinates as an affine map of the shape point: the corners' own at the
+// corners, and at any point of the face the barycentric interpolation the ray tracer does, with
+// the barycentric coordinates found here independently (Cramer's rule on the face's edges).
+TEST(RasterTessellation, AFacesTextureMapIsTheBarycentricInterpolation) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> any(-3, 3), unit(0, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::array<Vec3, 3> corners = {Vec3{any(rng), any(rng), any(rng)},
+                                         Vec3{any(rng), any(rng), any(rng)},
+                                         Vec3{any(rng), any(rng), any(rng)}};
+    std::array<std::array<float, 2>, 3> uvs;
+    for (auto& uv : uvs) uv = {static_cast<float>(unit(rng)), static_cast<float>(unit(rng))};
+    const std::array<double, 8> map = triangle_uv_map(corners, uvs);
+    const auto uv_at = [&map](const Vec3& p, int k) {
+      return map[4 * k] * p.x + map[4 * k + 1] * p.y + map[4 * k + 2] * p.z + map[4 * k + 3];
+    };
+    double b1 = unit(rng), b2 = unit(rng);
+    if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+    const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0];
+    const Vec3 p = corners[0] + e1 * b1 + e2 * b2;
+    // The barycentric coordinates again from p, by Cramer's rule in the face's plane.
+    const Vec3 n = cross(e1, e2), q = p - corners[0];
+    const double u = dot(cross(q, e2), n) / dot(n, n), v = dot(cross(e1, q), n) / dot(n, n);
+    for (int k = 0; k < 2; ++k) {
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(uv_at(corners[c], k), uvs[c][k], 1e-9);
+      EXPECT_NEAR(uv_at(p, k), uvs[0][k] * (1 - u - v) + uvs[1][k] * u + uvs[2][k] * v, 1e-9);
+      // A point off the face reads the coordinates of its projection onto the face's plane.
+      EXPECT_NEAR(uv_at(p + n * 0.37, k), uv_at(p, k), 1e-9);
+    }
+  }
+  // A degenerate face maps everything to (0, 0).
+  const std::array<double, 8> flat =
+      triangle_uv_map({Vec3{0, 0, 0}, Vec3{1, 1, 1}, Vec3{2, 2, 2}}, {{{0, 0}, {1, 0}, {0, 1}}});
+  for (const double x : flat) EXPECT_EQ(x, 0.0);
+}
+
 TEST(RasterRelativity, TheSameSceneFromAnotherFrameRendersTheSameImage) {
   Scene scene;
   scene.camera.width = 160;
@@ -667,6 +736,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
   const std::string stripped_lit = "#define LIGHTCONE_LIT 1\n" + stripped;
   const Stage stages[] = {
       {"body.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl},
+      {"body-textured.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl,
+       "#define LIGHTCONE_TEXTURED 1\n"},
       {"body.frag", shader_sources::body_frag, true, patterns.c_str()},
       {"body-textured.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_TEXTURED 1\n"},
@@ -712,17 +783,19 @@ TEST(RasterShaders, CompileAsGlslEs300) {
   const Stage tessellation_stages[] = {{"body.tesc", shader_sources::body_tesc, false},
                                        {"body.tese", shader_sources::body_tese, false},
                                        {"patch.vert", shader_sources::patch_vert, false}};
-  for (const Stage& stage : tessellation_stages) {
-    const fs::path file = dir / stage.name;
-    test::write_text(file, std::string("#version 400 core\n") + shader_sources::common_glsl +
-                               shader_sources::body_projection_glsl + stage.source);
-    const int status = std::system(
-        ("glslangValidator '" + file.string() + "' > '" + (dir / "log").string() + "' 2>&1")
-            .c_str());
-    std::ifstream log(dir / "log");
-    const std::string text((std::istreambuf_iterator<char>(log)), {});
-    EXPECT_EQ(status, 0) << stage.name << ": " << text;
-  }
+  for (const Stage& stage : tessellation_stages)
+    for (const char* defines : {"", "#define LIGHTCONE_TEXTURED 1\n"}) {
+      const fs::path file = dir / (std::string(*defines ? "textured-" : "") + stage.name);
+      test::write_text(file, std::string("#version 400 core\n") + defines +
+                                 shader_sources::common_glsl +
+                                 shader_sources::body_projection_glsl + stage.source);
+      const int status = std::system(
+          ("glslangValidator '" + file.string() + "' > '" + (dir / "log").string() + "' 2>&1")
+              .c_str());
+      std::ifstream log(dir / "log");
+      const std::string text((std::istreambuf_iterator<char>(log)), {});
+      EXPECT_EQ(status, 0) << stage.name << ": " << text;
+    }
   fs::remove_all(dir);
 }
 

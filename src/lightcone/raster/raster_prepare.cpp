@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <tuple>
 
 #include "lightcone/color/sigmoid_polynomial.hpp"
@@ -180,9 +181,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     if (body.spin >= 0) frame_features |= kBodySpin;
     if (textured) {
       draw.first_row = emission_row(kBlack);
-      const bool drawable = m.unlit && !std::holds_alternative<MeshShape>(body.object->shape) &&
-                            settings.doppler != DopplerModel::kHue;
+      const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
+      const bool drawable =
+          m.unlit && !(mesh && resolved.hole) && settings.doppler != DopplerModel::kHue;
       draw.pattern = drawable ? 2 : 0;
+      draw.face_uvs = drawable && mesh;
       if (drawable) upload(*std::get<Texture>(m.pattern).image);
     } else if (m.unlit) {
       if (two_colours) {
@@ -250,18 +253,27 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
           fragment_shader(shader_sources::hole_body_frag, shader_sources::patterns_glsl)));
     stats.triangles += hole_bodies->prepare(resolved, hole_body_list, emission, lighting, limits);
   }
+  // Textured meshes' vertices come first, so that their texture coordinates' maps (a buffer of
+  // their own: no other body pays for them) share their vertex indices.
+  std::vector<std::size_t> order(draws.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_partition(order.begin(), order.end(),
+                        [this](std::size_t d) { return draws[d].face_uvs; });
+  std::vector<float> uv_maps;
   if (gpu_tessellation) {
     // Each shape's untessellated triangles, once; the tessellation shaders cut them per body.
-    std::map<const RestMesh*, std::pair<std::size_t, std::size_t>> ranges;
+    std::map<std::pair<const RestMesh*, bool>, std::pair<std::size_t, std::size_t>> ranges;
     std::vector<float> patches;
-    for (BodyDraw& draw : draws) {
-      auto [it, added] = ranges.emplace(draw.mesh, std::pair<std::size_t, std::size_t>{});
+    for (const std::size_t d : order) {
+      BodyDraw& draw = draws[d];
+      auto [it, added] = ranges.emplace(std::pair{draw.mesh, draw.face_uvs},
+                                        std::pair<std::size_t, std::size_t>{});
       if (added) {
         const std::size_t first = patches.size() / kFloatsPerVertex;
         TessellationLimits none;
         none.max_level = 0;
         tessellate(resolved, body_view(resolved, resolved.bodies[draw.body]), *draw.mesh, none,
-                   patches);
+                   patches, draw.face_uvs ? &uv_maps : nullptr);
         it->second = {first, patches.size() / kFloatsPerVertex - first};
       }
       draw.first_vertex = it->second.first;
@@ -274,16 +286,17 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                  patches.data(), GL_STATIC_DRAW);
   } else {
     // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
-    std::vector<std::vector<float>> parts(draws.size());
+    std::vector<std::vector<float>> parts(draws.size()), uv_parts(draws.size());
     tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
       tessellate(resolved, body_view(resolved, resolved.bodies[draws[d].body]), *draws[d].mesh,
-                 limits, parts[d]);
+                 limits, parts[d], draws[d].face_uvs ? &uv_parts[d] : nullptr);
     });
     std::size_t total = 0;
-    for (std::size_t d = 0; d < draws.size(); ++d) {
+    for (const std::size_t d : order) {
       draws[d].first_vertex = total;
       draws[d].vertex_count = parts[d].size() / kFloatsPerVertex;
       total += draws[d].vertex_count;
+      uv_maps.insert(uv_maps.end(), uv_parts[d].begin(), uv_parts[d].end());
     }
     glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total * kFloatsPerVertex * sizeof(float)),
@@ -295,6 +308,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
             static_cast<GLintptr>(draws[d].first_vertex * kFloatsPerVertex * sizeof(float)),
             static_cast<GLsizeiptr>(parts[d].size() * sizeof(float)), parts[d].data());
     stats.triangles += total / 3;
+  }
+  if (!uv_maps.empty()) {
+    glBindBuffer(GL_ARRAY_BUFFER, face_uv_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(uv_maps.size() * sizeof(float)),
+                 uv_maps.data(), GL_STATIC_DRAW);
   }
   const bool grid = std::holds_alternative<SkyGrid>(s.sky.pattern);
   const bool sky_image = std::holds_alternative<SkyImage>(s.sky.pattern);

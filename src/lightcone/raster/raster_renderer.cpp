@@ -41,9 +41,11 @@ GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int feature
                               body_variant_defines(features);
   const std::string fragment = fragment_shader(
       shader_sources::body_frag, body_fragment_extra(variant == kLit), defines.c_str(), gpu);
-  if (!gpu) return program = link_program(vertex_shader(shader_sources::body_vert), fragment);
-  const std::string common =
-      version_line(true) + shader_sources::common_glsl + shader_sources::body_projection_glsl;
+  if (!gpu)
+    return program =
+               link_program(vertex_shader(shader_sources::body_vert, false, defines), fragment);
+  const std::string common = version_line(true) + defines + shader_sources::common_glsl +
+                             shader_sources::body_projection_glsl;
   return program =
              link_program(common + shader_sources::patch_vert, fragment,
                           common + shader_sources::body_tesc, common + shader_sources::body_tese);
@@ -62,6 +64,7 @@ RasterRenderer::Impl::Impl() {
   glGenVertexArrays(1, &vertex_array);
   glGenBuffers(1, &vertex_buffer);
   glGenBuffers(1, &patch_buffer);
+  glGenBuffers(1, &face_uv_buffer);
   glGenTextures(1, &rows_texture);
   glGenTextures(1, &offsets_texture);
   glGenTextures(1, &tables_texture);
@@ -84,6 +87,7 @@ RasterRenderer::Impl::~Impl() {
   glDeleteVertexArrays(1, &vertex_array);
   for (const auto& [key, program] : body_program_cache) glDeleteProgram(program);
   glDeleteBuffers(1, &patch_buffer);
+  glDeleteBuffers(1, &face_uv_buffer);
   for (GLuint program : sky_programs) glDeleteProgram(program);
   for (const auto& programs : hole_sky_programs)
     for (GLuint program : programs)
@@ -227,6 +231,11 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
   glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
                         reinterpret_cast<const void*>(3 * sizeof(float)));
   if (gpu_tessellation) glPatchParameteri(GL_PATCH_VERTICES, 3);
+  // The textured meshes' texture coordinates' maps, read by their draws alone.
+  glBindBuffer(GL_ARRAY_BUFFER, face_uv_buffer);
+  for (int row = 0; row < 2; ++row)
+    glVertexAttribPointer(2 + row, 4, GL_FLOAT, GL_FALSE, kFloatsPerUvMap * sizeof(float),
+                          reinterpret_cast<const void*>(4 * row * sizeof(float)));
   for (const Variant variant : {kEmitter, kTextured, kLit}) {
     body_program = body_program_for(
         variant, gpu_tessellation,
@@ -291,8 +300,12 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
         glUniform1f(uniform(body_program, "max_level"),
                     static_cast<float>(1 << std::clamp(tessellation_limits.max_level, 0, 6)));
       }
+      for (GLuint row : {2u, 3u})
+        if (draw.face_uvs) glEnableVertexAttribArray(row);
       glDrawArrays(gpu_tessellation ? GL_PATCHES : GL_TRIANGLES,
                    static_cast<GLint>(draw.first_vertex), static_cast<GLsizei>(draw.vertex_count));
+      for (GLuint row : {2u, 3u})
+        if (draw.face_uvs) glDisableVertexAttribArray(row);
     }
   }
   if (resolved.hole && !hole_body_list.empty()) {

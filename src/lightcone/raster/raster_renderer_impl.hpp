@@ -22,6 +22,7 @@ namespace lightcone {
 // what 8 bits show.
 constexpr double kLogDopplerStep = 1.0 / 512;
 constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
+constexpr int kFloatsPerUvMap = 8;   // two rows of an affine map (triangle_uv_map)
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 
@@ -59,6 +60,9 @@ struct RasterRenderer::Impl {
   bool gpu_tessellation = false;  // which path the frame is prepared for
   GLuint body_program = 0;        // the one in use
   GLuint patch_buffer = 0;
+  // Per vertex of the textured meshes (laid first in the vertex or patch buffer), the map from
+  // shape points to texture coordinates of the face it lies on (triangle_uv_map).
+  GLuint face_uv_buffer = 0;
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
 
@@ -77,6 +81,7 @@ struct RasterRenderer::Impl {
     std::size_t body = 0, first_vertex = 0, vertex_count = 0;
     int first_row = 0, pattern = 0;
     bool lit = false;
+    bool face_uvs = false;  // a textured mesh: its faces' texture coordinates' maps are drawn
     std::array<int, 2 * kRasterMaxLights> reflection_row{}, reflection_moving{};
     const RestMesh* mesh = nullptr;  // during prepare()
     double sphere_radius = 0;        // the GPU path's: its mesh's

@@ -15,8 +15,9 @@ namespace lightcone {
 inline std::string version_line(bool tessellation) {
   return tessellation ? "#version 400 core\n" : "#version 330 core\n";
 }
-inline std::string vertex_shader(const char* source, bool tessellation = false) {
-  return version_line(tessellation) + shader_sources::common_glsl +
+inline std::string vertex_shader(const char* source, bool tessellation = false,
+                                 const std::string& defines = "") {
+  return version_line(tessellation) + defines + shader_sources::common_glsl +
          shader_sources::body_projection_glsl + source;
 }
 inline std::string fragment_shader(const char* source, const std::string& extra = "",

@@ -99,6 +99,7 @@ RestMesh rest_mesh(const Shape& shape, int face_grid) {
       RestMesh m;
       m.positions = s.mesh->positions;
       m.triangles = s.mesh->triangles;
+      m.uvs = s.mesh->uvs;
       return m;
     }
   };
@@ -184,7 +185,9 @@ struct FlatSeeing {
   const BodyView& view;
   const TessellationLimits& limits;
   std::vector<float>& out;
-  std::array<float, 4> plane{};  // of the untessellated triangle being split
+  std::vector<float>* uv_maps;
+  std::array<float, 4> plane{};   // of the untessellated triangle being split
+  std::array<float, 8> uv_map{};  // and its texture coordinates' map, where asked for
 
   Corner corner(const Vec3& p) const { return {p, apparent_point(scene, view, p)}; }
   Corner middle(const Corner&, const Corner&, const Vec3& p) const { return corner(p); }
@@ -196,14 +199,39 @@ struct FlatSeeing {
       out.insert(out.end(),
                  {static_cast<float>(k->seen.drawn.x), static_cast<float>(k->seen.drawn.y),
                   static_cast<float>(k->seen.drawn.z), plane[0], plane[1], plane[2], plane[3]});
+    if (uv_maps)
+      for (int corner = 0; corner < 3; ++corner)
+        uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
   }
 };
 
 }  // namespace
 
+std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
+                                      const std::array<std::array<float, 2>, 3>& uvs) {
+  // Barycentric coordinates on the plane: p - a = u e1 + v e2 projected, u = gu . (p - a) and
+  // v = gv . (p - a) with gu, gv the dual basis of (e1, e2) in the plane.
+  const Vec3 a = corners[0], e1 = corners[1] - a, e2 = corners[2] - a;
+  const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+  const double det = d11 * d22 - d12 * d12;
+  std::array<double, 8> map{};
+  if (!(det > 1e-30 * d11 * d22)) return map;
+  const Vec3 gu = (e1 * d22 - e2 * d12) * (1 / det), gv = (e2 * d11 - e1 * d12) * (1 / det);
+  for (int k = 0; k < 2; ++k) {
+    const double at_a = uvs[0][k];
+    const Vec3 row = gu * (uvs[1][k] - at_a) + gv * (uvs[2][k] - at_a);
+    map[4 * k] = row.x;
+    map[4 * k + 1] = row.y;
+    map[4 * k + 2] = row.z;
+    map[4 * k + 3] = at_a - dot(row, a);
+  }
+  return map;
+}
+
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
-                const TessellationLimits& limits, std::vector<float>& out) {
-  FlatSeeing seeing{scene, view, limits, out};
+                const TessellationLimits& limits, std::vector<float>& out,
+                std::vector<float>* uv_maps) {
+  FlatSeeing seeing{scene, view, limits, out, uv_maps};
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   // Each of the mesh's own vertices is seen once, whatever the number of its triangles.
   std::vector<FlatSeeing::Corner> corners;
@@ -216,6 +244,12 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
     const Vec3 unit = l > 0 ? n * (1 / l) : Vec3{0, 1, 0};
     seeing.plane = {static_cast<float>(unit.x), static_cast<float>(unit.y),
                     static_cast<float>(unit.z), static_cast<float>(dot(unit, a))};
+    if (uv_maps && !mesh.uvs.empty()) {
+      const std::array<double, 8> map =
+          triangle_uv_map({a, b, c}, {mesh.uvs[i], mesh.uvs[j], mesh.uvs[k]});
+      std::transform(map.begin(), map.end(), seeing.uv_map.begin(),
+                     [](double x) { return static_cast<float>(x); });
+    }
     split.triangle(corners[i], corners[j], corners[k]);
   }
 }

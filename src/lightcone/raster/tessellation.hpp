@@ -38,6 +38,8 @@ BodyView body_view(const ResolvedScene& scene, const ResolvedBody& body);
 struct RestMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  // A mesh's texture coordinates per vertex, empty when it has none (Mesh::uvs).
+  std::vector<std::array<float, 2>> uvs;
   double sphere_radius = 0;  // > 0: a sphere about the origin
   Vec3 midpoint(const Vec3& a, const Vec3& b) const;
 };
@@ -79,10 +81,20 @@ struct TessellationLimits {
   int max_level = 10;  // an edge is split into at most 2^max_level pieces
 };
 
+// A triangle's texture coordinates over its plane as an affine map of the shape point p: rows
+// (a, b) with uv = (a.xyz . p + a.w, b.xyz . p + b.w), the barycentric interpolation of its
+// corners' coordinates that the ray tracer does at a hit (Tracer::surface_at). Zero for a
+// degenerate triangle.
+std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
+                                      const std::array<std::array<float, 2>, 3>& uvs);
+
 // Appends the tessellated triangles to `out`: per vertex its shape point and the plane of the
-// untessellated triangle it lies in (unit normal, offset), seven floats. Each edge's split
-// depends only on its own ends and level, so neighbouring triangles agree (no cracks).
+// untessellated triangle it lies in (unit normal, offset), seven floats; and where `uv_maps` is
+// given, to it the texture coordinates' map of that triangle (triangle_uv_map, zero for a mesh
+// without them), eight floats a vertex. Each edge's split depends only on its own ends and
+// level, so neighbouring triangles agree (no cracks).
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
-                const TessellationLimits& limits, std::vector<float>& out);
+                const TessellationLimits& limits, std::vector<float>& out,
+                std::vector<float>* uv_maps = nullptr);
 
 }  // namespace lightcone

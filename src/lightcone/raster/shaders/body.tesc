@@ -11,6 +11,12 @@ in vec3 patch_position[];
 in vec4 patch_plane[];
 out vec3 control_position[];
 out vec4 control_plane[];
+#if defined(LIGHTCONE_TEXTURED)
+in vec4 patch_u[];
+in vec4 patch_v[];
+out vec4 control_u[];
+out vec4 control_v[];
+#endif
 
 uniform float sphere_radius_for_tessellation;  // > 0: the shape is that sphere
 uniform float max_error_pixels;
@@ -38,6 +44,10 @@ float edge_level(vec3 a, vec3 b) {
 void main() {
   control_position[gl_InvocationID] = patch_position[gl_InvocationID];
   control_plane[gl_InvocationID] = patch_plane[gl_InvocationID];
+#if defined(LIGHTCONE_TEXTURED)
+  control_u[gl_InvocationID] = patch_u[gl_InvocationID];
+  control_v[gl_InvocationID] = patch_v[gl_InvocationID];
+#endif
   if (gl_InvocationID == 0) {
     // Outer level i is the edge opposite vertex i.
     gl_TessLevelOuter[0] = edge_level(patch_position[1], patch_position[2]);
