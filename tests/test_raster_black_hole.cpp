@@ -433,20 +433,24 @@ TEST_P(RasterBlackHoleAgreement, MatchesTheRayTracerOffTheEdges) {
               fraction, compared, disk);
   EXPECT_GE(fraction, 0.99);
   EXPECT_GT(compared, static_cast<std::size_t>(w * h * 3 / 4));
-  if (GetParam().disk_share > 0)
+  if (GetParam().disk_share > 0) {
     EXPECT_GT(disk, static_cast<std::size_t>(w * h / GetParam().disk_share));
+  }
   fs::remove_all(dir);
 }
 
-// (The falling camera, nearer and inside the disk's outer radius, sees less of it.)
+// (The falling camera, nearer and inside the disk's outer radius, sees less of it. The hue model
+// turns the disk's colours, received as every colour at rest is.)
 INSTANTIATE_TEST_SUITE_P(
     Cameras, RasterBlackHoleAgreement,
-    testing::Values(AgreementCase{"black-hole.json", {}, 4},
-                    AgreementCase{"black-hole.json",
-                                  {"camera.motion={\"fall\": {}}", "camera.proper_time=500"},
-                                  8},
-                    AgreementCase{"plunge.json", {}, 30},
-                    AgreementCase{"plunge.json", {"camera.proper_time=182.3"}, 0}));
+    testing::Values(
+        AgreementCase{"black-hole.json", {}, 4},
+        AgreementCase{
+            "black-hole.json", {"camera.motion={\"fall\": {}}", "camera.proper_time=500"}, 8},
+        AgreementCase{"black-hole.json", {"render.doppler=hue"}, 4},
+        AgreementCase{"black-hole.json", {"render.doppler=hue", "render.hue.loop=true"}, 4},
+        AgreementCase{"plunge.json", {}, 30},
+        AgreementCase{"plunge.json", {"camera.proper_time=182.3"}, 0}));
 
 // Synge (1966): a static camera at r sees the shadow's edge at sin(alpha) = 3 sqrt(3) M sqrt(1 -
 // 2M/r) / r from the hole's direction; a camera moving with speed beta toward the hole sees it

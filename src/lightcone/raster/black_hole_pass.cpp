@@ -95,7 +95,6 @@ void BlackHolePass::set_uniforms(GLuint p, const HoleView& hole, double disk_flo
               settings.searchlight == SearchlightModel::kPhysical    ? 0
               : settings.searchlight == SearchlightModel::kChang1996 ? 1
                                                                      : 2);
-  glUniform1i(uniform(p, "disk_drawn"), settings.doppler != DopplerModel::kHue ? 1 : 0);
 }
 
 LinearRgb disk_row_colour(const ThermalEmission& disk, double s) {

@@ -32,19 +32,12 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
 
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
-  const bool sky_image = std::holds_alternative<SkyImage>(scene.sky.pattern);
-  if ((textured || sky_image) && scene.render.doppler == DopplerModel::kHue)
-    differences.push_back("textures and sky images under the hue colour model are drawn black");
-  if (lit && scene.render.doppler == DopplerModel::kHue)
-    differences.push_back("lit materials under the hue colour model are drawn black");
   if (lit && scene.lights.size() > static_cast<std::size_t>(kRasterMaxLights))
     differences.push_back(fmt::format("only the first {} lights light surfaces", kRasterMaxLights));
   if (lit && scene.render.shadows && !scene.lights.empty())
     differences.push_back("no shadows are cast");
   if (scene.black_hole && textured)
     differences.push_back("textures near a black hole are drawn black");
-  if (scene.black_hole && scene.black_hole->disk && scene.render.doppler == DopplerModel::kHue)
-    differences.push_back("the accretion disk under the hue colour model is drawn black");
   if (scene.black_hole && scene.black_hole->disk && !scene.objects.empty())
     differences.push_back("objects are drawn in front of the accretion disk where it hides them");
   return differences;

@@ -182,8 +182,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     if (textured) {
       draw.first_row = emission_row(kBlack);
       const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
-      const bool drawable =
-          m.unlit && !(mesh && resolved.hole) && settings.doppler != DopplerModel::kHue;
+      const bool drawable = m.unlit && !(mesh && resolved.hole);
       draw.pattern = drawable ? 2 : 0;
       draw.face_uvs = drawable && mesh;
       if (drawable) upload(*std::get<Texture>(m.pattern).image);

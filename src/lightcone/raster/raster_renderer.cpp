@@ -105,6 +105,14 @@ void RasterRenderer::Impl::set_common(GLuint program, const ResolvedScene& scene
   glUniform1f(uniform(program, "ray_time"), static_cast<float>(scene.ray_time));
   glUniform1i(uniform(program, "spectral"),
               scene.scene->render.doppler == DopplerModel::kSpectral ? 1 : 0);
+  const RenderSettings& settings = scene.scene->render;
+  glUniform1i(uniform(program, "hue_model"), settings.doppler != DopplerModel::kHue ? 0
+                                             : settings.hue_loop                    ? 2
+                                                                                    : 1);
+  glUniform1i(uniform(program, "hue_searchlight"),
+              settings.searchlight == SearchlightModel::kPhysical    ? 0
+              : settings.searchlight == SearchlightModel::kChang1996 ? 1
+                                                                     : 2);
   glUniform1iv(uniform(program, "primary_rows"), 3, final_rows.data());
   glUniform1i(uniform(program, "basis_first_row"), basis_first_row);
   const LinearRgb w = reference_white();
@@ -329,10 +337,9 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
   glUniform1i(uniform(sky_program, "colour_row"), sky_first_row);
   const auto* g = std::get_if<SkyGrid>(&s.sky.pattern);
   const auto* sky_image = std::get_if<SkyImage>(&s.sky.pattern);
-  const bool draw_image = sky_image && s.render.doppler != DopplerModel::kHue;
-  glUniform1i(uniform(sky_program, "pattern"), g ? 1 : draw_image ? 2 : 0);
+  glUniform1i(uniform(sky_program, "pattern"), g ? 1 : sky_image ? 2 : 0);
   glUniform1i(uniform(sky_program, "sky_image"), 4);
-  if (draw_image) {
+  if (sky_image) {
     glActiveTexture(GL_TEXTURE4);
     glBindTexture(GL_TEXTURE_2D, images.at(sky_image->image.get()));
     glActiveTexture(GL_TEXTURE0);

@@ -26,12 +26,9 @@ constexpr int kFloatsPerUvMap = 8;   // two rows of an affine map (triangle_uv_m
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 
-// The sky program: 1 for a sky image the colour model draws, else 0 (one colour or a grid).
+// The sky program: 1 for a sky image, else 0 (one colour or a grid).
 inline int sky_variant(const Scene& scene) {
-  return std::holds_alternative<SkyImage>(scene.sky.pattern) &&
-                 scene.render.doppler != DopplerModel::kHue
-             ? 1
-             : 0;
+  return std::holds_alternative<SkyImage>(scene.sky.pattern) ? 1 : 0;
 }
 
 struct RasterRenderer::Impl {

@@ -275,16 +275,14 @@ HoleRay follow_hole_ray(vec3 u) {
 #ifdef LIGHTCONE_FRAGMENT_STAGE
 // The disk's colour: frame/received_colour.cpp, received_thermal_colour, with the hottest ring's
 // colour read from row disk_row against ln s: s = tau g for the spectral model
-// (LIGHTCONE_SPECTRAL_DISK), tau for the others, which then take it through the primaries' rows
-// (they are linear in the colour). One program each: on a software rasteriser the branch not
-// taken still costs a fifth of the pass.
+// (LIGHTCONE_SPECTRAL_DISK), tau for the others, which then receive it with g as any colour at
+// rest (received_rgb). One program each: on a software rasteriser the branch not taken still
+// costs a fifth of the pass.
 uniform int disk_row;
 uniform float disk_floor;
 uniform int disk_searchlight;  // spectral_searchlight's model
-uniform int disk_drawn;        // 0 under the hue model (not linear in the colour)
 
 vec3 disk_colour(float r, float g) {
-  if (disk_drawn == 0) return vec3(0.0);
   float tau = hole_temperature_ratio(r);
   float tau5 = tau * tau * tau * tau * tau;
 #if defined(LIGHTCONE_SPECTRAL_DISK)
@@ -293,9 +291,7 @@ vec3 disk_colour(float r, float g) {
   return tau5 * spectral_searchlight(g, disk_searchlight) * received_colour(disk_row, s);
 #else
   if (!(tau >= disk_floor)) return vec3(0.0);
-  vec3 c = tau5 * received_colour(disk_row, tau);
-  return c.r * received_colour(primary_rows[0], g) + c.g * received_colour(primary_rows[1], g) +
-         c.b * received_colour(primary_rows[2], g);
+  return received_rgb(tau5 * received_colour(disk_row, tau), g);
 #endif
 }
 #endif

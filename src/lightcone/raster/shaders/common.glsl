@@ -36,6 +36,63 @@ float spectral_searchlight(float d, int model) {
   return 1.0;
 }
 
+// frame/received_colour.cpp, integrated_searchlight: the factor on radiance integrated over
+// wavelength, for the same models (physical: D^4).
+float integrated_searchlight(float d, int model) {
+  if (model == 0) return d * d * d * d;
+  if (model == 1) return d;
+  return 1.0;
+}
+
+// color/colour_models.cpp, hsv_from_rgb and rgb_from_hsv (h in degrees).
+vec3 hsv_from_rgb(vec3 c) {
+  float hi = max(c.r, max(c.g, c.b)), lo = min(c.r, min(c.g, c.b));
+  float delta = hi - lo;
+  if (hi <= 0.0 || delta <= 0.0) return vec3(0.0, 0.0, hi);  // grey: hue 0, saturation 0
+  float h;
+  if (c.r == hi)
+    h = (c.g - c.b) / delta;
+  else if (c.g == hi)
+    h = 2.0 + (c.b - c.r) / delta;
+  else
+    h = 4.0 + (c.r - c.g) / delta;
+  h *= 60.0;
+  return vec3(h < 0.0 ? h + 360.0 : h, delta / hi, hi);
+}
+vec3 rgb_from_hsv(vec3 hsv) {
+  float v = hsv.z, s = hsv.y;
+  if (s == 0.0) return vec3(v);
+  float h = hsv.x / 60.0;
+  float sector = floor(h);
+  float f = h - sector;
+  float p = v * (1.0 - s), q = v * (1.0 - s * f), t = v * (1.0 - s * (1.0 - f));
+  int k = int(sector);
+  if (k == 0) return vec3(v, t, p);
+  if (k == 1) return vec3(q, v, p);
+  if (k == 2) return vec3(p, v, t);
+  if (k == 3) return vec3(p, q, v);
+  if (k == 4) return vec3(t, p, v);
+  return vec3(v, p, q);
+}
+
+// color/colour_models.cpp, hue_shift: H += 512 log2(d) degrees; outside [0, 300] the value
+// fades to black over 60 degrees, or with `loop` H wraps around 360.
+vec3 hue_shift(vec3 rgb, float d, bool loop) {
+  vec3 c = hsv_from_rgb(rgb);
+  c.x += 512.0 * log2(d);
+  if (loop) {
+    c.x = mod(c.x, 360.0);
+    if (c.x >= 360.0) c.x -= 360.0;  // mod of a tiny negative angle rounds up to 360
+  } else if (c.x > 300.0) {
+    c.z *= 1.0 - (min(c.x, 360.0) - 300.0) / 60.0;
+    c.x = 300.0;
+  } else if (c.x < 0.0) {
+    c.z *= (max(c.x, -60.0) + 60.0) / 60.0;
+    c.x = 0.0;
+  }
+  return rgb_from_hsv(c);
+}
+
 // frame/resolved_scene.hpp, sky_direction: the direction in the sky's pattern coordinates of
 // the ray event (ray_time, u).
 vec3 sky_direction(vec3 u, vec3 time_column, mat3 spatial, float ray_time_of_rays) {
@@ -111,18 +168,23 @@ vec3 received_colour(int row, float d) {
   return mix(a, b, x - i);
 }
 
-// Colours looked up per sample (textures, sky images), received with factor d. The spectral
-// model: color/rgb_spectrum.cpp's RgbEmitterSpectrum::from_rgb (a grey part of the RGB white,
-// and a blend of two emitter nodes), each part's row tabulated from its table; the others:
-// the colour models are linear in the colour, so the received colour is that of the three
-// primaries, weighted.
+// Colours looked up per sample (textures, sky images, lit surfaces' outgoing radiance),
+// received with factor d. The spectral model: color/rgb_spectrum.cpp's
+// RgbEmitterSpectrum::from_rgb (a grey part of the RGB white, and a blend of two emitter
+// nodes), each part's row tabulated from its table; the hue model, not linear in the colour:
+// frame/received_colour.cpp's law itself; the others are linear in the colour, so the received
+// colour is that of the three primaries, weighted.
 uniform int spectral;
+uniform int hue_model;        // 1: the hue model, 2: the same with the hue wrapping (hue_loop)
+uniform int hue_searchlight;  // its searchlight model, as integrated_searchlight's
 uniform int primary_rows[3];
 uniform int basis_first_row;  // the white's row, then 6 x 64 emitter nodes' (case-major)
 uniform vec3 reference_white;
 
 vec3 received_rgb(vec3 rgb, float d) {
   vec3 c = max(rgb, vec3(0.0));
+  if (hue_model > 0)
+    return hue_shift(c, d, hue_model == 2) * integrated_searchlight(d, hue_searchlight);
   if (spectral == 0)
     return c.r * received_colour(primary_rows[0], d) + c.g * received_colour(primary_rows[1], d) +
            c.b * received_colour(primary_rows[2], d);
