@@ -733,12 +733,14 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
   struct Case {
     const char* scene;
     bool offsets;
+    bool hue = false;
   };
-  for (const Case c :
-       {Case{"street.json", false}, Case{"wheel.json", false}, Case{"twin-paradox.json", false},
-        Case{"street-lit.json", false}, Case{"cubes.json", true}}) {
+  for (const Case c : {Case{"street.json", false}, Case{"wheel.json", false},
+                       Case{"twin-paradox.json", false}, Case{"street-lit.json", false},
+                       Case{"cubes.json", true}, Case{"street-lit.json", false, true}}) {
     SCOPED_TRACE(c.scene);
     Scene scene = test::load_repository_scene(c.scene);
+    if (c.hue) scene.render.doppler = DopplerModel::kHue;
     scene.camera.width = 160, scene.camera.height = 90;
     const Image specialised = draw(scene, true, c.offsets), full = draw(scene, false, c.offsets);
     ASSERT_EQ(specialised.rgb.size(), full.rgb.size());

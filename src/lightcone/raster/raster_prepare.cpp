@@ -159,7 +159,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   std::map<ReflectionKey, int> reflection_rows, reflection_tables;
 
   draws.clear();
-  frame_features = 0;
+  frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
   hole_body_list.clear();
   std::map<const void*, RestMesh> meshes;  // per shape, for this frame
   for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
@@ -326,11 +326,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   std::optional<LogRange> disk_range;
   if (resolved.hole) {
     if (!black_hole) black_hole = std::make_unique<BlackHolePass>();
-    GLuint& program = hole_sky_programs[sky_variant(s)][spectral ? 1 : 0];
+    GLuint& program = hole_sky_programs[sky_variant(s)][colour_kind(settings)];
     if (!program) {
-      const std::string defines = std::string("#define LIGHTCONE_BLACK_HOLE 1\n") +
-                                  (sky_variant(s) == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : "") +
-                                  (spectral ? "#define LIGHTCONE_SPECTRAL_DISK 1\n" : "");
+      const std::string defines =
+          std::string("#define LIGHTCONE_BLACK_HOLE 1\n") +
+          (sky_variant(s) == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : "") +
+          (spectral ? "#define LIGHTCONE_SPECTRAL_DISK 1\n" : "") +
+          (settings.doppler == DopplerModel::kHue ? "" : "#define LIGHTCONE_NO_HUE 1\n");
       program = link_program(vertex_shader(shader_sources::fullscreen_vert),
                              fragment_shader(shader_sources::sky_frag,
                                              shader_sources::black_hole_glsl, defines.c_str()));

@@ -31,9 +31,19 @@ void set_doppler(GLuint program, const ResolvedScene& scene, const Vec3& velocit
 
 }  // namespace
 
+// The sky program of a kind of sky (sky_variant) and colour model.
+GLuint RasterRenderer::Impl::sky_program_for(int variant, bool hue) {
+  GLuint& program = sky_programs[variant][hue ? 1 : 0];
+  if (program) return program;
+  const std::string defines = std::string(variant == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : "") +
+                              (hue ? "" : "#define LIGHTCONE_NO_HUE 1\n");
+  return program = link_program(vertex_shader(shader_sources::fullscreen_vert),
+                                fragment_shader(shader_sources::sky_frag, "", defines.c_str()));
+}
+
 // The body program of a kind of material, path and features (body_variant_defines).
 GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int features) {
-  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 8 + features];
+  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 16 + features];
   if (program) return program;
   const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                           : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
@@ -56,11 +66,7 @@ RasterRenderer::Impl::Impl() {
   driver.renderer = gl_renderer();
   // The common programs now, so that the first frame does not wait for them.
   for (int v = 0; v < 3; ++v) body_program_for(v, false, 0);
-  for (int v = 0; v < 2; ++v)
-    sky_programs[v] =
-        link_program(vertex_shader(shader_sources::fullscreen_vert),
-                     fragment_shader(shader_sources::sky_frag, "",
-                                     v == 1 ? "#define LIGHTCONE_SKY_IMAGE 1\n" : ""));
+  for (int v = 0; v < 2; ++v) sky_program_for(v, false);
   glGenVertexArrays(1, &vertex_array);
   glGenBuffers(1, &vertex_buffer);
   glGenBuffers(1, &patch_buffer);
@@ -88,7 +94,9 @@ RasterRenderer::Impl::~Impl() {
   for (const auto& [key, program] : body_program_cache) glDeleteProgram(program);
   glDeleteBuffers(1, &patch_buffer);
   glDeleteBuffers(1, &face_uv_buffer);
-  for (GLuint program : sky_programs) glDeleteProgram(program);
+  for (const auto& programs : sky_programs)
+    for (GLuint program : programs)
+      if (program) glDeleteProgram(program);
   for (const auto& programs : hole_sky_programs)
     for (GLuint program : programs)
       if (program) glDeleteProgram(program);
@@ -324,9 +332,8 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
   check_gl("drawing the bodies");
 
   const GLuint sky_program =
-      resolved.hole
-          ? hole_sky_programs[sky_variant(s)][s.render.doppler == DopplerModel::kSpectral ? 1 : 0]
-          : sky_programs[sky_variant(s)];
+      resolved.hole ? hole_sky_programs[sky_variant(s)][colour_kind(s.render)]
+                    : sky_program_for(sky_variant(s), s.render.doppler == DopplerModel::kHue);
   glUseProgram(sky_program);
   set_common(sky_program, resolved, first_log_doppler, ox, oy);
   if (resolved.hole)

@@ -31,6 +31,13 @@ inline int sky_variant(const Scene& scene) {
   return std::holds_alternative<SkyImage>(scene.sky.pattern) ? 1 : 0;
 }
 
+// Which colour model's code a frame's sky and disk need: 0 rgb3 or off, 1 spectral, 2 hue.
+inline int colour_kind(const RenderSettings& settings) {
+  return settings.doppler == DopplerModel::kSpectral ? 1
+         : settings.doppler == DopplerModel::kHue    ? 2
+                                                     : 0;
+}
+
 struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
   // image): small programs run faster than one with every branch.
@@ -40,12 +47,13 @@ struct RasterRenderer::Impl {
   // rasteriser every fragment it masks (twice the time of street.json's frame). Each is built
   // the first time a frame asks for it.
   std::map<int, GLuint> body_program_cache;
-  int frame_features = 0;  // of the prepared frame's bodies (kBodySpin, kBodyTimedPattern)
+  int frame_features = 0;  // of the prepared frame (kBodySpin, kBodyTimedPattern, kBodyHueModel)
   bool specialise = true;  // false: every body program has every feature (the tests' reference)
-  GLuint sky_programs[2] = {0, 0};
-  // The sky near a black hole (plain or grid, and image; the disk's colour model spectral or
-  // not): each built with the first frame that needs it.
-  GLuint hole_sky_programs[2][2] = {{0, 0}, {0, 0}};
+  // The sky (plain or grid, and image; the hue model or another), and near a black hole (the
+  // same; the colour model another, spectral or hue: colour_kind): each built with the first
+  // frame that needs it.
+  GLuint sky_programs[2][2] = {{0, 0}, {0, 0}};
+  GLuint hole_sky_programs[2][3] = {{0, 0, 0}, {0, 0, 0}};
   std::unique_ptr<BlackHolePass> black_hole;
   // The bodies near a black hole: built with the first frame that has them.
   std::unique_ptr<HoleBodiesPass> hole_bodies;
@@ -65,6 +73,7 @@ struct RasterRenderer::Impl {
 
   // The body program of a kind of material, path and features (body_variant_defines).
   GLuint body_program_for(int variant, bool gpu, int features);
+  GLuint sky_program_for(int variant, bool hue);
 
   Impl();
 

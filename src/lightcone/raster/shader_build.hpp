@@ -42,19 +42,22 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 }
 
 // What a body program may leave out when no body of the frame uses it (shaders/body.frag,
-// patterns.glsl, common.glsl): spinning bodies, blinks and clocks, and shading at per-pixel
-// sample offsets (several samples a pixel). The defines take out those a frame does not use.
+// patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
+// offsets (several samples a pixel), and the hue model's law (received_rgb). The defines take
+// out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
   kBodySampleOffsets = 4,
-  kAllBodyFeatures = 7,
+  kBodyHueModel = 8,
+  kAllBodyFeatures = 15,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
   if (!(features & kBodySpin)) defines += "#define LIGHTCONE_NO_SPIN 1\n";
   if (!(features & kBodyTimedPattern)) defines += "#define LIGHTCONE_NO_TIMED_PATTERNS 1\n";
   if (!(features & kBodySampleOffsets)) defines += "#define LIGHTCONE_NO_SAMPLE_OFFSETS 1\n";
+  if (!(features & kBodyHueModel)) defines += "#define LIGHTCONE_NO_HUE 1\n";
   return defines;
 }
 

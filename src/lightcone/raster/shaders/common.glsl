@@ -183,8 +183,10 @@ uniform vec3 reference_white;
 
 vec3 received_rgb(vec3 rgb, float d) {
   vec3 c = max(rgb, vec3(0.0));
+#if !defined(LIGHTCONE_NO_HUE)  // (a frame under another model leaves it out)
   if (hue_model > 0)
     return hue_shift(c, d, hue_model == 2) * integrated_searchlight(d, hue_searchlight);
+#endif
   if (spectral == 0)
     return c.r * received_colour(primary_rows[0], d) + c.g * received_colour(primary_rows[1], d) +
            c.b * received_colour(primary_rows[2], d);
