@@ -269,7 +269,8 @@ struct Agreement {
 
 // Renders a bundled scene both ways at 640x360 with `samples` samples (the ray tracer's
 // object ids mark the silhouettes) and compares the PNGs off a one-pixel band along them.
-Agreement agreement(const std::string& scene, int samples, const std::string& extra = "") {
+Agreement agreement(const std::string& scene, int samples, const std::string& extra = "",
+                    const std::string& raster_extra = "") {
   const fs::path dir = test::fresh_temp_dir("agreement");
   const fs::path path = fs::path(scene).is_absolute()
                             ? fs::path(scene)
@@ -281,8 +282,8 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
       test::run_lightcone("render " + source + common + " -o " + quoted(dir / "trace.png") +
                           " --exr " + quoted(dir / "trace.exr") + " --aov object");
   EXPECT_EQ(traced.status, 0) << traced.err;
-  const auto rastered = test::run_lightcone("render " + source + common + " --renderer raster -o " +
-                                            quoted(dir / "raster.png"));
+  const auto rastered = test::run_lightcone("render " + source + common + " " + raster_extra +
+                                            " --renderer raster -o " + quoted(dir / "raster.png"));
   EXPECT_EQ(rastered.status, 0) << rastered.err;
   Agreement result;
   result.raster_err = rastered.err;
@@ -392,11 +393,62 @@ TEST(RasterAgreement, TessellatedOnTheGpuTooTheyMatch) {
   expect_agreement("street-lit.json", "--tessellation gpu --set render.shadows=false", 4);
 }
 
-// Lit scenes, without shadows (this renderer casts none): point lamps at rest (street-lit), a
-// headlight moving with the camera, and a light-delay comparison (interceptor).
+// Lit scenes: point lamps at rest (street-lit), a headlight moving with the camera, and a
+// light-delay comparison (interceptor), without shadows.
 TEST(RasterAgreement, LitScenesMatchTheRayTracerWithoutShadows) {
   for (const char* scene : {"street-lit.json", "headlight.json", "interceptor.json"})
     expect_agreement(scene, "--set render.shadows=false", 4);
+}
+
+// With shadows: the lamps' shadows of the street's buildings on the road, on each other and on
+// the towers, from the lamps' maps in their rest frame; and a light at 0.5c lighting a moon (a
+// single convex body: only its own far side is dark). Without the maps the street differs.
+TEST(RasterAgreement, RetardedShadowsMatchTheRayTracer) {
+  for (const char* settings : {"--set render.light_source_delay=camera",
+                               "--set render.relativity=false", "--tessellation gpu"})
+    expect_agreement("street-lit.json", settings, 4);
+  // The shadows are seen: drawn without them, at least half a percent more pixels differ.
+  for (const char* scene : {"street-lit.json", "interceptor.json"}) {
+    const Agreement with = agreement(scene, 4);
+    EXPECT_GE(with.within, 0.99) << scene;
+    EXPECT_EQ(with.raster_err, "") << scene;
+    std::printf("%s with shadows: %.4f within 4/255\n", scene, with.within);
+    const Agreement without = agreement(scene, 4, "", "--set render.shadows=false");
+    std::printf("%s, raster without shadows: %.4f within 4/255\n", scene, without.within);
+    EXPECT_LT(without.within + 0.005, with.within) << scene;
+  }
+}
+
+// Occluders moving relative to the lights: a box at 0.7c and a ball at 0.5c crossing between a
+// lamp at rest (and a sun, and a sphere lamp) and the floor, whose shadows are retarded: each
+// met exactly along each shadow ray in the body's own rest frame.
+TEST(RasterAgreement, ShadowsOfMovingOccludersMatchTheRayTracer) {
+  const fs::path dir = test::fresh_temp_dir("moving-occluders");
+  test::write_text(dir / "scene.json", R"({
+  "camera": {"position": [0, 7, 11], "forward": [0, -0.6, -1], "fov": 60},
+  "objects": [
+    {"name": "floor", "shape": {"plane": {"size": [40, 40]}}, "position": [0, 0, 0],
+     "material": {"checker": {"size": 2, "colors": [[0.7, 0.7, 0.7], [0.5, 0.5, 0.55]]},
+                  "unlit": false}},
+    {"name": "crate", "shape": {"box": {"size": [2, 2, 2]}}, "position": [-2, 2.5, 0],
+     "time": -12, "velocity": [0.7, 0, 0], "material": {"color": [0.8, 0.4, 0.3], "unlit": false}},
+    {"name": "ball", "shape": {"sphere": {"radius": 1.2}}, "position": [2.5, 2, -3], "time": -12,
+     "velocity": [0, 0, 0.5], "material": {"color": [0.3, 0.6, 0.8], "unlit": false}}
+  ],
+  "lights": [
+    {"name": "lamp", "type": "point", "position": [0, 8, -1], "intensity": 200},
+    {"name": "sun", "type": "directional", "direction": [0.3, -1, 0.2], "irradiance": 0.4},
+    {"name": "globe", "type": "sphere", "position": [4, 6, 2], "radius": 0.3, "intensity": 60}
+  ],
+  "sky": {"color": [0.02, 0.02, 0.03]},
+  "render": {"doppler": "off", "searchlight": "off", "exposure": 0}
+})");
+  const std::string scene = (dir / "scene.json").string();
+  expect_agreement(scene, "", 16);
+  const Agreement without = agreement(scene, 16, "", "--set render.shadows=false");
+  std::printf("moving occluders, raster without shadows: %.4f within 4/255\n", without.within);
+  EXPECT_LT(without.within, 0.98);
+  fs::remove_all(dir);
 }
 
 // Textured emitters on a sphere, a box, a mesh and a plane, and a sky image, all in motion: the
@@ -802,6 +854,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"star.vert", shader_sources::star_vert, false, shader_sources::body_projection_glsl},
       {"baseline.vert", shader_sources::baseline_vert, false, shader_sources::body_projection_glsl},
       {"baseline.frag", shader_sources::baseline_frag, true},
+      {"shadow.vert", shader_sources::shadow_vert, false, shader_sources::body_projection_glsl},
+      {"shadow.frag", shader_sources::shadow_frag, true},
       {"star.frag", shader_sources::star_frag, true, shader_sources::star_filter_glsl}};
   for (const Stage& stage : stages) {
     const fs::path file = dir / stage.name;

@@ -15,6 +15,7 @@
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/shadow_maps.hpp"
 
 namespace lightcone {
 
@@ -34,8 +35,36 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
   if (lit && scene.lights.size() > static_cast<std::size_t>(kRasterMaxLights))
     differences.push_back(fmt::format("only the first {} lights light surfaces", kRasterMaxLights));
-  if (lit && scene.render.shadows && !scene.lights.empty())
-    differences.push_back("no shadows are cast");
+  if (lit && scene.render.shadows && !scene.lights.empty()) {
+    bool uncast = false, from_centre = false;
+    std::size_t exact = 0;
+    for (const Object& o : scene.objects) {
+      bool any_exact = false;
+      for (const Light& light : scene.lights) {
+        const RasterShadowCast cast = raster_shadow_cast(o, light, scene.render);
+        uncast = uncast || cast == RasterShadowCast::kNone;
+        any_exact = any_exact || cast == RasterShadowCast::kExact;
+        from_centre = from_centre || (cast == RasterShadowCast::kMap &&
+                                      std::holds_alternative<SphereLight>(light.kind));
+      }
+      exact += any_exact;
+    }
+    if (scene.black_hole) {
+      differences.push_back("no shadows are cast near a black hole");
+    } else {
+      if (uncast)
+        differences.push_back(
+            "accelerated, keyframed or spinning bodies and lights, and meshes moving relative to "
+            "a light or lit by a directional one, cast no shadows");
+      if (exact > static_cast<std::size_t>(kRasterMaxExactCasters))
+        differences.push_back(
+            fmt::format("only the first {} of the {} bodies moving relative to a light cast "
+                        "shadows of it",
+                        kRasterMaxExactCasters, exact));
+      if (from_centre)
+        differences.push_back("sphere lights cast meshes' shadows from their centres");
+    }
+  }
   if (scene.black_hole && textured)
     differences.push_back("textures near a black hole are drawn black");
   if (scene.black_hole && scene.black_hole->disk && !scene.objects.empty())

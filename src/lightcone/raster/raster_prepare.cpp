@@ -244,6 +244,17 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     else
       draws.push_back(draw);
   }
+  // Shadows of the lights on the lit bodies (not near a black hole: its bodies are lit per
+  // vertex, raster/hole_bodies.hpp).
+  casters.clear();
+  const bool any_lit =
+      std::any_of(draws.begin(), draws.end(), [](const BodyDraw& d) { return d.lit; });
+  if (settings.shadows && any_lit && !resolved.hole && !lights.empty()) {
+    if (!shadow_maps) shadow_maps = std::make_unique<ShadowMaps>();
+    shadow_maps->prepare(resolved, lights.size());
+    casters = exact_casters(resolved, lights.size());
+    frame_features |= kBodyShadows;
+  }
   RasterFrameStats stats;
   if (resolved.hole && !hole_body_list.empty()) {
     if (!hole_bodies)

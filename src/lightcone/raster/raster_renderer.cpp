@@ -43,7 +43,7 @@ GLuint RasterRenderer::Impl::sky_program_for(int variant, bool hue) {
 
 // The body program of a kind of material, path and features (body_variant_defines).
 GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int features) {
-  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 16 + features];
+  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 32 + features];
   if (program) return program;
   const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                           : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
@@ -173,6 +173,26 @@ void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
                 static_cast<float>(d.falloff));
     glUniform1f(uniform(p, name("light_radius").c_str()), static_cast<float>(d.radius));
     glUniform1i(uniform(p, name("light_row").c_str()), d.row);
+    // Its shadow maps, where the frame casts shadows (a program without shadows has no such
+    // uniforms; the full programs of the tests' reference read -1: none).
+    const bool maps = (frame_features & kBodyShadows) != 0;
+    const ShadowMapView none;
+    const ShadowMapView& view = maps ? shadow_maps->view(static_cast<std::size_t>(l)) : none;
+    glUniform1i(uniform(p, name("light_shadow_layer").c_str()), view.layer);
+    glUniform4f(uniform(p, name("light_shadow_origin").c_str()), static_cast<float>(view.origin.t),
+                static_cast<float>(view.origin.x.x), static_cast<float>(view.origin.x.y),
+                static_cast<float>(view.origin.x.z));
+    glUniform1f(uniform(p, name("light_shadow_far").c_str()), static_cast<float>(view.far));
+  }
+  glUniform1i(uniform(p, "shadow_maps"), 5);
+  if (frame_features & kBodyShadows) shadow_maps->bind(5);
+  glUniform1i(uniform(p, "caster_count"), static_cast<GLint>(casters.size()));
+  for (std::size_t k = 0; k < casters.size(); ++k) {
+    const auto name = [k](const char* field) { return fmt::format("{}[{}]", field, k); };
+    glUniform1i(uniform(p, name("caster_kind").c_str()), casters[k].kind);
+    set_mat4(p, name("caster_linear").c_str(), casters[k].linear);
+    set_vec3(p, name("caster_offset").c_str(), casters[k].offset);
+    set_vec3(p, name("caster_size").c_str(), casters[k].size);
   }
   // The linear part of the map from F to W: events relative to the observation event.
   set_mat4(p, "trace_to_world", resolved.trace_to_world.linear);

@@ -13,6 +13,7 @@
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/shadow_maps.hpp"
 #include "lightcone/raster/star_pass.hpp"
 
 namespace lightcone {
@@ -59,6 +60,10 @@ struct RasterRenderer::Impl {
   std::unique_ptr<HoleBodiesPass> hole_bodies;
   // The stars: built with the first frame that has them.
   std::unique_ptr<StarPass> stars;
+  // The lights' shadow maps: made with the first frame that casts shadows, kept while they
+  // serve.
+  std::unique_ptr<ShadowMaps> shadow_maps;
+  std::vector<ExactCaster> casters;  // the frame's bodies whose shadows are met exactly
   int disk_row = 0;
   double disk_floor = 0;
   GlDriver driver;

@@ -43,14 +43,15 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 
 // What a body program may leave out when no body of the frame uses it (shaders/body.frag,
 // patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
-// offsets (several samples a pixel), and the hue model's law (received_rgb). The defines take
-// out those a frame does not use.
+// offsets (several samples a pixel), the hue model's law (received_rgb), and shadows
+// (lighting.glsl). The defines take out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
   kBodySampleOffsets = 4,
   kBodyHueModel = 8,
-  kAllBodyFeatures = 15,
+  kBodyShadows = 16,
+  kAllBodyFeatures = 31,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -58,6 +59,7 @@ inline std::string body_variant_defines(int features) {
   if (!(features & kBodyTimedPattern)) defines += "#define LIGHTCONE_NO_TIMED_PATTERNS 1\n";
   if (!(features & kBodySampleOffsets)) defines += "#define LIGHTCONE_NO_SAMPLE_OFFSETS 1\n";
   if (!(features & kBodyHueModel)) defines += "#define LIGHTCONE_NO_HUE 1\n";
+  if (!(features & kBodyShadows)) defines += "#define LIGHTCONE_NO_SHADOWS 1\n";
   return defines;
 }
 

@@ -24,5 +24,7 @@ extern const char* const star_frag;
 extern const char* const star_filter_glsl;
 extern const char* const baseline_vert;
 extern const char* const baseline_frag;
+extern const char* const shadow_vert;
+extern const char* const shadow_frag;
 
 }  // namespace lightcone::shader_sources

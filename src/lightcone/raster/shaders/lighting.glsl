@@ -1,6 +1,7 @@
 // Lit surfaces, for the body fragment shader: frame/lighting.cpp's Lighting::received, law for
 // law, in the world frame W with its origin moved to the observation event (so that single
-// precision stays accurate). Shadows are not cast. Each function names the C++ it mirrors.
+// precision stays accurate). Shadows come from maps of the bodies at rest relative to each
+// light (raster/shadow_maps.hpp). Each function names the C++ it mirrors.
 
 const int kMaxLights = 16;
 const float kPi = 3.141592653589793;
@@ -97,9 +98,111 @@ float glossy_reflectance(vec3 n, vec3 to_light, vec3 to_camera) {
   return distribution * g1i * g1o * fresnel / (4.0 * cos_i * cos_o);
 }
 
+#if !defined(LIGHTCONE_NO_SHADOWS)
+// raster/shadow_maps.hpp: per light the first of its six layers (-1: it casts none), its
+// position at the camera's time (relative to the observation event, W) and the distance the
+// maps' depths are stored over.
+uniform highp sampler2DArray shadow_maps;
+uniform int light_shadow_layer[kMaxLights];
+uniform vec4 light_shadow_origin[kMaxLights];
+uniform float light_shadow_far[kMaxLights];
+const float kShadowTexel = 2.0 / 512.0;  // a texel's angle at a face's centre (kFaceSize)
+
+// Whether the bodies at rest relative to light l hide it from the surface event: in the
+// light's rest frame they and the light stand still, so the tracer's shadow ray runs along the
+// segment from the light to the surface's position there, and the cube face that direction
+// falls on holds the nearest body's distance along it. The bias covers the half texel between
+// a direction and the texel's centre, more on surfaces the light grazes.
+bool shadowed(int l, vec4 surface, float cos_incidence) {
+  if (light_shadow_layer[l] < 0) return false;
+  vec3 d = boost(light_velocity[l], surface - light_shadow_origin[l]).yzw;
+  vec3 a = abs(d);
+  int face;
+  vec2 uv;
+  float major;
+  // shadow_maps.cpp's kFaces: each face's right and up over its forward component.
+  if (a.x >= a.y && a.x >= a.z) {
+    face = d.x > 0.0 ? 0 : 1;
+    uv = vec2(d.x > 0.0 ? -d.z : d.z, d.y);
+    major = a.x;
+  } else if (a.y >= a.z) {
+    face = d.y > 0.0 ? 2 : 3;
+    uv = vec2(d.x, d.y > 0.0 ? -d.z : d.z);
+    major = a.y;
+  } else {
+    face = d.z > 0.0 ? 4 : 5;
+    uv = vec2(d.z > 0.0 ? d.x : -d.x, d.y);
+    major = a.z;
+  }
+  if (!(major > 0.0)) return false;
+  uv = uv / major * 0.5 + 0.5;
+  float stored = texture(shadow_maps, vec3(uv, float(light_shadow_layer[l] + face))).r;
+  float distance = length(d);
+  float c = clamp(cos_incidence, 0.1, 1.0);
+  float bias = distance * kShadowTexel * (1.0 + sqrt(1.0 - c * c) / c);
+  return stored < 1.0 && distance > stored * light_shadow_far[l] + bias;
+}
+
+// raster/shadow_maps.hpp's exact casters: each body's shape met along the shadow ray carried
+// into its rest frame, where it stands still (trace/tracer.cpp's shadow rays: the segment
+// between kShadowEpsilon and 1 - kShadowEpsilon of the way to the emission event).
+const int kMaxExactCasters = 16;
+uniform int caster_count;
+uniform int caster_kind[kMaxExactCasters];     // 1 box, 2 plane, 3 sphere
+uniform mat4 caster_linear[kMaxExactCasters];  // W events to shape coordinates: (linear e).xyz
+uniform vec3 caster_offset[kMaxExactCasters];  // + offset
+uniform vec3 caster_size[kMaxExactCasters];    // box sides; plane sides in x and z; radius
+const float kShadowEpsilon = 1e-5;
+
+// Whether caster k meets the segment a + t (b - a), t in (t_near, t_far), of shape coordinates.
+bool caster_meets(int k, vec3 a, vec3 d, float t_near, float t_far) {
+  vec3 size = caster_size[k];
+  if (caster_kind[k] == 3) {
+    float qa = dot(d, d), qb = dot(a, d), qc = dot(a, a) - size.x * size.x;
+    float disc = qb * qb - qa * qc;
+    if (disc < 0.0) return false;
+    float root = sqrt(disc);
+    float t0 = (-qb - root) / qa, t1 = (-qb + root) / qa;
+    return (t0 > t_near && t0 < t_far) || (t1 > t_near && t1 < t_far);
+  }
+  if (caster_kind[k] == 2) {
+    if (d.y == 0.0) return false;
+    float t = -a.y / d.y;
+    vec3 p = a + t * d;
+    return t > t_near && t < t_far && abs(p.x) <= 0.5 * size.x && abs(p.z) <= 0.5 * size.z;
+  }
+  // A box: the slabs' overlap, the nearer of its ends within the segment.
+  vec3 h = 0.5 * size;
+  vec3 inv = 1.0 / d;
+  vec3 lo = (-h - a) * inv, hi = (h - a) * inv;
+  vec3 enter = min(lo, hi), leave = max(lo, hi);
+  float t0 = max(enter.x, max(enter.y, enter.z)), t1 = min(leave.x, min(leave.y, leave.z));
+  if (t0 > t1) return false;
+  return (t0 > t_near && t0 < t_far) || (t1 > t_near && t1 < t_far);
+}
+
+// Whether any exact caster blocks the shadow ray from the surface event to `end` (or backward
+// along direction `end` without end).
+bool exactly_shadowed(vec4 surface, vec4 end, bool to_infinity) {
+  for (int k = 0; k < kMaxExactCasters; ++k) {
+    if (k >= caster_count) break;
+    vec3 a = (caster_linear[k] * surface).xyz + caster_offset[k];
+    vec3 d = (caster_linear[k] * (to_infinity ? -end : end - surface)).xyz;
+    if (caster_meets(k, a, d, kShadowEpsilon, to_infinity ? 1e30 : 1.0 - kShadowEpsilon))
+      return true;
+  }
+  return false;
+}
+#endif
+
 struct Incoming {
   vec3 direction_to_light;
   float doppler, irradiance, spectral_factor;
+  // The shadow ray's far end (W, relative to the observation event): the emission event, or
+  // for a directional light the light's direction of travel (the ray runs backward along it
+  // without end).
+  vec4 shadow_end;
+  bool to_infinity;
 };
 
 // frame/lighting.cpp, set_irradiance: the searchlight model's irradiance factors.
@@ -118,7 +221,7 @@ void set_irradiance(inout Incoming in_light, float geometric, float physical,
 // frame/lighting.cpp, Lighting::incoming (without shadows).
 bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 light_sample,
               out Incoming result) {
-  result = Incoming(vec3(0.0), 1.0, 0.0, 0.0);
+  result = Incoming(vec3(0.0), 1.0, 0.0, 0.0, vec4(0.0), false);
   vec3 beta_l = light_velocity[l];
   if (light_kind[l] == 2) {
     // A plane wave: physics/light_path.cpp's plane-wave laws.
@@ -131,6 +234,8 @@ bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 ligh
     float e = light_intensity[l];
     set_irradiance(result, e * cos_i, result.doppler * result.doppler * e * cos_i,
                    e * result.doppler * result.doppler * result.doppler * cos_i);
+    result.shadow_end = k_world;
+    result.to_infinity = true;
     return true;
   }
   vec3 rest_offset = vec3(0.0);
@@ -163,6 +268,7 @@ bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 ligh
   float d2 = leg.doppler * leg.doppler, r2 = leg.distance * leg.distance;
   set_irradiance(result, intensity * cos_i / r2, d2 * d2 * intensity * cos_i / r2,
                  intensity * d2 * d2 * leg.doppler * cos_i / r2);
+  result.shadow_end = emission;
   return true;
 }
 
@@ -198,6 +304,11 @@ vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surfac
     if (l >= light_count) break;
     Incoming in_light;
     if (!incoming(l, surface, surface_velocity, normal, light_sample, in_light)) continue;
+#if !defined(LIGHTCONE_NO_SHADOWS)
+    if (shadowed(l, surface, dot(normal, in_light.direction_to_light)) ||
+        exactly_shadowed(surface, in_light.shadow_end, in_light.to_infinity))
+      continue;
+#endif
     float gloss =
         glossy == 1 ? glossy_reflectance(normal, in_light.direction_to_light, to_camera) : 0.0;
     if (spectral == 1) {
