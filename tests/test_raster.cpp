@@ -835,6 +835,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_TEXTURED 1\n"},
       {"body-lit.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
        "#define LIGHTCONE_LIT 1\n"},
+      {"body-depth.frag", shader_sources::body_frag, true, patterns.c_str(),
+       "#define LIGHTCONE_DEPTH_ONLY 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

@@ -249,6 +249,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   casters.clear();
   const bool any_lit =
       std::any_of(draws.begin(), draws.end(), [](const BodyDraw& d) { return d.lit; });
+  // Lit fragments are dear: a pass finds the visible depth first, so that hidden ones skip it.
+  if (any_lit) frame_features |= kBodyVisibleDepth;
   if (settings.shadows && any_lit && !resolved.hole && !lights.empty()) {
     if (!shadow_maps) shadow_maps = std::make_unique<ShadowMaps>();
     shadow_maps->prepare(resolved, lights.size());

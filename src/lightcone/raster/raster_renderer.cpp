@@ -43,11 +43,12 @@ GLuint RasterRenderer::Impl::sky_program_for(int variant, bool hue) {
 
 // The body program of a kind of material, path and features (body_variant_defines).
 GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int features) {
-  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 32 + features];
+  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 64 + features];
   if (program) return program;
   const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                           : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
-                                                                 : "") +
+                                          : variant == kDepth ? "#define LIGHTCONE_DEPTH_ONLY 1\n"
+                                                              : "") +
                               body_variant_defines(features);
   const std::string fragment = fragment_shader(
       shader_sources::body_frag, body_fragment_extra(variant == kLit), defines.c_str(), gpu);
@@ -94,6 +95,10 @@ RasterRenderer::Impl::~Impl() {
   for (const auto& [key, program] : body_program_cache) glDeleteProgram(program);
   glDeleteBuffers(1, &patch_buffer);
   glDeleteBuffers(1, &face_uv_buffer);
+  if (depth_framebuffer) {
+    glDeleteFramebuffers(1, &depth_framebuffer);
+    glDeleteTextures(1, &depth_texture);
+  }
   for (const auto& programs : sky_programs)
     for (GLuint program : programs)
       if (program) glDeleteProgram(program);
@@ -185,6 +190,7 @@ void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
     glUniform1f(uniform(p, name("light_shadow_far").c_str()), static_cast<float>(view.far));
   }
   glUniform1i(uniform(p, "shadow_maps"), 5);
+  glUniform1i(uniform(p, "visible_depth"), 6);
   if (frame_features & kBodyShadows) shadow_maps->bind(5);
   glUniform1i(uniform(p, "caster_count"), static_cast<GLint>(casters.size()));
   for (std::size_t k = 0; k < casters.size(); ++k) {
@@ -238,6 +244,111 @@ void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const Bod
                draw.reflection_moving.data());
 }
 
+// One body of the prepared frame with the program in use: its world-line, pattern, clock, spin
+// and (lit) lighting uniforms, then its triangles.
+void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDraw& draw,
+                                     bool lit) {
+  const ResolvedBody& body = resolved.bodies[draw.body];
+  const BodyView view = body_view(resolved, body);
+  set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
+  set_vec3(body_program, "shape_origin", view.shape_origin);
+  set_vec3(body_program, "world_line_velocity", view.velocity);
+  glUniform1f(uniform(body_program, "one_minus_beta2"),
+              static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
+  set_vec3(body_program, "ray_offset", body.ray_offset);
+  set_mat3(body_program, "shape_spatial", body.spatial);
+  set_doppler(body_program, resolved, body.velocity);
+  glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
+  set_pattern_uniforms(body_program, *body.object, draw.pattern);
+  const Shape& shape = body.object->shape;
+  // The body's clock along the sample's ray, s (ray_time row.t + row.x . u), and the
+  // patterns that read it.
+  glUniform1f(uniform(body_program, "proper_time_origin"),
+              static_cast<float>(body.proper_time_origin));
+  set_vec3(body_program, "proper_time_row", body.proper_time_row.x);
+  glUniform1f(uniform(body_program, "proper_time_ray"),
+              static_cast<float>(body.proper_time_row.t * resolved.ray_time));
+  // A spinning body: its points' turn and motion, per fragment.
+  glUniform1i(uniform(body_program, "spinning"), body.spin >= 0 ? 1 : 0);
+  if (body.spin >= 0) {
+    const ResolvedSpin& spin = resolved.spins[body.spin];
+    const Vec3& k = body.object->scale;
+    glUniform1i(uniform(body_program, "spin_round"),
+                std::holds_alternative<Sphere>(shape) && k.x == k.y && k.y == k.z ? 1 : 0);
+    set_vec3(body_program, "spin_axis", spin.axis);
+    glUniform1f(uniform(body_program, "spin_rate"), static_cast<float>(spin.rate));
+    set_mat3(body_program, "rest_from_shape", spin.rest_from_shape);
+    set_mat3(body_program, "shape_of_rest", spin.shape_of_rest);
+    set_mat4(body_program, "trace_from_rest", spin.trace_from_rest);
+  }
+  const auto* sphere = std::get_if<Sphere>(&shape);
+  glUniform1i(uniform(body_program, "texture_image"), 3);
+  if (draw.pattern == 2) {
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D,
+                  images.at(std::get<Texture>(body.object->material.pattern).image.get()));
+    glActiveTexture(GL_TEXTURE0);
+  }
+  glUniform1f(uniform(body_program, "sphere_radius"),
+              sphere ? static_cast<float>(sphere->radius) : 0.0f);
+  if (lit) set_lit_body(resolved, draw);
+  if (gpu_tessellation) {
+    glUniform1f(uniform(body_program, "sphere_radius_for_tessellation"),
+                static_cast<float>(draw.sphere_radius));
+    glUniform1f(uniform(body_program, "max_error_pixels"),
+                static_cast<float>(tessellation_limits.max_error_pixels));
+    // The GPU's levels go to 64 (every OpenGL 4 implementation's least maximum).
+    glUniform1f(uniform(body_program, "max_level"),
+                static_cast<float>(1 << std::clamp(tessellation_limits.max_level, 0, 6)));
+  }
+  for (GLuint row : {2u, 3u})
+    if (draw.face_uvs) glEnableVertexAttribArray(row);
+  glDrawArrays(gpu_tessellation ? GL_PATCHES : GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
+               static_cast<GLsizei>(draw.vertex_count));
+  for (GLuint row : {2u, 3u})
+    if (draw.face_uvs) glDisableVertexAttribArray(row);
+}
+
+// The depth of the nearest surface at each pixel (the visible-depth pass): the bodies drawn with
+// a program that finds their exact depth and nothing else, into a depth texture the lit program
+// reads, so that lit fragments behind it skip their lighting.
+void RasterRenderer::Impl::draw_visible_depth(double ox, double oy, int features) {
+  const ResolvedScene& resolved = *scene;
+  const int width = resolved.camera.width, height = resolved.camera.height;
+  if (!depth_framebuffer) {
+    glGenFramebuffers(1, &depth_framebuffer);
+    glGenTextures(1, &depth_texture);
+  }
+  GLint target = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+  glActiveTexture(GL_TEXTURE6);
+  glBindTexture(GL_TEXTURE_2D, depth_texture);
+  if (width != depth_size[0] || height != depth_size[1]) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT,
+                 GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    depth_size = {width, height};
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);  // not sampled while it is drawn into
+  glActiveTexture(GL_TEXTURE0);
+  glBindFramebuffer(GL_FRAMEBUFFER, depth_framebuffer);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_texture, 0);
+  const GLenum none = GL_NONE;
+  glDrawBuffers(1, &none);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  body_program = body_program_for(kDepth, gpu_tessellation, features);
+  glUseProgram(body_program);
+  set_common(body_program, resolved, first_log_doppler, ox, oy);
+  glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
+  for (const BodyDraw& draw : draws) draw_body(resolved, draw, false);
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
+  glActiveTexture(GL_TEXTURE6);
+  glBindTexture(GL_TEXTURE_2D, depth_texture);
+  glActiveTexture(GL_TEXTURE0);
+}
+
 // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
 void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* offsets) {
   const ResolvedScene& resolved = *scene;
@@ -272,77 +383,19 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
   for (int row = 0; row < 2; ++row)
     glVertexAttribPointer(2 + row, 4, GL_FLOAT, GL_FALSE, kFloatsPerUvMap * sizeof(float),
                           reinterpret_cast<const void*>(4 * row * sizeof(float)));
+  const int features =
+      specialise ? frame_features | (offsets ? kBodySampleOffsets : 0) : kAllBodyFeatures;
+  if (frame_features & kBodyVisibleDepth) draw_visible_depth(ox, oy, features);
   for (const Variant variant : {kEmitter, kTextured, kLit}) {
-    body_program = body_program_for(
-        variant, gpu_tessellation,
-        specialise ? frame_features | (offsets ? kBodySampleOffsets : 0) : kAllBodyFeatures);
+    body_program = body_program_for(variant, gpu_tessellation, features);
     glUseProgram(body_program);
     set_common(body_program, resolved, first_log_doppler, ox, oy);
     // Depth: the light travel distance on a log scale between these.
     glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
     if (variant == kLit) set_lights(resolved);
-    for (const BodyDraw& draw : draws) {
-      if (draw.lit != (variant == kLit) || (draw.pattern == 2) != (variant == kTextured)) continue;
-      const ResolvedBody& body = resolved.bodies[draw.body];
-      const BodyView view = body_view(resolved, body);
-      set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
-      set_vec3(body_program, "shape_origin", view.shape_origin);
-      set_vec3(body_program, "world_line_velocity", view.velocity);
-      glUniform1f(uniform(body_program, "one_minus_beta2"),
-                  static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
-      set_vec3(body_program, "ray_offset", body.ray_offset);
-      set_mat3(body_program, "shape_spatial", body.spatial);
-      set_doppler(body_program, resolved, body.velocity);
-      glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
-      set_pattern_uniforms(body_program, *body.object, draw.pattern);
-      const Shape& shape = body.object->shape;
-      // The body's clock along the sample's ray, s (ray_time row.t + row.x . u), and the
-      // patterns that read it.
-      glUniform1f(uniform(body_program, "proper_time_origin"),
-                  static_cast<float>(body.proper_time_origin));
-      set_vec3(body_program, "proper_time_row", body.proper_time_row.x);
-      glUniform1f(uniform(body_program, "proper_time_ray"),
-                  static_cast<float>(body.proper_time_row.t * resolved.ray_time));
-      // A spinning body: its points' turn and motion, per fragment.
-      glUniform1i(uniform(body_program, "spinning"), body.spin >= 0 ? 1 : 0);
-      if (body.spin >= 0) {
-        const ResolvedSpin& spin = resolved.spins[body.spin];
-        const Vec3& k = body.object->scale;
-        glUniform1i(uniform(body_program, "spin_round"),
-                    std::holds_alternative<Sphere>(shape) && k.x == k.y && k.y == k.z ? 1 : 0);
-        set_vec3(body_program, "spin_axis", spin.axis);
-        glUniform1f(uniform(body_program, "spin_rate"), static_cast<float>(spin.rate));
-        set_mat3(body_program, "rest_from_shape", spin.rest_from_shape);
-        set_mat3(body_program, "shape_of_rest", spin.shape_of_rest);
-        set_mat4(body_program, "trace_from_rest", spin.trace_from_rest);
-      }
-      const auto* sphere = std::get_if<Sphere>(&shape);
-      glUniform1i(uniform(body_program, "texture_image"), 3);
-      if (draw.pattern == 2) {
-        glActiveTexture(GL_TEXTURE3);
-        glBindTexture(GL_TEXTURE_2D,
-                      images.at(std::get<Texture>(body.object->material.pattern).image.get()));
-        glActiveTexture(GL_TEXTURE0);
-      }
-      glUniform1f(uniform(body_program, "sphere_radius"),
-                  sphere ? static_cast<float>(sphere->radius) : 0.0f);
-      if (variant == kLit) set_lit_body(resolved, draw);
-      if (gpu_tessellation) {
-        glUniform1f(uniform(body_program, "sphere_radius_for_tessellation"),
-                    static_cast<float>(draw.sphere_radius));
-        glUniform1f(uniform(body_program, "max_error_pixels"),
-                    static_cast<float>(tessellation_limits.max_error_pixels));
-        // The GPU's levels go to 64 (every OpenGL 4 implementation's least maximum).
-        glUniform1f(uniform(body_program, "max_level"),
-                    static_cast<float>(1 << std::clamp(tessellation_limits.max_level, 0, 6)));
-      }
-      for (GLuint row : {2u, 3u})
-        if (draw.face_uvs) glEnableVertexAttribArray(row);
-      glDrawArrays(gpu_tessellation ? GL_PATCHES : GL_TRIANGLES,
-                   static_cast<GLint>(draw.first_vertex), static_cast<GLsizei>(draw.vertex_count));
-      for (GLuint row : {2u, 3u})
-        if (draw.face_uvs) glDisableVertexAttribArray(row);
-    }
+    for (const BodyDraw& draw : draws)
+      if (draw.lit == (variant == kLit) && (draw.pattern == 2) == (variant == kTextured))
+        draw_body(resolved, draw, variant == kLit);
   }
   if (resolved.hole && !hole_body_list.empty()) {
     glUseProgram(hole_bodies->program());

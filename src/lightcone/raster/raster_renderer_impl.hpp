@@ -42,7 +42,7 @@ inline int colour_kind(const RenderSettings& settings) {
 struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
   // image): small programs run faster than one with every branch.
-  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
+  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2, kDepth = 3 };
   // And one per path (CPU or GPU tessellation) and set of features its frame uses: a frame runs
   // only the code its bodies need, since a branch on a uniform still costs a software
   // rasteriser every fragment it masks (twice the time of street.json's frame). Each is built
@@ -134,6 +134,11 @@ struct RasterRenderer::Impl {
 
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
   void pass(double ox, double oy, const std::vector<float>* offsets);
+  void draw_body(const ResolvedScene& resolved, const BodyDraw& draw, bool lit);
+  void draw_visible_depth(double ox, double oy, int features);
+  // The visible-depth pass's target (draw_visible_depth), made with the first lit frame.
+  GLuint depth_framebuffer = 0, depth_texture = 0;
+  std::array<int, 2> depth_size{0, 0};
 };
 
 }  // namespace lightcone

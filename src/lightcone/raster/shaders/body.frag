@@ -123,6 +123,9 @@ vec3 shape_normal(vec3 p, vec3 direction) {
 
 
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
+#if !defined(LIGHTCONE_NO_VISIBLE_DEPTH)
+uniform highp sampler2D visible_depth;  // the nearest surface's depth at each pixel
+#endif
 uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
 uniform int relativity;
 #endif
@@ -153,8 +156,18 @@ void main() {
     s = max(surface_parameter(shape_origin, direction), 0.0);
     p = surface_point(shape_origin + direction * s);
   }
-  gl_FragDepth = clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x),
-                       0.0, 1.0);
+  float depth =
+      clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x), 0.0, 1.0);
+  gl_FragDepth = depth;
+#if defined(LIGHTCONE_DEPTH_ONLY)
+  colour = vec4(0.0);
+  return;
+#endif
+#if defined(LIGHTCONE_LIT) && !defined(LIGHTCONE_NO_VISIBLE_DEPTH)
+  // Behind the nearest surface the visible-depth pass found (by more than the rounding between
+  // the two programs): hidden, so none of the lighting below.
+  if (depth > texelFetch(visible_depth, ivec2(gl_FragCoord.xy), 0).r + 1e-6) discard;
+#endif
   float d = doppler_factor(u, velocity, gamma);
   float proper_time = proper_time_origin + s * tau1;
   int k = pattern_index(p, proper_time);
