@@ -593,5 +593,51 @@ TEST(EmissionTableReuse, ServesTheNextFramesOfTheSameScene) {
   EXPECT_FALSE(kept.serves(resolve_scene(scene)));
 }
 
+// The lights' tables likewise (the raster renderer keeps them): a Lighting made 0.25 of ln D
+// wide serves the next frame, reflecting each lit colour under each lamp as a fresh one does;
+// not another scene, other settings, or a camera delay whose emission events moved.
+TEST(LightingReuse, ServesTheNextFramesOfTheSameScene) {
+  Scene scene = test::load_repository_scene("street-lit.json");
+  scene.camera.width = 64, scene.camera.height = 36;
+  const ResolvedScene first = resolve_scene(scene);
+  Lighting kept(first, nullptr, nullptr, 0.25);
+  EXPECT_TRUE(kept.serves(first));
+
+  scene.camera.forward = normalize(Vec3{0.05, 0, -1});  // the next frame turns a little
+  const ResolvedScene next = resolve_scene(scene);
+  ASSERT_TRUE(kept.serves(next));
+  kept.follow(next);
+  const Lighting fresh(next, nullptr);
+  const LogDopplerRange range = visible_log_doppler(next, true);
+  int compared = 0;
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    if (scene.objects[o].material.unlit) continue;
+    for (std::size_t l = 0; l < scene.lights.size(); l += 3)
+      for (double log_d = range.lo; log_d <= range.hi; log_d += 0.0731) {
+        const Xyz a = kept.reflected(o, 0, l, std::exp(log_d), 1.0);
+        const Xyz b = fresh.reflected(o, 0, l, std::exp(log_d), 1.0);
+        EXPECT_NEAR(a.y, b.y, 1e-9 * std::abs(b.y) + 1e-15) << o << " " << l << " " << log_d;
+        EXPECT_NEAR(a.x, b.x, 1e-9 * std::abs(b.x) + 1e-15) << o << " " << l << " " << log_d;
+        ++compared;
+      }
+  }
+  EXPECT_GT(compared, 50);
+
+  Scene copy = scene;  // the same content, another object
+  EXPECT_FALSE(kept.serves(resolve_scene(copy)));
+  scene.render.searchlight = SearchlightModel::kOff;
+  EXPECT_FALSE(kept.serves(resolve_scene(scene)));
+  scene.render.searchlight = SearchlightModel::kPhysical;
+  scene.render.light_source_delay = LightSourceDelay::kCamera;
+  const ResolvedScene camera_delay = resolve_scene(scene);
+  Lighting at_camera(camera_delay, nullptr, nullptr, 0.25);
+  EXPECT_TRUE(at_camera.serves(camera_delay));
+  scene.camera.world_line.position.z -= 1;  // the lamps' events on its light cone move
+  EXPECT_FALSE(at_camera.serves(resolve_scene(scene)));
+  scene.render.light_source_delay = LightSourceDelay::kSurface;
+  scene.camera.world_line.velocity = {0, 0, -0.95};  // from 0.8c: ln D grows by 0.4 ahead
+  EXPECT_FALSE(kept.serves(resolve_scene(scene)));
+}
+
 }  // namespace
 }  // namespace lightcone

@@ -70,6 +70,25 @@ void set_irradiance(Incoming& in, SearchlightModel model, double geometric, doub
   in.irradiance = in.spectral_factor = geometric;
 }
 
+// A light's emission event where it does not depend on the lit point (ResolvedLight's
+// fixed_event): on the camera's past light cone ("camera" delay), or where it is at the
+// observation time ("none", and the classical picture); none near a hole or for the exact delay.
+std::optional<Vec4> fixed_emission(const ResolvedScene& scene, const Light& light) {
+  const RenderSettings& settings = scene.scene->render;
+  const WorldLine& line = light.world_line;
+  const Vec4& observation = scene.observation_event;
+  if (scene.hole) return std::nullopt;
+  if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
+    const Vec3 at_observation = line.position_at(observation.t);
+    const double tau = retarded_delay(at_observation - observation.x, line.velocity);
+    return Vec4{observation.t - tau, at_observation - line.velocity * tau};
+  }
+  if (lit_from_retarded_event(settings)) return std::nullopt;
+  // The classical picture keeps lights still.
+  const Vec3 velocity = settings.relativity ? line.velocity : Vec3{};
+  return Vec4{observation.t, line.position + velocity * (observation.t - line.time)};
+}
+
 }  // namespace
 
 double Lighting::ResolvedLight::spectral(double lambda_nm) const {
@@ -78,13 +97,13 @@ double Lighting::ResolvedLight::spectral(double lambda_nm) const {
 }
 
 Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
-                   const CurvedShadowQuery* curved_shadows)
-    : scene_(scene), shadows_(shadows), curved_shadows_(curved_shadows) {
+                   const CurvedShadowQuery* curved_shadows, double margin)
+    : scene_(&scene), shadows_(shadows), curved_shadows_(curved_shadows) {
   const Scene& s = *scene.scene;
   const RenderSettings& settings = s.render;
+  settings_ = settings;
   unshifted_ = settings;
   unshifted_.searchlight = SearchlightModel::kOff;
-  const Vec4& observation = scene.observation_event;
   for (const Light& light : s.lights) {
     ResolvedLight r;
     r.light = &light;
@@ -98,20 +117,11 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
       r.spectrum = b;
     }
     const WorldLine& line = light.world_line;
-    if (scene.hole) {
+    if (scene.hole && !std::holds_alternative<DirectionalLight>(light.kind))
       // Always the exact delay, along the curved ray.
-      if (!std::holds_alternative<DirectionalLight>(light.kind))
-        r.near_hole = HoleWorldLine::straight(scene.hole->mass, line.time,
-                                              line.position - scene.hole->centre, line.velocity, 0);
-    } else if (settings.relativity && settings.light_source_delay == LightSourceDelay::kCamera) {
-      const Vec3 at_observation = line.position_at(observation.t);
-      const double tau = retarded_delay(at_observation - observation.x, line.velocity);
-      r.fixed_event = Vec4{observation.t - tau, at_observation - line.velocity * tau};
-    } else if (!lit_from_retarded_event(settings)) {
-      // Where it is at the observation time (the classical picture keeps lights still).
-      const Vec3 velocity = settings.relativity ? line.velocity : Vec3{};
-      r.fixed_event = Vec4{observation.t, line.position + velocity * (observation.t - line.time)};
-    }
+      r.near_hole = HoleWorldLine::straight(scene.hole->mass, line.time,
+                                            line.position - scene.hole->centre, line.velocity, 0);
+    r.fixed_event = fixed_emission(scene, light);
     lights_.push_back(std::move(r));
   }
   // The factors a lit surface can see a light with (any direction); near a hole, with the
@@ -139,7 +149,9 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
   if (settings.doppler != DopplerModel::kSpectral) return;
 
   const double light_reach = light_rapidity_;
-  const LogDopplerRange seen = visible_log_doppler(scene, true);
+  LogDopplerRange seen = visible_log_doppler(scene, true);
+  seen.lo -= margin;
+  seen.hi += margin;
   camera_grid_ = DopplerGrid::covering(seen.lo, seen.hi);
   light_grid_ = DopplerGrid::covering(light_reach);
   const DopplerGrid total = DopplerGrid::covering(seen.lo - light_reach, seen.hi + light_reach);
@@ -195,7 +207,7 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
 ShadowRay Lighting::shadow_ray(const ResolvedLight& rl, const Vec4& surface_world,
                                const Vec4& direction, double t_far, const Vec4& light_end) const {
   const auto l = static_cast<std::size_t>(&rl - lights_.data());
-  const ShadowLight& shadow = scene_.shadow_lights[l];
+  const ShadowLight& shadow = scene_->shadow_lights[l];
   return {surface_world, direction,           kShadowEpsilon,
           t_far,         static_cast<int>(l), shadow.label(light_end)};
 }
@@ -206,7 +218,7 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
                         std::optional<ShadowRay>& shadow) const {
   shadow.reset();
   const Light& light = *rl.light;
-  const RenderSettings& settings = scene_.scene->render;
+  const RenderSettings& settings = scene_->scene->render;
   const Vec3 light_velocity = settings.relativity ? light.world_line.velocity : Vec3{};
 
   if (const auto* sun = std::get_if<DirectionalLight>(&light.kind)) {
@@ -224,7 +236,7 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
     if (settings.shadows && shadows_) {
       // Backward along the light's direction, as far as shadow rays are bounded.
       const Vec4 back = (-1.0 / k_world.t) * k_world;
-      const double reach = surface_world.t - scene_.shadow_time_min;
+      const double reach = surface_world.t - scene_->shadow_time_min;
       if (reach > 0) shadow = shadow_ray(rl, surface_world, back, reach, surface_world);
     }
     return true;
@@ -285,8 +297,8 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
                                   Incoming& out, std::optional<CurvedShadowRay>& shadow) const {
   shadow.reset();
   const Light& light = *rl.light;
-  const RenderSettings& settings = scene_.scene->render;
-  const HoleView& hole = *scene_.hole;
+  const RenderSettings& settings = scene_->scene->render;
+  const HoleView& hole = *scene_->hole;
   const Vec3 receiver = surface_world.x - hole.centre;
   const auto shadow_along = [&](const HoleLegPath& path, double near, double far) {
     if (settings.shadows && curved_shadows_)
@@ -401,15 +413,15 @@ struct Lighting::Shading {
 };
 
 void Lighting::prepare(const LitPoint& point, Shading& shading) const {
-  const RenderSettings& settings = scene_.scene->render;
+  const RenderSettings& settings = scene_->scene->render;
   const Hit& hit = *point.hit;
-  const Object& object = *scene_.bodies[hit.body].object;
+  const Object& object = *scene_->bodies[hit.body].object;
   shading.material = &object.material;
   shading.albedo = &point.surface.rest_rgb;
   shading.d_camera = point.d_camera;
 
   // The surface event and velocity, and its rest-frame normal and direction to the camera.
-  const ResolvedBody& body = scene_.bodies[hit.body];
+  const ResolvedBody& body = scene_->bodies[hit.body];
   shading.normal = normalize(object.rotation * component_div(hit.shape_normal, object.scale));
   if (point.near_hole) {
     // Against the static observer at the event (bodies near a hole do not spin).
@@ -419,21 +431,21 @@ void Lighting::prepare(const LitPoint& point, Shading& shading) const {
     const Vec4 k = boost(shading.surface_velocity) * Vec4{1, point.near_hole->to_camera};
     shading.to_camera = k.x / k.t;
   } else {
-    const Vec4 surface_trace{scene_.ray_time * hit.s, point.u * hit.s};
-    shading.surface_world = scene_.trace_to_world(surface_trace);
+    const Vec4 surface_trace{scene_->ray_time * hit.s, point.u * hit.s};
+    shading.surface_world = scene_->trace_to_world(surface_trace);
     // A spinning body's point moves and is turned with its spin; the normal is taken in the
     // body's rest frame (docs/design/spinning-bodies.md).
     shading.surface_velocity =
         !settings.relativity ? Vec3{}
-        : body.spin >= 0     ? velocity_of(scene_.trace_to_world.linear * Vec4{1, hit.velocity})
+        : body.spin >= 0     ? velocity_of(scene_->trace_to_world.linear * Vec4{1, hit.velocity})
                              : object.world_line.velocity;
     if (body.spin >= 0)
       shading.normal =
-          Mat3::rotation(scene_.spins[body.spin].axis, hit.spin_angle) * shading.normal;
+          Mat3::rotation(scene_->spins[body.spin].axis, hit.spin_angle) * shading.normal;
     const Vec3 camera_velocity =
-        settings.relativity ? scene_.scene->camera.world_line.velocity : Vec3{};
+        settings.relativity ? scene_->scene->camera.world_line.velocity : Vec3{};
     shading.to_camera = receive_leg(shading.surface_world, shading.surface_velocity,
-                                    scene_.observation_event, camera_velocity)
+                                    scene_->observation_event, camera_velocity)
                             .emitted_direction;
   }
   shading.diffuse = object.material.glossy ? 1 - object.material.glossy->specular : 1.0;
@@ -447,7 +459,7 @@ void Lighting::prepare(const LitPoint& point, Shading& shading) const {
 }
 
 void Lighting::add_light(std::size_t l, const Incoming& in, Shading& shading) const {
-  const RenderSettings& settings = scene_.scene->render;
+  const RenderSettings& settings = scene_->scene->render;
   const ResolvedLight& light = lights_[l];
   const Material& material = *shading.material;
   const double d_camera = shading.d_camera;
@@ -491,13 +503,33 @@ void Lighting::add_light(std::size_t l, const Incoming& in, Shading& shading) co
 
 LinearRgb Lighting::finish(const Shading& shading) const {
   const double d_camera = shading.d_camera;
-  const RenderSettings& settings = scene_.scene->render;
+  const RenderSettings& settings = scene_->scene->render;
   if (settings.doppler == DopplerModel::kSpectral) {
     const LinearRgb c = linear_srgb_from_xyz(shading.seen);
     const double k = spectral_searchlight(d_camera, settings.searchlight);
     return {c.r * k, c.g * k, c.b * k};
   }
   return received_colour(PointEmission{shading.outgoing}, d_camera, settings);
+}
+
+bool Lighting::serves(const ResolvedScene& next) const {
+  const RenderSettings& n = next.scene->render;
+  if (next.scene != scene_->scene || next.hole || n.relativity != settings_.relativity ||
+      n.doppler != settings_.doppler || n.searchlight != settings_.searchlight ||
+      n.light_source_delay != settings_.light_source_delay || n.shadows != settings_.shadows ||
+      next.scene->lights.size() != lights_.size())
+    return false;
+  for (const ResolvedLight& light : lights_) {
+    const std::optional<Vec4> fixed = fixed_emission(next, *light.light);
+    if (fixed.has_value() != light.fixed_event.has_value()) return false;
+    if (fixed && (fixed->t != light.fixed_event->t || fixed->x.x != light.fixed_event->x.x ||
+                  fixed->x.y != light.fixed_event->x.y || fixed->x.z != light.fixed_event->x.z))
+      return false;
+  }
+  if (n.doppler != DopplerModel::kSpectral) return true;
+  const LogDopplerRange r = visible_log_doppler(next, true);
+  const DopplerGrid needed = DopplerGrid::covering(r.lo, r.hi);
+  return camera_grid_.first <= needed.first && needed.last <= camera_grid_.last;
 }
 
 LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,

@@ -25,8 +25,17 @@ class Lighting {
   // under every light against the camera's and the light's Doppler factors. Shadows (where the
   // scene asks for them) come from `shadows`, or near a black hole from `curved_shadows`;
   // without one nothing is shadowed.
+  // `margin`: the tables cover the camera's factors widened by this much of ln D on each side,
+  // so that a renderer can keep them for the next frames (serves()).
   Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
-           const CurvedShadowQuery* curved_shadows = nullptr);
+           const CurvedShadowQuery* curved_shadows = nullptr, double margin = 0);
+
+  // Whether this Lighting, made for an earlier frame, serves `next` as one made for it would:
+  // the same Scene object (whose bodies and lights a viewer leaves alone), not near a hole, the
+  // same colour, searchlight and delay settings, the same lights' fixed emission events, and
+  // camera factors within its tables. follow() then points it at `next`.
+  bool serves(const ResolvedScene& next) const;
+  void follow(const ResolvedScene& next) { scene_ = &next; }
 
   // A lit point near a black hole, as the curved camera ray met it: its event (W), and in the
   // static observer's frame there the direction in which its light leaves toward the camera
@@ -125,7 +134,7 @@ class Lighting {
   void add_light(std::size_t l, const Incoming& in, Shading& shading) const;
   LinearRgb finish(const Shading& shading) const;
 
-  const ResolvedScene& scene_;
+  const ResolvedScene* scene_;
   const ShadowQuery* shadows_;
   const CurvedShadowQuery* curved_shadows_;
   // The scene's settings with the searchlight off: a light's colour shift as a surface sees it,
@@ -133,6 +142,7 @@ class Lighting {
   RenderSettings unshifted_;
   std::vector<ResolvedLight> lights_;
   DopplerGrid camera_grid_, light_grid_;
+  RenderSettings settings_;  // as made (serves())
   double light_rapidity_ = 0;
   // The colour of one fixed albedo lit by one light, against the camera's factor (a light at
   // rest relative to the body) or against both factors.

@@ -49,7 +49,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   tessellation_limits = limits;
   const Scene& s = *resolved.scene;
   const RenderSettings& settings = s.render;
-  const Lighting lighting(resolved, nullptr);
+  // The lights' tables, kept from frame to frame while they serve (a viewer's frames differ in
+  // the camera alone); built 0.25 of ln D wider than a frame needs, as the emission tables are.
+  if (kept_lighting && kept_lighting->serves(resolved))
+    kept_lighting->follow(resolved);
+  else
+    kept_lighting = std::make_unique<Lighting>(resolved, nullptr, nullptr, 0.25);
+  const Lighting& lighting = *kept_lighting;
   const bool spectral = settings.doppler == DopplerModel::kSpectral;
   // Rows: each a colour against D, tabulated over the frame's range of ln D.
   std::vector<std::function<LinearRgb(double)>> rows;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/lighting.hpp"
 #include "lightcone/raster/black_hole_pass.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
@@ -63,7 +64,8 @@ struct RasterRenderer::Impl {
   // The lights' shadow maps: made with the first frame that casts shadows, kept while they
   // serve.
   std::unique_ptr<ShadowMaps> shadow_maps;
-  std::vector<ExactCaster> casters;  // the frame's bodies whose shadows are met exactly
+  std::vector<ExactCaster> casters;         // the frame's bodies whose shadows are met exactly
+  std::unique_ptr<Lighting> kept_lighting;  // the lights' tables (prepare())
   int disk_row = 0;
   double disk_floor = 0;
   GlDriver driver;
