@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -419,6 +420,45 @@ TEST(RasterAgreement, RetardedShadowsMatchTheRayTracer) {
     std::printf("%s, raster without shadows: %.4f within 4/255\n", scene, without.within);
     EXPECT_LT(without.within + 0.005, with.within) << scene;
   }
+}
+
+// Any number of lights: twenty lamps of five colours round a yard, the last four the brightest,
+// without and with their shadows of two crates and a ball (the maps at 256 texels a face past
+// eight lights; the ball met exactly in them, so its shadows are round).
+TEST(RasterAgreement, TwentyLightsMatchTheRayTracer) {
+  const fs::path dir = test::fresh_temp_dir("twenty-lights");
+  std::string lights;
+  const char* colours[] = {"[1, 0.6, 0.3]", "[0.4, 0.7, 1]", "[0.5, 1, 0.5]", "[1, 0.4, 0.8]",
+                           "[1, 1, 0.9]"};
+  for (int i = 0; i < 20; ++i) {
+    const double a = 2 * std::numbers::pi * i / 20;
+    lights +=
+        fmt::format(R"({}{{"name": "lamp-{}", "type": "point", "position": [{:.3f}, {}, {:.3f}],)"
+                    R"( "color": {}, "intensity": {}}})",
+                    i ? ",\n    " : "", i, 7 * std::cos(a), 3 + i % 3, 7 * std::sin(a) - 2,
+                    colours[i % 5], i >= 16 ? 60 : 12);
+  }
+  test::write_text(dir / "scene.json", R"({
+  "camera": {"position": [0, 9, 12], "forward": [0, -0.7, -1], "fov": 60},
+  "objects": [
+    {"name": "yard", "shape": {"plane": {"size": [30, 30]}}, "position": [0, 0, -2],
+     "material": {"color": [0.7, 0.7, 0.7], "unlit": false}},
+    {"name": "crate", "shape": {"box": {"size": [2, 2, 2]}}, "position": [-2, 1, -2],
+     "material": {"color": [0.8, 0.5, 0.3], "unlit": false}},
+    {"name": "tall-crate", "shape": {"box": {"size": [1, 3, 1]}}, "position": [2.5, 1.5, -3],
+     "material": {"color": [0.5, 0.5, 0.8], "unlit": false}},
+    {"name": "ball", "shape": {"sphere": {"radius": 1}}, "position": [1, 1, 1],
+     "material": {"color": [0.6, 0.8, 0.6], "unlit": false}}
+  ],
+  "lights": [
+    )" + lights + R"(
+  ],
+  "sky": {"color": [0.02, 0.02, 0.03]},
+  "render": {"exposure": -1}
+})");
+  expect_agreement((dir / "scene.json").string(), "--set render.shadows=false", 4);
+  expect_agreement((dir / "scene.json").string(), "", 4);
+  fs::remove_all(dir);
 }
 
 // Occluders moving relative to the lights: a box at 0.7c and a ball at 0.5c crossing between a

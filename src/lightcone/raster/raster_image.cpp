@@ -33,8 +33,6 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
 
   if (lit_textured) differences.push_back("lit textured materials are drawn black");
-  if (lit && scene.lights.size() > static_cast<std::size_t>(kRasterMaxLights))
-    differences.push_back(fmt::format("only the first {} lights light surfaces", kRasterMaxLights));
   if (lit && scene.render.shadows && !scene.lights.empty()) {
     bool uncast = false, from_centre = false;
     std::size_t exact = 0;

@@ -76,7 +76,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   lights.clear();
   RenderSettings unshifted = settings;  // the light's colour shift alone
   unshifted.searchlight = SearchlightModel::kOff;
-  for (std::size_t l = 0; l < s.lights.size() && l < kRasterMaxLights; ++l) {
+  for (std::size_t l = 0; l < s.lights.size(); ++l) {
     const Light& light = s.lights[l];
     LightDraw d;
     d.velocity = settings.relativity ? light.world_line.velocity : Vec3{};
@@ -165,6 +165,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   std::map<ReflectionKey, int> reflection_rows, reflection_tables;
 
   draws.clear();
+  // Two floats (row, moving) per fixed colour and light, a row per lit body.
+  std::vector<float> reflection_index;
+  const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1);
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
   hole_body_list.clear();
   std::map<const void*, RestMesh> meshes;  // per shape, for this frame
@@ -206,19 +209,24 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     } else {
       draw.lit = true;
       const std::size_t object = static_cast<std::size_t>(body.object - s.objects.data());
+      // Its row of reflection_index: (row, moving) for each fixed colour k and light l.
+      const std::size_t index_row = reflection_index.size();
+      draw.reflection_body = static_cast<int>(index_row / reflection_row_floats);
+      reflection_index.resize(index_row + reflection_row_floats, 0.0f);
       // (Near a black hole lit bodies are coloured per vertex: raster/hole_bodies.hpp.)
       for (int k = 0; k < (two_colours ? 2 : 1) && spectral && !resolved.hole; ++k) {
         const Rgb albedo = colours[k];
         for (std::size_t l = 0; l < lights.size(); ++l) {
           const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
-          const std::size_t slot = kRasterMaxLights * static_cast<std::size_t>(k) + l;
+          float* slot =
+              &reflection_index[index_row + 2 * (static_cast<std::size_t>(k) * lights.size() + l)];
           if (lighting.co_moving(object, l)) {
             auto [it, added] = reflection_rows.emplace(key, 0);
             if (added)
               it->second = add_row([&lighting, object, k, l](double d) {
                 return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
               });
-            draw.reflection_row[slot] = it->second;
+            slot[0] = static_cast<float>(it->second);
           } else {
             auto [it, added] = reflection_tables.emplace(key, table_rows);
             if (added) {
@@ -232,8 +240,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                       {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)});
                 }
             }
-            draw.reflection_row[slot] = it->second;
-            draw.reflection_moving[slot] = 1;
+            slot[0] = static_cast<float>(it->second);
+            slot[1] = 1;
           }
         }
       }
@@ -250,6 +258,16 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     else
       draws.push_back(draw);
   }
+  glActiveTexture(GL_TEXTURE8);
+  glBindTexture(GL_TEXTURE_2D, reflection_index_texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  if (reflection_index.empty()) reflection_index.assign(reflection_row_floats, 0.0f);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, static_cast<GLsizei>(reflection_row_floats / 2),
+               static_cast<GLsizei>(reflection_index.size() / reflection_row_floats), 0, GL_RG,
+               GL_FLOAT, reflection_index.data());
+  glActiveTexture(GL_TEXTURE0);
+
   // Shadows of the lights on the lit bodies (not near a black hole: its bodies are lit per
   // vertex, raster/hole_bodies.hpp).
   casters.clear();

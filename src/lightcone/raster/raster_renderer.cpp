@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/shading.hpp"
@@ -75,6 +77,8 @@ RasterRenderer::Impl::Impl() {
   glGenTextures(1, &rows_texture);
   glGenTextures(1, &offsets_texture);
   glGenTextures(1, &tables_texture);
+  glGenTextures(1, &light_table_texture);
+  glGenTextures(1, &reflection_index_texture);
   glBindVertexArray(vertex_array);
   glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
   glEnableVertexAttribArray(0);
@@ -90,6 +94,8 @@ RasterRenderer::Impl::~Impl() {
   glDeleteTextures(1, &rows_texture);
   glDeleteTextures(1, &offsets_texture);
   glDeleteTextures(1, &tables_texture);
+  glDeleteTextures(1, &light_table_texture);
+  glDeleteTextures(1, &reflection_index_texture);
   glDeleteBuffers(1, &vertex_buffer);
   glDeleteVertexArrays(1, &vertex_array);
   for (const auto& [key, program] : body_program_cache) glDeleteProgram(program);
@@ -157,39 +163,50 @@ GLuint RasterRenderer::Impl::upload(const Image& image) {
 void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
   const GLuint p = body_program;
   const RenderSettings& settings = resolved.scene->render;
+  // The light table: a row of kLightTexels RGBA texels a light (lighting.glsl's lamp()).
+  constexpr int kLightTexels = 7;
   const int n = static_cast<int>(lights.size());
-  glUniform1i(uniform(p, "light_count"), n);
+  const bool maps = (frame_features & kBodyShadows) != 0;
+  std::vector<float> table(4 * kLightTexels * static_cast<std::size_t>(std::max(n, 1)), 0.0f);
   for (int l = 0; l < n; ++l) {
     const LightDraw& d = lights[static_cast<std::size_t>(l)];
-    const auto name = [l](const char* field) { return fmt::format("{}[{}]", field, l); };
-    glUniform1i(uniform(p, name("light_kind").c_str()), d.kind);
-    glUniform1i(uniform(p, name("light_fixed_event").c_str()), d.fixed_event);
-    glUniform4f(uniform(p, name("light_event").c_str()), static_cast<float>(d.event.t),
-                static_cast<float>(d.event.x.x), static_cast<float>(d.event.x.y),
-                static_cast<float>(d.event.x.z));
-    set_vec3(p, name("light_position").c_str(), d.position);
-    glUniform1f(uniform(p, name("light_time").c_str()), static_cast<float>(d.time));
-    set_vec3(p, name("light_velocity").c_str(), d.velocity);
-    glUniform1f(uniform(p, name("light_one_minus_beta2").c_str()),
-                static_cast<float>(1.0 - dot(d.velocity, d.velocity)));
-    glUniform1f(uniform(p, name("light_intensity").c_str()), static_cast<float>(d.intensity));
-    set_vec3(p, name("light_axis").c_str(), d.axis);
-    glUniform2f(uniform(p, name("light_cone").c_str()), static_cast<float>(d.half_cone),
-                static_cast<float>(d.falloff));
-    glUniform1f(uniform(p, name("light_radius").c_str()), static_cast<float>(d.radius));
-    glUniform1i(uniform(p, name("light_row").c_str()), d.row);
-    // Its shadow maps, where the frame casts shadows (a program without shadows has no such
-    // uniforms; the full programs of the tests' reference read -1: none).
-    const bool maps = (frame_features & kBodyShadows) != 0;
+    // Its shadow maps where the frame casts shadows (else none: the full programs of the tests'
+    // reference read them too).
     const ShadowMapView none;
     const ShadowMapView& view = maps ? shadow_maps->view(static_cast<std::size_t>(l)) : none;
-    glUniform1i(uniform(p, name("light_shadow_layer").c_str()), view.layer);
-    glUniform4f(uniform(p, name("light_shadow_origin").c_str()), static_cast<float>(view.origin.t),
-                static_cast<float>(view.origin.x.x), static_cast<float>(view.origin.x.y),
-                static_cast<float>(view.origin.x.z));
-    glUniform1f(uniform(p, name("light_shadow_far").c_str()), static_cast<float>(view.far));
+    const double texels[4 * kLightTexels] = {double(d.kind),  double(d.fixed_event),
+                                             double(d.row),   double(view.layer),
+                                             d.event.t,       d.event.x.x,
+                                             d.event.x.y,     d.event.x.z,
+                                             d.position.x,    d.position.y,
+                                             d.position.z,    d.time,
+                                             d.velocity.x,    d.velocity.y,
+                                             d.velocity.z,    1.0 - dot(d.velocity, d.velocity),
+                                             d.axis.x,        d.axis.y,
+                                             d.axis.z,        d.intensity,
+                                             d.half_cone,     d.falloff,
+                                             d.radius,        view.far,
+                                             view.origin.t,   view.origin.x.x,
+                                             view.origin.x.y, view.origin.x.z};
+    std::transform(std::begin(texels), std::end(texels),
+                   table.begin() + 4 * kLightTexels * static_cast<std::ptrdiff_t>(l),
+                   [](double x) { return static_cast<float>(x); });
   }
+  glActiveTexture(GL_TEXTURE7);
+  glBindTexture(GL_TEXTURE_2D, light_table_texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kLightTexels, std::max(n, 1), 0, GL_RGBA, GL_FLOAT,
+               table.data());
+  glActiveTexture(GL_TEXTURE8);
+  glBindTexture(GL_TEXTURE_2D, reflection_index_texture);
+  glActiveTexture(GL_TEXTURE0);
+  glUniform1i(uniform(p, "light_table"), 7);
+  glUniform1i(uniform(p, "reflection_index"), 8);
+  glUniform1i(uniform(p, "light_count"), n);
   glUniform1i(uniform(p, "shadow_maps"), 5);
+  glUniform1f(uniform(p, "shadow_texel"),
+              maps ? 2.0f / static_cast<float>(shadow_maps->face_size()) : 0.0f);
   glUniform1i(uniform(p, "visible_depth"), 6);
   if (frame_features & kBodyShadows) shadow_maps->bind(5);
   glUniform1i(uniform(p, "caster_count"), static_cast<GLint>(casters.size()));
@@ -239,9 +256,7 @@ void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const Bod
               m.glossy ? static_cast<float>(m.glossy->roughness) : 1.0f);
   glUniform1f(uniform(p, "glossy_specular"),
               m.glossy ? static_cast<float>(m.glossy->specular) : 0.0f);
-  glUniform1iv(uniform(p, "reflection_row"), 2 * kRasterMaxLights, draw.reflection_row.data());
-  glUniform1iv(uniform(p, "reflection_moving"), 2 * kRasterMaxLights,
-               draw.reflection_moving.data());
+  glUniform1i(uniform(p, "reflection_body"), draw.reflection_body);
 }
 
 // One body of the prepared frame with the program in use: its world-line, pattern, clock, spin

@@ -18,9 +18,6 @@
 
 namespace lightcone {
 
-// The lights that light surfaces (lighting.glsl's array size).
-inline constexpr int kRasterMaxLights = 16;
-
 // What the raster renderer cannot show as the ray tracer does, one line each (empty when it
 // shows the scene exactly): lit materials, textures and sky images, shadows, the accretion disk
 // under the hue model and in front of objects.

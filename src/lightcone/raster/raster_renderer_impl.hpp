@@ -77,6 +77,9 @@ struct RasterRenderer::Impl {
   GLuint face_uv_buffer = 0;
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
+  // The lights' parameters, a row each (lighting.glsl's Lamp), and the lit bodies' reflection
+  // rows (lighting.glsl's reflection_index).
+  GLuint light_table_texture = 0, reflection_index_texture = 0;
 
   // The body program of a kind of material, path and features (body_variant_defines).
   GLuint body_program_for(int variant, bool gpu, int features);
@@ -94,8 +97,8 @@ struct RasterRenderer::Impl {
     std::size_t body = 0, first_vertex = 0, vertex_count = 0;
     int first_row = 0, pattern = 0;
     bool lit = false;
-    bool face_uvs = false;  // a textured mesh: its faces' texture coordinates' maps are drawn
-    std::array<int, 2 * kRasterMaxLights> reflection_row{}, reflection_moving{};
+    bool face_uvs = false;     // a textured mesh: its faces' texture coordinates' maps are drawn
+    int reflection_body = -1;  // a lit body's row of reflection_index_texture
     const RestMesh* mesh = nullptr;  // during prepare()
     double sphere_radius = 0;        // the GPU path's: its mesh's
   };

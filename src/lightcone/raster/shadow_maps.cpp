@@ -160,6 +160,7 @@ void ShadowMaps::build(const ResolvedScene& scene, std::size_t lights) {
         layers += 6;
       }
   if (layers == 0) return;
+  face_size_ = layers > 6 * 8 ? 256 : 512;
 
   // Every casting shape's untessellated triangles, once (straight edges stay straight in R),
   // and the radius about its origin.
@@ -176,7 +177,10 @@ void ShadowMaps::build(const ResolvedScene& scene, std::size_t lights) {
     const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, o.shape);
     auto [it, added] = shapes.emplace(shape_key, ShapeRange{});
     if (added) {
-      const RestMesh mesh = rest_mesh(o.shape);
+      // A sphere is drawn as its bounding box, and met exactly per texel (shadow.frag).
+      const auto* sphere = std::get_if<Sphere>(&o.shape);
+      const RestMesh mesh =
+          sphere ? rest_mesh(Box{Vec3{2, 2, 2} * sphere->radius}) : rest_mesh(o.shape);
       it->second.first = static_cast<GLint>(vertices.size() / 3);
       for (const Vec3& p : mesh.positions)
         it->second.radius = std::max(it->second.radius, length(p));
@@ -195,7 +199,7 @@ void ShadowMaps::build(const ResolvedScene& scene, std::size_t lights) {
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
   glGetIntegerv(GL_VIEWPORT, viewport);
   glBindTexture(GL_TEXTURE_2D_ARRAY, texture_);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, kFaceSize, kFaceSize, layers, 0,
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, face_size_, face_size_, layers, 0,
                GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -210,7 +214,7 @@ void ShadowMaps::build(const ResolvedScene& scene, std::size_t lights) {
   const GLenum none = GL_NONE;
   glDrawBuffers(1, &none);
   glReadBuffer(GL_NONE);
-  glViewport(0, 0, kFaceSize, kFaceSize);
+  glViewport(0, 0, face_size_, face_size_);
   glUseProgram(program_);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -254,7 +258,14 @@ void ShadowMaps::build(const ResolvedScene& scene, std::size_t lights) {
       set_vec3(program_, "face_up", kFaces[f].up);
       for (const Caster& c : casters) {
         const Object& o = s.objects[c.body];
-        set_mat3(program_, "shape_to_light", o.rotation * Mat3::diagonal(o.scale));
+        const Mat3 shape_to_light = o.rotation * Mat3::diagonal(o.scale);
+        set_mat3(program_, "shape_to_light", shape_to_light);
+        set_mat3(program_, "light_to_shape",
+                 Mat3::diagonal({1 / o.scale.x, 1 / o.scale.y, 1 / o.scale.z}) *
+                     o.rotation.transposed());
+        const auto* sphere = std::get_if<Sphere>(&o.shape);
+        glUniform1f(uniform(program_, "sphere_radius"),
+                    sphere ? static_cast<float>(sphere->radius) : 0.0f);
         set_vec3(program_, "body_offset", c.offset);
         glDrawArrays(GL_TRIANGLES, body_shape[c.body]->first, body_shape[c.body]->count);
       }

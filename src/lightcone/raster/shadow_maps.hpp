@@ -68,14 +68,15 @@ class ShadowMaps {
   const ShadowMapView& view(std::size_t light) const { return views_[light]; }
   // Binds the maps' texture array to texture unit `unit`.
   void bind(int unit) const;
-  // Each face's side in texels.
-  static constexpr int kFaceSize = 512;
+  // Each face's side in texels: 512, or 256 where more than eight lights cast (memory).
+  int face_size() const { return face_size_; }
 
  private:
   void build(const ResolvedScene& scene, std::size_t lights);
   GLuint program_ = 0, texture_ = 0, framebuffer_ = 0, vertex_array_ = 0, vertex_buffer_ = 0;
   std::vector<ShadowMapView> views_;
   std::vector<double> key_;  // what the maps were made from
+  int face_size_ = 512;
 };
 
 }  // namespace lightcone

@@ -3,22 +3,38 @@
 // precision stays accurate). Shadows come from maps of the bodies at rest relative to each
 // light (raster/shadow_maps.hpp). Each function names the C++ it mirrors.
 
-const int kMaxLights = 16;
 const float kPi = 3.141592653589793;
 
+// The lights, any number of them: a row of light_table each (raster_renderer.cpp, set_lights).
+uniform highp sampler2D light_table;
 uniform int light_count;
-uniform int light_kind[kMaxLights];       // 0 point, 1 spot, 2 directional, 3 sphere
-uniform int light_fixed_event[kMaxLights];  // 1: emission at light_event (delay camera or none)
-uniform vec4 light_event[kMaxLights];      // (t, x) relative to the observation event
-uniform vec3 light_position[kMaxLights];   // its world-line: position at light_time
-uniform float light_time[kMaxLights];
-uniform vec3 light_velocity[kMaxLights];   // in W (0 for the classical picture)
-uniform float light_one_minus_beta2[kMaxLights];
-uniform float light_intensity[kMaxLights];  // point, spot, sphere: I; directional: E
-uniform vec3 light_axis[kMaxLights];        // spot axis, or the directional light's direction
-uniform vec2 light_cone[kMaxLights];        // spot: half angle, falloff (degrees)
-uniform float light_radius[kMaxLights];     // sphere
-uniform int light_row[kMaxLights];  // its colour row: against ln D (others), or the glossy row
+struct Lamp {
+  int kind;           // 0 point, 1 spot, 2 directional, 3 sphere
+  bool fixed_event;   // emission at `event` (delay camera or none)
+  int row;            // its colour row: against ln D (others), or the glossy row
+  int shadow_layer;   // the first of its six shadow maps (shadow_maps.hpp), or -1
+  vec4 event;         // (t, x) relative to the observation event
+  vec3 position;      // its world-line: position at `time`
+  float time;
+  vec3 velocity;      // in W (0 for the classical picture)
+  float one_minus_beta2;
+  vec3 axis;          // spot axis, or the directional light's direction
+  float intensity;    // point, spot, sphere: I; directional: E
+  vec2 cone;          // spot: half angle, falloff (degrees)
+  float radius;       // sphere
+  float shadow_far;   // its maps' distances are stored over this
+  vec4 shadow_origin; // its position at the camera's time (relative to the observation event)
+};
+Lamp lamp(int l) {
+  vec4 t0 = texelFetch(light_table, ivec2(0, l), 0);
+  vec4 t2 = texelFetch(light_table, ivec2(2, l), 0);
+  vec4 t3 = texelFetch(light_table, ivec2(3, l), 0);
+  vec4 t4 = texelFetch(light_table, ivec2(4, l), 0);
+  vec4 t5 = texelFetch(light_table, ivec2(5, l), 0);
+  return Lamp(int(t0.x), t0.y > 0.5, int(t0.z), int(t0.w), texelFetch(light_table, ivec2(1, l), 0),
+              t2.xyz, t2.w, t3.xyz, t3.w, t4.xyz, t4.w, t5.xy, t5.z, t5.w,
+              texelFetch(light_table, ivec2(6, l), 0));
+}
 
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
@@ -28,11 +44,12 @@ uniform float diffuse;  // 1 - glossy specular, or 1
 uniform int glossy;
 uniform float glossy_roughness;
 uniform float glossy_specular;
-// Spectral: the reflected colour of (fixed colour k, light l) in row reflection_row[16 k + l],
-// a row against ln D_camera (a light co-moving with the surface) or, where reflection_moving
-// is set, the first of a block of rows of reflection_tables, one per node of ln D_light.
-uniform int reflection_row[2 * kMaxLights];
-uniform int reflection_moving[2 * kMaxLights];
+// Spectral: the reflected colour of (fixed colour k, light l) of the body: texel (k light_count
+// + l, reflection_body) of reflection_index holds its row and whether the light moves relative
+// to the body; a row against ln D_camera (a light co-moving with the surface) or, for a moving
+// one, the first of a block of rows of reflection_tables, one per node of ln D_light.
+uniform highp sampler2D reflection_index;
+uniform int reflection_body;
 uniform sampler2D reflection_tables;
 uniform vec4 reflection_grid;  // (first ln D_camera, step, first ln D_light, step)
 uniform int reflection_light_nodes;
@@ -99,23 +116,19 @@ float glossy_reflectance(vec3 n, vec3 to_light, vec3 to_camera) {
 }
 
 #if !defined(LIGHTCONE_NO_SHADOWS)
-// raster/shadow_maps.hpp: per light the first of its six layers (-1: it casts none), its
-// position at the camera's time (relative to the observation event, W) and the distance the
-// maps' depths are stored over.
+// raster/shadow_maps.hpp: each light's six maps (Lamp's shadow_layer, shadow_origin and
+// shadow_far).
 uniform highp sampler2DArray shadow_maps;
-uniform int light_shadow_layer[kMaxLights];
-uniform vec4 light_shadow_origin[kMaxLights];
-uniform float light_shadow_far[kMaxLights];
-const float kShadowTexel = 2.0 / 512.0;  // a texel's angle at a face's centre (kFaceSize)
+uniform float shadow_texel;  // a texel's angle at a face's centre: 2 / the faces' size
 
 // Whether the bodies at rest relative to light l hide it from the surface event: in the
 // light's rest frame they and the light stand still, so the tracer's shadow ray runs along the
 // segment from the light to the surface's position there, and the cube face that direction
 // falls on holds the nearest body's distance along it. The bias covers the half texel between
 // a direction and the texel's centre, more on surfaces the light grazes.
-bool shadowed(int l, vec4 surface, float cos_incidence) {
-  if (light_shadow_layer[l] < 0) return false;
-  vec3 d = boost(light_velocity[l], surface - light_shadow_origin[l]).yzw;
+bool shadowed(Lamp light, vec4 surface, float cos_incidence) {
+  if (light.shadow_layer < 0) return false;
+  vec3 d = boost(light.velocity, surface - light.shadow_origin).yzw;
   vec3 a = abs(d);
   int face;
   vec2 uv;
@@ -136,11 +149,11 @@ bool shadowed(int l, vec4 surface, float cos_incidence) {
   }
   if (!(major > 0.0)) return false;
   uv = uv / major * 0.5 + 0.5;
-  float stored = texture(shadow_maps, vec3(uv, float(light_shadow_layer[l] + face))).r;
+  float stored = texture(shadow_maps, vec3(uv, float(light.shadow_layer + face))).r;
   float distance = length(d);
   float c = clamp(cos_incidence, 0.1, 1.0);
-  float bias = distance * kShadowTexel * (1.0 + sqrt(1.0 - c * c) / c);
-  return stored < 1.0 && distance > stored * light_shadow_far[l] + bias;
+  float bias = distance * shadow_texel * (1.0 + sqrt(1.0 - c * c) / c);
+  return stored < 1.0 && distance > stored * light.shadow_far + bias;
 }
 
 // raster/shadow_maps.hpp's exact casters: each body's shape met along the shadow ray carried
@@ -219,19 +232,19 @@ void set_irradiance(inout Incoming in_light, float geometric, float physical,
 }
 
 // frame/lighting.cpp, Lighting::incoming (without shadows).
-bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 light_sample,
+bool incoming(Lamp light, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 light_sample,
               out Incoming result) {
   result = Incoming(vec3(0.0), 1.0, 0.0, 0.0, vec4(0.0), false);
-  vec3 beta_l = light_velocity[l];
-  if (light_kind[l] == 2) {
+  vec3 beta_l = light.velocity;
+  if (light.kind == 2) {
     // A plane wave: physics/light_path.cpp's plane-wave laws.
-    vec4 k_world = boost(-beta_l, vec4(1.0, normalize(light_axis[l])));
+    vec4 k_world = boost(-beta_l, vec4(1.0, normalize(light.axis)));
     vec4 k_surface = boost(surface_velocity, k_world);
     result.direction_to_light = -(k_surface.yzw / k_surface.x);
     result.doppler = k_surface.x;
     float cos_i = dot(normal, result.direction_to_light);
     if (!(cos_i > 0.0)) return false;
-    float e = light_intensity[l];
+    float e = light.intensity;
     set_irradiance(result, e * cos_i, result.doppler * result.doppler * e * cos_i,
                    e * result.doppler * result.doppler * result.doppler * cos_i);
     result.shadow_end = k_world;
@@ -239,15 +252,15 @@ bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 ligh
     return true;
   }
   vec3 rest_offset = vec3(0.0);
-  float intensity = light_intensity[l];
-  if (light_kind[l] == 3) rest_offset = sphere_point(light_sample) * light_radius[l];
+  float intensity = light.intensity;
+  if (light.kind == 3) rest_offset = sphere_point(light_sample) * light.radius;
   vec3 offset_world = contracted(rest_offset, beta_l);
   vec4 emission;
-  if (light_fixed_event[l] == 1) {
-    emission = light_event[l] + vec4(0.0, offset_world);
+  if (light.fixed_event) {
+    emission = light.event + vec4(0.0, offset_world);
   } else {
-    vec3 at = light_position[l] + beta_l * (surface.x - light_time[l]) + offset_world;
-    float tau = retarded_delay(at - surface.yzw, beta_l, light_one_minus_beta2[l]);
+    vec3 at = light.position + beta_l * (surface.x - light.time) + offset_world;
+    float tau = retarded_delay(at - surface.yzw, beta_l, light.one_minus_beta2);
     emission = vec4(surface.x - tau, at - beta_l * tau);
   }
   Leg leg = receive_leg(emission, beta_l, surface, surface_velocity);
@@ -255,13 +268,13 @@ bool incoming(int l, vec4 surface, vec3 surface_velocity, vec3 normal, vec2 ligh
   result.doppler = leg.doppler;
   float cos_i = dot(normal, result.direction_to_light);
   if (!(cos_i > 0.0) || !(leg.distance > 0.0)) return false;
-  if (light_kind[l] == 1) {
-    float angle = degrees(acos(clamp(dot(leg.emitted_direction, normalize(light_axis[l])), -1.0,
+  if (light.kind == 1) {
+    float angle = degrees(acos(clamp(dot(leg.emitted_direction, normalize(light.axis)), -1.0,
                                      1.0)));
-    float half_cone = light_cone[l].x, falloff = light_cone[l].y;
+    float half_cone = light.cone.x, falloff = light.cone.y;
     intensity *= 1.0 - (falloff <= 0.0 ? (angle >= half_cone ? 1.0 : 0.0)
                                        : smoothstep(half_cone - falloff, half_cone, angle));
-  } else if (light_kind[l] == 3) {
+  } else if (light.kind == 3) {
     intensity *= 4.0 * max(0.0, dot(normalize(rest_offset), leg.emitted_direction));
   }
   if (intensity <= 0.0) return false;
@@ -300,29 +313,28 @@ vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surfac
   Leg view = receive_leg(surface, surface_velocity, vec4(0.0), camera_velocity);
   vec3 to_camera = view.emitted_direction;
   vec3 seen = vec3(0.0), outgoing = vec3(0.0);
-  for (int l = 0; l < kMaxLights; ++l) {
-    if (l >= light_count) break;
+  for (int l = 0; l < light_count; ++l) {
+    Lamp light = lamp(l);
     Incoming in_light;
-    if (!incoming(l, surface, surface_velocity, normal, light_sample, in_light)) continue;
+    if (!incoming(light, surface, surface_velocity, normal, light_sample, in_light)) continue;
 #if !defined(LIGHTCONE_NO_SHADOWS)
-    if (shadowed(l, surface, dot(normal, in_light.direction_to_light)) ||
+    if (shadowed(light, surface, dot(normal, in_light.direction_to_light)) ||
         exactly_shadowed(surface, in_light.shadow_end, in_light.to_infinity))
       continue;
 #endif
     float gloss =
         glossy == 1 ? glossy_reflectance(normal, in_light.direction_to_light, to_camera) : 0.0;
     if (spectral == 1) {
-      int index = 16 * k + l;
-      vec3 reflected = reflection_moving[index] == 1
-                           ? reflection_table(reflection_row[index], log(d_camera),
-                                              log(in_light.doppler))
-                           : received_colour(reflection_row[index], d_camera);
+      vec2 index = texelFetch(reflection_index, ivec2(k * light_count + l, reflection_body), 0).xy;
+      vec3 reflected = index.y > 0.5 ? reflection_table(int(index.x), log(d_camera),
+                                                        log(in_light.doppler))
+                                     : received_colour(int(index.x), d_camera);
       seen += diffuse / kPi * in_light.spectral_factor * reflected;
       if (gloss > 0.0)
         seen += gloss * in_light.spectral_factor *
-                received_colour(light_row[l], d_camera * in_light.doppler);
+                received_colour(light.row, d_camera * in_light.doppler);
     } else {
-      vec3 colour = received_colour(light_row[l], in_light.doppler);
+      vec3 colour = received_colour(light.row, in_light.doppler);
       outgoing += (diffuse * albedo / kPi + vec3(gloss)) * colour * in_light.irradiance;
     }
   }
