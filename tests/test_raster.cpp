@@ -570,6 +570,29 @@ f 1/7 4/4 3/5
     EXPECT_EQ(a.raster_err, "") << settings;
     std::printf("textures %s: %.4f of %zu pixels within 4/255\n", settings, a.within, a.compared);
   }
+  // Lit textures (the colour models linear in the albedo): the same bodies under a lamp and a
+  // sun, each sample's albedo its texel (without shadows: the moving mesh casts none here).
+  std::string lit = test::bytes_of(dir / "scene.json");
+  const std::string unlit_texture = R"("texture": "texture.exr"})";
+  for (std::size_t at = lit.find(unlit_texture); at != std::string::npos;
+       at = lit.find(unlit_texture, at + 1))
+    lit.replace(at, unlit_texture.size(), R"("texture": "texture.exr", "unlit": false})");
+  lit.replace(
+      lit.find(R"(  "sky":)"), 0,
+      R"(  "lights": [{"name": "lamp", "type": "point", "position": [0, 6, 3], "intensity": 40},
+    {"name": "sun", "type": "directional", "direction": [-0.3, -1, -0.4], "irradiance": 0.5}],
+)");
+  test::write_text(dir / "lit.json", lit);
+  for (const char* settings :
+       {"--set render.doppler=rgb3", "--set render.doppler=off --set render.searchlight=off",
+        "--set render.doppler=hue --set render.searchlight=off"}) {
+    const Agreement a = agreement((dir / "lit.json").string(), 16,
+                                  std::string("--set render.shadows=false ") + settings);
+    EXPECT_GE(a.within, 0.99) << settings << ": " << a.compared << " pixels compared";
+    EXPECT_EQ(a.raster_err, "") << settings;
+    std::printf("lit textures %s: %.4f of %zu pixels within 4/255\n", settings, a.within,
+                a.compared);
+  }
   fs::remove_all(dir);
 }
 
@@ -877,6 +900,10 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_LIT 1\n"},
       {"body-depth.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_DEPTH_ONLY 1\n"},
+      {"body-lit-textured.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_LIT_TEXTURES 1\n"},
+      {"body-lit-textured.vert", shader_sources::body_vert, false,
+       shader_sources::body_projection_glsl, "#define LIGHTCONE_LIT_TEXTURES 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

@@ -32,7 +32,8 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   }
   if (clock_mesh) differences.push_back("clocks on meshes are drawn as their face alone");
 
-  if (lit_textured) differences.push_back("lit textured materials are drawn black");
+  if (lit_textured && scene.render.doppler == DopplerModel::kSpectral)
+    differences.push_back("lit textured materials under the spectral model are drawn black");
   if (lit && scene.render.shadows && !scene.lights.empty()) {
     bool uncast = false, from_centre = false;
     std::size_t exact = 0;

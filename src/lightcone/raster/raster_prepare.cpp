@@ -188,9 +188,18 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                                                               : 0;
     if (draw.pattern >= 3) frame_features |= kBodyTimedPattern;
     if (body.spin >= 0) frame_features |= kBodySpin;
-    if (textured) {
+    const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
+    // Lit textures under the colour models linear in the albedo (not spectral: the tracer fits
+    // a spectrum to each texel's albedo).
+    const bool lit_texture = textured && !m.unlit && !spectral && !resolved.hole;
+    if (lit_texture) {
+      draw.pattern = 2;
+      draw.face_uvs = mesh;
+      upload(*std::get<Texture>(m.pattern).image);
+      frame_features |= kBodyLitTextures;
+    }
+    if (textured && !lit_texture) {
       draw.first_row = emission_row(kBlack);
-      const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
       const bool drawable = m.unlit && !(mesh && resolved.hole);
       draw.pattern = drawable ? 2 : 0;
       draw.face_uvs = drawable && mesh;

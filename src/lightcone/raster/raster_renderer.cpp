@@ -45,7 +45,7 @@ GLuint RasterRenderer::Impl::sky_program_for(int variant, bool hue) {
 
 // The body program of a kind of material, path and features (body_variant_defines).
 GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int features) {
-  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 64 + features];
+  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 128 + features];
   if (program) return program;
   const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                           : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
@@ -409,7 +409,8 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
     glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
     if (variant == kLit) set_lights(resolved);
     for (const BodyDraw& draw : draws)
-      if (draw.lit == (variant == kLit) && (draw.pattern == 2) == (variant == kTextured))
+      if (draw.lit ? variant == kLit
+                   : (draw.pattern == 2) == (variant == kTextured) && variant != kLit)
         draw_body(resolved, draw, variant == kLit);
   }
   if (resolved.hole && !hole_body_list.empty()) {

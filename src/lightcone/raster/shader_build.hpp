@@ -44,8 +44,8 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 // What a body program may leave out when no body of the frame uses it (shaders/body.frag,
 // patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
 // offsets (several samples a pixel), the hue model's law (received_rgb), shadows
-// (lighting.glsl), and the lit program's test against the visible-depth pass (a frame with lit
-// bodies draws one). The defines take out those a frame does not use.
+// (lighting.glsl), the lit program's test against the visible-depth pass (a frame with lit
+// bodies draws one), and lit textures. The defines take out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
@@ -53,7 +53,8 @@ enum BodyFeature {
   kBodyHueModel = 8,
   kBodyShadows = 16,
   kBodyVisibleDepth = 32,
-  kAllBodyFeatures = 63,
+  kBodyLitTextures = 64,
+  kAllBodyFeatures = 127,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -63,6 +64,7 @@ inline std::string body_variant_defines(int features) {
   if (!(features & kBodyHueModel)) defines += "#define LIGHTCONE_NO_HUE 1\n";
   if (!(features & kBodyShadows)) defines += "#define LIGHTCONE_NO_SHADOWS 1\n";
   if (!(features & kBodyVisibleDepth)) defines += "#define LIGHTCONE_NO_VISIBLE_DEPTH 1\n";
+  if (features & kBodyLitTextures) defines += "#define LIGHTCONE_LIT_TEXTURES 1\n";
   return defines;
 }
 

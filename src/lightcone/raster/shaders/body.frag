@@ -15,9 +15,15 @@ uniform vec3 doppler_velocity;  // the body's velocity in F (0 for the classical
 uniform float doppler_gamma;
 uniform int colour_row;  // the row of the pattern's first colour
 uniform sampler2D texture_image;
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
 flat in vec4 uv_u;  // a textured mesh's face: u = uv_u.xyz . p + uv_u.w (body.vert)
 flat in vec4 uv_v;
+
+// The texture coordinates of surface point p: a mesh face's map, or the shape's own.
+vec2 body_uv(vec3 p) {
+  return shape_kind == 0 ? vec2(dot(uv_u.xyz, p) + uv_u.w, dot(uv_v.xyz, p) + uv_v.w)
+                         : surface_uv(p);
+}
 #endif
 // The body's own clock at the ray's event s: proper_time_origin + s (proper_time_ray +
 // proper_time_row . u) (ResolvedBody::proper_time).
@@ -182,12 +188,16 @@ void main() {
     surface_velocity = relativity == 1 ? moving.yzw / moving.x : vec3(0.0);
   }
 #endif
-  vec3 c = lit_colour(albedo[k], k, u, s, d, surface_velocity, normal, fragment_light_sample());
+  vec3 surface_albedo = albedo[k];
+#if defined(LIGHTCONE_LIT_TEXTURES)
+  // A lit texture (the colour models other than spectral: they are linear in the albedo).
+  if (pattern == 2) surface_albedo = sample_bilinear(texture_image, body_uv(p), true);
+#endif
+  vec3 c =
+      lit_colour(surface_albedo, k, u, s, d, surface_velocity, normal, fragment_light_sample());
   colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, 1.0);
 #elif defined(LIGHTCONE_TEXTURED)
-  vec2 uv = shape_kind == 0 ? vec2(dot(uv_u.xyz, p) + uv_u.w, dot(uv_v.xyz, p) + uv_v.w)
-                           : surface_uv(p);
-  colour = vec4(received_rgb(sample_bilinear(texture_image, uv, true), d), 1.0);
+  colour = vec4(received_rgb(sample_bilinear(texture_image, body_uv(p), true), d), 1.0);
 #else
   colour = vec4(received_colour(colour_row + k, d), 1.0);
 #endif

@@ -11,7 +11,7 @@ in vec3 patch_position[];
 in vec4 patch_plane[];
 out vec3 control_position[];
 out vec4 control_plane[];
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
 in vec4 patch_u[];
 in vec4 patch_v[];
 out vec4 control_u[];
@@ -44,7 +44,7 @@ float edge_level(vec3 a, vec3 b) {
 void main() {
   control_position[gl_InvocationID] = patch_position[gl_InvocationID];
   control_plane[gl_InvocationID] = patch_plane[gl_InvocationID];
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
   control_u[gl_InvocationID] = patch_u[gl_InvocationID];
   control_v[gl_InvocationID] = patch_v[gl_InvocationID];
 #endif

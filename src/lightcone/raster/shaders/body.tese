@@ -6,7 +6,7 @@ in vec3 control_position[];
 in vec4 control_plane[];
 flat out vec4 plane;
 out float vertex_distance;  // its light travel distance, for the fragments of spinning bodies
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
 in vec4 control_u[];
 in vec4 control_v[];
 flat out vec4 uv_u;
@@ -24,7 +24,7 @@ void main() {
   gl_Position = clip_of(event);
   vertex_distance = event.w;
   plane = control_plane[0];
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
   uv_u = control_u[0];
   uv_v = control_v[0];
 #endif

@@ -9,7 +9,7 @@ layout(location = 1) in vec4 face_plane;
 
 flat out vec4 plane;
 out float vertex_distance;  // its light travel distance, for the fragments of spinning bodies
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
 // A textured mesh's face: its texture coordinates as an affine map of the shape point (u =
 // face_u.xyz . p + face_u.w; raster/tessellation.hpp, triangle_uv_map).
 layout(location = 2) in vec4 face_u;
@@ -23,7 +23,7 @@ void main() {
   gl_Position = clip_of(event);
   vertex_distance = event.w;
   plane = face_plane;
-#if defined(LIGHTCONE_TEXTURED)
+#if defined(LIGHTCONE_FACE_UVS)
   uv_u = face_u;
   uv_v = face_v;
 #endif

@@ -3,6 +3,11 @@
 // program prepends only the version line (for ES also the precision line) and, for fragment
 // shaders, the definition of LIGHTCONE_FRAGMENT_STAGE.
 
+// Textured bodies, unlit or lit (LIGHTCONE_LIT_TEXTURES), carry their mesh faces' texture maps.
+#if defined(LIGHTCONE_TEXTURED) || defined(LIGHTCONE_LIT_TEXTURES)
+#define LIGHTCONE_FACE_UVS 1
+#endif
+
 // physics/retarded_time.cpp, retarded_delay: the root tau >= 0 of |delta - beta tau| = tau, with
 // 1 - beta.beta given (computed in double on the CPU, where it does not cancel).
 float retarded_delay(vec3 delta, vec3 beta, float one_minus_beta2) {
