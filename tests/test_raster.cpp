@@ -422,6 +422,39 @@ TEST(RasterAgreement, RetardedShadowsMatchTheRayTracer) {
   }
 }
 
+// A clock on a mesh: its dial read at each face's texture coordinates, as the tracer does, on a
+// square of two triangles at 0.6c and on the textured pyramid (faces mapped apart), lit and not.
+TEST(RasterAgreement, ClocksOnMeshesMatchTheRayTracer) {
+  const fs::path dir = test::fresh_temp_dir("mesh-clocks");
+  test::write_text(dir / "square.obj", R"(v -1 -1 0
+v 1 -1 0
+v 1 1 0
+v -1 1 0
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+f 1/1 2/2 3/3
+f 1/1 3/3 4/4
+)");
+  test::write_text(dir / "scene.json", R"({
+  "camera": {"position": [0, 0, 6], "fov": 60},
+  "objects": [
+    {"name": "dial", "shape": {"mesh": {"file": "square.obj"}}, "position": [-1.5, 0.3, 0],
+     "time": -6, "velocity": [0.6, 0, 0], "scale": [1.4, 1.4, 1.4],
+     "material": {"clock": {"period": 10, "colors": [[1, 0.95, 0.8], [0.1, 0.1, 0.3]]}}},
+    {"name": "lit-dial", "shape": {"mesh": {"file": "square.obj"}}, "position": [1.8, -0.2, -1],
+     "material": {"clock": {"period": 4, "colors": [[0.9, 0.9, 0.8], [0.2, 0.2, 0.5]]},
+                  "unlit": false}}
+  ],
+  "lights": [{"name": "lamp", "type": "point", "position": [1, 2, 3], "intensity": 20}],
+  "sky": {"color": [0.05, 0.05, 0.08]}
+})");
+  // (The moving mesh would cast no shadow of the lamp here.)
+  expect_agreement((dir / "scene.json").string(), "--set render.shadows=false", 16);
+  fs::remove_all(dir);
+}
+
 // Any number of lights: twenty lamps of five colours round a yard, the last four the brightest,
 // without and with their shadows of two crates and a ball (the maps at 256 texels a face past
 // eight lights; the ball met exactly in them, so its shadows are round).
@@ -904,6 +937,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_LIT_TEXTURES 1\n"},
       {"body-lit-textured.vert", shader_sources::body_vert, false,
        shader_sources::body_projection_glsl, "#define LIGHTCONE_LIT_TEXTURES 1\n"},
+      {"body-mesh-clocks.frag", shader_sources::body_frag, true, patterns.c_str(),
+       "#define LIGHTCONE_MESH_CLOCKS 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

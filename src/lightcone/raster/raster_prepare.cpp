@@ -187,6 +187,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                    : std::holds_alternative<Clock>(m.pattern) ? 4
                                                               : 0;
     if (draw.pattern >= 3) frame_features |= kBodyTimedPattern;
+    if (draw.pattern == 4 && std::holds_alternative<MeshShape>(body.object->shape) &&
+        !resolved.hole) {
+      draw.face_uvs = true;
+      frame_features |= kBodyMeshClocks;
+    }
     if (body.spin >= 0) frame_features |= kBodySpin;
     const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
     // Lit textures under the colour models linear in the albedo (not spectral: the tracer fits

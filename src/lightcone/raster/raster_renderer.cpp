@@ -45,7 +45,7 @@ GLuint RasterRenderer::Impl::sky_program_for(int variant, bool hue) {
 
 // The body program of a kind of material, path and features (body_variant_defines).
 GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int features) {
-  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 128 + features];
+  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 256 + features];
   if (program) return program;
   const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                           : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"

@@ -45,7 +45,8 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 // patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
 // offsets (several samples a pixel), the hue model's law (received_rgb), shadows
 // (lighting.glsl), the lit program's test against the visible-depth pass (a frame with lit
-// bodies draws one), and lit textures. The defines take out those a frame does not use.
+// bodies draws one), lit textures, and clocks on meshes (their faces' texture maps). The defines
+// take out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
@@ -54,7 +55,8 @@ enum BodyFeature {
   kBodyShadows = 16,
   kBodyVisibleDepth = 32,
   kBodyLitTextures = 64,
-  kAllBodyFeatures = 127,
+  kBodyMeshClocks = 128,
+  kAllBodyFeatures = 255,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -65,6 +67,7 @@ inline std::string body_variant_defines(int features) {
   if (!(features & kBodyShadows)) defines += "#define LIGHTCONE_NO_SHADOWS 1\n";
   if (!(features & kBodyVisibleDepth)) defines += "#define LIGHTCONE_NO_VISIBLE_DEPTH 1\n";
   if (features & kBodyLitTextures) defines += "#define LIGHTCONE_LIT_TEXTURES 1\n";
+  if (features & kBodyMeshClocks) defines += "#define LIGHTCONE_MESH_CLOCKS 1\n";
   return defines;
 }
 

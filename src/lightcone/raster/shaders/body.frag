@@ -177,6 +177,10 @@ void main() {
   float d = doppler_factor(u, velocity, gamma);
   float proper_time = proper_time_origin + s * tau1;
   int k = pattern_index(p, proper_time);
+#if defined(LIGHTCONE_MESH_CLOCKS)
+  // A clock on a mesh: its dial at the face's texture coordinates, as the tracer reads it.
+  if (pattern == 4 && shape_kind == 0) k = clock_index(body_uv(p), proper_time);
+#endif
   // One program per kind of material (the program defines which), so that each stays small.
 #if defined(LIGHTCONE_LIT)
   vec3 normal = normalize(normal_to_rest * shape_normal(p, direction));

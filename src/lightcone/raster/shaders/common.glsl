@@ -3,8 +3,9 @@
 // program prepends only the version line (for ES also the precision line) and, for fragment
 // shaders, the definition of LIGHTCONE_FRAGMENT_STAGE.
 
-// Textured bodies, unlit or lit (LIGHTCONE_LIT_TEXTURES), carry their mesh faces' texture maps.
-#if defined(LIGHTCONE_TEXTURED) || defined(LIGHTCONE_LIT_TEXTURES)
+// Textured bodies, unlit or lit (LIGHTCONE_LIT_TEXTURES), and clocks on meshes
+// (LIGHTCONE_MESH_CLOCKS) carry their mesh faces' texture maps.
+#if defined(LIGHTCONE_TEXTURED) || defined(LIGHTCONE_LIT_TEXTURES) || defined(LIGHTCONE_MESH_CLOCKS)
 #define LIGHTCONE_FACE_UVS 1
 #endif
 
