@@ -1,0 +1,80 @@
+#include "support/raster_agreement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "lightcone/io/image_file.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone::test {
+
+namespace fs = std::filesystem;
+
+int png_level(float linear) {
+  return static_cast<int>(std::lround(255 * srgb_encode(linear)));
+}
+
+Agreement agreement(const std::string& scene, int samples, const std::string& extra,
+                    const std::string& raster_extra) {
+  const fs::path dir = test::fresh_temp_dir("agreement");
+  const fs::path path = fs::path(scene).is_absolute()
+                            ? fs::path(scene)
+                            : fs::path(LIGHTCONE_SOURCE_DIR) / "scenes" / scene;
+  const std::string source = quoted(path);
+  const std::string common =
+      " --width 640 --height 360 --samples " + std::to_string(samples) + " --quiet " + extra;
+  const auto traced =
+      test::run_lightcone("render " + source + common + " -o " + quoted(dir / "trace.png") +
+                          " --exr " + quoted(dir / "trace.exr") + " --aov object");
+  EXPECT_EQ(traced.status, 0) << traced.err;
+  const auto rastered = test::run_lightcone("render " + source + common + " " + raster_extra +
+                                            " --renderer raster -o " + quoted(dir / "raster.png"));
+  EXPECT_EQ(rastered.status, 0) << rastered.err;
+  Agreement result;
+  result.raster_err = rastered.err;
+  if (traced.status != 0 || rastered.status != 0) return result;
+  const auto a = load_image_file(dir / "trace.png"), b = load_image_file(dir / "raster.png");
+  const auto exr = load_image_file(dir / "trace.exr");
+  const std::vector<float>* object = nullptr;
+  for (const NamedChannel& c : exr->channels)
+    if (c.name == "object") object = &c.values;
+  EXPECT_NE(object, nullptr);
+  if (object == nullptr || a->width != b->width || a->height != b->height) return result;
+  const int w = a->width, h = a->height;
+  std::size_t within = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float id = (*object)[static_cast<std::size_t>(y) * w + x];
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
+          edge = edge || (*object)[static_cast<std::size_t>(ny) * w + nx] != id;
+        }
+      if (edge) continue;
+      ++result.compared;
+      const Rgb p = a->texel(x, y), q = b->texel(x, y);
+      within += std::abs(png_level(p.r) - png_level(q.r)) <= 4 &&
+                std::abs(png_level(p.g) - png_level(q.g)) <= 4 &&
+                std::abs(png_level(p.b) - png_level(q.b)) <= 4;
+    }
+  result.within = static_cast<double>(within) / std::max<std::size_t>(result.compared, 1);
+  fs::remove_all(dir);
+  return result;
+}
+
+void expect_agreement(const std::string& scene, const std::string& extra, int samples) {
+  const Agreement a = agreement(scene, samples, extra);
+  EXPECT_GE(a.within, 0.99) << scene << extra << ": " << a.compared << " pixels compared";
+  EXPECT_GT(a.compared, 640u * 360u / 2) << scene;
+  EXPECT_EQ(a.raster_err, "") << scene;  // nothing this renderer shows differently
+  std::printf("%s %s: %.4f of %zu pixels within 4/255\n", scene.c_str(), extra.c_str(), a.within,
+              a.compared);
+}
+
+}  // namespace lightcone::test

@@ -1,0 +1,30 @@
+// Agreement of the raster renderer with the ray tracer, through `lightcone render` with and
+// without --renderer raster: the share of pixels within 4/255 off the bodies' outlines.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace lightcone::test {
+
+// The 8-bit value a PNG holds for a pixel read back as linear.
+int png_level(float linear);
+
+struct Agreement {
+  double within = 0;         // fraction of the compared pixels within 4/255 in every channel
+  std::size_t compared = 0;  // pixels off the silhouette band
+  std::string raster_err;    // what the raster render said on stderr
+};
+
+// Renders a scene (a bundled one by name, or a path) both ways at 640x360 with `samples`
+// samples and the options `extra` (and `raster_extra` for the raster render alone); the ray
+// tracer's object ids mark the silhouettes, and the PNGs are compared off a one-pixel band
+// along them.
+Agreement agreement(const std::string& scene, int samples, const std::string& extra = "",
+                    const std::string& raster_extra = "");
+
+// At least 99 % of the compared pixels within 4/255, over half the picture compared, and
+// nothing the raster renderer says it draws differently.
+void expect_agreement(const std::string& scene, const std::string& extra = "", int samples = 16);
+
+}  // namespace lightcone::test
