@@ -3,9 +3,9 @@
 // lightcone's frame time over it"):
 //   RasterFrame/<scene>     one frame as the viewer draws it, after a first one: resolve the
 //                           scene, its emission tables, prepare (tessellation, colour rows,
-//                           lights), one pass, glFinish; headless through EGL (llvmpipe here). prepare_ms and
-//                           pass_ms split it; tables_ms is the part of prepare_ms that resolves
-//                           the scene and builds its emission tables.
+//                           lights), one pass, glFinish; headless through EGL (llvmpipe here).
+//                           prepare_ms and pass_ms split it; tables_ms is the part of prepare_ms
+//                           that resolves the scene and builds its emission tables.
 //   RasterBaseline/<scene>  the same prepared triangles drawn by BaselinePass (pass-through
 //                           vertices, one colour) into the same target, glFinish.
 // The ratio of the two times is the figure; `triangles` counts both. Scenes: street.json at

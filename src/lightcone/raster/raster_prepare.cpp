@@ -205,7 +205,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     }
     if (textured && !lit_texture) {
       draw.first_row = emission_row(kBlack);
-      const bool drawable = m.unlit && !(mesh && resolved.hole);
+      const bool drawable = m.unlit && !resolved.hole;  // (near a hole textures are black)
       draw.pattern = drawable ? 2 : 0;
       draw.face_uvs = drawable && mesh;
       if (drawable) upload(*std::get<Texture>(m.pattern).image);
@@ -261,7 +261,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       }
     }
     const Shape& shape = body.object->shape;
-    const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, shape);
+    const void* shape_key = shape_identity(shape);
     auto it = meshes.find(shape_key);
     if (it == meshes.end())
       it = meshes.emplace(shape_key, rest_mesh(shape, gpu_tessellation && !resolved.hole ? 8 : 2))

@@ -127,9 +127,9 @@ void ShadowMaps::prepare(const ResolvedScene& scene, std::size_t lights) {
     append(key, light.world_line.velocity);
   }
   for (const Object& o : s.objects) {
-    key.insert(key.end(), {o.world_line.time,
-                           static_cast<double>(reinterpret_cast<std::uintptr_t>(std::visit(
-                               [](const auto& x) -> const void* { return &x; }, o.shape)))});
+    key.insert(key.end(),
+               {o.world_line.time,
+                static_cast<double>(reinterpret_cast<std::uintptr_t>(shape_identity(o.shape)))});
     append(key, o.world_line.position);
     append(key, o.world_line.velocity);
     append(key, o.scale);
@@ -174,7 +174,11 @@ void ShadowMaps::build(const ResolvedScene& scene, std::size_t lights) {
   std::vector<const ShapeRange*> body_shape(s.objects.size());
   for (std::size_t b = 0; b < s.objects.size(); ++b) {
     const Object& o = s.objects[b];
-    const void* shape_key = std::visit([](const auto& x) -> const void* { return &x; }, o.shape);
+    bool casts = false;  // into any light's maps
+    for (std::size_t l = 0; l < lights && !casts; ++l)
+      casts = raster_shadow_cast(o, s.lights[l], s.render) == RasterShadowCast::kMap;
+    if (!casts) continue;
+    const void* shape_key = shape_identity(o.shape);
     auto [it, added] = shapes.emplace(shape_key, ShapeRange{});
     if (added) {
       // A sphere is drawn as its bounding box, and met exactly per texel (shadow.frag).

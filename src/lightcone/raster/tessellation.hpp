@@ -47,6 +47,10 @@ struct RestMesh {
 // that no triangle is large against its body and long edges reach their curvature within the
 // maximum level (2 for the CPU path's 2^10 pieces an edge, 8 for the GPU's 64).
 RestMesh rest_mesh(const Shape& shape, int face_grid = 2);
+// The identity of a shape (its alternative's address): bodies sharing a Shape share its mesh.
+inline const void* shape_identity(const Shape& shape) {
+  return std::visit([](const auto& x) -> const void* { return &x; }, shape);
+}
 
 // Where a shape point is seen: its event on the camera's ray family and that event's image
 // point (pixels), for the tessellation's decisions.
