@@ -327,6 +327,43 @@ TEST(EmissionTable, ColoursPastTheTableLimitCombineTheSharedTablesToTheSameColou
   }
 }
 
+TEST(EmissionTable, BodiesOfOneSpectrumShareItsTableAndOthersGetTheirOwn) {
+  Scene s;
+  s.camera.width = 8;
+  s.camera.height = 8;
+  const std::vector<Pattern> patterns = {EmissionSpectrum{{400, 700}, {1, 2}},
+                                         EmissionSpectrum{{400, 700}, {1, 2}},
+                                         EmissionSpectrum{{400, 700}, {2, 1}},
+                                         EmissionSpectrum{{400, 500, 700}, {1, 2, 2}},
+                                         Blackbody{3000, 1},
+                                         Blackbody{3000, 1},
+                                         Blackbody{3000, 2}};
+  for (std::size_t i = 0; i < patterns.size(); ++i) {
+    Material m;
+    m.pattern = patterns[i];
+    s.objects.push_back(test::make_object("s" + std::to_string(i), Sphere{0.1},
+                                          {0, 0, -5.0 - static_cast<double>(i)}, {0.5, 0, 0}, m));
+  }
+  const ResolvedScene resolved = resolve_scene(s);
+  const EmissionTable emission(resolved);
+  const auto table = [&](std::size_t i) { return emission.surface(i, Hit{}).tables[0]; };
+  EXPECT_EQ(table(0), table(1));
+  EXPECT_EQ(table(4), table(5));
+  const std::set<const DopplerXyzTable*> distinct = {table(0), table(2), table(3), table(4),
+                                                     table(6)};
+  EXPECT_EQ(distinct.size(), 5u);
+  // A shared table is the one the spectrum gets alone.
+  Scene alone = s;
+  alone.objects = {s.objects[1]};
+  const ResolvedScene resolved_alone = resolve_scene(alone);
+  const EmissionTable own(resolved_alone);
+  for (double d : {0.7, 1.0, 1.6}) {
+    const Xyz a = emission.surface(1, Hit{}).seen_with_doppler(d);
+    const Xyz b = own.surface(0, Hit{}).seen_with_doppler(d);
+    EXPECT_NEAR(a.y, b.y, 1e-9 * b.y) << d;
+  }
+}
+
 TEST(ViewExtremes, AreTheExtremesOfADenseSamplingOfTheImage) {
   // Wide and narrow views, turned cameras, and velocities in and out of view: the exact
   // extremes bound every sampled direction and a dense sampling comes within its spacing.

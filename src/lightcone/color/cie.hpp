@@ -4,6 +4,8 @@
 
 #include <array>
 
+#include "lightcone/color/cie_data.hpp"
+
 namespace lightcone {
 
 inline constexpr double kCieMinWavelength = 360.0;  // nm
@@ -29,12 +31,12 @@ template <class Spectrum>
 Xyz xyz_from_spectrum(const Spectrum& spectrum) {
   Xyz sum;
   for (int i = 0; i < kCieTableSize; ++i) {
-    const double lambda = kCieMinWavelength + i;
-    const double s = spectrum(lambda);
-    const Xyz c = cie_cmf(lambda);
-    sum.x += s * c.x;
-    sum.y += s * c.y;
-    sum.z += s * c.z;
+    const double s = spectrum(kCieMinWavelength + i);
+    // The table's row: what cie_cmf gives at a whole nanometre, without its call.
+    const double* c = cie_data::kXyzBar1931[i];
+    sum.x += s * c[0];
+    sum.y += s * c[1];
+    sum.z += s * c[2];
   }
   const double n = 1.0 / cie_y_integral();
   return {sum.x * n, sum.y * n, sum.z * n};

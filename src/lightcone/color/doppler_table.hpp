@@ -153,9 +153,13 @@ class DopplerXyzTable {
     for_each_node(grid.size(), [&](int k) {
       const double d = grid.d(k);
       const double* row = &samples[static_cast<std::size_t>(k) * kCieTableSize];
-      nodes[k] = xyz_from_spectrum([&](double lambda) {
-        return rho(d * lambda) * row[static_cast<int>(lambda - kCieMinWavelength)];
-      });
+      // The products first, in a loop without a sum, which the compiler can vectorise; then
+      // xyz_from_spectrum's sum, in its order.
+      std::array<double, kCieTableSize> products;
+      for (int i = 0; i < kCieTableSize; ++i)
+        products[i] = rho(d * (kCieMinWavelength + i)) * row[i];
+      nodes[k] = xyz_from_spectrum(
+          [&](double lambda) { return products[static_cast<int>(lambda - kCieMinWavelength)]; });
     });
     return DopplerXyzTable(grid, std::move(nodes));
   }

@@ -38,10 +38,13 @@ inline double sigmoid_normalised_wavelength(double lambda_nm) {
 // S(x) = 1/2 + x / (2 sqrt(1 + x^2)), a smooth map of the real line onto (0, 1); S(-inf) = 0
 // and S(+inf) = 1. Written as (r + x) / (2 r), r = sqrt(1 + x^2), and for x < 0 as
 // 1 / (2 r (r - x)) so that small values keep their relative precision.
+// Both forms and the limits are computed and one is selected, without branches, so that loops
+// over wavelengths vectorise (the values are those of the branches).
 inline double sigmoid(double x) {
-  if (std::fabs(x) > 1e150) return x > 0 ? 1.0 : 0.0;  // includes +-inf; x * x would overflow
   const double r = std::sqrt(1 + x * x);
-  return x >= 0 ? (r + x) / (2 * r) : 1 / (2 * r * (r - x));
+  const double value = x >= 0 ? (r + x) / (2 * r) : 1 / (2 * r * (r - x));
+  // Past 1e150 (and at +-inf) x * x overflows: the limits.
+  return std::fabs(x) > 1e150 ? (x > 0 ? 1.0 : 0.0) : value;
 }
 
 // s(lambda) = S(c0 u^2 + c1 u + c2), u = sigmoid_normalised_wavelength(lambda) (clamped: see

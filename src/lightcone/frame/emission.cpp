@@ -165,6 +165,15 @@ PointEmission EmissionTable::fixed_spectrum(const Spectrum& spectrum) {
   return e;
 }
 
+template <class MakeSpectrum>
+PointEmission EmissionTable::shared_spectrum(std::vector<double> key, const MakeSpectrum& make) {
+  if (const auto it = spectrum_emissions_.find(key); it != spectrum_emissions_.end())
+    return it->second;
+  const PointEmission e = fixed_spectrum(make());
+  spectrum_emissions_.emplace(std::move(key), e);
+  return e;
+}
+
 PointEmission EmissionTable::fixed_rgb(const Rgb& rgb) {
   PointEmission e;
   e.rest_rgb = linear(rgb);
@@ -246,10 +255,16 @@ EmissionTable::Fixed EmissionTable::prepare(const Material& m) {
   for (int k = 0; k < count; ++k)
     f.colours[k] = m.unlit ? fixed_rgb(colours[k]) : lit_colour(colours[k], k);
   if (const auto* b = std::get_if<Blackbody>(&m.pattern)) {
-    f.colours[0] =
-        fixed_spectrum(BlackbodySpectrum::with_luminance(b->temperature_k, b->luminance));
+    f.colours[0] = shared_spectrum({0, b->temperature_k, b->luminance}, [b] {
+      return BlackbodySpectrum::with_luminance(b->temperature_k, b->luminance);
+    });
   } else if (const auto* s = std::get_if<EmissionSpectrum>(&m.pattern)) {
-    f.colours[0] = fixed_spectrum(TabulatedSpectrum{s->wavelengths_nm, s->values});
+    std::vector<double> key{1, static_cast<double>(s->wavelengths_nm.size())};
+    key.insert(key.end(), s->wavelengths_nm.begin(), s->wavelengths_nm.end());
+    key.insert(key.end(), s->values.begin(), s->values.end());
+    f.colours[0] = shared_spectrum(std::move(key), [s] {
+      return TabulatedSpectrum{s->wavelengths_nm, s->values};
+    });
   }
   return f;
 }

@@ -109,6 +109,9 @@ class EmissionTable {
   ThermalEmission thermal_disk(const HoleView& hole);
   template <class Spectrum>
   PointEmission fixed_spectrum(const Spectrum& spectrum);
+  // Bodies of one spectrum share its table: `key` holds the spectrum's parameters.
+  template <class MakeSpectrum>
+  PointEmission shared_spectrum(std::vector<double> key, const MakeSpectrum& make);
   // Per lookup (textures, sky images): the white and node tables, weighted.
   PointEmission per_lookup_rgb(const Rgb& rgb) const;
   const DopplerXyzTable& node_table(int node_case, int node);
@@ -122,6 +125,7 @@ class EmissionTable {
   std::vector<bool> node_built_;
   std::deque<DopplerXyzTable> fixed_tables_;                           // stable addresses
   std::map<std::array<float, 3>, const DopplerXyzTable*> rgb_tables_;  // one per distinct colour
+  std::map<std::vector<double>, PointEmission> spectrum_emissions_;    // one per distinct spectrum
   std::vector<Fixed> objects_;
   Fixed sky_;
   ThermalEmission disk_;
