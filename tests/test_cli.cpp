@@ -1013,6 +1013,31 @@ TEST_F(CliTest, ProgressBarOnlyOnATerminalAndNotWithQuiet) {
   EXPECT_EQ(line_count(stats.err), 1u) << stats.err;
 }
 
+// Every redraw of the bar is exactly as wide as the terminal, narrow or wide, so that it neither
+// wraps nor leaves the last one's end.
+TEST_F(CliTest, ProgressBarFitsTheTerminalsWidthExactly) {
+  const fs::path scene = write_scene(kScene);
+  const std::string args =
+      "render " + quoted(scene) + " -o " + quoted(png()) + " --width 128 --height 96";
+  for (const int columns : {12, 40, 41, 80, 157}) {
+    SCOPED_TRACE(columns);
+    const CommandResult shown = test::run_lightcone_on_terminal(args, columns);
+    ASSERT_EQ(shown.status, 0) << shown.err;
+    // The bar's redraws, each after a "\r", up to the newline that ends them.
+    const std::string bar = shown.err.substr(0, shown.err.find("\r\n"));
+    std::size_t redraws = 0;
+    for (std::size_t at = bar.find('\r'); at != std::string::npos; ++redraws) {
+      const std::size_t next = bar.find('\r', at + 1);
+      const std::string drawn =
+          bar.substr(at + 1, (next == std::string::npos ? bar.size() : next) - at - 1);
+      EXPECT_EQ(drawn.size(), static_cast<std::size_t>(columns)) << '"' << drawn << '"';
+      EXPECT_TRUE(drawn.starts_with(std::string("rendering [").substr(0, columns))) << drawn;
+      at = next;
+    }
+    EXPECT_GE(redraws, 1u) << shown.err;
+  }
+}
+
 // ----------------------------------------------------------------------------------------------
 // --help
 
@@ -1586,6 +1611,23 @@ TEST_F(CliTest, SeedsChangeTheSamplePatternDeterministically) {
   EXPECT_EQ(a, b);  // 0 is the default
   EXPECT_EQ(c, d);
   EXPECT_NE(a, c);
+}
+
+// A seed that is not a whole number from 0 to 2^64 - 1 is refused, saying what a seed is, for
+// render and animate alike; no file is written.
+TEST_F(CliTest, SeedsOutsideTheirRangeAreRefusedWithTheRange) {
+  const fs::path scene = write_scene(kScene);
+  for (const char* seed : {"''", "abc", "-1", "18446744073709551616", "1.5", "' 7'"}) {
+    SCOPED_TRACE(seed);
+    expect_rejected(render(scene, std::string("--seed ") + seed),
+                    "--seed: ", {"a seed is a whole number from 0 to 18446744073709551615"});
+    EXPECT_FALSE(fs::exists(png()));
+    const CommandResult animated =
+        run_lightcone("animate " + quoted(scene) + " -o " + quoted(dir_ / "f-%d.png") +
+                      " --frames 0-0 --seed " + seed);
+    expect_rejected(animated, "--seed: ", {"whole number from 0 to 18446744073709551615"});
+  }
+  EXPECT_EQ(render(scene, "--quiet --seed 18446744073709551615").status, 0);
 }
 
 TEST_F(CliTest, PreviewIsAQuarterSizeOneSampleAutoExposure) {

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -37,6 +38,23 @@ namespace fs = std::filesystem;
 using namespace lightcone;
 
 namespace {
+
+// A seed is a whole number from 0 to 2^64 - 1; CLI11 alone would take '' as 0 and wrap -1.
+CLI::Validator seed_value() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (text.empty() || error != std::errc{} || stop != end)
+          return fmt::format(
+              "a seed is a whole number from 0 to 18446744073709551615 (each picks another "
+              "deterministic sample pattern), got '{}'",
+              text);
+        return {};
+      },
+      "SEED");
+}
 
 // A message fit for a terminal: control characters (a NUL, escape sequences) shown as \xNN, and
 // any run of more than 160 characters without a space (a 10 MB key echoed back) cut to its
@@ -587,8 +605,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--samples", render.samples, "Override camera.samples");
   render_cmd->add_option("--threads", render.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(0, 4096));
-  render_cmd->add_option("--seed", render.seed,
-                         "Seed of the sample pattern (another deterministic pattern)");
+  render_cmd
+      ->add_option("--seed", render.seed,
+                   "Seed of the sample pattern (another deterministic pattern): 0 to 2^64 - 1")
+      ->check(seed_value());
   render_cmd->add_option("--crop", render.crop,
                          "Render only the pixels x0,y0,x1,y1 (x1, y1 exclusive)");
   render_cmd->add_option("--aov", render.aov,
@@ -690,7 +710,8 @@ int main(int argc, char** argv) {
   animate_cmd->add_option("--samples", animate.samples, "Override camera.samples");
   animate_cmd->add_option("--threads", animate.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(0, 4096));
-  animate_cmd->add_option("--seed", animate.seed, "Seed of the sample pattern");
+  animate_cmd->add_option("--seed", animate.seed, "Seed of the sample pattern: 0 to 2^64 - 1")
+      ->check(seed_value());
   animate_cmd->add_option("--set", animate.overrides, "Override a scene value: key.path=value");
   animate_cmd->add_flag("--allow-outside", animate.scene_options.mesh.allow_outside,
                         kAllowOutsideHelp);

@@ -50,13 +50,16 @@ void ProgressBar::update(std::size_t done, std::size_t total) {
                                 : " elapsed");
   char percent[16];
   std::snprintf(percent, sizeof percent, " %3d%%", static_cast<int>(100 * fraction));
-  const std::string label = "rendering [";
-  const int width = std::max(
-      0, terminal_columns() - 1 - static_cast<int>(label.size() + 1 + 5 + times.size() + 8));
+  // Every redraw is exactly the terminal's width, so that it covers the last one (no erase
+  // sequence: at the last column it would erase the line's last character); the bar takes what
+  // the text leaves, and a terminal too narrow for the text gets its beginning.
+  const std::string label = "rendering [", tail = std::string("]") + percent + times;
+  const int columns = terminal_columns();
+  const int width = std::max(0, columns - static_cast<int>(label.size() + tail.size()));
   const int filled = static_cast<int>(fraction * width);
-  std::string bar =
-      label + std::string(filled, '#') + std::string(width - filled, '.') + "]" + percent + times;
-  std::fprintf(stderr, "\r%s\033[K", bar.c_str());
+  std::string line = label + std::string(filled, '#') + std::string(width - filled, '.') + tail;
+  line.resize(static_cast<std::size_t>(columns), ' ');
+  std::fprintf(stderr, "\r%s", line.c_str());
   std::fflush(stderr);
 }
 

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -189,10 +190,17 @@ CommandResult run_lightcone(const std::string& arguments, const std::string& env
   return run_command(environment + " '" + LIGHTCONE_BINARY + "' " + arguments);
 }
 
-CommandResult run_lightcone_on_terminal(const std::string& arguments) {
+CommandResult run_lightcone_on_terminal(const std::string& arguments, int columns) {
   const int master = posix_openpt(O_RDWR | O_NOCTTY);
   if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0)
     throw std::runtime_error("cannot open a pseudo-terminal");
+  if (columns > 0) {
+    winsize size{};
+    size.ws_row = 24;
+    size.ws_col = static_cast<unsigned short>(columns);
+    if (ioctl(master, TIOCSWINSZ, &size) != 0)
+      throw std::runtime_error("cannot set the pseudo-terminal's width");
+  }
   const std::string terminal = ptsname(master);
   // Kept open here so that the terminal is never hung up while the reader waits on it.
   const int slave = open(terminal.c_str(), O_RDWR | O_NOCTTY);

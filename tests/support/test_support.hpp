@@ -101,7 +101,8 @@ CommandResult run_command(const std::string& command_line);
 // `environment` ("NAME=value ...", shell-quoted) added to its environment.
 CommandResult run_lightcone(const std::string& arguments, const std::string& environment = "");
 // The same with stderr on a pseudo-terminal (so the program sees a terminal there); `err` is what
-// the terminal received (its line discipline turns "\n" into "\r\n").
-CommandResult run_lightcone_on_terminal(const std::string& arguments);
+// the terminal received (its line discipline turns "\n" into "\r\n"); `columns` > 0 sets the
+// terminal's width (else the pseudo-terminal reports none).
+CommandResult run_lightcone_on_terminal(const std::string& arguments, int columns = 0);
 
 }  // namespace lightcone::test
