@@ -148,6 +148,27 @@ TEST(StaticLighting, ClassicalPictureAgreesWithTheRelativisticOneAtRest) {
   EXPECT_EQ(render_image(s, {}).rgb, render_image(classical, {}).rgb);
 }
 
+// The classical picture draws every body where it is at the camera's time; a moving light
+// lights them from where it is then too, with no Doppler factor or aberration: the same image
+// as a light at rest there.
+TEST(StaticLighting, ClassicalPictureLightsFromWhereAMovingLightIsAtTheCamerasTime) {
+  const Vec3 at_camera_time{0.7, 2.5, -0.4}, velocity{0.6, 0, -0.3};
+  const double t0 = -4;  // the light's reference event, 4 before the camera's time 0
+  Scene moving = top_down({0, 5, 0}, 40, 9);
+  moving.render.relativity = false;
+  Light lamp =
+      make_light(PointLight{}, at_camera_time - velocity * (0 - t0), 6, {1, 1, 1}, velocity);
+  lamp.world_line.time = t0;
+  moving.lights.push_back(lamp);
+  Scene still = moving;
+  still.lights[0].world_line = {};
+  still.lights[0].world_line.position = at_camera_time;
+  const Image image = render_image(moving, {});
+  EXPECT_EQ(image.rgb, render_image(still, {}).rgb);
+  const double e = 0.5 * 6 * lambert(at_camera_time, plane_point(moving, 4, 4));
+  expect_rgb_near(pixel(image, 4, 4), {e, e, e}, 1e-6, at(4, 4));
+}
+
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
   return t * t * (3 - 2 * t);

@@ -84,9 +84,9 @@ std::optional<Vec4> fixed_emission(const ResolvedScene& scene, const Light& ligh
     return Vec4{observation.t - tau, at_observation - line.velocity * tau};
   }
   if (lit_from_retarded_event(settings)) return std::nullopt;
-  // The classical picture keeps lights still.
-  const Vec3 velocity = settings.relativity ? line.velocity : Vec3{};
-  return Vec4{observation.t, line.position + velocity * (observation.t - line.time)};
+  // Where the light is at the observation time: in the classical picture too, as its bodies are
+  // drawn where they are then (its light there carries no Doppler factor or aberration).
+  return Vec4{observation.t, line.position_at(observation.t)};
 }
 
 }  // namespace
