@@ -15,6 +15,10 @@
 #include <unordered_map>
 #include <vector>
 
+#include "lightcone/trace/embree_rays.hpp"
+#include "lightcone/trace/image_bins.hpp"
+#include "lightcone/trace/shape_intersection.hpp"
+
 namespace lightcone {
 namespace {
 
@@ -30,10 +34,6 @@ struct ExactRay {
 struct TraceContext {
   RTCIntersectContext embree;
   ExactRay rays[Tracer::kPacketSize];
-};
-
-struct ShapeRay {
-  Vec3 origin, direction;  // direction is not unit: the parameter is the common s
 };
 
 struct ShapeHit {
@@ -74,242 +74,6 @@ struct CrossedSurface {
   double offset = 0;
   double side(const Vec3& p) const { return (sphere ? dot(p, p) : dot(normal, p)) - offset; }
 };
-
-// The entry and exit parameters of a ray through a sphere or a box (false if it misses).
-bool sphere_span(const Sphere& sphere, const ShapeRay& ray, double& in, double& out) {
-  const double a = dot(ray.direction, ray.direction), b = dot(ray.origin, ray.direction);
-  const double c = dot(ray.origin, ray.origin) - sphere.radius * sphere.radius;
-  const double disc = b * b - a * c;
-  if (disc < 0 || a == 0) return false;
-  const double q = -(b + std::copysign(std::sqrt(disc), b));
-  in = q / a;
-  out = c / q;
-  if (in > out) std::swap(in, out);
-  return true;
-}
-
-bool box_span(const Box& box, const ShapeRay& ray, double& in, double& out) {
-  in = -kInfinity;
-  out = kInfinity;
-  for (int i = 0; i < 3; ++i) {
-    const double h = box.size[i] * 0.5;
-    if (ray.direction[i] == 0) {
-      if (std::abs(ray.origin[i]) > h) return false;
-      continue;
-    }
-    const double inv = 1.0 / ray.direction[i];
-    double t0 = (-h - ray.origin[i]) * inv, t1 = (h - ray.origin[i]) * inv;
-    if (t0 > t1) std::swap(t0, t1);
-    in = std::max(in, t0);
-    out = std::min(out, t1);
-  }
-  return in <= out;
-}
-
-// The first end of a span [in, out] that lies in [tnear, tfar).
-bool first_in(double in, double out, double tnear, double tfar, double& s) {
-  if (in >= tnear && in < tfar) return s = in, true;
-  if (out >= tnear && out < tfar) return s = out, true;
-  return false;
-}
-
-// A ray as Embree traces it, in single precision, with no hit yet (the parameter range clamped
-// to what a float holds).
-RTCRayHit embree_ray(const Vec3& origin, const Vec3& direction, double tnear, double tfar,
-                     float time = 0) {
-  RTCRayHit rh{};
-  rh.ray.org_x = static_cast<float>(origin.x);
-  rh.ray.org_y = static_cast<float>(origin.y);
-  rh.ray.org_z = static_cast<float>(origin.z);
-  rh.ray.dir_x = static_cast<float>(direction.x);
-  rh.ray.dir_y = static_cast<float>(direction.y);
-  rh.ray.dir_z = static_cast<float>(direction.z);
-  rh.ray.tnear = static_cast<float>(tnear);
-  rh.ray.tfar = static_cast<float>(std::min(tfar, 3.0e38));
-  rh.ray.time = time;
-  rh.ray.mask = ~0u;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-
-// The ray through a mesh's BVH.
-RTCRayHit mesh_ray(const ShapeRay& ray, double tnear, double tfar) {
-  return embree_ray(ray.origin, ray.direction, tnear, tfar);
-}
-
-// Lane i of an 8-wide packet set from a single ray (and its empty hit), and a lane's result read
-// back: the two layouts hold the same fields.
-void put_lane(RTCRay8& packet, unsigned i, const RTCRay& ray) {
-  packet.org_x[i] = ray.org_x;
-  packet.org_y[i] = ray.org_y;
-  packet.org_z[i] = ray.org_z;
-  packet.tnear[i] = ray.tnear;
-  packet.dir_x[i] = ray.dir_x;
-  packet.dir_y[i] = ray.dir_y;
-  packet.dir_z[i] = ray.dir_z;
-  packet.time[i] = ray.time;
-  packet.tfar[i] = ray.tfar;
-  packet.mask[i] = ray.mask;
-  packet.id[i] = ray.id;
-  packet.flags[i] = ray.flags;
-}
-
-void put_lane(RTCRayHit8& packet, unsigned i, const RTCRayHit& rh) {
-  put_lane(packet.ray, i, rh.ray);
-  packet.hit.geomID[i] = rh.hit.geomID;
-  packet.hit.instID[0][i] = rh.hit.instID[0];
-}
-
-void take_lane(const RTCRayHit8& packet, unsigned i, RTCRayHit& rh) {
-  rh.ray.tfar = packet.ray.tfar[i];
-  rh.hit.geomID = packet.hit.geomID[i];
-  rh.hit.primID = packet.hit.primID[i];
-  rh.hit.u = packet.hit.u[i];
-  rh.hit.v = packet.hit.v[i];
-  rh.hit.instID[0] = packet.hit.instID[0][i];
-}
-
-// A hit of this code's own into lane i of the hits Embree passes through: geomID holds the
-// body, primID the triangle of a mesh body.
-void record_hit(RTCHitN* hits, unsigned n, unsigned i, unsigned body, unsigned prim, float u,
-                float v) {
-  RTCHitN_geomID(hits, n, i) = body;
-  RTCHitN_primID(hits, n, i) = prim;
-  RTCHitN_u(hits, n, i) = u;
-  RTCHitN_v(hits, n, i) = v;
-  RTCHitN_instID(hits, n, i, 0) = RTC_INVALID_GEOMETRY_ID;
-}
-
-bool intersect_sphere(const Sphere& sphere, const ShapeRay& ray, double tnear, double tfar,
-                      double& s) {
-  double in, out;
-  return sphere_span(sphere, ray, in, out) && first_in(in, out, tnear, tfar, s);
-}
-
-bool intersect_box(const Box& box, const ShapeRay& ray, double tnear, double tfar, double& s) {
-  double in, out;
-  return box_span(box, ray, in, out) && first_in(in, out, tnear, tfar, s);
-}
-
-bool intersect_plane(const Plane& plane, const ShapeRay& ray, double tnear, double tfar,
-                     double& s) {
-  if (ray.direction.y == 0) return false;
-  const double t = -ray.origin.y / ray.direction.y;
-  if (!(t >= tnear && t < tfar)) return false;
-  const Vec3 p = ray.origin + ray.direction * t;
-  if (std::abs(p.x) > plane.size_x * 0.5 || std::abs(p.z) > plane.size_z * 0.5) return false;
-  s = t;
-  return true;
-}
-
-std::array<double, 2> sphere_uv(const Vec3& p) {
-  const Vec3 n = normalize(p);
-  return {0.5 + std::atan2(n.x, n.z) / (2 * std::numbers::pi),
-          std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
-}
-
-// The face of the box a surface point lies on: the axis where it is relatively farthest out.
-int box_face_axis(const Box& box, const Vec3& p) {
-  const Vec3 rel = component_div(p, box.size);
-  int axis = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(rel[i]) > std::abs(rel[axis])) axis = i;
-  return axis;
-}
-
-std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
-  const Vec3 rel = component_div(p, box.size);
-  if (axis == 0) return {0.5 + rel.z, 0.5 - rel.y};
-  if (axis == 1) return {0.5 + rel.x, 0.5 + rel.z};
-  return {0.5 + rel.x, 0.5 - rel.y};
-}
-
-// The texture coordinates and normal of an analytic shape's surface point. Points on flat faces
-// are put exactly on the face, so that procedural patterns (a checker boundary at the face) do
-// not flip with rounding.
-void analytic_surface(const Shape& shape, Hit& hit) {
-  if (std::holds_alternative<Sphere>(shape)) {
-    hit.uv = sphere_uv(hit.shape_point);
-    hit.shape_normal = hit.shape_point;
-  } else if (const auto* box = std::get_if<Box>(&shape)) {
-    const int axis = box_face_axis(*box, hit.shape_point);
-    hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
-    hit.uv = box_uv(*box, hit.shape_point, axis);
-    hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
-  } else if (const auto* plane = std::get_if<Plane>(&shape)) {
-    hit.shape_point.y = 0;
-    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
-    hit.shape_normal = {0, 1, 0};
-  }
-}
-
-// Bodies listed by the cells of a grid over the directions from one point (the image plane for
-// camera rays), each cell's list nearest first.
-struct CellLists {
-  struct Entry {
-    float a_lo, a_hi, c_lo, c_hi;  // the body's rectangle in the grid's plane, rounded outwards
-    float near;                    // its bounds' distance from the rays' common point, rounded down
-    unsigned body;
-  };
-  std::vector<unsigned> start;  // cell k's entries are [start[k], start[k + 1])
-  std::vector<Entry> entries;
-};
-
-// A body's rectangle in a grid's plane, and the cells it covers: columns a0..a1 of rows c0..c1.
-struct BinnedRect {
-  double a_lo, a_hi, c_lo, c_hi, near;
-  unsigned body;
-  int a0 = 0, a1 = 0, c0 = 0, c1 = 0;
-  std::size_t cells() const { return std::size_t(a1 - a0 + 1) * std::size_t(c1 - c0 + 1); }
-};
-
-// The cells of a grid `count` cells wide over [-half, half] from lo to hi, clamped to it.
-std::pair<int, int> cell_range(double lo, double hi, double half, int count) {
-  const auto at = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor((x + half) / (2 * half) * count)), 0, count - 1);
-  };
-  return {at(lo), at(hi)};
-}
-
-// The point of box b nearest to p.
-Vec3 nearest_point(const Bounds3& b, const Vec3& p) {
-  Vec3 q;
-  for (int k = 0; k < 3; ++k) q[k] = std::clamp(p[k], b.lower[k], b.upper[k]);
-  return q;
-}
-
-// The cell of such a grid that holds x, |x| <= half.
-int cell_of(double x, double half, int count) {
-  return std::min(count - 1, static_cast<int>((x + half) / (2 * half) * count));
-}
-
-// The lists of a grid of `rows` rows of `columns` cells (row c's cells are c columns + a).
-CellLists cell_lists(std::vector<BinnedRect>& rects, int columns, int rows) {
-  const std::size_t cell_count = std::size_t(columns) * std::size_t(rows);
-  std::sort(rects.begin(), rects.end(), [](const BinnedRect& x, const BinnedRect& y) {
-    return x.near < y.near || (x.near == y.near && x.body < y.body);
-  });
-  CellLists lists;
-  lists.start.assign(cell_count + 1, 0);
-  const auto each_cell = [&](const BinnedRect& r, auto&& visit) {
-    for (int c = r.c0; c <= r.c1; ++c)
-      for (int a = r.a0; a <= r.a1; ++a) visit(std::size_t(c) * columns + a);
-  };
-  for (const BinnedRect& r : rects) each_cell(r, [&](std::size_t k) { ++lists.start[k + 1]; });
-  for (std::size_t k = 0; k < cell_count; ++k) lists.start[k + 1] += lists.start[k];
-  lists.entries.resize(lists.start[cell_count]);
-  std::vector<unsigned> filled(lists.start.begin(), lists.start.end() - 1);
-  const auto down = [](double x) { return std::nextafter(static_cast<float>(x), -INFINITY); };
-  const auto up = [](double x) { return std::nextafter(static_cast<float>(x), INFINITY); };
-  // In order of distance, so each cell's list is nearest first.
-  for (const BinnedRect& r : rects) {
-    const CellLists::Entry e{down(r.a_lo), up(r.a_hi),   down(r.c_lo),
-                             up(r.c_hi),   down(r.near), r.body};
-    each_cell(r, [&](std::size_t k) { lists.entries[filled[k]++] = e; });
-  }
-  return lists;
-}
 
 }  // namespace
 
@@ -352,14 +116,7 @@ struct Tracer::Impl {
   std::vector<unsigned> user_trace_bodies;  // the bodies camera rays meet through callbacks
   std::vector<unsigned> instance_body;      // geometry ID in `top` -> body, for instances
   BodiesRef trace_bodies{this, false, &user_trace_bodies}, shadow_bodies{this, true, nullptr};
-  // Camera rays in the view: the bodies before the camera, binned by the rectangle their trace
-  // bounds project to in the image plane (a, c) = (u.right, u.up) / u.forward. Each cell lists
-  // those whose rectangle meets it, nearest first; a ray needs only its own cell's list.
-  struct ImageBins {
-    double half_a = 0, half_c = 0;  // the plane's range in the view, a little enlarged
-    int cells_a = 0, cells_c = 0;   // row c's cells are c cells_a + a
-    CellLists lists;
-  } bins;
+  ImageBins bins;  // camera rays in the view, by the cell of the image plane they cross
   bool use_bins = false;
   // Bodies the bins do not hold but rays in the view may meet: their bounds reach beside or
   // behind the camera, or cover too much of the image to list cell by cell.
@@ -501,125 +258,11 @@ struct Tracer::Impl {
     return s;
   }
 
-  // The image plane's point of look direction u, and its cell; false outside the bins' range
-  // (behind the camera, or out of the view).
-  bool bin_point(const Vec3& u, float& a, float& c, unsigned& cell) const {
-    const CameraBasis& view = scene.camera;
-    const double f = dot(u, view.forward);
-    if (!(f > 0)) return false;
-    const double pa = dot(u, view.right) / f, pc = dot(u, view.up) / f;
-    if (!(std::abs(pa) <= bins.half_a && std::abs(pc) <= bins.half_c)) return false;
-    a = static_cast<float>(pa);
-    c = static_cast<float>(pc);
-    cell = static_cast<unsigned>(cell_of(pc, bins.half_c, bins.cells_c) * bins.cells_a +
-                                 cell_of(pa, bins.half_a, bins.cells_a));
-    return true;
-  }
-
-  // The range of (p.e) / (p.f) over the end balls of a capsule before the camera (e and f
-  // orthonormal): a plane through the camera with e.p = a f.p meets a ball (centre C, radius R)
-  // where (e.C - a f.C)^2 <= R^2 (1 + a^2), a quadratic in a.
-  static std::pair<double, double> ball_image(const Capsule& capsule, const Vec3& e,
-                                              const Vec3& f) {
-    double lo = kInfinity, hi = -kInfinity;
-    for (const Vec3& centre : {capsule.from, capsule.to}) {
-      const double x = dot(centre, e), z = dot(centre, f), r2 = capsule.radius * capsule.radius;
-      const double root = capsule.radius * std::sqrt(x * x + z * z - r2), scale = z * z - r2;
-      lo = std::min(lo, (x * z - root) / scale);
-      hi = std::max(hi, (x * z + root) / scale);
-    }
-    return {lo, hi};
-  }
-
-  // The distance from the camera to the segment from a to b.
-  static double distance_to_segment(const Vec3& a, const Vec3& b) {
-    const Vec3 d = b - a;
-    const double dd = dot(d, d);
-    const double t = dd > 0 ? std::clamp(-dot(a, d) / dd, 0.0, 1.0) : 0.0;
-    return length(a + d * t);
-  }
-
   void build_image_bins() {
-    const CameraBasis& view = scene.camera;
-    // Sample points reach the image's edges; the margin keeps them inside the range.
-    bins.half_c = view.tan_half_fov * (1 + 1e-3);
-    bins.half_a = bins.half_c * view.aspect;
-    if (!(std::isfinite(bins.half_a) && std::isfinite(bins.half_c) && bins.half_a > 0 &&
-          bins.half_c > 0))
-      return;
-    std::vector<BinnedRect> rects;
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      const Bounds3& b = scene.bodies[i].trace_bounds;
-      const auto index = static_cast<unsigned>(i);
-      if (!(b.lower.x <= b.upper.x && b.lower.y <= b.upper.y && b.lower.z <= b.upper.z)) continue;
-      double f_lo = kInfinity, f_hi = -kInfinity, reach = 0;
-      BinnedRect r{kInfinity, -kInfinity, kInfinity, -kInfinity, 0, index};
-      for (int k = 0; k < 8; ++k) {
-        const Vec3 p = corner(b, k);
-        const double f = dot(p, view.forward);
-        f_lo = std::min(f_lo, f);
-        f_hi = std::max(f_hi, f);
-        reach = std::max(reach, length(p));
-        r.a_lo = std::min(r.a_lo, dot(p, view.right) / f);
-        r.a_hi = std::max(r.a_hi, dot(p, view.right) / f);
-        r.c_lo = std::min(r.c_lo, dot(p, view.up) / f);
-        r.c_hi = std::max(r.c_hi, dot(p, view.up) / f);
-      }
-      if (f_hi < 0) continue;  // wholly behind the camera: no ray in the view meets it
-      if (!(f_lo > 1e-9 * reach) || !std::isfinite(reach)) {
-        unbinned_bodies.push_back(index);
-        continue;
-      }
-      if (r.a_hi < -bins.half_a || r.a_lo > bins.half_a || r.c_hi < -bins.half_c ||
-          r.c_lo > bins.half_c)
-        continue;  // out of the view
-      r.near = length(nearest_point(b, {}));
-      // The capsule's own image is tighter: the hull of its end balls' images, so within the
-      // union of their rectangles.
-      const Capsule& capsule = scene.bodies[i].trace_capsule;
-      const double ra = capsule.radius;
-      if (dot(capsule.from, view.forward) > ra * (1 + 1e-6) &&
-          dot(capsule.to, view.forward) > ra * (1 + 1e-6)) {
-        const auto [a_lo, a_hi] = ball_image(capsule, view.right, view.forward);
-        const auto [c_lo, c_hi] = ball_image(capsule, view.up, view.forward);
-        r.a_lo = std::max(r.a_lo, a_lo);
-        r.a_hi = std::min(r.a_hi, a_hi);
-        r.c_lo = std::max(r.c_lo, c_lo);
-        r.c_hi = std::min(r.c_hi, c_hi);
-        r.near = std::max(r.near, distance_to_segment(capsule.from, capsule.to) - ra);
-      }
-      r.near *= 1 - 1e-9;
-      rects.push_back(r);
-    }
-    // About two cells a body, none smaller than 4 x 4 pixels (a packet's rays share a cell).
-    const double pixels = static_cast<double>(view.width) * view.height;
-    const double cells =
-        std::clamp(2.0 * static_cast<double>(rects.size()), 1.0, std::max(1.0, pixels / 16));
-    bins.cells_a = std::max(1, static_cast<int>(std::lround(std::sqrt(cells * view.aspect))));
-    bins.cells_c = std::max(1, static_cast<int>(cells / bins.cells_a));
-    std::size_t total = 0;
-    for (BinnedRect& r : rects) {
-      std::tie(r.a0, r.a1) = cell_range(r.a_lo, r.a_hi, bins.half_a, bins.cells_a);
-      std::tie(r.c0, r.c1) = cell_range(r.c_lo, r.c_hi, bins.half_c, bins.cells_c);
-      total += r.cells();
-    }
-    // The lists' size is held to a few entries a cell and a body: bodies that cover the most
-    // cells go to the BVH instead.
-    const std::size_t cell_count = std::size_t(bins.cells_a) * std::size_t(bins.cells_c);
-    const std::size_t budget = 8 * (cell_count + rects.size());
-    if (total > budget) {
-      std::stable_sort(rects.begin(), rects.end(), [](const BinnedRect& x, const BinnedRect& y) {
-        return x.cells() < y.cells();
-      });
-      std::size_t kept = 0;
-      for (total = 0; kept < rects.size() && total + rects[kept].cells() <= budget; ++kept)
-        total += rects[kept].cells();
-      for (std::size_t k = kept; k < rects.size(); ++k) unbinned_bodies.push_back(rects[k].body);
-      rects.resize(kept);
-    }
-    bins.lists = cell_lists(rects, bins.cells_a, bins.cells_c);
+    std::optional<ImageBins> built = image_bins(scene.camera, scene.bodies, unbinned_bodies);
+    if (!built) return;
+    bins = std::move(*built);
     if (!unbinned_bodies.empty()) {
-      std::sort(unbinned_bodies.begin(), unbinned_bodies.end());
       unbinned = rtcNewScene(device);
       attach_bodies(unbinned, unbinned_ref, static_cast<unsigned>(unbinned_bodies.size()));
       rtcCommitScene(unbinned);
@@ -1080,7 +723,7 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
       one.ray.id = i;
       put_lane(rh, i, one);
       if (i >= count) continue;
-      if (impl_->use_bins && impl_->bin_point(u, a[i], c[i], cell[i]))
+      if (impl_->use_bins && impl_->bins.point(impl_->scene.camera, u, a[i], c[i], cell[i]))
         in_bins[i] = -1, any_in_bins = true;
       else
         elsewhere[i] = -1, any_elsewhere = true;

@@ -1,0 +1,127 @@
+// A ray through an analytic shape in its own coordinates (sphere, box, plane): where it enters
+// and leaves, where it first meets the surface within a parameter range, and the texture
+// coordinates and normal of the point met. Inline: the tracer calls them for every ray a body's
+// bounds let through.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+#include <variant>
+
+#include "lightcone/frame/surface_hit.hpp"
+#include "lightcone/physics/vec.hpp"
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+struct ShapeRay {
+  Vec3 origin, direction;  // direction is not unit: the parameter is the common s
+};
+
+// The entry and exit parameters of a ray through a sphere or a box (false if it misses).
+inline bool sphere_span(const Sphere& sphere, const ShapeRay& ray, double& in, double& out) {
+  const double a = dot(ray.direction, ray.direction), b = dot(ray.origin, ray.direction);
+  const double c = dot(ray.origin, ray.origin) - sphere.radius * sphere.radius;
+  const double disc = b * b - a * c;
+  if (disc < 0 || a == 0) return false;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  in = q / a;
+  out = c / q;
+  if (in > out) std::swap(in, out);
+  return true;
+}
+
+inline bool box_span(const Box& box, const ShapeRay& ray, double& in, double& out) {
+  in = -std::numeric_limits<double>::infinity();
+  out = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const double h = box.size[i] * 0.5;
+    if (ray.direction[i] == 0) {
+      if (std::abs(ray.origin[i]) > h) return false;
+      continue;
+    }
+    const double inv = 1.0 / ray.direction[i];
+    double t0 = (-h - ray.origin[i]) * inv, t1 = (h - ray.origin[i]) * inv;
+    if (t0 > t1) std::swap(t0, t1);
+    in = std::max(in, t0);
+    out = std::min(out, t1);
+  }
+  return in <= out;
+}
+
+// The first end of a span [in, out] that lies in [tnear, tfar).
+inline bool first_in(double in, double out, double tnear, double tfar, double& s) {
+  if (in >= tnear && in < tfar) return s = in, true;
+  if (out >= tnear && out < tfar) return s = out, true;
+  return false;
+}
+
+inline bool intersect_sphere(const Sphere& sphere, const ShapeRay& ray, double tnear, double tfar,
+                             double& s) {
+  double in, out;
+  return sphere_span(sphere, ray, in, out) && first_in(in, out, tnear, tfar, s);
+}
+
+inline bool intersect_box(const Box& box, const ShapeRay& ray, double tnear, double tfar,
+                          double& s) {
+  double in, out;
+  return box_span(box, ray, in, out) && first_in(in, out, tnear, tfar, s);
+}
+
+inline bool intersect_plane(const Plane& plane, const ShapeRay& ray, double tnear, double tfar,
+                            double& s) {
+  if (ray.direction.y == 0) return false;
+  const double t = -ray.origin.y / ray.direction.y;
+  if (!(t >= tnear && t < tfar)) return false;
+  const Vec3 p = ray.origin + ray.direction * t;
+  if (std::abs(p.x) > plane.size_x * 0.5 || std::abs(p.z) > plane.size_z * 0.5) return false;
+  s = t;
+  return true;
+}
+
+inline std::array<double, 2> sphere_uv(const Vec3& p) {
+  const Vec3 n = normalize(p);
+  return {0.5 + std::atan2(n.x, n.z) / (2 * std::numbers::pi),
+          std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
+}
+
+// The face of the box a surface point lies on: the axis where it is relatively farthest out.
+inline int box_face_axis(const Box& box, const Vec3& p) {
+  const Vec3 rel = component_div(p, box.size);
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(rel[i]) > std::abs(rel[axis])) axis = i;
+  return axis;
+}
+
+inline std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
+  const Vec3 rel = component_div(p, box.size);
+  if (axis == 0) return {0.5 + rel.z, 0.5 - rel.y};
+  if (axis == 1) return {0.5 + rel.x, 0.5 + rel.z};
+  return {0.5 + rel.x, 0.5 - rel.y};
+}
+
+// The texture coordinates and normal of an analytic shape's surface point. Points on flat faces
+// are put exactly on the face, so that procedural patterns (a checker boundary at the face) do
+// not flip with rounding.
+inline void analytic_surface(const Shape& shape, Hit& hit) {
+  if (std::holds_alternative<Sphere>(shape)) {
+    hit.uv = sphere_uv(hit.shape_point);
+    hit.shape_normal = hit.shape_point;
+  } else if (const auto* box = std::get_if<Box>(&shape)) {
+    const int axis = box_face_axis(*box, hit.shape_point);
+    hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
+    hit.uv = box_uv(*box, hit.shape_point, axis);
+    hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
+  } else if (const auto* plane = std::get_if<Plane>(&shape)) {
+    hit.shape_point.y = 0;
+    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
+    hit.shape_normal = {0, 1, 0};
+  }
+}
+
+}  // namespace lightcone
