@@ -159,24 +159,23 @@ std::vector<Aov> parse_aovs(const std::string& text) {
   return aovs;
 }
 
-int run_render(const RenderArgs& a) {
-  const StopSignals stop_signals;
-  std::vector<std::string> overrides = a.overrides;
-  if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
-  if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
-  if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
-  if (a.preview) {
-    overrides.push_back("camera.samples=1");
-    overrides.push_back("render.exposure=\"auto\"");
-  }
+// What a render writes, checked before anything is rendered.
+struct RenderOutputs {
+  bool to_stdout = false;
+  std::optional<ImageFormat> format;
+  bool raster = false;
+  std::vector<Aov> aovs;
+  std::optional<Aov> map;  // --map's quantity (also among aovs)
+};
 
-  // Every output is checked before anything is rendered.
-  const bool to_stdout = a.output == "-";
-  std::optional<ImageFormat> format = ImageFormat::kPng;
-  if (!to_stdout) {
+RenderOutputs checked_outputs(const RenderArgs& a) {
+  RenderOutputs out;
+  out.to_stdout = a.output == "-";
+  out.format = ImageFormat::kPng;
+  if (!out.to_stdout) {
     if (a.output.empty()) throw InputError("-o: the output file name is empty");
-    format = image_format_of(a.output);
-    if (!format)
+    out.format = image_format_of(a.output);
+    if (!out.format)
       throw InputError("-o " + a.output +
                        ": unknown image format (the name must end in .png, .jpg or .exr)");
     require_writable_target("-o", a.output);
@@ -187,38 +186,51 @@ int run_render(const RenderArgs& a) {
       throw InputError("--exr " + *a.exr + ": the name must end in .exr");
     require_writable_target("--exr", *a.exr);
     require_writable_target("--exr", partial_name(*a.exr));
-    if (!to_stdout && same_file(a.output, *a.exr))
+    if (!out.to_stdout && same_file(a.output, *a.exr))
       throw InputError("--exr " + *a.exr + ": is the same file as -o");
   }
 
-  const bool raster = a.renderer == "raster";
-  if (raster)
+  out.raster = a.renderer == "raster";
+  if (out.raster)
     for (const auto& [given, option] :
          {std::pair{a.crop.has_value(), "--crop"}, std::pair{a.aov.has_value(), "--aov"},
           std::pair{a.map.has_value(), "--map"}})
       if (given)
         throw InputError(std::string(option) +
                          ": only the ray tracer has it (leave out --renderer raster)");
-  std::vector<Aov> aovs;
   if (a.aov) {
-    aovs = parse_aovs(*a.aov);
-    if (format != ImageFormat::kExr && !a.exr)
+    out.aovs = parse_aovs(*a.aov);
+    if (out.format != ImageFormat::kExr && !a.exr)
       throw InputError(
           "--aov: the output variables go into an OpenEXR file: give -o NAME.exr "
           "or --exr NAME.exr");
   }
-  std::optional<Aov> map;
   if (a.map) {
-    map = aov_from_name(*a.map);
-    if (!map || *map == Aov::kNormal)
+    out.map = aov_from_name(*a.map);
+    if (!out.map || *out.map == Aov::kNormal)
       throw InputError("--map " + *a.map +
                        ": unknown quantity (use doppler, emission_time, distance, object, depth, "
                        "image_order)");
-    if (format == ImageFormat::kExr)
+    if (out.format == ImageFormat::kExr)
       throw InputError(
           "--map: the map is a picture: give -o NAME.png or NAME.jpg (the values "
           "themselves go into an EXR with --aov)");
-    if (std::find(aovs.begin(), aovs.end(), *map) == aovs.end()) aovs.push_back(*map);
+    if (std::find(out.aovs.begin(), out.aovs.end(), *out.map) == out.aovs.end())
+      out.aovs.push_back(*out.map);
+  }
+  return out;
+}
+
+// The scene with the command's size, sample and preview options, refused where what it asks
+// cannot be drawn near a black hole.
+Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
+  std::vector<std::string> overrides = a.overrides;
+  if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
+  if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
+  if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
+  if (a.preview) {
+    overrides.push_back("camera.samples=1");
+    overrides.push_back("render.exposure=\"auto\"");
   }
 
   Scene scene = [&] {
@@ -236,26 +248,36 @@ int run_render(const RenderArgs& a) {
       throw;
     }
   }();
-  for (const Aov aov : aovs)
+  for (const Aov aov : out.aovs)
     if (!aov_near_black_hole(aov))
       require_drawable_near_black_hole(scene, a.scene, false,
                                        ("the output variable " + aov_name(aov)).c_str());
-  require_drawable_near_black_hole(scene, a.scene, raster);
+  require_drawable_near_black_hole(scene, a.scene, out.raster);
   if (a.preview) {  // a quarter of the size, the same view
     scene.camera.width = std::max(1, scene.camera.width / 4);
     scene.camera.height = std::max(1, scene.camera.height / 4);
   }
+  return scene;
+}
 
+struct Rendered {
+  Image image;
+  RenderStats stats;
+  std::size_t raster_triangles = 0;
+  bool stopped = false;  // by a signal: the finished tiles only
+  std::size_t tiles_done = 0, tiles_total = 0;
+};
+
+// The render, by either renderer, with a progress bar on a terminal.
+Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const RenderOutputs& out) {
   if (interrupted) throw Stopped("stopped before rendering");
   RenderOptions options;
   options.threads = a.threads;
   options.seed = a.seed;
   if (a.crop) options.crop = parse_crop(*a.crop, scene.camera.width, scene.camera.height);
   options.cancel = &interrupted;
-  options.aovs = aovs;
-  RenderStats stats;
-  std::size_t raster_triangles = 0;
-  Image image;
+  options.aovs = out.aovs;
+  Rendered r;
   std::atomic<std::size_t> tiles_done{0}, tiles_total{0};
   {
     ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
@@ -264,83 +286,97 @@ int run_render(const RenderArgs& a) {
       tiles_total = total;
       bar.update(done, total);
     };
-    if (raster) {
+    if (out.raster) {
       for (const std::string& difference : raster_differences(scene))
         std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                      a.scene.c_str(), difference.c_str());
       RasterStats raster_stats;
       try {
-        image = render_raster(scene, &raster_stats, {}, a.seed, tessellation_mode(a.tessellation));
+        r.image =
+            render_raster(scene, &raster_stats, {}, a.seed, tessellation_mode(a.tessellation));
       } catch (const GlUnavailable& e) {
         throw InputError(fmt::format(
             "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) through "
             "EGL, e.g. Mesa's llvmpipe; the ray tracer (the default) needs neither",
             e.what()));
       }
-      raster_triangles = raster_stats.triangles;
-      stats.seconds = raster_stats.seconds;
-      stats.exposure = raster_stats.exposure;
-      stats.rays = static_cast<std::uint64_t>(image.width) * image.height * scene.camera.samples;
+      r.raster_triangles = raster_stats.triangles;
+      r.stats.seconds = raster_stats.seconds;
+      r.stats.exposure = raster_stats.exposure;
+      r.stats.rays =
+          static_cast<std::uint64_t>(r.image.width) * r.image.height * scene.camera.samples;
     } else {
-      image = render_image(scene, options, &stats);
+      r.image = render_image(scene, options, &r.stats);
     }
   }
   // A stopped render never replaces a finished image: what it has goes beside the target.
-  const bool stopped = stats.cancelled || interrupted;
+  r.stopped = r.stats.cancelled || interrupted;
+  r.tiles_done = tiles_done;
+  r.tiles_total = tiles_total;
+  return r;
+}
 
+// The picture the image files show: the tone-mapped render, or --map's colour map.
+Image display_of(const Rendered& r, const Scene& scene, const RenderOutputs& out) {
   // A picture with non-finite values is wrong, not merely dark or bright: say so, write nothing.
-  const auto non_finite =
-      std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); });
+  const auto non_finite = std::count_if(r.image.rgb.begin(), r.image.rgb.end(),
+                                        [](float v) { return !std::isfinite(v); });
   if (non_finite > 0)
     throw std::runtime_error(fmt::format(
         "the render has {} non-finite values (NaN or infinity; is render.exposure {} too "
         "large?): nothing written",
-        non_finite, stats.exposure));
-  Image display;
-  if (map) {
-    const std::vector<std::string> names = aov_channel_names(*map);
-    const auto channel = std::find_if(image.channels.begin(), image.channels.end(),
+        non_finite, r.stats.exposure));
+  if (out.map) {
+    const std::vector<std::string> names = aov_channel_names(*out.map);
+    const auto channel = std::find_if(r.image.channels.begin(), r.image.channels.end(),
                                       [&](const NamedChannel& c) { return c.name == names[0]; });
-    display = false_colour(*channel, image.width, image.height, names[0]);
-  } else {
-    display = tone_map(image, scene.render.tonemap);
+    return false_colour(*channel, r.image.width, r.image.height, names[0]);
   }
-  if (stopped && to_stdout) {
+  return tone_map(r.image, scene.render.tonemap);
+}
+
+// The files (or standard output), the summary line and --stats; a stopped render's files go
+// beside their targets.
+int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs& out,
+                   const Rendered& r) {
+  const Image display = display_of(r, scene, out);
+  const bool stopped = r.stopped;
+  if (stopped && out.to_stdout) {
     std::fprintf(stderr, "lightcone: stopped by %s: nothing written to standard output\n",
                  StopSignals::name().c_str());
     return StopSignals::exit_status();
   }
-  if (to_stdout) {
+  if (out.to_stdout) {
     const std::vector<unsigned char> png = encode_png(display);
     if (std::fwrite(png.data(), 1, png.size(), stdout) != png.size() || std::fflush(stdout) != 0)
       throw std::runtime_error("cannot write the PNG to standard output");
   }
   const auto target = [&](const std::string& path) { return stopped ? partial_name(path) : path; };
   std::vector<ImageOutput> outputs;
-  if (!to_stdout) outputs.push_back({target(a.output), *format});
+  if (!out.to_stdout) outputs.push_back({target(a.output), *out.format});
   if (a.exr) outputs.push_back({target(*a.exr), ImageFormat::kExr});
-  write_images(display, image, outputs);
+  write_images(display, r.image, outputs);
 
-  const std::string written = to_stdout ? std::string("standard output") : target(a.output);
+  const std::string written = out.to_stdout ? std::string("standard output") : target(a.output);
   const std::string also = a.exr ? " and " + target(*a.exr) : std::string();
   if (stopped) {
     std::fprintf(stderr,
                  "lightcone: stopped by %s: wrote the %zu of %zu tiles finished to %s%s (the rest "
                  "is black); %s is untouched\n",
-                 StopSignals::name().c_str(), static_cast<std::size_t>(tiles_done),
-                 static_cast<std::size_t>(tiles_total), written.c_str(), also.c_str(),
-                 a.output.c_str());
+                 StopSignals::name().c_str(), r.tiles_done, r.tiles_total, written.c_str(),
+                 also.c_str(), a.output.c_str());
     return StopSignals::exit_status();
   }
+  const RenderStats& stats = r.stats;
   const double mrays = stats.rays / std::max(stats.seconds, 1e-9) / 1e6;
-  if (!a.quiet && raster)
+  if (!a.quiet && out.raster)
     std::fprintf(stderr,
                  "lightcone: %dx%d, %d samples (raster, %zu triangles): %.2f s; wrote %s%s\n",
-                 image.width, image.height, scene.camera.samples, raster_triangles, stats.seconds,
-                 written.c_str(), also.c_str());
+                 r.image.width, r.image.height, scene.camera.samples, r.raster_triangles,
+                 stats.seconds, written.c_str(), also.c_str());
   else if (!a.quiet)
     std::fprintf(stderr, "lightcone: %dx%d, %d samples: %.2f s, %.2f Mrays/s; wrote %s%s\n",
-                 image.width, image.height, scene.camera.samples, stats.seconds, mrays,
+                 r.image.width, r.image.height, scene.camera.samples, stats.seconds, mrays,
                  written.c_str(), also.c_str());
   if (a.stats) {
     nlohmann::ordered_json line = {
@@ -349,6 +385,14 @@ int run_render(const RenderArgs& a) {
     std::fprintf(stderr, "%s\n", line.dump().c_str());
   }
   return 0;
+}
+
+int run_render(const RenderArgs& a) {
+  const StopSignals stop_signals;
+  const RenderOutputs outputs = checked_outputs(a);
+  const Scene scene = render_scene(a, outputs);
+  const Rendered rendered = render_with_progress(a, scene, outputs);
+  return write_rendered(a, scene, outputs, rendered);
 }
 
 int run_check(const std::string& file, const std::vector<std::string>& overrides,
