@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/input_error.hpp"
@@ -129,6 +131,27 @@ RasterTessellation tessellation_mode(const std::string& name) {
   return name == "cpu"   ? RasterTessellation::kCpu
          : name == "gpu" ? RasterTessellation::kGpu
                          : RasterTessellation::kAuto;
+}
+
+std::vector<double> parse_numbers(const std::string& option, const std::string& text,
+                                  std::size_t count, bool integers, const std::string& what) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  std::string part;
+  const InputError error(option + " " + text + ": expected " + what);
+  while (std::getline(in, part, ',')) {
+    std::size_t used = 0;
+    double x = 0;
+    try {
+      x = integers ? static_cast<double>(std::stol(part, &used)) : std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || part.empty() || !std::isfinite(x)) throw error;
+    v.push_back(x);
+  }
+  if (v.size() != count) throw error;
+  return v;
 }
 
 }  // namespace lightcone

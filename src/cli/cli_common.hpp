@@ -69,4 +69,9 @@ std::string partial_name(const std::string& path);
 
 RasterTessellation tessellation_mode(const std::string& name);
 
+// `count` comma-separated finite numbers (integers if `integers`), or an error that says so:
+// "OPTION TEXT: expected WHAT".
+std::vector<double> parse_numbers(const std::string& option, const std::string& text,
+                                  std::size_t count, bool integers, const std::string& what);
+
 }  // namespace lightcone
