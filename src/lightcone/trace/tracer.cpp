@@ -11,7 +11,6 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <unordered_map>
 #include <vector>
 
