@@ -42,7 +42,6 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-GROUPS = ["tracer", "swarm", "scaling", "setup", "png", "colour", "stars", "raster"]
 
 
 class Unmeasured(Exception):
@@ -141,7 +140,7 @@ def ratios(numerators, denominators):
     return [a / b for a, b in zip(numerators, denominators)]
 
 
-def measure_tracer(table, build, repetitions):
+def measure_tracer(table, build, repetitions, scratch):
     runs = bench_runs(build, r"Throughput_(raw_embree/single|lightcone/(static|moving))/case:0/",
                       repetitions)
     rays = lambda r: r["rays_per_s"]
@@ -157,7 +156,7 @@ def measure_tracer(table, build, repetitions):
                       ratios(ours, raw), bound, True)
 
 
-def measure_swarm(table, build, repetitions):
+def measure_swarm(table, build, repetitions, scratch):
     runs = bench_runs(build, r"DenseSwarm/bodies:(100|10000)/", repetitions)
     per_ray = lambda r: r["s_per_ray"]
     for lit in (0, 1):
@@ -233,7 +232,7 @@ def measure_png(table, build, repetitions, scratch):
               ratios(encode, walls), 0.10, False)
 
 
-def measure_colour(table, build, repetitions):
+def measure_colour(table, build, repetitions, scratch):
     runs = bench_runs(build, r"^ColourTables/", repetitions)
     table.add("colour", "emission tables, 1,000 distinct colours",
               series(runs, "ColourTables/distinct_colours/real_time", seconds), 0.050, False,
@@ -243,7 +242,7 @@ def measure_colour(table, build, repetitions):
               " ms", 1e3, 1)
 
 
-def measure_stars(table, build, repetitions):
+def measure_stars(table, build, repetitions, scratch):
     runs = bench_runs(build, r"^(SkyTrace|SkyRaster|StarCatalogueLoad)", repetitions)
     for kind, what in (("SkyTrace", "tracer render"), ("SkyRaster", "raster frame")):
         suffix = "/iterations:3/real_time" if kind == "SkyTrace" else "/real_time"
@@ -255,7 +254,7 @@ def measure_stars(table, build, repetitions):
               series(runs, "StarCatalogueLoad", seconds), 0.020, False, " ms", 1e3, 1)
 
 
-def measure_raster(table, build, repetitions):
+def measure_raster(table, build, repetitions, scratch):
     runs = bench_runs(build, r"^Raster(Frame|Baseline)/", repetitions)
     for scene, size, bound in (("street", "640x360", 1.5), ("street", "1280x720", 1.5),
                                ("street-lit", "640x360", 3.0)):
@@ -268,6 +267,12 @@ def measure_raster(table, build, repetitions):
     frame = series(runs, "RasterFrame/swarm/1280x720/real_time", seconds)
     table.add("raster", "1,000-body swarm at 1280x720, frames per second",
               [1 / s for s in frame], 5.0, True, " fps", 1.0, 1)
+
+
+# Each takes the table, the build directory, the repetitions and a scratch directory.
+MEASURES = {"tracer": measure_tracer, "swarm": measure_swarm, "scaling": measure_scaling,
+            "setup": measure_setup, "png": measure_png, "colour": measure_colour,
+            "stars": measure_stars, "raster": measure_raster}
 
 
 def cpu_model():
@@ -285,15 +290,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repetitions", type=int, default=3, help="of each figure (3)")
-    parser.add_argument("--only", default=",".join(GROUPS),
+    parser.add_argument("--only", default=",".join(MEASURES),
                         help="comma-separated groups (default: all)")
     parser.add_argument("--build", default=os.path.join(ROOT, "build"),
                         help="the build directory (build/)")
     args = parser.parse_args()
     groups = [g for g in args.only.split(",") if g]
-    unknown = [g for g in groups if g not in GROUPS]
+    unknown = [g for g in groups if g not in MEASURES]
     if unknown or args.repetitions < 1:
-        parser.error(f"unknown group {unknown[0]} (groups: {', '.join(GROUPS)})" if unknown
+        parser.error(f"unknown group {unknown[0]} (groups: {', '.join(MEASURES)})" if unknown
                      else "--repetitions must be at least 1")
     for tool in ("lightcone", "lightcone_bench"):
         if not os.access(os.path.join(args.build, tool), os.X_OK):
@@ -311,12 +316,8 @@ def main():
     with tempfile.TemporaryDirectory(prefix="lightcone-targets-") as scratch:
         for group in groups:
             log(f"targets.py: measuring {group}...")
-            measure = globals()[f"measure_{group}"]
             try:
-                if group in ("scaling", "setup", "png"):
-                    measure(table, args.build, args.repetitions, scratch)
-                else:
-                    measure(table, args.build, args.repetitions)
+                MEASURES[group](table, args.build, args.repetitions, scratch)
             except Unmeasured as e:
                 failures.append(f"{group}: {e}")
     table.print()

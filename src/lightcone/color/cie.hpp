@@ -42,6 +42,13 @@ Xyz xyz_from_spectrum(const Spectrum& spectrum) {
   return {sum.x * n, sum.y * n, sum.z * n};
 }
 
+// The same sum over a spectrum already sampled at the table's wavelengths: samples[i] at
+// 360 + i nm.
+inline Xyz xyz_from_samples(const double* samples) {
+  return xyz_from_spectrum(
+      [samples](double lambda) { return samples[static_cast<int>(lambda - kCieMinWavelength)]; });
+}
+
 // Linear sRGB <-> XYZ (IEC 61966-2-1 matrices, D65 white; Y of white (1,1,1) is 1).
 // The matrices are derived (at compile time) from the standard's chromaticities: primaries
 // R (0.64, 0.33), G (0.30, 0.60), B (0.15, 0.06) and white D65 (0.3127, 0.3290); rounded to

@@ -158,8 +158,7 @@ class DopplerXyzTable {
       std::array<double, kCieTableSize> products;
       for (int i = 0; i < kCieTableSize; ++i)
         products[i] = rho(d * (kCieMinWavelength + i)) * row[i];
-      nodes[k] = xyz_from_spectrum(
-          [&](double lambda) { return products[static_cast<int>(lambda - kCieMinWavelength)]; });
+      nodes[k] = xyz_from_samples(products.data());
     });
     return DopplerXyzTable(grid, std::move(nodes));
   }
