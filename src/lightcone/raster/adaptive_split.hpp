@@ -34,14 +34,21 @@ class AdaptiveSplit {
     cut(a, b, c, mab, mbc, mca, lab, lbc, lca, sab, sbc, sca);
   }
 
- private:
-  // Whether edge ab (at `level`) is split; its midpoint is set either way.
+  // Whether edge ab (at `level`) is split; its midpoint is set when it is.
   bool split(const Corner& a, const Corner& b, int level, Corner& middle) const {
     if (level >= max_level_) return false;
     middle = seeing_.middle(a, b, mesh_.midpoint(a.p, b.p));
     return seeing_.needs_split(a, b, middle);
   }
 
+  // An untessellated triangle whose edges' decisions (split) were made beforehand, once for
+  // both triangles that share each.
+  void triangle(const Corner& a, const Corner& b, const Corner& c, const Corner& mab,
+                const Corner& mbc, const Corner& mca, bool sab, bool sbc, bool sca) const {
+    cut(a, b, c, mab, mbc, mca, 0, 0, 0, sab, sbc, sca);
+  }
+
+ private:
   // The same, with each edge's decision (and midpoint) made, so that rotating the triangle
   // decides nothing twice.
   void cut(const Corner& a, const Corner& b, const Corner& c, const Corner& mab, const Corner& mbc,

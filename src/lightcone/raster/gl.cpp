@@ -95,6 +95,12 @@ bool gl_has_tessellation_shaders() {
   return major >= 4;
 }
 
+void skip_faces(HiddenFaces hidden) {
+  if (hidden == HiddenFaces::kNone) return glDisable(GL_CULL_FACE);
+  glEnable(GL_CULL_FACE);
+  glCullFace(hidden == HiddenFaces::kBack ? GL_BACK : GL_FRONT);
+}
+
 GLint uniform(GLuint program, const char* name) {
   return glGetUniformLocation(program, name);
 }

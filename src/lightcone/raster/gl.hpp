@@ -11,6 +11,7 @@
 
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/tessellation.hpp"
 
 namespace lightcone {
 
@@ -30,6 +31,9 @@ bool gl_has_tessellation_shaders();
 
 // The current context's renderer (GL_RENDERER): "llvmpipe (LLVM 15.0.6, 256 bits)" and the like.
 std::string gl_renderer();
+
+// Face culling for the triangles drawn next: none, or the hidden ones.
+void skip_faces(HiddenFaces hidden);
 
 // Uniforms of `program` (in use) by name, from double-precision values.
 GLint uniform(GLuint program, const char* name);

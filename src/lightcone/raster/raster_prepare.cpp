@@ -40,6 +40,27 @@ EmissionKey key_of(const PointEmission& e) {
 
 }  // namespace
 
+const RestMesh& RasterRenderer::Impl::rest_mesh_for(const Shape& shape, int face_grid) {
+  const MeshShape* mesh = std::get_if<MeshShape>(&shape);
+  const std::array<double, 3> sizes = std::visit(
+      [](const auto& s) -> std::array<double, 3> {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, Sphere>) return {s.radius, 0, 0};
+        if constexpr (std::is_same_v<T, Box>) return {s.size.x, s.size.y, s.size.z};
+        if constexpr (std::is_same_v<T, Plane>) return {s.size_x, s.size_z, 0};
+        return {};
+      },
+      shape);
+  const RestMeshKey key{shape.index(), sizes, mesh ? mesh->mesh.get() : nullptr, face_grid};
+  auto it = rest_meshes.find(key);
+  if (it == rest_meshes.end())
+    it = rest_meshes
+             .emplace(key, KeptRestMesh{mesh ? mesh->mesh : nullptr, rest_mesh(shape, face_grid)})
+             .first;
+  it->second.used = true;
+  return it->second.mesh;
+}
+
 RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                                                const EmissionTable& emission,
                                                const TessellationLimits& limits, bool on_gpu) {
@@ -170,7 +191,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1);
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
   hole_body_list.clear();
-  std::map<const void*, RestMesh> meshes;  // per shape, for this frame
+  for (auto& [key, kept] : rest_meshes) kept.used = false;
   for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
     const ResolvedBody& body = resolved.bodies[i];
     // Bodies out of view need neither rows nor triangles (near a black hole their images can
@@ -260,13 +281,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
         }
       }
     }
-    const Shape& shape = body.object->shape;
-    const void* shape_key = shape_identity(shape);
-    auto it = meshes.find(shape_key);
-    if (it == meshes.end())
-      it = meshes.emplace(shape_key, rest_mesh(shape, gpu_tessellation && !resolved.hole ? 8 : 2))
-               .first;
-    draw.mesh = &it->second;
+    draw.mesh = &rest_mesh_for(body.object->shape, gpu_tessellation && !resolved.hole ? 8 : 2);
+    draw.hidden = hidden_faces(*draw.mesh, body);
     if (resolved.hole)
       hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern, draw.lit});
     else
@@ -336,7 +352,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                  patches.data(), GL_STATIC_DRAW);
   } else {
     // The bodies are tessellated in parallel, each into its own buffer, then laid end to end.
-    std::vector<std::vector<float>> parts(draws.size()), uv_parts(draws.size());
+    // (Their buffers are kept, so that a frame like the last allocates nothing.)
+    auto& parts = tessellated_parts;
+    auto& uv_parts = tessellated_uv_parts;
+    for (auto* kept : {&parts, &uv_parts}) {
+      kept->resize(draws.size());
+      for (std::vector<float>& part : *kept) part.clear();
+    }
     tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
       tessellate(resolved, body_view(resolved, resolved.bodies[draws[d].body]), *draws[d].mesh,
                  limits, parts[d], draws[d].face_uvs ? &uv_parts[d] : nullptr);
@@ -439,6 +461,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   if (resolved.scene->sky.stars && !stars) stars = std::make_unique<StarPass>();
   if (stars) stars->prepare(resolved);
   check_gl("uploading the frame");
+  std::erase_if(rest_meshes, [](const auto& entry) { return !entry.second.used; });
   return stats;
 }
 

@@ -318,6 +318,7 @@ void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDr
   }
   for (GLuint row : {2u, 3u})
     if (draw.face_uvs) glEnableVertexAttribArray(row);
+  skip_faces(draw.hidden);
   glDrawArrays(gpu_tessellation ? GL_PATCHES : GL_TRIANGLES, static_cast<GLint>(draw.first_vertex),
                static_cast<GLsizei>(draw.vertex_count));
   for (GLuint row : {2u, 3u})
@@ -358,6 +359,7 @@ void RasterRenderer::Impl::draw_visible_depth(double ox, double oy, int features
   set_common(body_program, resolved, first_log_doppler, ox, oy);
   glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
   for (const BodyDraw& draw : draws) draw_body(resolved, draw, false);
+  skip_faces(HiddenFaces::kNone);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   glActiveTexture(GL_TEXTURE6);
   glBindTexture(GL_TEXTURE_2D, depth_texture);
@@ -413,6 +415,7 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
                    : (draw.pattern == 2) == (variant == kTextured) && variant != kLit)
         draw_body(resolved, draw, variant == kLit);
   }
+  skip_faces(HiddenFaces::kNone);
   if (resolved.hole && !hole_body_list.empty()) {
     glUseProgram(hole_bodies->program());
     set_common(hole_bodies->program(), resolved, first_log_doppler, ox, oy);
@@ -454,7 +457,7 @@ RasterRenderer::TessellatedBodies RasterRenderer::tessellated_bodies() const {
   TessellatedBodies out{impl_->vertex_array, impl_->vertex_buffer, kFloatsPerVertex, {}};
   if (!impl_->gpu_tessellation)
     for (const Impl::BodyDraw& d : impl_->draws)
-      out.draws.push_back({d.body, d.first_vertex, d.vertex_count});
+      out.draws.push_back({d.body, d.first_vertex, d.vertex_count, d.hidden});
   return out;
 }
 

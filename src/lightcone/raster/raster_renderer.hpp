@@ -82,6 +82,7 @@ class RasterRenderer {
     int floats_per_vertex = 0;
     struct Draw {
       std::size_t body = 0, first_vertex = 0, vertex_count = 0;
+      HiddenFaces hidden = HiddenFaces::kNone;
     };
     std::vector<Draw> draws;
   };

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "lightcone/frame/lighting.hpp"
@@ -66,6 +67,19 @@ struct RasterRenderer::Impl {
   std::unique_ptr<ShadowMaps> shadow_maps;
   std::vector<ExactCaster> casters;         // the frame's bodies whose shadows are met exactly
   std::unique_ptr<Lighting> kept_lighting;  // the lights' tables (prepare())
+  // The shapes' rest meshes with their edges indexed, kept from frame to frame while some body
+  // has the shape: keyed by the shape's values (a mesh's by its address, held so that it
+  // stays) and the face grid.
+  using RestMeshKey = std::tuple<std::size_t, std::array<double, 3>, const Mesh*, int>;
+  struct KeptRestMesh {
+    std::shared_ptr<const Mesh> held;
+    RestMesh mesh;
+    bool used = false;
+  };
+  std::map<RestMeshKey, KeptRestMesh> rest_meshes;
+  // The CPU path's triangles and texture coordinates' maps, a buffer per body (prepare()).
+  std::vector<std::vector<float>> tessellated_parts, tessellated_uv_parts;
+  const RestMesh& rest_mesh_for(const Shape& shape, int face_grid);
   int disk_row = 0;
   double disk_floor = 0;
   GlDriver driver;
@@ -100,7 +114,8 @@ struct RasterRenderer::Impl {
     bool face_uvs = false;     // a textured mesh: its faces' texture coordinates' maps are drawn
     int reflection_body = -1;  // a lit body's row of reflection_index_texture
     const RestMesh* mesh = nullptr;  // during prepare()
-    double sphere_radius = 0;        // the GPU path's: its mesh's
+    HiddenFaces hidden = HiddenFaces::kNone;
+    double sphere_radius = 0;  // the GPU path's: its mesh's
   };
   struct LightDraw {
     int kind = 0, fixed_event = 0, row = 0;

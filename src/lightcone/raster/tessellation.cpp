@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <tuple>
 
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/world_line.hpp"
@@ -45,6 +47,55 @@ Vec3 RestMesh::midpoint(const Vec3& a, const Vec3& b) const {
 
 namespace {
 
+void index_edges(RestMesh& m) {
+  // Vertices at one point (where a box's faces meet, a mesh's seams) are one vertex here: the
+  // lowest index among them.
+  std::vector<std::uint32_t> order(m.positions.size()), one(m.positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto point = [&m](std::uint32_t v) {
+    const Vec3& p = m.positions[v];
+    return std::tie(p.x, p.y, p.z);
+  };
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::tuple_cat(point(a), std::tie(a)) < std::tuple_cat(point(b), std::tie(b));
+  });
+  for (std::size_t k = 0; k < order.size(); ++k)
+    one[order[k]] = k > 0 && point(order[k]) == point(order[k - 1]) ? one[order[k - 1]] : order[k];
+  // Sorting the edges keeps this O(n log n) with no hashing; the order is irrelevant.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;  // (edge key, 3 triangle + side)
+  keyed.reserve(3 * m.triangles.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (std::uint32_t side = 0; side < 3; ++side) {
+      const std::uint32_t a = one[m.triangles[t][side]], b = one[m.triangles[t][(side + 1) % 3]];
+      keyed.emplace_back(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b),
+                         static_cast<std::uint32_t>(3 * t + side));
+    }
+  std::sort(keyed.begin(), keyed.end());
+  m.edges.clear();
+  m.triangle_edges.assign(m.triangles.size(), {});
+  // Closed and oriented: each edge met exactly twice, once from its lower vertex.
+  bool closed = !keyed.empty();
+  const auto from_lower = [&m, &one](std::uint32_t corner) {
+    const auto& t = m.triangles[corner / 3];
+    return one[t[corner % 3]] < one[t[(corner % 3 + 1) % 3]];
+  };
+  for (std::size_t k = 0; k < keyed.size(); ++k) {
+    if (k == 0 || keyed[k].first != keyed[k - 1].first) {
+      m.edges.push_back({static_cast<std::uint32_t>(keyed[k].first >> 32),
+                         static_cast<std::uint32_t>(keyed[k].first)});
+      closed = closed && k + 1 < keyed.size() && keyed[k + 1].first == keyed[k].first &&
+               (k + 2 == keyed.size() || keyed[k + 2].first != keyed[k].first) &&
+               from_lower(keyed[k].second) != from_lower(keyed[k + 1].second);
+    }
+    m.triangle_edges[keyed[k].second / 3][keyed[k].second % 3] =
+        static_cast<std::uint32_t>(m.edges.size() - 1);
+  }
+  double volume = 0;  // six times the enclosed volume
+  for (const auto& [a, b, c] : m.triangles)
+    volume += dot(m.positions[a], cross(m.positions[b], m.positions[c]));
+  m.closed_outward = closed && volume > 0;
+}
+
 // An octahedron's faces: the sphere is refined from there by the edge rule.
 RestMesh sphere_mesh(double radius) {
   RestMesh m;
@@ -71,9 +122,8 @@ void add_grid(RestMesh& m, const Vec3& corner, const Vec3& along_u, const Vec3& 
     }
 }
 
-}  // namespace
-
-RestMesh rest_mesh(const Shape& shape, int face_grid) {
+// The shape's triangles, before their edges are indexed.
+RestMesh rest_triangles(const Shape& shape, int face_grid) {
   struct Visitor {
     int kFaceGrid;
     RestMesh operator()(const Sphere& s) const { return sphere_mesh(s.radius); }
@@ -104,6 +154,26 @@ RestMesh rest_mesh(const Shape& shape, int face_grid) {
     }
   };
   return std::visit(Visitor{face_grid}, shape);
+}
+
+}  // namespace
+
+RestMesh rest_mesh(const Shape& shape, int face_grid) {
+  RestMesh m = rest_triangles(shape, face_grid);
+  index_edges(m);
+  return m;
+}
+
+HiddenFaces hidden_faces(const RestMesh& mesh, const ResolvedBody& body) {
+  if (!mesh.closed_outward || body.spin >= 0) return HiddenFaces::kNone;
+  // The camera (the origin) against the capsule: within it, the body may be seen from inside.
+  const Capsule& c = body.trace_capsule;
+  const Vec3 along = c.to - c.from;
+  const double length2 = dot(along, along);
+  const double s = length2 > 0 ? std::clamp(-dot(c.from, along) / length2, 0.0, 1.0) : 0.0;
+  const Vec3 nearest = c.from + along * s;
+  if (dot(nearest, nearest) <= c.radius * c.radius) return HiddenFaces::kNone;
+  return body.spatial.determinant() > 0 ? HiddenFaces::kBack : HiddenFaces::kFront;
 }
 
 namespace {
@@ -233,11 +303,19 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
                 std::vector<float>* uv_maps) {
   FlatSeeing seeing{scene, view, limits, out, uv_maps};
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
-  // Each of the mesh's own vertices is seen once, whatever the number of its triangles.
+  // Each of the mesh's own vertices is seen once, whatever the number of its triangles, and each
+  // of its edges decided once, whatever the number of its triangles.
   std::vector<FlatSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());
   for (const Vec3& p : mesh.positions) corners.push_back(seeing.corner(p));
-  for (const auto& [i, j, k] : mesh.triangles) {
+  std::vector<FlatSeeing::Corner> middles(mesh.edges.size());
+  std::vector<char> splits(mesh.edges.size());
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    const auto [i, j] = mesh.edges[e];
+    splits[e] = split.split(corners[i], corners[j], 0, middles[e]);
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto [i, j, k] = mesh.triangles[t];
     const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
     const Vec3 n = cross(b - a, c - a);
     const double l = length(n);
@@ -250,7 +328,9 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
       std::transform(map.begin(), map.end(), seeing.uv_map.begin(),
                      [](double x) { return static_cast<float>(x); });
     }
-    split.triangle(corners[i], corners[j], corners[k]);
+    const auto [ij, jk, ki] = mesh.triangle_edges[t];
+    split.triangle(corners[i], corners[j], corners[k], middles[ij], middles[jk], middles[ki],
+                   splits[ij], splits[jk], splits[ki]);
   }
 }
 

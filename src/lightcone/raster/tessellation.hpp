@@ -41,6 +41,15 @@ struct RestMesh {
   // A mesh's texture coordinates per vertex, empty when it has none (Mesh::uvs).
   std::vector<std::array<float, 2>> uvs;
   double sphere_radius = 0;  // > 0: a sphere about the origin
+  // Each edge once (its two vertices, the lower index first; of vertices at one point, the
+  // lowest index stands for all), and each triangle's edges ab, bc, ca as indices into it, so
+  // that an edge two triangles share is decided once.
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::array<std::uint32_t, 3>> triangle_edges;
+  // A closed surface, its triangles turning counter-clockwise seen from outside: each edge
+  // shared by two triangles that run along it in opposite directions, enclosing a positive
+  // volume.
+  bool closed_outward = false;
   Vec3 midpoint(const Vec3& a, const Vec3& b) const;
 };
 // Box faces start as face_grid x face_grid quads and planes as 4 face_grid x 4 face_grid, so
@@ -51,6 +60,16 @@ RestMesh rest_mesh(const Shape& shape, int face_grid = 2);
 inline const void* shape_identity(const Shape& shape) {
   return std::visit([](const auto& x) -> const void* { return &x; }, shape);
 }
+
+// The drawn triangles that the rasteriser may skip as hidden (docs/design/raster.md): a closed
+// surface seen from outside hides every face it turns away from the camera, and the apparent
+// surface of a closed body is closed and keeps its orientation, since the map from shape points
+// to where they are seen is one to one and orientation-preserving. The faces turned away are
+// those wound clockwise on screen (OpenGL's back faces) or, for a mirrored body (scale of
+// negative determinant), counter-clockwise. None are skipped for an open or unoriented mesh,
+// a spinning body, or a camera within the body's trace capsule.
+enum class HiddenFaces { kNone, kBack, kFront };
+HiddenFaces hidden_faces(const RestMesh& mesh, const ResolvedBody& body);
 
 // Where a shape point is seen: its event on the camera's ray family and that event's image
 // point (pixels), for the tessellation's decisions.
