@@ -376,7 +376,7 @@ TEST_F(CliTest, SyntaxErrorsNameTheLine) {
       {"number too large for a double", "\"position\": [0, 0, 0]", "\"position\": [0, 0, 1e400]", 3,
        "1e400"},
       {"two numbers", "\"fov\": 30", "\"fov\": 3 0", 5, "syntax error"},
-      {"trailing comma", "\"height\": 48", "\"height\": 48,", 8, "syntax error"},
+      {"trailing comma", "\"height\": 48", "\"height\": 48,", 8, "a comma after the last member"},
       {"unterminated string", "\"name\": \"ball\",", "\"name\": \"ball,", 11, "syntax error"},
   };
   for (const Case& c : cases) {
@@ -612,21 +612,34 @@ TEST_F(CliTest, UnknownSubcommandOrOptionAndMissingArguments) {
   expect_rejected_command_line(render(scene, "--width abc"), {"--width", "abc"});
   expect_rejected_command_line(render(scene, "--threads -1"), {"--threads"});
   expect_rejected_command_line(locate(scene, "--world-point 0,0,-10 --bogus"), {"--bogus"});
+  // The nearest command or option, where one is near.
+  expect_rejected_command_line(run_lightcone("rendr " + quoted(scene)),
+                               {"unknown command 'rendr' (did you mean 'render'?"});
+  expect_rejected_command_line(render(scene, "--sample 4"),
+                               {"(did you mean --samples for --sample?)"});
+  expect_rejected_command_line(render(scene, "--widht=64"),
+                               {"(did you mean --width for --widht?)"});
+  EXPECT_EQ(render(scene, "--bogus").err.find("did you mean"), std::string::npos);
 }
 
-TEST_F(CliTest, OutputFolderThatDoesNotExist) {
+// A missing output folder is made, with its parents; one that cannot be made (a file holds its
+// name) is bad input, and nothing is written.
+TEST_F(CliTest, OutputFoldersAreMadeWhenMissing) {
   const fs::path scene = write_scene(kScene);
-  const fs::path nowhere = dir_ / "nowhere";
-  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " +
-                                        quoted(nowhere / "image.png") + " --exr " + quoted(exr()));
-  expect_rejected(r, "-o ", {nowhere.string(), "does not exist"});
-  EXPECT_FALSE(fs::exists(nowhere));
+  const fs::path nowhere = dir_ / "nowhere" / "deeper";
+  const CommandResult r =
+      run_lightcone("render " + quoted(scene) + " -o " + quoted(nowhere / "image.png") + " --exr " +
+                    quoted(nowhere / "image.exr") + " --quiet");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(nowhere / "image.png"));
+  EXPECT_TRUE(fs::is_regular_file(nowhere / "image.exr"));
 
-  // A valid PNG target is not written either when the EXR's folder is missing.
+  const fs::path blocked = dir_ / "blocked";
+  std::ofstream(blocked) << "a file, not a folder";
   const CommandResult e = run_lightcone("render " + quoted(scene) + " -o " + quoted(png()) +
-                                        " --exr " + quoted(nowhere / "image.exr"));
-  expect_rejected(e, "--exr ", {nowhere.string(), "does not exist"});
-  EXPECT_FALSE(fs::exists(nowhere));
+                                        " --exr " + quoted(blocked / "image.exr"));
+  expect_rejected(e, "--exr ", {blocked.string(), "does not exist and cannot be made"});
+  EXPECT_FALSE(fs::exists(png()));
 }
 
 // An output path that names a folder is bad input too; the images are written nowhere and no
@@ -680,7 +693,7 @@ TEST_F(CliTest, ValidRenderWritesPngAndExrOfTheRightSizeAndOneSummaryLine) {
   // stderr is not a terminal: no progress bar, only the summary: size, samples, time, rate,
   // the files written.
   EXPECT_EQ(line_count(r.err), 1u) << r.err;
-  EXPECT_EQ(r.err.rfind("lightcone: 64x48, 1 samples: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("lightcone: 64x48, 1 sample: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find(" Mrays/s; wrote " + png().string() + " and " + exr().string()),
             std::string::npos)
       << r.err;
@@ -1724,8 +1737,9 @@ TEST_F(CliTest, AStoppedRenderWritesItsTilesBesideAnUntouchedTarget) {
     EXPECT_EQ(status, status_expected) << signal;
     std::ifstream err_file(out_ / "err.txt");
     const std::string err((std::istreambuf_iterator<char>(err_file)), {});
-    EXPECT_NE(err.find(std::string("stopped by SIG") + signal + ": wrote the "), std::string::npos)
+    EXPECT_NE(err.find(std::string("stopped by SIG") + signal + " with "), std::string::npos)
         << err;
+    EXPECT_NE(err.find(" tiles done: wrote them to "), std::string::npos) << err;
     std::ifstream target(png());
     EXPECT_EQ(std::string((std::istreambuf_iterator<char>(target)), {}), "a finished image");
     EXPECT_FALSE(fs::exists(exr)) << signal;

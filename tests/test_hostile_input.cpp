@@ -142,12 +142,14 @@ TEST_F(HostileInput, EveryFrameNameIsCheckedBeforeTheFirstFrame) {
                     small());
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("frame 2, "), std::string::npos) << r.err;
-  // A folder that does not exist for a later frame (the number in the folder's name).
+  // A folder that cannot be made for a later frame (the number in the folder's name; a file
+  // holds the name).
   fs::create_directory(dir_ / "d0");
+  std::ofstream(dir_ / "d1") << "a file";
   r = run_lightcone("animate " + terrell() + " --frames 0-1 -o " + quoted(dir_ / "d%d" / "f.png") +
                     small());
   EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("does not exist and cannot be made"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::is_empty(dir_ / "d0"));
   // Two patterns that meet: frame 11 of -o and frame 1 of --exr are both x11.exr.
   r = run_lightcone("animate " + terrell() + " --frames 1-11 -o " + quoted(dir_ / "x%d.exr") +

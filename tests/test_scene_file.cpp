@@ -871,7 +871,8 @@ TEST_F(SceneFileTest, FuzzerFindingsEndInClearErrors) {
 }
 
 TEST_F(SceneFileTest, SyntaxErrors) {
-  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n}\n", 3, "(syntax)", "unexpected '}'");
+  expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n}\n", 3, "(syntax)",
+               "a comma after the last member");
   expect_error("{\n  \"camera\": {\"position\": [0, 0, NaN]}\n}", 2, "(syntax)", "invalid literal");
   expect_error("{\n  \"camera\":\n {\"position\": [0, 0, 1e400]}\n}", 3, "(syntax)",
                "number overflow");
@@ -884,20 +885,36 @@ TEST_F(SceneFileTest, SyntaxErrors) {
 
 TEST_F(SceneFileTest, UnknownKeys) {
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"light\": []\n}", 3, "light",
-               "unknown key \"light\" (expected one of: $schema, speed_of_light, camera, objects, "
-               "lights, sky, render, black_hole)");
+               "unknown key \"light\" (did you mean \"lights\"? expected one of: $schema, "
+               "speed_of_light, camera, objects, lights, sky, render, black_hole)");
   expect_error("{\n  \"camera\": {\"position\": [0, 0, 5],\n    \"fovy\": 60}\n}", 3, "camera.fovy",
-               "expected one of: position, time");
+               "(did you mean \"fov\"? expected one of: position, time");
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}},
     "colour": [1, 0, 0]})"),
-               4, "objects[0].colour", "unknown key");
+               4, "objects[0].colour", "unknown key \"colour\" (expected one of");
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1, "segments": 3}}})"),
                3, "objects[0].shape.sphere.segments", "unknown key");
   expect_error(with_object(R"({"name": "a", "shape": {"box": {"size": [1, 1, 1]}},
     "material": {"color": [1, 1, 1], "shiny": true}})"),
                4, "objects[0].material.shiny", "unknown key");
   expect_error("{\"camera\": {\"position\": [0, 0, 5]},\n \"render\": {\"\\u0066oo\": 1}}", 2,
-               "render.foo", "unknown key");
+               "render.foo", "unknown key \"foo\" (expected one of");  // nothing near enough
+  expect_error(with_object(R"({"name": "a", "shape": {"box": {"size": [1, 1, 1]}},
+    "material": {"colro": [1, 1, 1]}})"),
+               4, "objects[0].material.colro", "(did you mean \"color\"? expected one of");
+}
+
+// JSON has no trailing commas: one is named as such, on the line of the '}' or ']' after it.
+TEST_F(SceneFileTest, TrailingCommasAreNamed) {
+  const auto syntax = [&](const std::string& text, int line) {
+    return fmt::format("{}:{}: (syntax): ", (dir_ / "scene.json").string(), line);
+  };
+  EXPECT_EQ(error("{\"camera\": {\"position\": [0, 0, 5],\n  }\n}"),
+            syntax("", 2) + "a comma after the last member, before '}' (JSON allows none there)");
+  EXPECT_EQ(error("{\"camera\": {\"position\": [0, 0, 5,]}}"),
+            syntax("", 1) + "a comma after the last element, before ']' (JSON allows none there)");
+  // A ']' where a value must come but after no comma is the parser's own message.
+  EXPECT_EQ(error("{\"camera\": {\"position\": ]}}").find("comma"), std::string::npos);
 }
 
 TEST_F(SceneFileTest, DuplicateKeys) {
@@ -1118,10 +1135,11 @@ TEST_F(SceneFileTest, BadSpectra) {
   expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500], "values": [1,
       "x"]}})"),
                5, spectrum + ".values[1]", "must be a number, got string \"x\"");
-  expect_error(with_material(R"({"spectrum": {"wavelengths": [400, 500],
+  expect_error(
+      with_material(R"({"spectrum": {"wavelengths": [400, 500],
       "value": [1, 1]}})"),
-               5, spectrum + ".value",
-               "unknown key \"value\" (expected one of: wavelengths, values)");
+      5, spectrum + ".value",
+      "unknown key \"value\" (did you mean \"values\"? expected one of: wavelengths, values)");
   expect_error(with_material(R"({"spectrum":
       {"wavelengths": [400, 500]}})"),
                5, spectrum + ".values", "required key is missing");
@@ -1157,7 +1175,8 @@ TEST_F(SceneFileTest, BadColourRenderSettings) {
   expect_error(with_render(R"({"exposure": true})"), 3, "render.exposure", "must be a number");
   expect_error(with_render(R"({"hue": {"loop": true,
     "lop": true}})"),
-               4, "render.hue.lop", "unknown key \"lop\" (expected one of: loop)");
+               4, "render.hue.lop",
+               "unknown key \"lop\" (did you mean \"loop\"? expected one of: loop)");
   expect_error(with_render(R"({"hue": {"loop": 1}})"), 3, "render.hue.loop", "true or false");
   expect_error(with_render(R"({"hue": true})"), 3, "render.hue", "must be an object");
   expect_error(with_render(R"({"tonemapping": "filmic"})"), 3, "render.tonemapping",

@@ -521,8 +521,9 @@ int run_encode(const EncodeArgs& a) {
   }
   video.finish();
   if (!a.quiet)
-    std::fprintf(stderr, "lightcone: %s: %zu frames (%s) at %g fps\n", a.output.c_str(),
-                 frames.size(), describe_frames(frames.front(), frames.back()).c_str(), a.fps);
+    std::fprintf(stderr, "lightcone: %s: %s (%s) at %g fps\n", a.output.c_str(),
+                 counted(frames.size(), "frame").c_str(),
+                 describe_frames(frames.front(), frames.back()).c_str(), a.fps);
   return 0;
 }
 

@@ -106,8 +106,9 @@ void require_writable_target(const std::string& option, const std::string& path)
     throw InputError(option + " " + path +
                      ": is not a regular file (a device, a FIFO or a socket); it is not replaced");
   const fs::path parent = (ec ? fs::absolute(path) : target).parent_path();
-  if (!fs::is_directory(parent))
-    throw InputError(option + " " + path + ": folder " + parent.string() + " does not exist");
+  if (!fs::is_directory(parent) && !fs::create_directories(parent, ec) && !fs::is_directory(parent))
+    throw InputError(option + " " + path + ": folder " + parent.string() +
+                     " does not exist and cannot be made (" + ec.message() + ")");
   if (::access(parent.c_str(), W_OK) != 0)
     throw InputError(option + " " + path + ": folder " + parent.string() + " is not writable");
 }
@@ -117,6 +118,10 @@ bool same_file(const std::string& a, const std::string& b) {
   const fs::path pa = fs::weakly_canonical(fs::absolute(a), ec);
   const fs::path pb = fs::weakly_canonical(fs::absolute(b), ec);
   return pa == pb;
+}
+
+std::string counted(std::size_t count, const std::string& noun) {
+  return fmt::format("{} {}{}", count, noun, count == 1 ? "" : "s");
 }
 
 std::string partial_name(const std::string& path) {

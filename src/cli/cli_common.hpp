@@ -57,12 +57,15 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides,
 inline constexpr const char* kAllowOutsideHelp =
     "Let a mesh file (glTF) read files outside its own folder";
 
-// Checked before rendering: the target is a regular file or absent, and its folder exists and
-// is writable (InputError naming `option` otherwise).
+// Checked before rendering: the target is a regular file or absent, and its folder exists (made,
+// with its parents, if missing) and is writable (InputError naming `option` otherwise).
 void require_writable_target(const std::string& option, const std::string& path);
 
 // Whether two paths name the same file.
 bool same_file(const std::string& a, const std::string& b);
+
+// "1 sample", "4 samples": a count and its noun, singular or plural.
+std::string counted(std::size_t count, const std::string& noun);
 
 // Where an interrupted render's image goes, beside its target: out.png -> out.partial.png.
 std::string partial_name(const std::string& path);

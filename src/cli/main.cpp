@@ -1,5 +1,6 @@
 // The `lightcone` command: a thin layer over the library (scene file -> renderer / locate).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -9,10 +10,12 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "animate.hpp"
@@ -21,6 +24,7 @@
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
+#include "lightcone/io/spelling.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "render_command.hpp"
@@ -93,8 +97,9 @@ nlohmann::ordered_json to_json(const Vec3& v) {
 int run_check(const std::string& file, const std::vector<std::string>& overrides,
               const SceneLoadOptions& options) {
   const Scene scene = load(file, overrides, options);
-  std::printf("%s: ok (%zu objects, %zu lights, %dx%d)\n", file.c_str(), scene.objects.size(),
-              scene.lights.size(), scene.camera.width, scene.camera.height);
+  std::printf(
+      "%s: ok (%s, %s, %dx%d)\n", file.c_str(), counted(scene.objects.size(), "object").c_str(),
+      counted(scene.lights.size(), "light").c_str(), scene.camera.width, scene.camera.height);
   return 0;
 }
 
@@ -138,8 +143,8 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
     std::printf("%s\n", out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     return 0;
   }
-  std::printf("%s: %dx%d pixels, %d samples each\n", file.c_str(), info.width, info.height,
-              info.samples);
+  std::printf("%s: %dx%d pixels, %s each\n", file.c_str(), info.width, info.height,
+              counted(info.samples, "sample").c_str());
   for (const BodyInfo& b : info.bodies)
     std::printf("  %-8s %-24s speed %.6g c, gamma %.6g\n", b.kind.c_str(), b.name.c_str(), b.speed,
                 b.gamma);
@@ -313,6 +318,32 @@ int run_view(const ViewArgs& a) {
 
 }  // namespace
 
+namespace {
+
+// " (did you mean --samples for --sample?)": the nearest option of `command` for each word of the
+// command line that looks like an option and is none of its.
+std::string option_suggestions(const CLI::App& command, int argc, char** argv) {
+  std::vector<std::string> names = {"--help", "-h"};
+  for (const CLI::Option* option : command.get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+  }
+  const std::vector<std::string_view> views(names.begin(), names.end());
+  std::vector<std::string> found;
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view word = std::string_view(argv[i]).substr(0, std::strcspn(argv[i], "="));
+    if (word.size() < 2 || word[0] != '-' ||
+        std::find(views.begin(), views.end(), word) != views.end())
+      continue;
+    if (const auto near = nearest_name(word, views))
+      found.push_back(fmt::format("{} for {}", *near, word));
+  }
+  if (found.empty()) return "";
+  return fmt::format(" (did you mean {}?)", fmt::join(found, ", "));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"lightcone: what a camera really sees at a large fraction of the speed of light"};
   app.require_subcommand(1);
@@ -473,13 +504,15 @@ int main(int argc, char** argv) {
   encode_cmd->add_flag("--quiet", encode.quiet, "No progress bar and no summary line");
 
   if (argc > 1 && argv[1][0] != '-') {
-    const std::string command = argv[1];
-    if (command != "render" && command != "locate" && command != "check" && command != "info" &&
-        command != "view" && command != "animate" && command != "encode") {
+    static constexpr std::string_view kCommands[] = {"render", "animate", "encode", "view",
+                                                     "locate", "check",   "info"};
+    const std::string_view command = argv[1];
+    if (std::find(std::begin(kCommands), std::end(kCommands), command) == std::end(kCommands)) {
+      const auto near = nearest_name(command, kCommands);
       std::fprintf(stderr,
-                   "lightcone: unknown command '%s' (use render, animate, encode, view, locate, "
+                   "lightcone: unknown command '%s' (%suse render, animate, encode, view, locate, "
                    "check or info; see --help)\n",
-                   argv[1]);
+                   argv[1], near ? fmt::format("did you mean '{}'? ", *near).c_str() : "");
       return kBadInput;
     }
   }
@@ -487,7 +520,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "lightcone: %s (see --help)\n", e.what());
+    std::string suggestions;
+    if (argc > 1 && argv[1][0] != '-')
+      suggestions = option_suggestions(*app.get_subcommand(argv[1]), argc, argv);
+    std::fprintf(stderr, "lightcone: %s%s (see --help)\n", e.what(), suggestions.c_str());
     return kBadInput;
   }
   try {

@@ -254,8 +254,8 @@ int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs&
   const std::string also = a.exr ? " and " + target(*a.exr) : std::string();
   if (stopped) {
     std::fprintf(stderr,
-                 "lightcone: stopped by %s: wrote the %zu of %zu tiles finished to %s%s (the rest "
-                 "is black); %s is untouched\n",
+                 "lightcone: stopped by %s with %zu of %zu tiles done: wrote them to %s%s (the "
+                 "tiles not done are black); %s is untouched\n",
                  StopSignals::name().c_str(), r.tiles_done, r.tiles_total, written.c_str(),
                  also.c_str(), a.output.c_str());
     return StopSignals::exit_status();
@@ -263,14 +263,13 @@ int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs&
   const RenderStats& stats = r.stats;
   const double mrays = stats.rays / std::max(stats.seconds, 1e-9) / 1e6;
   if (!a.quiet && out.raster)
-    std::fprintf(stderr,
-                 "lightcone: %dx%d, %d samples (raster, %zu triangles): %.2f s; wrote %s%s\n",
-                 r.image.width, r.image.height, scene.camera.samples, r.raster_triangles,
-                 stats.seconds, written.c_str(), also.c_str());
+    std::fprintf(stderr, "lightcone: %dx%d, %s (raster, %zu triangles): %.2f s; wrote %s%s\n",
+                 r.image.width, r.image.height, counted(scene.camera.samples, "sample").c_str(),
+                 r.raster_triangles, stats.seconds, written.c_str(), also.c_str());
   else if (!a.quiet)
-    std::fprintf(stderr, "lightcone: %dx%d, %d samples: %.2f s, %.2f Mrays/s; wrote %s%s\n",
-                 r.image.width, r.image.height, scene.camera.samples, stats.seconds, mrays,
-                 written.c_str(), also.c_str());
+    std::fprintf(stderr, "lightcone: %dx%d, %s: %.2f s, %.2f Mrays/s; wrote %s%s\n", r.image.width,
+                 r.image.height, counted(scene.camera.samples, "sample").c_str(), stats.seconds,
+                 mrays, written.c_str(), also.c_str());
   if (a.stats) {
     nlohmann::ordered_json line = {
         {"seconds", stats.seconds}, {"rays", stats.rays}, {"mrays_per_s", mrays}};

@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -108,6 +111,17 @@ class DomBuilder {
   json* member_ = nullptr;   // the value of the key just read
 };
 
+// A '}' or ']' just after a comma (whitespace between): JSON has no trailing commas, and the
+// parser's own words for it ("unexpected '}'; expected string literal") do not say so.
+std::optional<std::string> trailing_comma(const std::string& text, std::size_t at) {
+  if (at >= text.size() || (text[at] != '}' && text[at] != ']')) return std::nullopt;
+  std::size_t k = at;
+  while (k > 0 && std::isspace(static_cast<unsigned char>(text[k - 1]))) --k;
+  if (k == 0 || text[k - 1] != ',') return std::nullopt;
+  return fmt::format("a comma after the last {}, before '{}' (JSON allows none there)",
+                     text[at] == '}' ? "member" : "element", text[at]);
+}
+
 }  // namespace
 
 std::string read_scene_text(const fs::path& file) {
@@ -130,7 +144,8 @@ json parse_scene_document(const fs::path& file, const std::string& text, bool& r
   const std::size_t end =
       std::min(builder.error_byte > 0 ? builder.error_byte - 1 : 0, text.size());
   const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
-  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, builder.error));
+  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line,
+                               trailing_comma(text, end).value_or(builder.error)));
 }
 
 }  // namespace lightcone

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/spelling.hpp"
 
 namespace lightcone::scene_io {
 
@@ -80,9 +81,13 @@ void SceneValueReader::object(const Node& n, Names allowed, Names more,
         std::find(more.begin(), more.end(), key) != more.end())
       continue;
     const std::string path = json_member_path(n.path(), key);
+    std::vector<std::string_view> names(allowed.begin(), allowed.end());
+    names.insert(names.end(), more.begin(), more.end());
+    const std::optional<std::string_view> near = nearest_name(key, names);
     fail_at(path, lines_.key_line(path),
-            fmt::format("unknown key \"{}\"{} (expected one of: {})", json_member_path("", key),
-                        context, join(allowed, more)));
+            fmt::format("unknown key \"{}\"{} ({}expected one of: {})", json_member_path("", key),
+                        context, near ? fmt::format("did you mean \"{}\"? ", *near) : "",
+                        join(allowed, more)));
   }
 }
 
