@@ -53,6 +53,7 @@ Scene SceneReader::read(const json& document) {
   if (Node hole = member(root, "black_hole"); hole.value) hole_ = black_hole(hole);
   scene.black_hole = hole_;
   scene.camera = camera(member(root, "camera"));
+  observation_ = scene.camera.world_line;
   add_camera_observers(scene.camera);
   if (Node objects = member(root, "objects"); objects.value) {
     read_objects(objects, scene);
@@ -287,8 +288,8 @@ void SceneReader::read_lights(const Node& n, Scene& scene) {
 }
 
 Object SceneReader::read_object(const Node& n, std::size_t index) {
-  object(n, {"name", "shape", "position", "time", "velocity", "motion", "spin", "rotation", "scale",
-             "material"});
+  object(n, {"name", "shape", "position", "time", "seen_at", "velocity", "motion", "spin",
+             "rotation", "scale", "material"});
   Object o;
   const Node name = member(n, "name");
   o.name = string(name);
@@ -303,6 +304,15 @@ Object SceneReader::read_object(const Node& n, std::size_t index) {
   } else if (motion_node.value) {
     if (hole_) refuse_near_hole(motion_node, "motion (phases or keyframes) of an object");
     o.motion = body_motion(n, motion_node, o.world_line);
+  }
+  if (Node seen = member(n, "seen_at"); seen.value) {
+    for (const char* key : {"position", "time"})
+      if (member(n, key).value)
+        fail(seen, fmt::format("replaces \"position\" and \"time\": give \"{}\" or \"seen_at\", "
+                               "not both",
+                               key));
+    if (hole_) refuse_near_hole(seen, "placing a body where it is seen");
+    place_where_seen(o.world_line, o.motion, observation_, vec3(seen));
   }
   if (hole_ && !o.motion.geodesic) check_line_near_hole(n, o.world_line, "object");
   if (Node r = member(n, "rotation"); r.value) o.rotation = rotation(r);

@@ -142,6 +142,7 @@ class SceneReader : public SceneValueReader {
   void check_albedo(const Asset& a, const Image& image) const;
 
   std::optional<BlackHole> hole_;  // read before the camera, objects and lights
+  WorldLine observation_;          // the camera's, read before the objects (for "seen_at")
   std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
   SceneLoadReport& report_;
   const SceneLoadOptions options_;

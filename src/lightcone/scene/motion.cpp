@@ -188,6 +188,16 @@ std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
   return nullptr;
 }
 
+void place_where_seen(WorldLine& start, BodyMotion& motion, const WorldLine& observation,
+                      const Vec3& seen) {
+  const double emitted = observation.time - length(seen - observation.position);
+  const std::unique_ptr<TimelikeWorldLine> line = body_world_line(start, motion);
+  const Vec3 there = line ? line->at_world_time(emitted).event.x : start.position_at(emitted);
+  const Vec3 shift = seen - there;
+  start.position = start.position + shift;
+  for (Keyframe& key : motion.keyframes) key.position = key.position + shift;
+}
+
 double relative_gamma(const Vec4& observer, const Vec4& u) {
   return observer.t * u.t - dot(observer.x, u.x);
 }

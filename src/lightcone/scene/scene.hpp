@@ -403,6 +403,14 @@ HoleWorldLine hole_world_line(const Object& object, const BlackHole& hole);
 std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
                                                    const BodyMotion& motion);
 
+// A body placed by where it is seen (an object's "seen_at"): its world-line, start and motion,
+// moved in space so that from the camera's observation event its origin is seen where a point
+// at rest in W at `seen` is seen. That light left `seen` at W time observation.time - |seen -
+// observation.position| (c = 1), so the moved origin passes through `seen` then; it works alike
+// for inertial, accelerated and keyframed motion. Not near a black hole (light bends there).
+void place_where_seen(WorldLine& start, BodyMotion& motion, const WorldLine& observation,
+                      const Vec3& seen);
+
 // The camera's observation event and velocity `later` units of its proper time after the one
 // its world_line holds: along its motion (phases or keyframes), or inertially without one.
 WorldLine observation_after(const Camera& camera, double later);
