@@ -94,9 +94,37 @@ nlohmann::ordered_json to_json(const Vec3& v) {
   return nlohmann::json::array({v.x, v.y, v.z});
 }
 
+// Warnings on stderr for the bodies the camera does not see (bodies_out_of_view), at most ten
+// named, then a hint.
+void warn_out_of_view(const Scene& scene) {
+  const std::vector<BodyOutOfView> hidden = bodies_out_of_view(scene);
+  for (std::size_t k = 0; k < std::min<std::size_t>(hidden.size(), 10); ++k) {
+    const BodyOutOfView& b = hidden[k];
+    const Vec3& d = b.seen.direction;
+    if (b.behind)
+      std::fprintf(stderr,
+                   "lightcone: warning: object \"%s\" is seen behind the camera (look direction "
+                   "%.3g, %.3g, %.3g in the camera's frame)\n",
+                   b.name.c_str(), d.x, d.y, d.z);
+    else
+      std::fprintf(stderr,
+                   "lightcone: warning: object \"%s\" is seen out of view, at pixel (%.0f, %.0f) "
+                   "of %dx%d\n",
+                   b.name.c_str(), b.seen.pixel_x, b.seen.pixel_y, scene.camera.width,
+                   scene.camera.height);
+  }
+  if (hidden.size() > 10)
+    std::fprintf(stderr, "lightcone: warning: and %zu more\n", hidden.size() - 10);
+  if (!hidden.empty())
+    std::fprintf(stderr,
+                 "lightcone: a moving body is seen where it was when its light left it; "
+                 "\"seen_at\" places a body by where it is seen (docs/scene-format.md)\n");
+}
+
 int run_check(const std::string& file, const std::vector<std::string>& overrides,
               const SceneLoadOptions& options) {
   const Scene scene = load(file, overrides, options);
+  warn_out_of_view(scene);
   std::printf(
       "%s: ok (%s, %s, %dx%d)\n", file.c_str(), counted(scene.objects.size(), "object").c_str(),
       counted(scene.lights.size(), "light").c_str(), scene.camera.width, scene.camera.height);
@@ -106,6 +134,7 @@ int run_check(const std::string& file, const std::vector<std::string>& overrides
 int run_info(const std::string& file, const std::vector<std::string>& overrides,
              const SceneLoadOptions& options, bool json) {
   const Scene scene = load(file, overrides, options);
+  warn_out_of_view(scene);
   const SceneInfo info = scene_info(scene);
   if (json) {
     nlohmann::ordered_json bodies = nlohmann::ordered_json::array();

@@ -246,7 +246,36 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
 }  // namespace
 
 LocateResult locate(const Scene& scene, const LocateQuery& query) {
+  return locate(scene, resolve_scene(scene), query);
+}
+
+std::vector<BodyOutOfView> bodies_out_of_view(const Scene& scene) {
+  std::vector<BodyOutOfView> out;
+  if (scene.black_hole) return out;
   const ResolvedScene r = resolve_scene(scene);
+  const CameraBasis& camera = r.camera;
+  const double ax = camera.tan_half_fov * camera.aspect, ay = camera.tan_half_fov;
+  // The view's four sides, by their inward unit normals.
+  const Vec3 sides[4] = {
+      normalize(camera.forward * ax + camera.right), normalize(camera.forward * ax - camera.right),
+      normalize(camera.forward * ay + camera.up), normalize(camera.forward * ay - camera.up)};
+  for (const Object& o : scene.objects) {
+    const bool moving = !o.motion.inertial() || o.world_line.velocity != Vec3{};
+    if (!moving) continue;  // placed where it is seen
+    const LocateResult seen = locate(scene, r, {LocateQuery::Kind::ObjectPoint, o.name, {}});
+    const double distance = seen.distance.value_or(0);
+    const double radius = origin_radius(o.shape, o.scale);
+    if (!(distance > radius)) continue;       // the camera may be within it
+    const double margin = radius / distance;  // the sine of the angle the ball subtends
+    const bool outside = std::any_of(std::begin(sides), std::end(sides), [&](const Vec3& n) {
+      return dot(seen.direction, n) < -margin;
+    });
+    if (outside) out.push_back({o.name, seen, dot(seen.direction, camera.forward) < 0});
+  }
+  return out;
+}
+
+LocateResult locate(const Scene& scene, const ResolvedScene& r, const LocateQuery& query) {
   if (r.hole) return locate_near_hole(scene, r, query);
   LocateResult result;
   if (query.kind == LocateQuery::Kind::SkyDirection) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/scene/scene.hpp"
 
@@ -48,6 +49,21 @@ struct LocateResult {
 
 // Throws std::invalid_argument when the named object does not exist.
 LocateResult locate(const Scene& scene, const LocateQuery& query);
+// The same with the scene resolved beforehand (resolve_scene(scene)).
+LocateResult locate(const Scene& scene, const ResolvedScene& resolved, const LocateQuery& query);
+
+// A moving body the camera does not see (flat spacetime): its origin is seen outside the view
+// by more than the angle its radius about the origin subtends at the distance its light
+// travelled, so none of it can be in view. For check's and info's warnings: a moving body
+// placed by `position` is seen where it was when its light left, which can be far from there
+// (a body at rest in W is seen where it is, so it is the user's framing, and not warned of).
+struct BodyOutOfView {
+  std::string name;
+  LocateResult seen;    // where its origin is seen
+  bool behind = false;  // in the half of the sky behind the camera
+};
+// Every such body; none near a black hole (whose images can be anywhere).
+std::vector<BodyOutOfView> bodies_out_of_view(const Scene& scene);
 
 // Near a black hole (the camera outside the horizon): the image of order k (0, 1, 2, ...) of a
 // point of a body, `rest_point` its offset from the body's origin in the body's rest frame
