@@ -154,6 +154,38 @@ TEST_F(Animate, VideosHaveTheCodecFramesSizeAndRateAskedForAndTheFrames) {
   EXPECT_TRUE(fs::is_regular_file(dir_ / "encoded.mp4"));
 }
 
+// A GIF for slides: scaled down to --gif-width (640 by default) when wider, and its frame
+// delays, whole hundredths of a second, within one of 1 / fps each and adding up to the rate
+// asked for (3, 4, 3, ... at 30 fps).
+TEST_F(Animate, GifsAreSizedForSlidesAndKeepTheRate) {
+  if (!have_program("ffmpeg") || !have_program("ffprobe"))
+    GTEST_SKIP() << "ffmpeg is not installed";
+  const fs::path gif = dir_ / "slide.gif";
+  const auto r = run_lightcone("animate " + quoted(scene("terrell.json")) +
+                               " --fps 30 --frames 0-29 --video " + quoted(gif) +
+                               " --width 200 --height 100 --samples 1 --gif-width 120 --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto probe = test::run_command(
+      "ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of "
+      "default=noprint_wrappers=1 " +
+      quoted(gif));
+  EXPECT_NE(probe.out.find("width=120\nheight=60"), std::string::npos) << probe.out;
+  // The delays of the graphic control extensions (0x21 0xf9 0x04, flags, delay LE).
+  const std::string bytes = bytes_of(gif);
+  std::vector<int> delays;
+  for (std::size_t k = bytes.find("\x21\xf9\x04"); k != std::string::npos && k + 5 < bytes.size();
+       k = bytes.find("\x21\xf9\x04", k + 1))
+    delays.push_back(static_cast<unsigned char>(bytes[k + 4]) |
+                     static_cast<unsigned char>(bytes[k + 5]) << 8);
+  ASSERT_EQ(delays.size(), 30u);
+  int total = 0;
+  for (const int d : delays) {
+    EXPECT_LE(std::abs(d - 100.0 / 30), 1.0) << d;
+    total += d;
+  }
+  EXPECT_LE(std::abs(total - 100), 1);  // one second, within a hundredth
+}
+
 TEST_F(Animate, BadInputIsRefusedAndWritesNothing) {
   const std::string rocket = quoted(scene("rocket.json"));
   const std::string png = quoted(dir_ / "f%d.png");

@@ -241,7 +241,8 @@ int run_animate(const AnimateArgs& a) {
   const Scene scene = load(a.scene, overrides, a.scene_options);
   require_drawable_near_black_hole(scene, a.scene, raster);
   const Camera& camera = scene.camera;
-  if (a.video) check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf);
+  if (a.video)
+    check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf, a.gif_width);
   if (raster)
     for (const std::string& difference : raster_differences(scene))
       std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
@@ -309,7 +310,8 @@ int run_animate(const AnimateArgs& a) {
 
   std::unique_ptr<VideoWriter> video;
   if (a.video)
-    video = std::make_unique<VideoWriter>(*a.video, camera.width, camera.height, a.fps, a.crf);
+    video = std::make_unique<VideoWriter>(*a.video, camera.width, camera.height, a.fps, a.crf,
+                                          a.gif_width);
 
   const long long count = last - first + 1;
   long long rendered = 0, skipped = 0, redone = 0;
@@ -506,8 +508,8 @@ int run_encode(const EncodeArgs& a) {
                  a.pattern.c_str(), missing, frames.size());
   const std::string opening_name = pattern.name(frames.front());
   const std::shared_ptr<Image> opening = load_image_file(opening_name);
-  check_video("-o", a.output, opening->width, opening->height, a.fps, a.crf);
-  VideoWriter video(a.output, opening->width, opening->height, a.fps, a.crf);
+  check_video("-o", a.output, opening->width, opening->height, a.fps, a.crf, a.gif_width);
+  VideoWriter video(a.output, opening->width, opening->height, a.fps, a.crf, a.gif_width);
   ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::string name = pattern.name(frames[k]);

@@ -18,7 +18,7 @@ struct AnimateArgs {
   double fps = 30;
   std::string clock = "proper", renderer = "trace", tessellation = "auto";
   std::optional<int> width, height, samples;
-  int threads = 0, crf = 18;
+  int threads = 0, crf = 18, gif_width = 640;
   std::uint64_t seed = 0;
   std::vector<std::string> overrides;
   SceneLoadOptions scene_options;  // --allow-outside
@@ -30,7 +30,7 @@ struct EncodeArgs {
   std::string pattern, output;
   std::optional<std::string> frames;
   double fps = 30;
-  int crf = 18;
+  int crf = 18, gif_width = 640;
   bool quiet = false, allow_gaps = false;
 };
 int run_encode(const EncodeArgs& args);

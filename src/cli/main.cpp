@@ -497,6 +497,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"proper", "world"}));
   animate_cmd->add_option("--crf", animate.crf,
                           "Video quality, lower is better (default 18; 0 to 63)");
+  animate_cmd
+      ->add_option("--gif-width", animate.gif_width,
+                   "A GIF's width: wider frames are scaled down to it (default 640)")
+      ->check(CLI::Range(16, 16384));
   animate_cmd->add_flag("--resume", animate.resume,
                         "Keep frames whose files exist, decode and have the run's size; render "
                         "the rest");
@@ -527,6 +531,10 @@ int main(int argc, char** argv) {
   encode_cmd->add_option("--frames", encode.frames,
                          "Frames A-B (default: from the first to the last frame file there is)");
   encode_cmd->add_option("--crf", encode.crf, "Quality, lower is better (default 18)");
+  encode_cmd
+      ->add_option("--gif-width", encode.gif_width,
+                   "A GIF's width: wider frames are scaled down to it (default 640)")
+      ->check(CLI::Range(16, 16384));
   encode_cmd->add_flag("--allow-gaps", encode.allow_gaps,
                        "Encode the frames there are when some between the first and last are "
                        "missing (default: refuse, naming the first missing one)");

@@ -226,7 +226,7 @@ std::string require_program(const std::string& program, const std::string& neede
 }
 
 void check_video(const std::string& option, const fs::path& file, int width, int height, double fps,
-                 int crf) {
+                 int crf, int gif_width) {
   const std::optional<VideoFormat> format = video_format_of(file);
   if (!format)
     throw InputError(option + " " + file.string() +
@@ -249,7 +249,7 @@ void check_video(const std::string& option, const fs::path& file, int width, int
   // One black frame with the same settings, read back: whatever ffmpeg would refuse after
   // the last frame is refused before the first.
   try {
-    VideoWriter trial(file, width, height, fps, crf);
+    VideoWriter trial(file, width, height, fps, crf, gif_width);
     Image black;
     black.width = width;
     black.height = height;
@@ -266,7 +266,8 @@ void check_video(const std::string& option, const fs::path& file, int width, int
   }
 }
 
-VideoWriter::VideoWriter(const fs::path& file, int width, int height, double fps, int crf)
+VideoWriter::VideoWriter(const fs::path& file, int width, int height, double fps, int crf,
+                         int gif_width)
     : file_(file), width_(width), height_(height), fps_(fps) {
   static std::atomic<unsigned> counter{0};
   const VideoFormat format = *video_format_of(file);
@@ -292,9 +293,14 @@ VideoWriter::VideoWriter(const fs::path& file, int width, int height, double fps
     args.insert(args.end(), bt709.begin(), bt709.end());
     args.insert(args.end(), {"-f", "webm"});
   } else {
-    // One palette for the whole animation, dithered.
-    args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse",
-                             "-f", "gif"});
+    // Scaled down to gif_width where wider; one palette for the whole animation, dithered.
+    // (ffmpeg spreads the frame delays, whole hundredths of a second, so that they add up to
+    // the rate asked for: 3, 4, 3, ... at 30 fps.)
+    const std::string scale =
+        width > gif_width ? fmt::format("scale={}:-1:flags=lanczos,", gif_width) : "";
+    args.insert(args.end(),
+                {"-vf", scale + "split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse",
+                 "-f", "gif"});
   }
   args.push_back(temp_.string());
   std::signal(SIGPIPE, SIG_IGN);

@@ -35,14 +35,17 @@ std::string require_program(const std::string& program, const std::string& neede
 // it back, so that whatever ffmpeg would refuse is refused now. Throws InputError naming
 // `option`.
 void check_video(const std::string& option, const std::filesystem::path& file, int width,
-                 int height, double fps, int crf);
+                 int height, double fps, int crf, int gif_width);
 
 // One video being written: frames go to ffmpeg as they come; the file appears under its name
 // only when finish() has read back every frame from it (a failure, or destruction before
 // finish(), leaves the previous file, if any, untouched and removes the temporary one).
 class VideoWriter {
  public:
-  VideoWriter(const std::filesystem::path& file, int width, int height, double fps, int crf);
+  // `crf`: MP4 and WebM quality; `gif_width`: a GIF's frames are scaled down to this width
+  // when wider (the height in proportion), so that slides' GIFs stay small.
+  VideoWriter(const std::filesystem::path& file, int width, int height, double fps, int crf,
+              int gif_width);
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
@@ -64,7 +67,8 @@ class VideoWriter {
   int pipe_ = -1;
   pid_t child_ = -1;
   bool finished_ = false;
-  friend void check_video(const std::string&, const std::filesystem::path&, int, int, double, int);
+  friend void check_video(const std::string&, const std::filesystem::path&, int, int, double, int,
+                          int);
 };
 
 }  // namespace lightcone
