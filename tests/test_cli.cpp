@@ -1643,13 +1643,50 @@ TEST_F(CliTest, SeedsOutsideTheirRangeAreRefusedWithTheRange) {
   EXPECT_EQ(render(scene, "--quiet --seed 18446744073709551615").status, 0);
 }
 
-TEST_F(CliTest, PreviewIsAQuarterSizeOneSampleAutoExposure) {
+TEST_F(CliTest, PreviewIsAQuarterSizeOneSampleTheScenesExposure) {
   const fs::path scene = write_scene(kMovingScene);
   const CommandResult r = render(scene, "--preview --stats --quiet");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(read_png()->width, 16);
-  EXPECT_EQ(read_png()->height, 12);
+  const auto preview = read_png();
+  EXPECT_EQ(preview->width, 16);
+  EXPECT_EQ(preview->height, 12);
   EXPECT_EQ(nlohmann::json::parse(r.err).at("rays").get<int>(), 16 * 12);
+  // The same picture as a quarter-size render with one sample: the scene's exposure, not auto.
+  ASSERT_EQ(render(scene, "--scale 0.25 --samples 1 --quiet").status, 0);
+  EXPECT_EQ(test::fraction_differing(*preview, *read_png()), 0.0);
+}
+
+// --scale keeps the picture: half the size, with four times the samples, is the full-size
+// render averaged over 2x2 blocks, within the sampling noise of the checker's edges.
+TEST_F(CliTest, ScaleKeepsThePicture) {
+  const fs::path scene = write_scene(kMovingScene);
+  ASSERT_EQ(render(scene, "--width 128 --height 96 --samples 4 --quiet").status, 0);
+  const auto full = load_image_file(exr());
+  ASSERT_EQ(render(scene, "--width 128 --height 96 --scale 0.5 --samples 16 --quiet").status, 0);
+  const auto half = load_image_file(exr());
+  ASSERT_EQ(half->width, 64);
+  ASSERT_EQ(half->height, 48);
+  // The mean difference from the blocks `shift` full-size pixels to the right, over their mean.
+  const auto difference = [&](int shift) {
+    double sum = 0, level = 0;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 63; ++x)
+        for (int c = 0; c < 3; ++c) {
+          double block = 0;
+          for (int k = 0; k < 4; ++k)
+            block += full->rgb[3 * ((2 * y + k / 2) * 128 + 2 * x + shift + k % 2) + c] / 4;
+          sum += std::abs(half->rgb[3 * (y * 64 + x) + c] - block);
+          level += block;
+        }
+    return sum / level;
+  };
+  std::printf("--scale 0.5 against 2x2 blocks: %.4f; one pixel over: %.4f\n", difference(0),
+              difference(1));
+  EXPECT_LT(difference(0), 0.05);
+  EXPECT_GT(difference(1), 2 * difference(0));  // the comparison sees a picture moved
+  fs::remove(png());
+  fs::remove(exr());
+  expect_rejected(render(scene, "--scale 0"), "--scale 0: ", {"must be above 0"});
 }
 
 TEST_F(CliTest, CheckValidatesWithoutRendering) {

@@ -238,7 +238,11 @@ int run_animate(const AnimateArgs& a) {
   check_frame_targets(patterns, first, last);
   const bool raster = a.renderer == "raster";
 
-  const Scene scene = load(a.scene, overrides, a.scene_options);
+  const Scene scene = [&] {
+    Scene s = load(a.scene, overrides, a.scene_options);
+    if (a.scale) scale_image_size(s.camera, *a.scale);
+    return s;
+  }();
   require_drawable_near_black_hole(scene, a.scene, raster);
   const Camera& camera = scene.camera;
   if (a.video)

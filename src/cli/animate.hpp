@@ -18,6 +18,7 @@ struct AnimateArgs {
   double fps = 30;
   std::string clock = "proper", renderer = "trace", tessellation = "auto";
   std::optional<int> width, height, samples;
+  std::optional<double> scale;
   int threads = 0, crf = 18, gif_width = 640;
   std::uint64_t seed = 0;
   std::vector<std::string> overrides;

@@ -120,6 +120,18 @@ bool same_file(const std::string& a, const std::string& b) {
   return pa == pb;
 }
 
+void scale_image_size(Camera& camera, double factor) {
+  const double width = std::round(camera.width * factor),
+               height = std::round(camera.height * factor);
+  if (!(factor > 0) || !(width <= 16384 && height <= 16384))
+    throw InputError(
+        fmt::format("--scale {}: must be above 0 and make at most 16384 pixels a side "
+                    "(the scene is {}x{})",
+                    factor, camera.width, camera.height));
+  camera.width = std::max(1, static_cast<int>(width));
+  camera.height = std::max(1, static_cast<int>(height));
+}
+
 std::string counted(std::size_t count, const std::string& noun) {
   return fmt::format("{} {}{}", count, noun, count == 1 ? "" : "s");
 }

@@ -64,6 +64,11 @@ void require_writable_target(const std::string& option, const std::string& path)
 // Whether two paths name the same file.
 bool same_file(const std::string& a, const std::string& b);
 
+// --scale F: the camera's width and height times F (rounded, at least 1), the same view (the
+// vertical field of view is kept, and the aspect as nearly as whole pixels allow). F must be
+// above 0 and make at most 16384 pixels a side (InputError otherwise).
+void scale_image_size(Camera& camera, double factor);
+
 // "1 sample", "4 samples": a count and its noun, singular or plural.
 std::string counted(std::size_t count, const std::string& noun);
 

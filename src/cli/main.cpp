@@ -416,8 +416,11 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--map", render.map,
                          "Write a colour-mapped picture of doppler, emission_time, distance, "
                          "object or depth (with a scale bar) instead of the render");
+  render_cmd->add_option("--scale", render.scale,
+                         "Scale the image size by this factor, keeping the picture (0.5: half the "
+                         "width and height)");
   render_cmd->add_flag("--preview", render.preview,
-                       "Quick look: a quarter of the size, 1 sample, automatic exposure");
+                       "Quick look: a quarter of the size, 1 sample, the scene's exposure");
   render_cmd->add_option("--set", render.overrides, "Override a scene value: key.path=value");
   render_cmd->add_flag("--allow-outside", render.scene_options.mesh.allow_outside,
                        kAllowOutsideHelp);
@@ -511,6 +514,8 @@ int main(int argc, char** argv) {
   animate_cmd->add_option("--width", animate.width, "Override camera.width");
   animate_cmd->add_option("--height", animate.height, "Override camera.height");
   animate_cmd->add_option("--samples", animate.samples, "Override camera.samples");
+  animate_cmd->add_option("--scale", animate.scale,
+                          "Scale the image size by this factor, keeping the picture");
   animate_cmd->add_option("--threads", animate.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(0, 4096));
   animate_cmd->add_option("--seed", animate.seed, "Seed of the sample pattern: 0 to 2^64 - 1")

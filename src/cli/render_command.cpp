@@ -121,10 +121,7 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
-  if (a.preview) {
-    overrides.push_back("camera.samples=1");
-    overrides.push_back("render.exposure=\"auto\"");
-  }
+  if (a.preview) overrides.push_back("camera.samples=1");
 
   Scene scene = [&] {
     try {
@@ -146,10 +143,8 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
       require_drawable_near_black_hole(scene, a.scene, false,
                                        ("the output variable " + aov_name(aov)).c_str());
   require_drawable_near_black_hole(scene, a.scene, out.raster);
-  if (a.preview) {  // a quarter of the size, the same view
-    scene.camera.width = std::max(1, scene.camera.width / 4);
-    scene.camera.height = std::max(1, scene.camera.height / 4);
-  }
+  if (a.scale) scale_image_size(scene.camera, *a.scale);
+  if (a.preview) scale_image_size(scene.camera, 0.25);  // a quarter of the size, the same view
   return scene;
 }
 

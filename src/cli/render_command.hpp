@@ -16,6 +16,7 @@ struct RenderArgs {
   std::string scene, output, renderer = "trace", tessellation = "auto";
   std::optional<std::string> exr, crop, aov, map;
   std::optional<int> width, height, samples;
+  std::optional<double> scale;
   int threads = 0;
   std::uint64_t seed = 0;
   std::vector<std::string> overrides;
