@@ -345,10 +345,6 @@ int run_view(const ViewArgs& a) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 // " (did you mean --samples for --sample?)": the nearest option of `command` for each word of the
 // command line that looks like an option and is none of its.
 std::string option_suggestions(const CLI::App& command, int argc, char** argv) {
