@@ -361,7 +361,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     }
     tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
       tessellate(resolved, body_view(resolved, resolved.bodies[draws[d].body]), *draws[d].mesh,
-                 limits, parts[d], draws[d].face_uvs ? &uv_parts[d] : nullptr);
+                 limits, parts[d], draws[d].face_uvs ? &uv_parts[d] : nullptr, draws[d].hidden);
     });
     std::size_t total = 0;
     for (const std::size_t d : order) {
@@ -371,8 +371,12 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       uv_maps.insert(uv_maps.end(), uv_parts[d].begin(), uv_parts[d].end());
     }
     glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total * kFloatsPerVertex * sizeof(float)),
-                 nullptr, GL_STATIC_DRAW);
+    const std::size_t bytes = total * kFloatsPerVertex * sizeof(float);
+    if (bytes > vertex_buffer_bytes) {
+      vertex_buffer_bytes = bytes + bytes / 4;  // room for the next frames' changes
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertex_buffer_bytes), nullptr,
+                   GL_DYNAMIC_DRAW);
+    }
     for (std::size_t d = 0; d < draws.size(); ++d)
       if (!parts[d].empty())
         glBufferSubData(

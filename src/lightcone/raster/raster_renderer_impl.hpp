@@ -91,6 +91,9 @@ struct RasterRenderer::Impl {
   GLuint face_uv_buffer = 0;
   GLuint vertex_array = 0, vertex_buffer = 0, rows_texture = 0, offsets_texture = 0,
          tables_texture = 0;
+  // The vertex buffer's size in bytes. It only grows: a store made anew each frame costs a
+  // software driver fresh pages (a fault each) for every vertex.
+  std::size_t vertex_buffer_bytes = 0;
   // The lights' parameters, a row each (lighting.glsl's Lamp), and the lit bodies' reflection
   // rows (lighting.glsl's reflection_index).
   GLuint light_table_texture = 0, reflection_index_texture = 0;

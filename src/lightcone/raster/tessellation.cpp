@@ -256,6 +256,7 @@ struct FlatSeeing {
   const TessellationLimits& limits;
   std::vector<float>& out;
   std::vector<float>* uv_maps;
+  HiddenFaces hidden;
   std::array<float, 4> plane{};   // of the untessellated triangle being split
   std::array<float, 8> uv_map{};  // and its texture coordinates' map, where asked for
 
@@ -265,6 +266,7 @@ struct FlatSeeing {
     return edge_error_pixels(scene.camera, a.seen, b.seen, middle.seen) > limits.max_error_pixels;
   }
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
+    if (culled(a.seen.position, b.seen.position, c.seen.position)) return;
     for (const Corner* k : {&a, &b, &c})
       out.insert(out.end(),
                  {static_cast<float>(k->seen.drawn.x), static_cast<float>(k->seen.drawn.y),
@@ -272,6 +274,17 @@ struct FlatSeeing {
     if (uv_maps)
       for (int corner = 0; corner < 3; ++corner)
         uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
+  }
+  // Whether the rasteriser culls the triangle drawn through these apparent positions. Its
+  // winding in the window is the side of its plane the camera (the origin) lies on, clipped or
+  // not: counter-clockwise where det(a, b, c) < 0 (x right, y up, the camera looking along -z).
+  // Only a triangle clearly turned away is left out; one nearly edge-on (a sliver the float
+  // positions might turn either way) is left to the rasteriser.
+  bool culled(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    if (hidden == HiddenFaces::kNone) return false;
+    const Vec3 n = cross(b - a, c - a);
+    const double det = dot(n, a), margin = 1e-6 * length(n) * length(a);
+    return hidden == HiddenFaces::kBack ? det > margin : det < -margin;
   }
 };
 
@@ -300,8 +313,8 @@ std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
 
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out,
-                std::vector<float>* uv_maps) {
-  FlatSeeing seeing{scene, view, limits, out, uv_maps};
+                std::vector<float>* uv_maps, HiddenFaces hidden) {
+  FlatSeeing seeing{scene, view, limits, out, uv_maps, hidden};
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   // Each of the mesh's own vertices is seen once, whatever the number of its triangles, and each
   // of its edges decided once, whatever the number of its triangles.

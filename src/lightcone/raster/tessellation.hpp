@@ -115,9 +115,10 @@ std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
 // untessellated triangle it lies in (unit normal, offset), seven floats; and where `uv_maps` is
 // given, to it the texture coordinates' map of that triangle (triangle_uv_map, zero for a mesh
 // without them), eight floats a vertex. Each edge's split depends only on its own ends and
-// level, so neighbouring triangles agree (no cracks).
+// level, so neighbouring triangles agree (no cracks). Triangles that the rasteriser would cull as
+// `hidden` (hidden_faces) are left out, so that no vertex is shaded for them.
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out,
-                std::vector<float>* uv_maps = nullptr);
+                std::vector<float>* uv_maps = nullptr, HiddenFaces hidden = HiddenFaces::kNone);
 
 }  // namespace lightcone
