@@ -531,6 +531,22 @@ TEST(RasterTessellation, OnlyHiddenFacesAreSkipped) {
   }
   // Off by more only along the boxes' outlines and the checkers' edges.
   EXPECT_GE(static_cast<double>(close) / (traced.rgb.size() / 3), 0.97);
+
+  // The CPU tessellation leaves the hidden triangles out (no vertex is shaded for them): a box
+  // seen from outside shows at most three faces, so at most half its triangles are kept, and
+  // those turned each way together are all of them.
+  for (std::size_t body = 0; body < 2; ++body) {
+    const RestMesh mesh = rest_mesh(resolved.bodies[body].object->shape);
+    const BodyView view = body_view(resolved, resolved.bodies[body]);
+    std::vector<float> all, back, front;
+    tessellate(resolved, view, mesh, TessellationLimits{}, all);
+    tessellate(resolved, view, mesh, TessellationLimits{}, back, nullptr, HiddenFaces::kBack);
+    tessellate(resolved, view, mesh, TessellationLimits{}, front, nullptr, HiddenFaces::kFront);
+    const std::size_t kept = (hidden(body) == HiddenFaces::kBack ? back : front).size();
+    EXPECT_GT(kept, 0u) << body;
+    EXPECT_LE(kept, all.size() / 2) << body;
+    EXPECT_EQ(back.size() + front.size(), all.size()) << body;
+  }
 }
 
 TEST(RasterRelativity, TheSameSceneFromAnotherFrameRendersTheSameImage) {
