@@ -692,7 +692,7 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        shader_sources::body_projection_glsl},
       {"hole_body.frag", shader_sources::hole_body_frag, true, patterns.c_str()},
       {"fullscreen.vert", shader_sources::fullscreen_vert, false},
-      {"display.frag", shader_sources::display_frag, true},
+      {"display.frag", shader_sources::display_frag, true, shader_sources::tone_map_glsl},
       {"sky.frag", shader_sources::sky_frag, true},
       {"sky-image.frag", shader_sources::sky_frag, true, "", "#define LIGHTCONE_SKY_IMAGE 1\n"},
       {"sky-hole.frag", shader_sources::sky_frag, true, shader_sources::black_hole_glsl,

@@ -10,7 +10,8 @@
 namespace lightcone {
 namespace {
 
-double luminance(const float* rgb) {
+template <class T>
+double luminance(const T* rgb) {
   return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
 }
 
@@ -19,6 +20,26 @@ float clamp01(double v) {
 }
 
 }  // namespace
+
+double filmic_curve(double y) {
+  y = std::max(0.0, y);
+  return std::min(1.0, y * (2.51 * y + 0.03) / (y * (2.43 * y + 0.59) + 0.14));
+}
+
+void filmic_on_luminance(float* rgb) {
+  double c[3];
+  for (int k = 0; k < 3; ++k) c[k] = std::isnan(rgb[k]) ? 0.0 : std::max(0.0f, rgb[k]);
+  const double y = luminance(c), top = std::max({c[0], c[1], c[2]});
+  if (!(y > 0) || !std::isfinite(top)) {
+    for (int k = 0; k < 3; ++k) rgb[k] = y > 0 ? 1.0f : 0.0f;
+    return;
+  }
+  // The curve on the luminance, unless that would push the largest channel further up the
+  // curve than the curve itself takes it: a saturated colour then follows its largest channel,
+  // so that it reaches 1 only where a grey as bright would.
+  const double scale = std::min(filmic_curve(y) / y, filmic_curve(top) / top);
+  for (int k = 0; k < 3; ++k) rgb[k] = clamp01(c[k] * scale);
+}
 
 double auto_exposure(const Image& linear) {
   const std::size_t pixels = linear.rgb.size() / 3;
@@ -55,10 +76,7 @@ Image tone_map(const Image& linear, ToneMap curve) {
           break;
         }
         case ToneMap::kFilmic:
-          for (int k = 0; k < 3; ++k) {
-            const double x = std::max(0.0f, c[k]);
-            c[k] = clamp01(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14));
-          }
+          filmic_on_luminance(c);
           break;
       }
     }

@@ -17,8 +17,18 @@ double apply_exposure(Image& linear, const RenderSettings& settings);
 // Display-referred linear values in [0, 1] (the PNG then applies the sRGB curve):
 //   clamp:    min(max(L, 0), 1) per channel;
 //   reinhard: L / (1 + Y) on the luminance Y, so hue is kept while highlights compress;
-//   filmic:   the ACES filmic fit of Narkowicz (2015) per channel,
-//             x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14).
+//   filmic:   filmic_on_luminance.
 Image tone_map(const Image& linear, ToneMap curve);
+
+// The ACES filmic fit of Narkowicz (2015), y (2.51 y + 0.03) / (y (2.43 y + 0.59) + 0.14), at
+// most 1 (the fit itself tends to 1.033).
+double filmic_curve(double y);
+
+// The filmic curve on a pixel's luminance Y, so that its hue and saturation are kept: the
+// colour is scaled by min(f(Y) / Y, f(M) / M), f the filmic curve and M the largest channel.
+// The second bound keeps a saturated colour from clipping long before a grey of its luminance
+// would: its largest channel reaches 1 only where f does (M about 7.2). Per channel, the curve
+// would turn a bright red toward orange and a blue toward cyan, a false Doppler shift.
+void filmic_on_luminance(float* rgb);
 
 }  // namespace lightcone

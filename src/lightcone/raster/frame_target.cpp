@@ -67,7 +67,8 @@ DisplayPass::DisplayPass() {
   program_ = link_program(std::string("#version 330 core\n") + shader_sources::common_glsl +
                               shader_sources::fullscreen_vert,
                           std::string("#version 330 core\n#define LIGHTCONE_FRAGMENT_STAGE 1\n") +
-                              shader_sources::common_glsl + shader_sources::display_frag);
+                              shader_sources::common_glsl + shader_sources::tone_map_glsl +
+                              shader_sources::display_frag);
   glGenVertexArrays(1, &vertex_array_);
   check_gl("creating the display pass");
 }

@@ -22,6 +22,7 @@ extern const char* const black_hole_glsl;
 extern const char* const star_vert;
 extern const char* const star_frag;
 extern const char* const star_filter_glsl;
+extern const char* const tone_map_glsl;
 extern const char* const baseline_vert;
 extern const char* const baseline_frag;
 extern const char* const shadow_vert;
