@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "support/test_support.hpp"
@@ -59,7 +60,7 @@ const std::string kScene = R"({
     }
   ],
   "sky": {"color": [0, 0, 1]},
-  "render": {"exposure": 0}
+  "render": {"exposure": 0, "tonemap": "clamp"}
 }
 )";
 
@@ -243,8 +244,8 @@ TEST_F(CliTest, BadColourValuesNameFileLineAndPathAndWriteNothing) {
        "unknown model \"rgb\""},
       {"unknown searchlight model", render_line, "\"searchlight\": \"chang\"", 19,
        "render.searchlight", "unknown model \"chang\""},
-      {"unknown tone curve", render_line, "\"tonemap\": \"aces\"", 19, "render.tonemap",
-       "unknown model \"aces\""},
+      {"unknown tone curve", "\"tonemap\": \"clamp\"", "\"tonemap\": \"aces\"", 19,
+       "render.tonemap", "unknown model \"aces\""},
       {"exposure neither a number nor auto", render_line, "\"exposure\": \"bright\"", 19,
        "render.exposure", "must be a number (EV) or \"auto\""},
   };
@@ -853,7 +854,8 @@ TEST_F(CliTest, PngAndExrValueContract) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE("exposure " + c.exposure);
-    const CommandResult r = render(scene, "--set render.exposure=" + c.exposure);
+    const CommandResult r =
+        render(scene, "--set render.exposure=" + c.exposure + " --set render.tonemap=clamp");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto png_image = read_png();
     const auto exr_image = read_exr();
@@ -891,8 +893,9 @@ void expect_uniform(const Image& png_image, const Image& exr_image, int png, flo
 TEST_F(CliTest, ToneCurvesApplyToThePngOnly) {
   const std::string white = "[1, 1, 1]";
   {
-    SCOPED_TRACE("clamp (the default)");
-    const fs::path scene = write_scene(uniform_wall(white, R"({"doppler": "off"})"));
+    SCOPED_TRACE("clamp");
+    const fs::path scene = write_scene(
+        uniform_wall(white, R"({"doppler": "off", "exposure": 0, "tonemap": "clamp"})"));
     const CommandResult r = render(scene);
     ASSERT_EQ(r.status, 0) << r.err;
     expect_uniform(*read_png(), *read_exr(), 255, 1.0f);
@@ -902,44 +905,48 @@ TEST_F(CliTest, ToneCurvesApplyToThePngOnly) {
     SCOPED_TRACE("reinhard");
     const int expected = static_cast<int>(std::lround(255 * srgb_encode(1.0 / (1 + 1))));
     ASSERT_EQ(expected, 188);
-    const fs::path scene =
-        write_scene(uniform_wall(white, R"({"doppler": "off", "tonemap": "reinhard"})"));
+    const fs::path scene = write_scene(
+        uniform_wall(white, R"({"doppler": "off", "exposure": 0, "tonemap": "reinhard"})"));
     const CommandResult r = render(scene);
     ASSERT_EQ(r.status, 0) << r.err;
     expect_uniform(*read_png(), *read_exr(), expected, 1.0f);
   }
   {
-    SCOPED_TRACE("filmic");
+    SCOPED_TRACE("filmic (a scene file's default)");
     auto filmic = [](double x) { return x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14); };
     const int expected = static_cast<int>(std::lround(255 * srgb_encode(filmic(1))));
     ASSERT_NE(expected, 255);
     ASSERT_NE(expected, 188);
-    const fs::path scene =
-        write_scene(uniform_wall(white, R"({"doppler": "off", "tonemap": "filmic"})"));
+    const fs::path scene = write_scene(uniform_wall(white, R"({"doppler": "off", "exposure": 0})"));
     const CommandResult r = render(scene);
     ASSERT_EQ(r.status, 0) << r.err;
     expect_uniform(*read_png(), *read_exr(), expected, 1.0f);
   }
 }
 
-// "exposure": "auto" brings the 95th percentile of pixel luminance to 0.8.
+// "exposure": "auto" (a scene file's default) brings the upper quartile of the moving bodies'
+// luminance (of the whole picture's, where none moves) to 0.5, unless the brightest 2 % would
+// then pass the luminance the tone curve shows as 0.9.
 TEST_F(CliTest, AutomaticExposure) {
-  const int png_08 = static_cast<int>(std::lround(255 * srgb_encode(0.8)));
+  const auto expect_exr = [](const Image& image, float value) {
+    for (std::size_t i = 0; i < image.rgb.size(); ++i)
+      ASSERT_NEAR(image.rgb[i], value, 1e-6f) << "value " << i;
+  };
   {
-    // Grey 0.2 has luminance 0.2: exposure log2(0.8 / 0.2) = 2.
     SCOPED_TRACE("uniform grey 0.2");
-    const fs::path scene =
-        write_scene(uniform_wall("[0.2, 0.2, 0.2]", R"({"doppler": "off", "exposure": "auto"})"));
+    const fs::path scene = write_scene(uniform_wall("[0.2, 0.2, 0.2]", R"({"doppler": "off"})"));
     const CommandResult r = render(scene);
     ASSERT_EQ(r.status, 0) << r.err;
-    expect_uniform(*read_png(), *read_exr(), png_08, 0.8f, 1e-6f);
+    expect_exr(*read_exr(), 0.5f);
+    // Shown through the filmic curve.
+    const int png = static_cast<int>(std::lround(255 * srgb_encode(filmic_curve(0.5))));
+    for (const float v : read_png()->rgb) ASSERT_EQ(png_byte(v), png);
   }
   {
-    // A few very bright pixels (fewer than 5%) are above the 95th percentile: they clip, and the
-    // wall is still brought to 0.8.
+    // A few very bright pixels (2 % of 192) do not set it: they clip, and the wall is still
+    // brought to 0.5.
     SCOPED_TRACE("grey 0.2 with a small bright ball");
-    const std::string wall =
-        uniform_wall("[0.2, 0.2, 0.2]", R"({"doppler": "off", "exposure": "auto"})");
+    const std::string wall = uniform_wall("[0.2, 0.2, 0.2]", R"({"doppler": "off"})");
     const fs::path scene = write_scene(edited(wall, "\"objects\": [{",
                                               "\"objects\": [{\"name\": \"spark\", "
                                               "\"shape\": {\"sphere\": {\"radius\": 0.3}}, "
@@ -954,18 +961,17 @@ TEST_F(CliTest, AutomaticExposure) {
         ++bright_pixels;
       } else {
         ++wall_pixels;
-        EXPECT_NEAR(exr_image->rgb[i], 0.8f, 1e-6f) << "pixel " << i / 3;
+        EXPECT_NEAR(exr_image->rgb[i], 0.5f, 1e-6f) << "pixel " << i / 3;
       }
     }
-    EXPECT_EQ(bright_pixels, 4);  // the four around the centre; fewer than 5% of 192
+    EXPECT_EQ(bright_pixels, 4);  // the four around the centre
     EXPECT_EQ(wall_pixels + bright_pixels, 16 * 12);
   }
   {
-    // Left half 0.1, right half 0.4: the 95th percentile is on the right (a median would be on
-    // the left), so the right half goes to 0.8 and the left to 0.2.
+    // Left half 0.1, right half 0.4: the upper quartile is on the right (a median would be
+    // anywhere between), so the right half goes to 0.5 and the left to 0.125.
     SCOPED_TRACE("two halves");
-    const std::string wall =
-        uniform_wall("[0.4, 0.4, 0.4]", R"({"doppler": "off", "exposure": "auto"})");
+    const std::string wall = uniform_wall("[0.4, 0.4, 0.4]", R"({"doppler": "off"})");
     const fs::path scene = write_scene(edited(
         edited(wall, "\"position\": [0, 0, -5]", "\"position\": [500, 0, -5]"), "\"objects\": [{",
         "\"objects\": [{\"name\": \"left\", "
@@ -976,23 +982,56 @@ TEST_F(CliTest, AutomaticExposure) {
     const auto exr_image = read_exr();
     for (int y = 0; y < 12; ++y)
       for (int x = 0; x < 16; ++x)
-        EXPECT_NEAR(pixel(*exr_image, x, y).g, x < 8 ? 0.2f : 0.8f, 1e-6f) << x << "," << y;
+        EXPECT_NEAR(pixel(*exr_image, x, y).g, x < 8 ? 0.125f : 0.5f, 1e-6f) << x << "," << y;
   }
   {
     // The luminance is Y of linear sRGB: green 0.5 has Y = 0.7152 * 0.5.
     SCOPED_TRACE("green");
-    const fs::path scene =
-        write_scene(uniform_wall("[0, 0.5, 0]", R"({"doppler": "off", "exposure": "auto"})"));
+    const fs::path scene = write_scene(uniform_wall("[0, 0.5, 0]", R"({"doppler": "off"})"));
     const CommandResult r = render(scene);
     ASSERT_EQ(r.status, 0) << r.err;
     const auto exr_image = read_exr();
     for (int y = 0; y < 12; ++y)
       for (int x = 0; x < 16; ++x) {
         const Rgb c = pixel(*exr_image, x, y);
-        EXPECT_NEAR(c.g, 0.8 / 0.7152, 1e-6) << x << "," << y;
+        EXPECT_NEAR(c.g, 0.5 / 0.7152, 1e-6) << x << "," << y;
         EXPECT_EQ(c.r, 0.0f);
         EXPECT_EQ(c.b, 0.0f);
       }
+  }
+  {
+    // A moving ball (0.05, colours kept: Doppler and searchlight off) before a wall at rest
+    // (0.02): the ball is the subject, brought to 0.5, and the wall follows to 0.2; the whole
+    // picture's upper quartile would have been the wall's.
+    SCOPED_TRACE("a moving ball before a wall at rest");
+    const std::string wall =
+        uniform_wall("[0.02, 0.02, 0.02]", R"({"doppler": "off", "searchlight": "off"})");
+    const fs::path scene = write_scene(edited(wall, "\"objects\": [{",
+                                              "\"objects\": [{\"name\": \"ball\", "
+                                              "\"shape\": {\"sphere\": {\"radius\": 1}}, "
+                                              "\"position\": [0, 0, -3], \"time\": -3, "
+                                              "\"velocity\": [0.5, 0, 0], "
+                                              "\"material\": {\"color\": [0.05, 0.05, 0.05]}}, {"));
+    const CommandResult r = render(scene);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto exr_image = read_exr();
+    float lowest = 1e9f, highest = 0;
+    for (std::size_t i = 0; i < exr_image->rgb.size(); i += 3)
+      lowest = std::min(lowest, exr_image->rgb[i]), highest = std::max(highest, exr_image->rgb[i]);
+    EXPECT_NEAR(highest, 0.5f, 1e-5f);
+    EXPECT_NEAR(lowest, 0.2f, 1e-5f);
+    // Before a brighter wall (0.2), under clamp: the ball would take the wall to 2, so the
+    // wall, more than 2 % of the picture, is held at 0.9 and the ball shows at 0.225.
+    const fs::path bright = write_scene(
+        edited(edited(read_text(scene), "[0.02, 0.02, 0.02]", "[0.2, 0.2, 0.2]"),
+               "\"searchlight\": \"off\"", "\"searchlight\": \"off\", \"tonemap\": \"clamp\""));
+    ASSERT_EQ(render(bright).status, 0);
+    const auto held = read_exr();
+    lowest = 1e9f, highest = 0;
+    for (std::size_t i = 0; i < held->rgb.size(); i += 3)
+      lowest = std::min(lowest, held->rgb[i]), highest = std::max(highest, held->rgb[i]);
+    EXPECT_NEAR(highest, 0.9f, 1e-5f);
+    EXPECT_NEAR(lowest, 0.225f, 1e-5f);
   }
 }
 

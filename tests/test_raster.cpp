@@ -549,6 +549,22 @@ TEST(RasterTessellation, OnlyHiddenFacesAreSkipped) {
   }
 }
 
+// The automatic exposure finds the same subject in both renderers (the bodies moving relative
+// to the camera: body.frag's alpha, the tracer's hits), so both expose a picture alike.
+TEST(RasterExposure, BothRenderersExposeForTheSameSubject) {
+  for (const char* name : {"terrell.json", "wheel.json"}) {
+    SCOPED_TRACE(name);
+    Scene scene = test::load_repository_scene(name);
+    scene.render.auto_exposure = true;  // (wheel.json gives its own)
+    scene.camera.width /= 4, scene.camera.height /= 4;
+    RenderStats traced;
+    RasterStats drawn;
+    render_image(scene, {}, &traced);
+    render_raster(scene, &drawn);
+    EXPECT_NEAR(drawn.exposure, traced.exposure, 0.05);
+  }
+}
+
 TEST(RasterRelativity, TheSameSceneFromAnotherFrameRendersTheSameImage) {
   Scene scene;
   scene.camera.width = 160;

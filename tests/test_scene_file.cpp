@@ -363,12 +363,25 @@ TEST_F(SceneFileTest, DefaultsAreTheDocumentedOnes) {
   expect_vec(s.sky.velocity, 0, 0, 0);
   EXPECT_TRUE(s.render.relativity);
   EXPECT_TRUE(s.render.light_delay);
-  EXPECT_EQ(s.render.exposure, 0);
-  EXPECT_FALSE(s.render.auto_exposure);
+  // A scene file's picture is exposed for its moving bodies and shown through the filmic curve;
+  // a scene built in code keeps its radiance as it is.
+  EXPECT_TRUE(s.render.auto_exposure);
   EXPECT_EQ(s.render.doppler, DopplerModel::kSpectral);
   EXPECT_EQ(s.render.searchlight, SearchlightModel::kPhysical);
   EXPECT_FALSE(s.render.hue_loop);
-  EXPECT_EQ(s.render.tonemap, ToneMap::kClamp);
+  EXPECT_EQ(s.render.tonemap, ToneMap::kFilmic);
+  EXPECT_FALSE(RenderSettings{}.auto_exposure);
+  EXPECT_EQ(RenderSettings{}.exposure, 0);
+  EXPECT_EQ(RenderSettings{}.tonemap, ToneMap::kClamp);
+  // Those defaults hold with a render section that does not name them, and a number given
+  // turns the automatic exposure off.
+  const Scene partial =
+      load(R"({"camera": {"position": [0, 0, 0]}, "render": {"shadows": false}})");
+  EXPECT_TRUE(partial.render.auto_exposure);
+  EXPECT_EQ(partial.render.tonemap, ToneMap::kFilmic);
+  const Scene fixed = load(R"({"camera": {"position": [0, 0, 0]}, "render": {"exposure": -1}})");
+  EXPECT_FALSE(fixed.render.auto_exposure);
+  EXPECT_EQ(fixed.render.exposure, -1);
 }
 
 TEST_F(SceneFileTest, SkyGridDefaultsAndSkyColour) {
@@ -1526,7 +1539,8 @@ TEST(SceneSchema, ListsTheColourKeysAndModels) {
   EXPECT_EQ(render.at("searchlight").at("default"), "physical");
   EXPECT_EQ(render.at("tonemap").at("enum"),
             nlohmann::json::parse(R"(["clamp", "reinhard", "filmic"])"));
-  EXPECT_EQ(render.at("tonemap").at("default"), "clamp");
+  EXPECT_EQ(render.at("tonemap").at("default"), "filmic");
+  EXPECT_EQ(render.at("exposure").at("default"), "auto");
   EXPECT_EQ(keys_of(render.at("hue").at("properties")), (std::vector<std::string>{"loop"}));
   EXPECT_NE(render.at("exposure").dump().find(R"({"const":"auto"})"), std::string::npos);
 

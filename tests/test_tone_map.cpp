@@ -84,6 +84,57 @@ TEST(ToneMap, FilmicKeepsHueAndSaturationAndNeverExceedsOne) {
   for (const float v : nan) EXPECT_FALSE(std::isnan(v));
 }
 
+Image uniform_image(int width, int height, float value) {
+  Image image;
+  image.width = width, image.height = height;
+  image.rgb.assign(3 * static_cast<std::size_t>(width) * height, value);
+  return image;
+}
+
+// The automatic exposure shows the subject's upper quartile at 0.5, unless the brightest 2 %
+// of the picture would then pass the luminance the curve shows as 0.9.
+TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
+  EXPECT_NEAR(filmic_curve(display_white(ToneMap::kFilmic)), 0.9, 1e-12);
+  EXPECT_EQ(display_white(ToneMap::kClamp), 0.9);
+  EXPECT_NEAR(display_white(ToneMap::kReinhard) / (1 + display_white(ToneMap::kReinhard)), 0.9,
+              1e-12);
+  // A uniform grey 0.2 is its own subject: brought to 0.5.
+  for (const ToneMap curve : {ToneMap::kClamp, ToneMap::kFilmic})
+    EXPECT_NEAR(auto_exposure(uniform_image(8, 8, 0.2f), curve), std::log2(0.5 / 0.2), 1e-6);
+  // A dim moving body (0.01) before a wall at rest (0.02, 0.03 in its top 3 %): the body sets
+  // the exposure unless the wall's highlights would pass the curve's 0.9 (under clamp they
+  // would).
+  Image scene = uniform_image(100, 100, 0.02f);
+  std::vector<float> subject(100 * 100, 0.0f);
+  for (std::size_t p = 0; p < 100 * 100; ++p) {
+    if (p < 2500) scene.rgb[3 * p] = scene.rgb[3 * p + 1] = scene.rgb[3 * p + 2] = 0.01f;
+    if (p < 2500) subject[p] = 1;
+    if (p >= 9700) scene.rgb[3 * p] = scene.rgb[3 * p + 1] = scene.rgb[3 * p + 2] = 0.03f;
+  }
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, subject), std::log2(0.5 / 0.01), 1e-6);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kClamp, subject), std::log2(0.9 / 0.03), 1e-6);
+  // Without the subject, the wall is the picture.
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic), std::log2(0.5 / 0.02), 1e-6);
+  // A subject pixel weighs the share of its samples that met the body: a quarter body counts a
+  // quarter. Fewer than 16 pixels' worth do not set the exposure.
+  std::vector<float> speck(100 * 100, 0.0f);
+  for (std::size_t p = 0; p < 60; ++p) speck[p] = 0.25f;
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, speck), std::log2(0.5 / 0.02), 1e-6);
+  // A picture without light is left as it is; no NaN or infinity.
+  EXPECT_EQ(auto_exposure(uniform_image(4, 4, 0.0f), ToneMap::kFilmic), 0.0);
+  Image odd = uniform_image(4, 4, 0.3f);
+  odd.rgb[0] = NAN, odd.rgb[4] = INFINITY;
+  EXPECT_TRUE(std::isfinite(auto_exposure(odd, ToneMap::kFilmic)));
+  // A black subject before a lit wall: the wall's highlights set it.
+  Image dark = uniform_image(10, 10, 0.3f);
+  std::vector<float> black_subject(100, 0.0f);
+  for (std::size_t p = 0; p < 50; ++p) {
+    black_subject[p] = 1;
+    dark.rgb[3 * p] = dark.rgb[3 * p + 1] = dark.rgb[3 * p + 2] = 0;
+  }
+  EXPECT_NEAR(auto_exposure(dark, ToneMap::kClamp, black_subject), std::log2(0.9 / 0.3), 1e-6);
+}
+
 // display.frag's tone curves (tone_map.glsl) give what frame/tone_map.cpp gives.
 TEST(ToneMap, TheDisplayPassMirrorsTheCurves) {
   const HeadlessGlContext context;

@@ -244,6 +244,35 @@ TEST_F(ViewerTest, ShowsTheSceneChangesSpeedOnAKeySavesPngsAndQuits) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
+// The viewer exposes itself: flying into terrell.json at 0.9c, the relativistic half of the
+// split view (blueshifted and searchlit ahead) is metered and stays readable; held at the
+// exposure the scene is metered at when the camera is at rest (5.6 EV), a part clips.
+TEST_F(ViewerTest, AutomaticExposureKeepsTheRelativisticHalfUnclipped) {
+  const fs::path scene = fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/terrell.json";
+  const auto clipped_share = [&](const Screenshot& shot) {
+    std::size_t clipped = 0, pixels = 0;
+    for (int y = 0; y < shot.height; ++y)
+      for (int x = shot.width / 2; x < shot.width; ++x, ++pixels) {
+        const auto c = shot.at(x, y);
+        clipped += c[0] == 255 || c[1] == 255 || c[2] == 255;
+      }
+    return static_cast<double>(clipped) / pixels;
+  };
+  const std::string options =
+      "--split --time-scale 0 --width 800 --height 450 --set 'camera.velocity=[0,0,-0.9]'";
+  start_viewer(scene, options);
+  settle();
+  const Screenshot metered = screenshot();
+  ASSERT_EQ(metered.width, 800);
+  EXPECT_LE(clipped_share(metered), 0.02);
+  key("Escape");
+  waitpid(viewer_, nullptr, 0);
+  viewer_ = -1;
+  start_viewer(scene, options + " --set render.exposure=5.6");
+  settle();
+  EXPECT_GE(clipped_share(screenshot()), 0.08);  // 0.13 when written
+}
+
 TEST(ViewerBenchmark, RendersItsFramesWithoutADisplayAndPrintsOneJsonLine) {
   const fs::path dir = test::fresh_temp_dir("benchmark");
   test::write_text(dir / "scene.json", kScene);

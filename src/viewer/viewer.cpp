@@ -43,6 +43,10 @@ struct FrameDraw {
 // they are built over a wider range of the Doppler factor than a frame needs, for the same Scene
 // object, which the viewer keeps and changes only in its camera and render settings.
 constexpr double kEmissionMargin = 0.25;
+// The automatic exposure is metered on every 4th pixel of every 4th row, and followed with a
+// time constant of half a second.
+constexpr int kMeteringStep = 4;
+constexpr double kMeteringTime = 0.5;
 
 FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target,
                      bool on_gpu, std::unique_ptr<EmissionTable>& emission) {
@@ -141,7 +145,13 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
                    "lightcone: warning: --split: a scene with a black hole has no classical "
                    "picture; the view is shown whole\n");
     double time_scale = options.time_scale;
-    double exposure = scene.render.auto_exposure ? 0.0 : scene.render.exposure;
+    // The exposure: with the automatic one (a scene file's default), the EV metered on each
+    // frame (auto_exposure on a sample of it), followed smoothly so that it does not pump, plus
+    // the slider's offset; else the slider's EV.
+    bool automatic = scene.render.auto_exposure;
+    double exposure_offset = automatic ? 0.0 : scene.render.exposure, metered = 0;
+    bool metered_yet = false;
+    std::vector<float> subject;
     auto last = std::chrono::steady_clock::now();
     const auto started = last;
     double fps = 0;
@@ -240,6 +250,15 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         draw_scene(renderer, still, *classical, on_gpu, still_emission);
       }
 
+      if (automatic) {
+        const double target = auto_exposure(relativistic->sampled(kMeteringStep, subject),
+                                            scene.render.tonemap, subject);
+        metered = metered_yet ? metered + (target - metered) * (1 - std::exp(-dt / kMeteringTime))
+                              : target;
+        metered_yet = true;
+      }
+      const double exposure = automatic ? metered + exposure_offset : exposure_offset;
+
       // F12: the view as a PNG, as `lightcone render` would write it (no panel).
       if (screenshot) {
         Image linear = relativistic->read();
@@ -307,8 +326,16 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         int searchlight = index_of(kSearchlightValues, scene.render.searchlight);
         if (ImGui::Combo("searchlight", &searchlight, kSearchlightModels, 3))
           scene.render.searchlight = kSearchlightValues[searchlight];
-        float ev = static_cast<float>(exposure);
-        if (ImGui::SliderFloat("exposure (EV)", &ev, -10.0f, 10.0f, "%.1f")) exposure = ev;
+        if (ImGui::Checkbox("automatic exposure", &automatic)) {
+          // Off: the picture stays as it was. On: the metered EV, at once.
+          exposure_offset = automatic ? 0.0 : exposure;
+          metered_yet = false;
+        }
+        float ev = static_cast<float>(exposure_offset);
+        if (ImGui::SliderFloat(automatic ? "exposure offset (EV)" : "exposure (EV)", &ev, -10.0f,
+                               10.0f, "%.1f"))
+          exposure_offset = ev;
+        if (automatic) ImGui::Text("metered %.1f EV", metered);
         int curve = index_of(kToneMapValues, scene.render.tonemap);
         if (ImGui::Combo("tone map", &curve, kToneMaps, 3))
           scene.render.tonemap = kToneMapValues[curve];

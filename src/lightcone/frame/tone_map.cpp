@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace lightcone {
@@ -18,6 +21,13 @@ double luminance(const T* rgb) {
 float clamp01(double v) {
   return static_cast<float>(std::clamp(std::isnan(v) ? 0.0 : v, 0.0, 1.0));
 }
+
+// The automatic exposure's constants (docs/design/colour.md): the subject's upper quartile of
+// luminance is shown at kSubjectLevel, unless the brightest 2 % of the picture would then pass
+// display_white.
+constexpr double kSubjectQuantile = 0.75, kSubjectLevel = 0.5, kHighlightQuantile = 0.98;
+// Fewer subject pixels than this (a body a few pixels wide) do not set the exposure.
+constexpr double kMinSubjectPixels = 16;
 
 }  // namespace
 
@@ -41,19 +51,63 @@ void filmic_on_luminance(float* rgb) {
   for (int k = 0; k < 3; ++k) rgb[k] = clamp01(c[k] * scale);
 }
 
-double auto_exposure(const Image& linear) {
+double display_white(ToneMap curve) {
+  switch (curve) {
+    case ToneMap::kClamp:
+      return 0.9;
+    case ToneMap::kReinhard:
+      return 9;  // 9 / (1 + 9)
+    case ToneMap::kFilmic:
+      break;
+  }
+  // filmic_curve(y) = 0.9: 2.51 y^2 + 0.03 y = 0.9 (2.43 y^2 + 0.59 y + 0.14), a quadratic.
+  const double a = 2.51 - 0.9 * 2.43, b = 0.03 - 0.9 * 0.59, c = -0.9 * 0.14;
+  return (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+}
+
+double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject) {
   const std::size_t pixels = linear.rgb.size() / 3;
   if (pixels == 0) return 0;
   std::vector<double> y(pixels);
-  for (std::size_t i = 0; i < pixels; ++i) y[i] = luminance(&linear.rgb[3 * i]);
-  const auto nth = y.begin() + static_cast<std::ptrdiff_t>(0.95 * (pixels - 1));
-  std::nth_element(y.begin(), nth, y.end());
-  if (!(*nth > 0) || !std::isfinite(*nth)) return 0;
-  return std::log2(0.8 / *nth);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const double v = luminance(&linear.rgb[3 * i]);
+    y[i] = std::isfinite(v) ? std::max(0.0, v) : 0.0;
+  }
+  std::vector<double> sorted = y;
+  const auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(kHighlightQuantile * (pixels - 1));
+  std::nth_element(sorted.begin(), nth, sorted.end());
+  const double highlights = *nth;
+  if (!(highlights > 0)) return 0;
+  // The subject's level: a weighted quantile of its luminance (of the whole picture's where no
+  // subject is given or seen). A quantile, not a mean, so that the subject's own black parts
+  // (a pattern's dark checks shifted out of the visible) and a few bright pixels do not move it.
+  std::vector<std::pair<double, double>> weighted;  // (luminance, weight)
+  if (subject.size() == pixels)
+    for (std::size_t i = 0; i < pixels; ++i)
+      if (subject[i] > 0) weighted.emplace_back(y[i], subject[i]);
+  double total = 0;
+  for (const auto& [value, w] : weighted) total += w;
+  if (total < kMinSubjectPixels) {
+    weighted.clear();
+    for (const double v : y) weighted.emplace_back(v, 1.0);
+    total = static_cast<double>(pixels);
+  }
+  std::sort(weighted.begin(), weighted.end());
+  double below = 0, level = weighted.back().first;
+  for (const auto& [value, w] : weighted)
+    if ((below += w) >= kSubjectQuantile * total) {
+      level = value;
+      break;
+    }
+  const double bright_enough =
+      level > 0 ? std::log2(kSubjectLevel / level) : std::numeric_limits<double>::infinity();
+  return std::min(bright_enough, std::log2(display_white(curve) / highlights));
 }
 
-double apply_exposure(Image& linear, const RenderSettings& settings) {
-  const double ev = settings.auto_exposure ? auto_exposure(linear) : settings.exposure;
+double apply_exposure(Image& linear, const RenderSettings& settings,
+                      std::span<const float> subject) {
+  const double ev =
+      settings.auto_exposure ? auto_exposure(linear, settings.tonemap, subject) : settings.exposure;
   const auto scale = static_cast<float>(std::exp2(ev));
   for (float& v : linear.rgb) v *= scale;
   return ev;

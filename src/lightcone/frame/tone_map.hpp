@@ -1,18 +1,27 @@
 // From linear radiance to what a display shows: automatic exposure and tone curves.
 #pragma once
 
+#include <span>
+
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
 
-// The automatic exposure rule: the EV that brings the 95th percentile of pixel luminance
-// (Y of linear sRGB) to 0.8, so that a few highlights (a searchlit sun) may clip while the
-// rest of the picture is readable. 0 for an image without light.
-double auto_exposure(const Image& linear);
+// The luminance (Y of linear sRGB) that `curve` shows as 0.9 of white.
+double display_white(ToneMap curve);
+
+// The automatic exposure rule: the EV that shows the subject's key (the geometric mean of its
+// luminance) as 0.25, a mid-tone, unless that would take the brightest 2 % of the whole picture
+// past display_white(curve); then the EV that brings them there. `subject` weighs each pixel
+// (the share of its samples that met a body moving relative to the camera); without it, or
+// with fewer than 16 pixels' worth, the subject is the whole picture. 0 for an image without
+// light.
+double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject = {});
 
 // Scales a rendered image by 2^EV, EV the settings' exposure or (auto_exposure on) the automatic
 // one; returns the EV applied. Both renderers' pictures end here.
-double apply_exposure(Image& linear, const RenderSettings& settings);
+double apply_exposure(Image& linear, const RenderSettings& settings,
+                      std::span<const float> subject = {});
 
 // Display-referred linear values in [0, 1] (the PNG then applies the sRGB curve):
 //   clamp:    min(max(L, 0), 1) per channel;

@@ -67,8 +67,8 @@ Scene SceneReader::read(const json& document) {
   }
   if (Node lights = member(root, "lights"); lights.value) read_lights(lights, scene);
   if (Node sky_node = member(root, "sky"); sky_node.value) scene.sky = sky(sky_node);
-  if (Node render_node = member(root, "render"); render_node.value)
-    scene.render = render(render_node);
+  Node render_node = member(root, "render");
+  scene.render = render_node.value ? render(render_node) : file_render_defaults();
   load_assets(scene);
   check_spins(scene);
   return scene;
@@ -365,7 +365,7 @@ Shape SceneReader::shape(const Node& n, std::size_t index) {
 RenderSettings SceneReader::render(const Node& n) const {
   object(n, {"relativity", "light_delay", "exposure", "doppler", "searchlight", "hue", "tonemap",
              "light_source_delay", "shadows"});
-  RenderSettings r;
+  RenderSettings r = file_render_defaults();
   if (Node v = member(n, "relativity"); v.value) r.relativity = boolean(v);
   if (Node v = member(n, "light_delay"); v.value) r.light_delay = boolean(v);
   if (Node v = member(n, "exposure"); v.value) {
@@ -374,6 +374,7 @@ RenderSettings SceneReader::render(const Node& n) const {
       r.auto_exposure = true;
     } else {
       r.exposure = number(v);
+      r.auto_exposure = false;
     }
   }
   if (Node v = member(n, "doppler"); v.value)
@@ -498,6 +499,13 @@ void SceneReader::check_albedo(const Asset& a, const Image& image) const {
 }  // namespace lightcone::scene_io
 
 namespace lightcone {
+
+RenderSettings file_render_defaults() {
+  RenderSettings r;
+  r.auto_exposure = true;
+  r.tonemap = ToneMap::kFilmic;
+  return r;
+}
 
 Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report, const SceneLoadOptions& options) {

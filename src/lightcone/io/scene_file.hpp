@@ -18,6 +18,11 @@ struct SceneLoadReport {
   std::vector<std::string> warnings;  // e.g. degenerate triangles dropped from a mesh
 };
 
+// A scene file's render settings where it gives none: a picture that shows its moving bodies
+// (automatic exposure on them, the hue-keeping filmic curve), where RenderSettings' own defaults
+// keep the radiance as it is (exposure 0, clamped) for scenes built in code.
+RenderSettings file_render_defaults();
+
 // Parses and validates a scene file. `overrides` are "key.path=value" strings (from --set):
 // the value is parsed as JSON (falling back to a plain string) and replaces the value at that
 // path before validation. Comments are allowed; unknown keys are errors. Relative mesh, texture

@@ -38,7 +38,8 @@ void FloatTarget::bind() const {
   glViewport(0, 0, width_, height_);
 }
 
-void FloatTarget::add_to(std::vector<double>& sum) const {
+void FloatTarget::add_to(std::vector<double>& sum, std::vector<float>* subject,
+                         float weight) const {
   pixels_.resize(4 * static_cast<std::size_t>(width_) * height_);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -50,7 +51,28 @@ void FloatTarget::add_to(std::vector<double>& sum) const {
       const float* p = &pixels_[4 * (static_cast<std::size_t>(height_ - 1 - y) * width_ + x)];
       double* q = &sum[3 * (static_cast<std::size_t>(y) * width_ + x)];
       q[0] += p[0], q[1] += p[1], q[2] += p[2];
+      if (subject && p[3] > 1.5f) (*subject)[static_cast<std::size_t>(y) * width_ + x] += weight;
     }
+}
+
+Image FloatTarget::sampled(int step, std::vector<float>& subject) const {
+  pixels_.resize(4 * static_cast<std::size_t>(width_) * height_);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, pixels_.data());
+  check_gl("reading the image back");
+  Image image;
+  image.width = (width_ + step - 1) / step;
+  image.height = (height_ + step - 1) / step;
+  image.rgb.clear();
+  subject.clear();
+  for (int y = 0; y < height_; y += step)
+    for (int x = 0; x < width_; x += step) {
+      const float* p = &pixels_[4 * (static_cast<std::size_t>(height_ - 1 - y) * width_ + x)];
+      image.rgb.insert(image.rgb.end(), {p[0], p[1], p[2]});
+      subject.push_back(p[3] > 1.5f ? 1.0f : 0.0f);
+    }
+  return image;
 }
 
 Image FloatTarget::read() const {

@@ -23,8 +23,15 @@ class FloatTarget {
   int height() const { return height_; }
   // The linear RGB of the target, rows from the top.
   Image read() const;
-  // The same, added to `sum` (3 values a pixel, rows from the top).
-  void add_to(std::vector<double>& sum) const;
+  // The same, added to `sum` (3 values a pixel, rows from the top); where `subject` is given
+  // (a value a pixel), `weight` is added to it where a body moving relative to the camera was
+  // drawn (its alpha is 2, body.frag's subject_alpha).
+  void add_to(std::vector<double>& sum, std::vector<float>* subject = nullptr,
+              float weight = 0) const;
+  // Every `step`-th pixel of every `step`-th row, as an image (rows from the top), and in
+  // `subject` whether each shows a body moving relative to the camera: a sample of the frame
+  // for metering its automatic exposure.
+  Image sampled(int step, std::vector<float>& subject) const;
 
  private:
   int width_, height_;

@@ -126,6 +126,11 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   const int n = std::max(1, scene.camera.samples);
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   std::vector<double> sum(3 * pixels, 0.0);
+  // The automatic exposure's subject, as the ray tracer finds it: the share of each pixel's
+  // samples that met a body moving relative to the camera.
+  std::vector<float> subject(scene.render.auto_exposure ? pixels : 0, 0.0f);
+  std::vector<float>* const subject_sum = subject.empty() ? nullptr : &subject;
+  const float share = 1.0f / static_cast<float>(n);
   std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
   const bool on_gpu = tessellate_on_gpu(mode, renderer.driver());
   std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
@@ -142,18 +147,18 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
       triangles =
           std::max(triangles, renderer.prepare(seen, seen_emission, limits, on_gpu).triangles);
       pass_sample(renderer, k, n, seed, width, height, offsets);
-      target.add_to(sum);
+      target.add_to(sum, subject_sum, share);
       continue;
     }
     pass_sample(renderer, k, n, seed, width, height, offsets);
-    target.add_to(sum);
+    target.add_to(sum, subject_sum, share);
   }
   Image image;
   image.width = width;
   image.height = height;
   image.rgb.resize(3 * pixels);
   for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / n);
-  const double ev = apply_exposure(image, scene.render);
+  const double ev = apply_exposure(image, scene.render, subject);
   if (stats) {
     stats->exposure = ev;
     stats->triangles = triangles;

@@ -274,6 +274,8 @@ void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDr
   set_mat3(body_program, "shape_spatial", body.spatial);
   set_doppler(body_program, resolved, body.velocity);
   glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
+  glUniform1f(uniform(body_program, "subject_alpha"),
+              body.moves_relative_to_camera() ? 2.0f : 1.0f);
   set_pattern_uniforms(body_program, *body.object, draw.pattern);
   const Shape& shape = body.object->shape;
   // The body's clock along the sample's ray, s (ray_time row.t + row.x . u), and the

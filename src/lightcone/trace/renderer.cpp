@@ -172,6 +172,10 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   // With a shutter they are summed apart, as the observations' radiance is; else added at once.
   std::vector<float> sky_coverage(with_stars ? pixels : 0),
       star_rgb(with_stars && observations > 1 ? pixels * 3 : 0);
+  // The automatic exposure's subject: the share of each pixel's samples that met a body moving
+  // relative to the camera (summed over the observations).
+  const bool with_subject = scene.render.auto_exposure;
+  std::vector<float> subject(with_subject ? pixels : 0, 0.0f);
 
   double setup_seconds = 0, stars_seconds = 0;
   for (int o = 0; o < observations; ++o) {
@@ -216,7 +220,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 pixel_j[lanes++] = j;
               }
             double sums[Tracer::kPacketSize][3] = {};
-            int sky_samples[Tracer::kPacketSize] = {};
+            int sky_samples[Tracer::kPacketSize] = {}, subject_samples[Tracer::kPacketSize] = {};
             Vec3 directions[Tracer::kPacketSize];
             std::array<double, 2> light[Tracer::kPacketSize];
             std::optional<Hit> hits[Tracer::kPacketSize];
@@ -242,7 +246,11 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 radiance_of(resolved, seen.emission, std::span(hits, lanes),
                             std::span(directions, lanes), &seen.lighting, std::span(light, lanes),
                             std::span(colours, lanes));
-                for (std::size_t l = 0; l < lanes; ++l) sky_samples[l] += !hits[l];
+                for (std::size_t l = 0; l < lanes; ++l) {
+                  sky_samples[l] += !hits[l];
+                  subject_samples[l] +=
+                      hits[l] && resolved.bodies[hits[l]->body].moves_relative_to_camera();
+                }
               }
               for (std::size_t l = 0; l < lanes; ++l) {
                 sums[l][0] += colours[l].r;
@@ -261,6 +269,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                   image.rgb[3 * at + c] = static_cast<float>(sums[l][c] / n);
               }
               if (with_stars) sky_coverage[at] = static_cast<float>(sky_samples[l]) / count;
+              if (with_subject) subject[at] += static_cast<float>(subject_samples[l]) / n;
               if (with_aovs) {
                 const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
                 for (std::size_t a = 0; a < options.aovs.size(); ++a) {
@@ -292,7 +301,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     for (std::size_t v = 0; v < sum.size(); ++v) image.rgb[v] = static_cast<float>(sum[v] / n);
   for (std::size_t v = 0; v < star_rgb.size(); ++v) image.rgb[v] += star_rgb[v];
 
-  const double ev = apply_exposure(image, scene.render);
+  const double ev = apply_exposure(image, scene.render, subject);
 
   if (stats) {
     stats->exposure = ev;

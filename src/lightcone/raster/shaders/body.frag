@@ -12,6 +12,9 @@ uniform vec3 ray_offset;
 uniform mat3 shape_spatial;
 uniform vec2 depth_range;
 uniform vec3 doppler_velocity;  // the body's velocity in F (0 for the classical picture)
+// The colour's alpha: 2 on a body moving relative to the camera (the automatic exposure's
+// subject, RasterFrameImage), else 1; the sky's is at most 1.
+uniform float subject_alpha;
 uniform float doppler_gamma;
 uniform int colour_row;  // the row of the pattern's first colour
 uniform sampler2D texture_image;
@@ -199,10 +202,10 @@ void main() {
 #endif
   vec3 c =
       lit_colour(surface_albedo, k, u, s, d, surface_velocity, normal, fragment_light_sample());
-  colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, 1.0);
+  colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, subject_alpha);
 #elif defined(LIGHTCONE_TEXTURED)
-  colour = vec4(received_rgb(sample_bilinear(texture_image, body_uv(p), true), d), 1.0);
+  colour = vec4(received_rgb(sample_bilinear(texture_image, body_uv(p), true), d), subject_alpha);
 #else
-  colour = vec4(received_colour(colour_row + k, d), 1.0);
+  colour = vec4(received_colour(colour_row + k, d), subject_alpha);
 #endif
 }
