@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "lightcone/io/image_file.hpp"
 #include "support/test_support.hpp"
@@ -25,8 +27,11 @@ class Animate : public test::TempDirTest {
   fs::path scene(const std::string& name) const {
     return fs::path(LIGHTCONE_SOURCE_DIR) / "scenes" / name;
   }
-  // A small, quick version of a bundled scene's frames.
-  std::string small() const { return " --width 96 --height 54 --samples 1 --quiet"; }
+  // A small, quick version of a bundled scene's frames, at a fixed exposure (an automatic one is
+  // smoothed over the frames, AutomaticExposureFollowsSmoothlyAndSplitRunsJoinUp).
+  std::string small() const {
+    return " --width 96 --height 54 --samples 1 --quiet --set render.exposure=0";
+  }
 };
 
 TEST_F(Animate, FrameIIsTheRenderAtThatProperTime) {
@@ -91,11 +96,57 @@ TEST_F(Animate, SplitRangesMakeTheSameFramesAndResumeRendersOnlyTheMissingOnes) 
   fs::remove(dir_ / "b1.png");
   fs::remove(dir_ / "b4.png");
   const auto r = run_lightcone("animate " + rocket + " --frames 0-5 --resume --fps 8 -o " +
-                               quoted(dir_ / "b%d.png") + " --width 96 --height 54 --samples 1");
+                               quoted(dir_ / "b%d.png") +
+                               " --width 96 --height 54 --samples 1 --set render.exposure=0");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("2 rendered, 4 already there"), std::string::npos) << r.err;
   EXPECT_EQ(bytes_of(dir_ / "b4.png"), kept);
   EXPECT_EQ(bytes_of(dir_ / "b1.png"), bytes_of(dir_ / "a1.png"));
+}
+
+// A moving ball that shines for two seconds and goes dark for two (a blink of period 4), before
+// a grey wall at rest: each frame's own automatic exposure would jump 5 EV at the change;
+// the animation's follows over the frames within half a second, and a run of some of the frames
+// exposes them as the whole run does.
+TEST_F(Animate, AutomaticExposureFollowsSmoothlyAndSplitRunsJoinUp) {
+  const fs::path file = dir_ / "blink.json";
+  std::ofstream(file) << R"({
+  "camera": {"position": [0, 0, 0], "fov": 50, "width": 64, "height": 36, "samples": 1},
+  "objects": [
+    {"name": "wall", "shape": {"box": {"size": [100, 100, 1]}}, "position": [0, 0, -10],
+     "material": {"color": [0.05, 0.05, 0.05], "unlit": true}},
+    {"name": "ball", "shape": {"sphere": {"radius": 0.3}}, "position": [0, 0, -1.5],
+     "velocity": [0.05, 0, 0],
+     "material": {"blink": {"period": 4, "duty": 0.5, "colors": [[0.5, 0.5, 0.5], [0.004, 0.004, 0.004]]},
+                  "unlit": true}}
+  ],
+  "render": {"doppler": "off", "searchlight": "off"}
+})";
+  const auto run = [&](const std::string& frames, const std::string& prefix) {
+    const auto r = run_lightcone("animate " + quoted(file) + " --fps 8 --frames " + frames +
+                                 " -o " + quoted(dir_ / (prefix + "%02d.exr")) + " --quiet");
+    ASSERT_EQ(r.status, 0) << r.err;
+  };
+  run("0-23", "all");
+  // The EV of each frame, from the wall's radiance in the EXR (a corner pixel).
+  std::vector<double> ev;
+  for (int i = 0; i <= 23; ++i) {
+    const auto image = load_image_file(dir_ / fmt::format("all{:02d}.exr", i));
+    ASSERT_TRUE(image);
+    ev.push_back(std::log2(image->rgb[0] / 0.05));
+  }
+  double low = ev[0], high = ev[0], steepest = 0;
+  for (std::size_t i = 1; i < ev.size(); ++i) {
+    low = std::min(low, ev[i]), high = std::max(high, ev[i]);
+    steepest = std::max(steepest, std::abs(ev[i] - ev[i - 1]));
+  }
+  EXPECT_GE(high - low, 3.0);    // it follows the subject
+  EXPECT_LE(steepest, 5.7 / 8);  // a ninth of a jump (and rounding) a frame, not the jump
+  run("10-13", "part");
+  for (int i = 10; i <= 13; ++i)
+    EXPECT_EQ(bytes_of(dir_ / fmt::format("part{:02d}.exr", i)),
+              bytes_of(dir_ / fmt::format("all{:02d}.exr", i)))
+        << i;
 }
 
 // The peak signal-to-noise ratio of two 8-bit images of one size, in dB.

@@ -116,9 +116,9 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
   // Without the subject, the wall is the picture.
   EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic), std::log2(0.5 / 0.02), 1e-6);
   // A subject pixel weighs the share of its samples that met the body: a quarter body counts a
-  // quarter. Fewer than 16 pixels' worth do not set the exposure.
+  // quarter. Less than 0.1 % of the picture's worth does not set the exposure.
   std::vector<float> speck(100 * 100, 0.0f);
-  for (std::size_t p = 0; p < 60; ++p) speck[p] = 0.25f;
+  for (std::size_t p = 0; p < 36; ++p) speck[p] = 0.25f;
   EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, speck), std::log2(0.5 / 0.02), 1e-6);
   // A picture without light is left as it is; no NaN or infinity.
   EXPECT_EQ(auto_exposure(uniform_image(4, 4, 0.0f), ToneMap::kFilmic), 0.0);

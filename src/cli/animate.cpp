@@ -12,6 +12,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "cli_common.hpp"
@@ -106,6 +107,9 @@ std::pair<long long, long long> parse_frame_range(const std::string& option,
 }
 
 namespace {
+
+// An animation's automatic exposure is averaged over this many seconds either side of a frame.
+constexpr double kExposureSmoothing = 0.5;
 
 // The camera's proper time (in the model's units) at world time `time` on its world-line.
 double proper_time_at_world_time(const Camera& camera, double time) {
@@ -312,6 +316,40 @@ int run_animate(const AnimateArgs& a) {
     return s;
   };
 
+  // With the automatic exposure, frame i is exposed at the mean of the EVs metered on the frames
+  // within half a second of it (each metered on a render a quarter of the size, one sample a
+  // pixel), so that a video neither pumps nor jumps. The mean depends on the frame alone, not on
+  // the frames this run renders, so the frames of a job array's tasks join up.
+  const long long reach = scene.render.auto_exposure ? std::llround(a.fps * kExposureSmoothing) : 0;
+  std::unordered_map<long long, std::optional<double>> metered;
+  const auto metered_ev = [&](long long j) -> std::optional<double> {
+    if (const auto found = metered.find(j); found != metered.end()) return found->second;
+    std::optional<double> ev;
+    try {
+      Scene small = frame_scene(j);
+      small.camera.width = std::max(16, small.camera.width / 4);
+      small.camera.height = std::max(9, small.camera.height / 4);
+      small.camera.samples = 1;
+      RenderOptions options;
+      options.threads = a.threads;
+      options.cancel = &interrupted;
+      RenderStats stats;
+      render_image(small, options, &stats);
+      ev = stats.exposure;
+    } catch (const InputError&) {
+      // A moment the scene cannot be shown at (a camera past the speed of light by then): the
+      // frames near it are exposed by the others.
+    }
+    return metered[j] = ev;
+  };
+  const auto smoothed_exposure = [&](long long i) {
+    double sum = 0;
+    int n = 0;
+    for (long long j = i - reach; j <= i + reach; ++j)
+      if (const auto ev = metered_ev(j)) sum += *ev, ++n;
+    return n > 0 ? sum / n : 0.0;
+  };
+
   std::unique_ptr<VideoWriter> video;
   if (a.video)
     video = std::make_unique<VideoWriter>(*a.video, camera.width, camera.height, a.fps, a.crf,
@@ -383,6 +421,10 @@ int run_animate(const AnimateArgs& a) {
     const Scene s = [&] {
       Scene moment;
       in_frame(i, [&] { moment = frame_scene(i); });
+      if (moment.render.auto_exposure && last > first) {
+        moment.render.exposure = smoothed_exposure(i);
+        moment.render.auto_exposure = false;
+      }
       return moment;
     }();
     in_frame(i, [&] {

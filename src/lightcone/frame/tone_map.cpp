@@ -26,8 +26,9 @@ float clamp01(double v) {
 // luminance is shown at kSubjectLevel, unless the brightest 2 % of the picture would then pass
 // display_white.
 constexpr double kSubjectQuantile = 0.75, kSubjectLevel = 0.5, kHighlightQuantile = 0.98;
-// Fewer subject pixels than this (a body a few pixels wide) do not set the exposure.
-constexpr double kMinSubjectPixels = 16;
+// A subject smaller than this share of the picture (a distant speck) does not set the exposure;
+// a share, not a count, so that a small metering render finds what the full one does.
+constexpr double kMinSubjectShare = 1e-3;
 
 }  // namespace
 
@@ -87,7 +88,7 @@ double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> 
       if (subject[i] > 0) weighted.emplace_back(y[i], subject[i]);
   double total = 0;
   for (const auto& [value, w] : weighted) total += w;
-  if (total < kMinSubjectPixels) {
+  if (total < kMinSubjectShare * static_cast<double>(pixels)) {
     weighted.clear();
     for (const double v : y) weighted.emplace_back(v, 1.0);
     total = static_cast<double>(pixels);

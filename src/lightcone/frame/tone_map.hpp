@@ -14,7 +14,7 @@ double display_white(ToneMap curve);
 // luminance) as 0.25, a mid-tone, unless that would take the brightest 2 % of the whole picture
 // past display_white(curve); then the EV that brings them there. `subject` weighs each pixel
 // (the share of its samples that met a body moving relative to the camera); without it, or
-// with fewer than 16 pixels' worth, the subject is the whole picture. 0 for an image without
+// with less than 0.1 % of the picture's worth, the subject is the whole picture. 0 for an image without
 // light.
 double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject = {});
 
