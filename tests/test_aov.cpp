@@ -101,21 +101,47 @@ TEST(FalseColour, TheMapRisesEvenlyInLightnessAndTheBarIsLabelled) {
   }
   EXPECT_GT(colour_map(0).b, colour_map(0).r);
   EXPECT_GT(colour_map(1).r, colour_map(1).b);
+  // A 200 x 100 channel: values 0.5 to 0.99 on the left half, the sky (infinite) on the right,
+  // and the bottom-left quarter the sky with a finite value (as D is for the sky).
   NamedChannel ramp{"doppler", {}};
-  for (int y = 0; y < 10; ++y)
-    for (int x = 0; x < 100; ++x) ramp.values.push_back(x < 50 ? 0.5f + x * 0.01f : INFINITY);
-  const Image image = false_colour(ramp, 100, 10, "doppler");
-  EXPECT_EQ(image.width, 100);
-  EXPECT_GT(image.height, 10 + 30);  // the bar and its numbers
-  // The smallest value is the map's start, the non-finite ones grey.
+  std::vector<float> sky;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 200; ++x) {
+      ramp.values.push_back(x < 100 ? 0.5f + x * 0.0049f : INFINITY);
+      sky.push_back(x >= 100 || y >= 50 ? 1.0f : 0.0f);
+    }
+  const Image image = false_colour(ramp, 200, 100, "Doppler factor D", sky);
+  // The render's size: the legend is a band along the bottom.
+  EXPECT_EQ(image.width, 200);
+  EXPECT_EQ(image.height, 100);
+  const auto at = [&](int x, int y) {
+    return &image.rgb[3 * (static_cast<std::size_t>(y) * 200 + x)];
+  };
+  // The smallest value is the map's start; the non-finite ones grey.
   const LinearRgb start = colour_map(0);
-  EXPECT_NEAR(image.rgb[0], start.r, 1e-6);
-  EXPECT_NEAR(image.rgb[3 * 99], image.rgb[3 * 99 + 2], 1e-6);
-  // White label pixels exist below the picture.
-  int white = 0;
-  for (std::size_t p = 3 * 100 * 10; p < image.rgb.size(); p += 3)
-    white += image.rgb[p] == 1 && image.rgb[p + 1] == 1 && image.rgb[p + 2] == 1;
-  EXPECT_GT(white, 50);
+  EXPECT_NEAR(at(0, 0)[0], start.r, 1e-6);
+  EXPECT_NEAR(at(199, 0)[0], at(199, 0)[2], 1e-6);
+  // The sky is hatched where its value is finite: along a row, stripes darker than the map.
+  int dark = 0, plain = 0;
+  for (int x = 0; x < 16; ++x) {
+    const float v = at(x, 52)[1],
+                want = static_cast<float>(
+                    colour_map((0.5 + x * 0.0049 - 0.5) / (0.5 + 99 * 0.0049 - 0.5)).g);
+    (std::abs(v - want) < 1e-5f ? plain : dark) += 1;
+  }
+  EXPECT_EQ(dark, 6);  // 3 of every 8 pixels
+  EXPECT_EQ(plain, 10);
+  // The legend: white label pixels left of the bar, the bar and its numbers, in the bottom band
+  // only.
+  int label = 0, above = 0;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 200; ++x) {
+      const float* c = at(x, y);
+      const bool white = c[0] == 1 && c[1] == 1 && c[2] == 1;
+      (y >= 100 - kLegendHeight ? label : above) += white;
+    }
+  EXPECT_GT(label, 50);
+  EXPECT_EQ(above, 0);
 }
 
 }  // namespace

@@ -154,6 +154,7 @@ struct Rendered {
   std::size_t raster_triangles = 0;
   bool stopped = false;  // by a signal: the finished tiles only
   std::size_t tiles_done = 0, tiles_total = 0;
+  std::vector<float> sky;  // for --map: 1 where the pixel's centre ray met the sky
 };
 
 // The render, by either renderer, with a progress bar on a terminal.
@@ -165,6 +166,11 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
   if (a.crop) options.crop = parse_crop(*a.crop, scene.camera.width, scene.camera.height);
   options.cancel = &interrupted;
   options.aovs = out.aovs;
+  // A map hatches the sky: where the rays met no object (the object variable, not written
+  // unless asked for).
+  const bool sky_for_map =
+      out.map && std::find(out.aovs.begin(), out.aovs.end(), Aov::kObject) == out.aovs.end();
+  if (sky_for_map) options.aovs.push_back(Aov::kObject);
   Rendered r;
   std::atomic<std::size_t> tiles_done{0}, tiles_total{0};
   {
@@ -197,6 +203,13 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
       r.image = render_image(scene, options, &r.stats);
     }
   }
+  if (out.map)
+    for (auto c = r.image.channels.begin(); c != r.image.channels.end(); ++c)
+      if (c->name == aov_name(Aov::kObject)) {
+        for (const float object : c->values) r.sky.push_back(object < 0 ? 1.0f : 0.0f);
+        if (sky_for_map) r.image.channels.erase(c);
+        break;
+      }
   // A stopped render never replaces a finished image: what it has goes beside the target.
   r.stopped = r.stats.cancelled || interrupted;
   r.tiles_done = tiles_done;
@@ -218,7 +231,7 @@ Image display_of(const Rendered& r, const Scene& scene, const RenderOutputs& out
     const std::vector<std::string> names = aov_channel_names(*out.map);
     const auto channel = std::find_if(r.image.channels.begin(), r.image.channels.end(),
                                       [&](const NamedChannel& c) { return c.name == names[0]; });
-    return false_colour(*channel, r.image.width, r.image.height, names[0]);
+    return false_colour(*channel, r.image.width, r.image.height, aov_map_label(*out.map), r.sky);
   }
   return tone_map(r.image, scene.render.tonemap);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <span>
 #include <vector>
 
 // stb_easy_font: tiny bitmap text as quads (Debian's libstb-dev).
@@ -26,8 +27,9 @@ bool in_gamut(const LinearRgb& c) {
   return c.r >= 0 && c.r <= 1 && c.g >= 0 && c.g <= 1 && c.b >= 0 && c.b <= 1;
 }
 
-constexpr int kBarHeight = 48;  // pixels below the picture: the bar and its labels
 constexpr float kGrey = 0.18f;
+constexpr double kHatch = 0.45;      // the sky's dark stripes
+constexpr double kLegendDim = 0.12;  // the map beneath the legend
 
 void put(Image& image, int x, int y, const LinearRgb& c) {
   if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
@@ -83,7 +85,8 @@ LinearRgb colour_map(double t) {
   return {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
 }
 
-Image false_colour(const NamedChannel& channel, int width, int height, const std::string& label) {
+Image false_colour(const NamedChannel& channel, int width, int height, const std::string& label,
+                   std::span<const float> sky) {
   double lo = INFINITY, hi = -INFINITY;
   for (const float v : channel.values)
     if (std::isfinite(v))
@@ -93,28 +96,43 @@ Image false_colour(const NamedChannel& channel, int width, int height, const std
 
   Image image;
   image.width = width;
-  image.height = height + kBarHeight;
-  image.rgb.assign(3 * static_cast<std::size_t>(image.width) * image.height, 0.0f);
+  image.height = height;
+  image.rgb.assign(3 * static_cast<std::size_t>(width) * height, 0.0f);
+  const int band_top = height - kLegendHeight;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const float v = channel.values[static_cast<std::size_t>(y) * width + x];
-      put(image, x, y,
-          std::isfinite(v) ? colour_map((v - lo) / span) : LinearRgb{kGrey, kGrey, kGrey});
+      const std::size_t p = static_cast<std::size_t>(y) * width + x;
+      const float v = channel.values[p];
+      LinearRgb c = std::isfinite(v) ? colour_map((v - lo) / span) : LinearRgb{kGrey, kGrey, kGrey};
+      // The sky hatched (dark diagonal stripes, 3 of every 8 pixels), so that a surface of the
+      // sky's value does not merge with it.
+      if (!sky.empty() && sky[p] > 0.5f && (x + y) % 8 < 3)
+        c = {c.r * kHatch, c.g * kHatch, c.b * kHatch};
+      if (y >= band_top) c = {c.r * kLegendDim, c.g * kLegendDim, c.b * kLegendDim};
+      put(image, x, y, c);
     }
-  // The bar, its ticks and labels.
-  const int x0 = std::max(4, width / 10), x1 = std::min(width - 4, width - width / 10);
-  const int bar_top = height + 6, bar_bottom = height + 18;
+  // The quantity beside the bar, on its left; the bar; its ticks with their values beneath.
+  const int label_width = text_width(label);
+  const int bar_top = band_top + 8, bar_bottom = band_top + 18;
+  text(image, 6, bar_top - 1, label);
+  std::string lowest = number(lo), highest = number(hi);
+  const int x0 = label_width + 12 + text_width(lowest) / 2;
+  const int x1 = std::max(x0 + 1, width - 6 - text_width(highest) / 2);
   for (int x = x0; x <= x1; ++x)
     for (int y = bar_top; y < bar_bottom; ++y)
       put(image, x, y, colour_map(static_cast<double>(x - x0) / std::max(1, x1 - x0)));
-  for (int k = 0; k <= 4; ++k) {
-    const int x = x0 + (x1 - x0) * k / 4;
+  // Five values where they fit apart, else the two ends.
+  int widest = 0;
+  for (int k = 0; k <= 4; ++k)
+    widest = std::max(widest, text_width(number(lo + (hi - lo) * k / 4)));
+  const int ticks = (x1 - x0) / 4 >= widest + 8 ? 4 : 1;
+  for (int k = 0; k <= ticks; ++k) {
+    const int x = x0 + (x1 - x0) * k / ticks;
     for (int y = bar_bottom; y < bar_bottom + 4; ++y) put(image, x, y, {1, 1, 1});
-    const std::string s = number(lo + (hi - lo) * k / 4);
+    const std::string s = number(lo + (hi - lo) * k / ticks);
     text(image, std::clamp(x - text_width(s) / 2, 0, std::max(0, width - text_width(s))),
          bar_bottom + 6, s);
   }
-  text(image, std::max(0, x0 - text_width(label) - 6), bar_top - 1, label);
   return image;
 }
 

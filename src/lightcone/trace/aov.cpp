@@ -33,6 +33,26 @@ std::string aov_name(Aov aov) {
   return name_of(aov);
 }
 
+std::string aov_map_label(Aov aov) {
+  switch (aov) {
+    case Aov::kDoppler:
+      return "Doppler factor D";
+    case Aov::kEmissionTime:
+      return "emission time (scene units)";
+    case Aov::kDistance:
+      return "distance (scene units)";
+    case Aov::kObject:
+      return "object index";
+    case Aov::kDepth:
+      return "depth (scene units)";
+    case Aov::kNormal:
+      return "normal";
+    case Aov::kImageOrder:
+      return "image order";
+  }
+  return name_of(aov);
+}
+
 std::vector<std::string> aov_channel_names(Aov aov) {
   const std::string name = name_of(aov);
   if (aov == Aov::kNormal) return {name + ".X", name + ".Y", name + ".Z"};

@@ -27,6 +27,8 @@ enum class Aov {
 std::optional<Aov> aov_from_name(std::string_view name);
 // The name of an output variable.
 std::string aov_name(Aov aov);
+// How `--map` labels it: the quantity and its unit (the scene's own units of time and length).
+std::string aov_map_label(Aov aov);
 // The EXR channel names of an output variable: its name, or name.X, name.Y, name.Z.
 std::vector<std::string> aov_channel_names(Aov aov);
 
