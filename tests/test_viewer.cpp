@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "lightcone/frame/image_text.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "support/test_support.hpp"
 
@@ -271,6 +272,40 @@ TEST_F(ViewerTest, AutomaticExposureKeepsTheRelativisticHalfUnclipped) {
   start_viewer(scene, options + " --set render.exposure=5.6");
   settle();
   EXPECT_GE(clipped_share(screenshot()), 0.08);  // 0.13 when written
+}
+
+// The viewer on a slide: the split view carries its caption (classical | relativistic, with
+// beta) in the window and in the PNG F12 saves; P (presenting) hides the panel and keeps the
+// caption.
+TEST_F(ViewerTest, TheSplitViewIsCaptionedAndPresentingHidesThePanel) {
+  const fs::path scene = write("scene.json", kScene);
+  start_viewer(scene, "--split --time-scale 0 --tessellation cpu");
+  settle();
+  const auto white_in_caption = [](const auto& at, int width) {
+    int white = 0;
+    for (int y = 0; y < kCaptionHeight; ++y)
+      for (int x = width / 4; x < 3 * width / 4; ++x) {
+        const auto c = at(x, y);
+        white += c[0] > 240 && c[1] > 240 && c[2] > 240;
+      }
+    return white;
+  };
+  const Screenshot shown = screenshot();
+  const auto shown_at = [&](int x, int y) { return shown.at(x, y); };
+  EXPECT_GT(white_in_caption(shown_at, shown.width), 40);
+  key("F12");
+  const fs::path png = wait_for_png(1);
+  ASSERT_TRUE(fs::exists(png)) << read_text(dir_ / "viewer.err");
+  const auto saved = load_image_file(png);
+  const auto saved_at = [&](int x, int y) { return png_level(*saved, x, y); };
+  EXPECT_GT(white_in_caption(saved_at, saved->width), 40);
+  // P: the panel (top left, under the caption) goes; the caption stays.
+  key("p");
+  settle();
+  const Screenshot presenting = screenshot();
+  const auto presenting_at = [&](int x, int y) { return presenting.at(x, y); };
+  EXPECT_GT(fraction_different(shown_at, presenting_at, 0, kCaptionHeight + 4, 200, 80, 8), 0.2);
+  EXPECT_GT(white_in_caption(presenting_at, presenting.width), 40);
 }
 
 TEST(ViewerBenchmark, RendersItsFramesWithoutADisplayAndPrintsOneJsonLine) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/image_text.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
@@ -43,6 +44,12 @@ struct FrameDraw {
 // they are built over a wider range of the Doppler factor than a frame needs, for the same Scene
 // object, which the viewer keeps and changes only in its camera and render settings.
 constexpr double kEmissionMargin = 0.25;
+
+// The caption of the split view, and of the picture alone while presenting.
+std::string caption(bool split, double speed) {
+  return fmt::format("{}   beta = {:.3f}", split ? "classical | relativistic" : "relativistic",
+                     speed);
+}
 // The automatic exposure is metered on every 4th pixel of every 4th row, and followed with a
 // time constant of half a second.
 constexpr int kMeteringStep = 4;
@@ -139,7 +146,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     std::unique_ptr<FloatTarget> relativistic, classical;
     Flight flight(scene.camera);
     // Near a black hole there is no classical picture to show beside the relativistic one.
-    bool split = options.split && !scene.black_hole, hud = options.hud;
+    bool split = options.split && !scene.black_hole, hud = options.hud, presenting = false;
     if (options.split && scene.black_hole)
       std::fprintf(stderr,
                    "lightcone: warning: --split: a scene with a black hole has no classical "
@@ -199,6 +206,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
                                scene.black_hole->mass);
           }
           if (key == GLFW_KEY_H) hud = !hud;
+          if (key == GLFW_KEY_P) presenting = !presenting;
           if (key == GLFW_KEY_F12) screenshot = true;
           if (key == GLFW_KEY_W || key == GLFW_KEY_S || key == GLFW_KEY_SPACE)
             std::fprintf(stderr, "lightcone: speed %.4f c\n", flight.speed);
@@ -274,7 +282,9 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         const auto scale = static_cast<float>(std::exp2(exposure));
         for (float& v : linear.rgb) v *= scale;
         const std::filesystem::path file = next_screenshot();
-        write_images(tone_map(linear, scene.render.tonemap), linear, {{file, ImageFormat::kPng}});
+        Image display = tone_map(linear, scene.render.tonemap);
+        if (split || presenting) draw_caption(display, caption(split, flight.speed));
+        write_images(display, linear, {{file, ImageFormat::kPng}});
         std::fprintf(stderr, "lightcone: wrote %s\n", file.string().c_str());
       }
 
@@ -291,14 +301,23 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      if (hud) {
-        ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+      if (split || presenting) {
+        // The caption, as F12 stamps it into the PNG: centred along the top, on a dark band.
+        const std::string text = caption(split, flight.speed);
+        ImDrawList* draw = ImGui::GetForegroundDrawList();
+        const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+        draw->AddRectFilled(ImVec2(0, 0), ImVec2(static_cast<float>(width), kCaptionHeight),
+                            IM_COL32(0, 0, 0, 204));
+        draw->AddText(
+            ImVec2((static_cast<float>(width) - size.x) / 2, (kCaptionHeight - size.y) / 2),
+            IM_COL32(255, 255, 255, 255), text.c_str());
+      }
+      if (hud && !presenting) {
+        ImGui::SetNextWindowPos(ImVec2(10, kCaptionHeight + 4), ImGuiCond_FirstUseEver);
         ImGui::Begin("lightcone", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
         const double gamma = lorentz_gamma(flight.camera.world_line.velocity);
         ImGui::Text("beta %.4f   gamma %.3f", flight.speed, gamma);
-        ImGui::Text("Doppler on screen %.3g to %.3g", drawn.doppler_min, drawn.doppler_max);
-        ImGui::Text("%.1f fps, %zu triangles (%s)", fps, drawn.triangles,
-                    on_gpu ? "cut on the GPU" : "tessellated on the CPU");
+        ImGui::Text("%.1f fps", fps);
         if (const auto measured = probe.measured())
           ImGui::Text("this machine: %.1f fps over the first %.0f s", *measured,
                       FrameRateProbe::kSeconds);
@@ -309,43 +328,50 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         }
         float speed = static_cast<float>(flight.speed);
         if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
-        if (scene.black_hole) {
-          // Curved spacetime has no classical picture to compare with.
-          const Vec3 from_hole = flight.camera.world_line.position - scene.black_hole->position;
-          const char* modes[] = {"powered", "on a circular orbit", "falling freely"};
-          ImGui::Text("black hole: camera at r = %.4gM, %s",
-                      length(from_hole) / scene.black_hole->mass,
-                      modes[static_cast<int>(flight.mode)]);
-        } else {
-          ImGui::Checkbox("relativity", &scene.render.relativity);
-          ImGui::Checkbox("light delay", &scene.render.light_delay);
+        // The rest folds away, so that the panel starts small (a slide shows the picture).
+        if (ImGui::CollapsingHeader("more")) {
+          ImGui::Text("Doppler on screen %.3g to %.3g", drawn.doppler_min, drawn.doppler_max);
+          ImGui::Text("%zu triangles (%s)", drawn.triangles,
+                      on_gpu ? "cut on the GPU" : "tessellated on the CPU");
+          if (scene.black_hole) {
+            // Curved spacetime has no classical picture to compare with.
+            const Vec3 from_hole = flight.camera.world_line.position - scene.black_hole->position;
+            const char* modes[] = {"powered", "on a circular orbit", "falling freely"};
+            ImGui::Text("black hole: camera at r = %.4gM, %s",
+                        length(from_hole) / scene.black_hole->mass,
+                        modes[static_cast<int>(flight.mode)]);
+          } else {
+            ImGui::Checkbox("relativity", &scene.render.relativity);
+            ImGui::Checkbox("light delay", &scene.render.light_delay);
+          }
+          int doppler = index_of(kDopplerValues, scene.render.doppler);
+          if (ImGui::Combo("colour", &doppler, kDopplerModels, 4))
+            scene.render.doppler = kDopplerValues[doppler];
+          int searchlight = index_of(kSearchlightValues, scene.render.searchlight);
+          if (ImGui::Combo("searchlight", &searchlight, kSearchlightModels, 3))
+            scene.render.searchlight = kSearchlightValues[searchlight];
+          if (ImGui::Checkbox("automatic exposure", &automatic)) {
+            // Off: the picture stays as it was. On: the metered EV, at once.
+            exposure_offset = automatic ? 0.0 : exposure;
+            metered_yet = false;
+          }
+          float ev = static_cast<float>(exposure_offset);
+          if (ImGui::SliderFloat(automatic ? "exposure offset (EV)" : "exposure (EV)", &ev, -10.0f,
+                                 10.0f, "%.1f"))
+            exposure_offset = ev;
+          if (automatic) ImGui::Text("metered %.1f EV", metered);
+          int curve = index_of(kToneMapValues, scene.render.tonemap);
+          if (ImGui::Combo("tone map", &curve, kToneMaps, 3))
+            scene.render.tonemap = kToneMapValues[curve];
+          float scale = static_cast<float>(time_scale);
+          if (ImGui::SliderFloat("time scale", &scale, 0.0f, 20.0f, "%.2f")) time_scale = scale;
+          if (!scene.black_hole) ImGui::Checkbox("classical | relativistic (C)", &split);
+          ImGui::TextUnformatted(
+              scene.black_hole ? "W/S boost, Space hover, O orbit, F fall, drag or arrows "
+                                 "look, F12 PNG, H panel, P present"
+                               : "W/S speed, Space stop, drag or arrows look, F12 PNG, H panel, "
+                                 "P present");
         }
-        int doppler = index_of(kDopplerValues, scene.render.doppler);
-        if (ImGui::Combo("colour", &doppler, kDopplerModels, 4))
-          scene.render.doppler = kDopplerValues[doppler];
-        int searchlight = index_of(kSearchlightValues, scene.render.searchlight);
-        if (ImGui::Combo("searchlight", &searchlight, kSearchlightModels, 3))
-          scene.render.searchlight = kSearchlightValues[searchlight];
-        if (ImGui::Checkbox("automatic exposure", &automatic)) {
-          // Off: the picture stays as it was. On: the metered EV, at once.
-          exposure_offset = automatic ? 0.0 : exposure;
-          metered_yet = false;
-        }
-        float ev = static_cast<float>(exposure_offset);
-        if (ImGui::SliderFloat(automatic ? "exposure offset (EV)" : "exposure (EV)", &ev, -10.0f,
-                               10.0f, "%.1f"))
-          exposure_offset = ev;
-        if (automatic) ImGui::Text("metered %.1f EV", metered);
-        int curve = index_of(kToneMapValues, scene.render.tonemap);
-        if (ImGui::Combo("tone map", &curve, kToneMaps, 3))
-          scene.render.tonemap = kToneMapValues[curve];
-        float scale = static_cast<float>(time_scale);
-        if (ImGui::SliderFloat("time scale", &scale, 0.0f, 20.0f, "%.2f")) time_scale = scale;
-        if (!scene.black_hole) ImGui::Checkbox("classical | relativistic (C)", &split);
-        ImGui::TextUnformatted(
-            scene.black_hole ? "W/S boost, Space hover, O orbit, F fall, drag or arrows "
-                               "look, F12 PNG, H panel"
-                             : "W/S speed, Space stop, drag or arrows look, F12 PNG, H panel");
         ImGui::End();
       }
       ImGui::Render();

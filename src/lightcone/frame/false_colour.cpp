@@ -7,8 +7,7 @@
 #include <span>
 #include <vector>
 
-// stb_easy_font: tiny bitmap text as quads (Debian's libstb-dev).
-#include <stb_easy_font.h>
+#include "lightcone/frame/image_text.hpp"
 
 namespace lightcone {
 namespace {
@@ -37,29 +36,6 @@ void put(Image& image, int x, int y, const LinearRgb& c) {
   p[0] = static_cast<float>(c.r);
   p[1] = static_cast<float>(c.g);
   p[2] = static_cast<float>(c.b);
-}
-
-// Text at (x, y), 2 pixels per font unit.
-void text(Image& image, int x, int y, const std::string& s) {
-  std::vector<char> buffer(s.size() * 300 + 64);
-  std::string copy = s;
-  unsigned char colour[4] = {255, 255, 255, 255};
-  const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer.data(),
-                                        static_cast<int>(buffer.size()));
-  const float* v = reinterpret_cast<const float*>(buffer.data());
-  for (int q = 0; q < quads; ++q) {
-    const float* quad = v + q * 16;  // 4 vertices of x, y, z and 4 colour bytes
-    const int x0 = static_cast<int>(2 * quad[0]), y0 = static_cast<int>(2 * quad[1]);
-    const int x1 = static_cast<int>(2 * quad[8]), y1 = static_cast<int>(2 * quad[9]);
-    for (int yy = std::min(y0, y1); yy < std::max(y0, y1); ++yy)
-      for (int xx = std::min(x0, x1); xx < std::max(x0, x1); ++xx)
-        put(image, x + xx, y + yy, {1, 1, 1});
-  }
-}
-
-int text_width(const std::string& s) {
-  std::string copy = s;
-  return 2 * stb_easy_font_width(copy.data());
 }
 
 std::string number(double v) {
@@ -114,7 +90,7 @@ Image false_colour(const NamedChannel& channel, int width, int height, const std
   // The quantity beside the bar, on its left; the bar; its ticks with their values beneath.
   const int label_width = text_width(label);
   const int bar_top = band_top + 8, bar_bottom = band_top + 18;
-  text(image, 6, bar_top - 1, label);
+  draw_text(image, 6, bar_top - 1, label);
   std::string lowest = number(lo), highest = number(hi);
   const int x0 = label_width + 12 + text_width(lowest) / 2;
   const int x1 = std::max(x0 + 1, width - 6 - text_width(highest) / 2);
@@ -130,8 +106,8 @@ Image false_colour(const NamedChannel& channel, int width, int height, const std
     const int x = x0 + (x1 - x0) * k / ticks;
     for (int y = bar_bottom; y < bar_bottom + 4; ++y) put(image, x, y, {1, 1, 1});
     const std::string s = number(lo + (hi - lo) * k / ticks);
-    text(image, std::clamp(x - text_width(s) / 2, 0, std::max(0, width - text_width(s))),
-         bar_bottom + 6, s);
+    draw_text(image, std::clamp(x - text_width(s) / 2, 0, std::max(0, width - text_width(s))),
+              bar_bottom + 6, s);
   }
   return image;
 }
