@@ -1,16 +1,19 @@
 // The bundled scenes as a user first sees them: each is readable at its own defaults (few
 // pixels the PNG holds as 255), and the README's first command renders the README's picture.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/io/scene_file.hpp"
 #include "lightcone/trace/aov.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
@@ -28,10 +31,27 @@ std::vector<std::string> bundled_scenes() {
   return names;
 }
 
+// The scene-format reference's first example, the one a newcomer copies, stands beside them.
+const std::string kFirstExample = "docs/scene-format.md's first example";
+
+Scene load_named(const std::string& name) {
+  if (name != kFirstExample) return test::load_repository_scene(name);
+  const std::string doc = test::bytes_of(fs::path(LIGHTCONE_SOURCE_DIR) / "docs/scene-format.md");
+  const std::size_t start = doc.find("```jsonc\n");
+  const std::size_t end = doc.find("```", start + 9);
+  const fs::path file = fs::temp_directory_path() /
+                        ("lightcone-first-example-" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << doc.substr(start + 9, end - start - 9);
+  SceneLoadReport report;
+  Scene scene = load_scene_file(file, {}, report);
+  fs::remove(file);
+  return scene;
+}
+
 // The scene at a quarter of its size (its view, samples and settings unchanged), and, where
 // `moving` is given, which of its pixels show a body moving relative to the camera.
 Image display_at_quarter_size(const std::string& name, std::vector<bool>* moving = nullptr) {
-  Scene s = test::load_repository_scene(name);
+  Scene s = load_named(name);
   s.camera.width = std::max(1, s.camera.width / 4);
   s.camera.height = std::max(1, s.camera.height / 4);
   RenderOptions options;
@@ -58,8 +78,9 @@ double png_brightness(const Image& display, std::size_t pixel) {
 }
 
 TEST(BundledScenes, EachIsReadableAtItsDefaults) {
-  const std::vector<std::string> names = bundled_scenes();
+  std::vector<std::string> names = bundled_scenes();
   ASSERT_GE(names.size(), 10u);
+  names.push_back(kFirstExample);
   for (const std::string& name : names) {
     SCOPED_TRACE(name);
     std::vector<bool> moving;
@@ -75,7 +96,7 @@ TEST(BundledScenes, EachIsReadableAtItsDefaults) {
     }
     // At most 2% of the pixels clipped in some channel, and something to see: a twentieth of
     // the picture, or of a field of point-like stars alone (each some 3x3 pixels) a 200th.
-    const Scene scene = test::load_repository_scene(name);
+    const Scene scene = load_named(name);
     const bool star_field = scene.sky.stars && scene.objects.empty() && !scene.black_hole;
     EXPECT_LE(static_cast<double>(clipped) / pixels, 0.02);
     EXPECT_GE(static_cast<double>(lit) / pixels, star_field ? 0.005 : 0.05);
