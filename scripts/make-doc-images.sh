@@ -59,6 +59,7 @@ render lensed-clock lensed-clock.json
 render infall infall.json
 render orbit orbit.json
 render plunge plunge.json
+render texture-mapping texture-mapping.json
 echo "lightcone animate scenes/rocket.json --fps 10 --frames 0-40 --video rocket.gif ..." >&2
 "$lc" animate scenes/rocket.json --fps 10 --frames 0-40 --set camera.proper_time=0 \
   --width 256 --height 144 --samples 2 --video "$out/rocket.gif" --quiet

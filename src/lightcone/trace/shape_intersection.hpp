@@ -98,11 +98,15 @@ inline int box_face_axis(const Box& box, const Vec3& p) {
   return axis;
 }
 
+// Each face shows the whole image, read from outside the box the right way round (not
+// mirrored): the side faces upright, the top with its image's top toward -z, the bottom toward
+// +z (docs/scene-format.md, "Texture coordinates").
 inline std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
   const Vec3 rel = component_div(p, box.size);
-  if (axis == 0) return {0.5 + rel.z, 0.5 - rel.y};
-  if (axis == 1) return {0.5 + rel.x, 0.5 + rel.z};
-  return {0.5 + rel.x, 0.5 - rel.y};
+  const double outward = p[axis] < 0 ? -1.0 : 1.0;
+  if (axis == 0) return {0.5 - outward * rel.z, 0.5 - rel.y};
+  if (axis == 1) return {0.5 + rel.x, 0.5 + outward * rel.z};
+  return {0.5 + outward * rel.x, 0.5 - rel.y};
 }
 
 // The texture coordinates and normal of an analytic shape's surface point. Points on flat faces

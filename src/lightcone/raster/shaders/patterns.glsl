@@ -45,9 +45,10 @@ vec2 surface_uv(vec3 p) {
   }
   if (shape_kind == 1) {
     vec3 rel = p / box_size, a = abs(rel);
-    if (a.x >= a.y && a.x >= a.z) return vec2(0.5 + rel.z, 0.5 - rel.y);
-    if (a.y >= a.z) return vec2(0.5 + rel.x, 0.5 + rel.z);
-    return vec2(0.5 + rel.x, 0.5 - rel.y);
+    vec3 outward = sign(rel);  // the face's own component is +-0.5, never 0
+    if (a.x >= a.y && a.x >= a.z) return vec2(0.5 - outward.x * rel.z, 0.5 - rel.y);
+    if (a.y >= a.z) return vec2(0.5 + rel.x, 0.5 + outward.y * rel.z);
+    return vec2(0.5 + outward.z * rel.x, 0.5 - rel.y);
   }
   return vec2(0.5 + p.x / box_size.x, 0.5 + p.z / box_size.z);  // a plane's size in x and z
 }
