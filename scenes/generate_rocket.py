@@ -21,17 +21,16 @@ scene = {
     "camera": {
         "position": [0, 0, 0], "proper_time": 2,
         "motion": {"phases": [{"duration": 8, "acceleration": [0.5, 0, 0]}]},
-        "forward": [1, 0, -1.2], "fov": 90, "width": 960, "height": 540, "samples": 4,
+        "forward": [1, 0, -0.8], "fov": 90, "width": 960, "height": 540, "samples": 4,
     },
     "objects": clocks + [{
         "name": "ground",
         "shape": {"plane": {"size": [200, 30]}},
         "position": [30, -1.5, -6],
-        "material": {"checker": {"size": 1.5, "colors": [[0.35, 0.35, 0.38], [0.55, 0.55, 0.6]]}},
+        "material": {"checker": {"size": 1.5, "colors": [[0.12, 0.12, 0.13], [0.24, 0.24, 0.26]]}},
     }],
     "sky": {"grid": {"spacing": 15}},
-    "render": {"tonemap": "filmic", "exposure": -2},
-}
+    }
 HEADER = """\
 // A rocket accelerating from rest at proper acceleration 0.5 (in units of c^2 per length) past
 // a row of clocks, 3 apart and synchronised in their own frame, each turning once every 4 units
