@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -1695,6 +1696,57 @@ TEST_F(CliTest, PreviewIsAQuarterSizeOneSampleTheScenesExposure) {
   EXPECT_EQ(test::fraction_differing(*preview, *read_png()), 0.0);
 }
 
+// --width and --height keep the scene's field both ways: a narrower picture keeps the
+// horizontal field (two balls 40 degrees either side stay in view, where the vertical field
+// alone would have lost them), a wider one the vertical field; stderr says which.
+TEST_F(CliTest, ASizeOfAnotherAspectKeepsTheScenesField) {
+  const fs::path scene = write_scene(R"({
+  "camera": {"position": [0, 0, 0], "fov": 40, "width": 96, "height": 36},
+  "objects": [
+    {"name": "left", "shape": {"sphere": {"radius": 0.2}}, "position": [-6.4279, 0, -7.6604],
+     "material": {"color": [1, 1, 1]}},
+    {"name": "right", "shape": {"sphere": {"radius": 0.2}}, "position": [6.4279, 0, -7.6604],
+     "material": {"color": [1, 1, 1]}}],
+  "render": {"exposure": 0}
+})");
+  // The brightest column of a picture's left or right half.
+  const auto brightest_column = [&](bool right) {
+    const auto image = read_exr();
+    int best = -1;
+    float most = 0;
+    for (int x = right ? image->width / 2 : 0; x < (right ? image->width : image->width / 2); ++x)
+      for (int y = 0; y < image->height; ++y)
+        if (const float v = image->rgb[3 * (y * image->width + x) + 1]; v > most) {
+          most = v;
+          best = x;
+        }
+    return best;
+  };
+  // tan 40 over the scene's horizontal half-tangent, tan 20 * 96 / 36, of the half-width.
+  const double from_centre =
+      std::tan(40 * std::numbers::pi / 180) / (std::tan(20 * std::numbers::pi / 180) * 96 / 36);
+  CommandResult r = render(scene, "--width 48 --height 27");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("48x27 is narrower than the scene: its horizontal field of 88.29 degrees "
+                       "is kept, the vertical one widens from 40 to 57.27"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NEAR(brightest_column(true), 24 + 24 * from_centre - 0.5, 1.0);
+  EXPECT_NEAR(brightest_column(false), 24 - 24 * from_centre - 0.5, 1.0);
+  r = render(scene, "--width 200");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("200x36 is wider than the scene: its vertical field of 40 degrees is "
+                       "kept, the horizontal one widens from 88.29 to 127.4"),
+            std::string::npos)
+      << r.err;
+  const double wider = from_centre * 96 / 200;  // the same vertical field, 200 / 36 wide
+  EXPECT_NEAR(brightest_column(true), 100 + 100 * wider - 0.5, 1.0);
+  // At the scene's aspect nothing is said.
+  r = render(scene, "--width 192 --height 72");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("field"), std::string::npos) << r.err;
+}
+
 // --scale keeps the picture: half the size, with four times the samples, is the full-size
 // render averaged over 2x2 blocks, within the sampling noise of the checker's edges.
 TEST_F(CliTest, ScaleKeepsThePicture) {
@@ -1867,7 +1919,7 @@ TEST_F(CliTest, MapWritesAColourMappedPictureWithAScaleBar) {
   ASSERT_EQ(r.status, 0) << r.err;
   const auto picture = read_png();
   EXPECT_EQ(picture->width, 64);
-  EXPECT_EQ(picture->height, 48);  // the render's size, the legend inside
+  EXPECT_EQ(picture->height, 48);     // the render's size, the legend inside
   const auto exr_image = read_exr();  // the EXR keeps the render and the mapped channel
   ASSERT_EQ(exr_image->channels.size(), 1u);
   EXPECT_EQ(exr_image->channels[0].name, "doppler");

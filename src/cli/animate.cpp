@@ -192,8 +192,6 @@ std::string describe_frames(long long first, long long last) {
 int run_animate(const AnimateArgs& a) {
   const StopSignals stop_signals;
   std::vector<std::string> overrides = a.overrides;
-  if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
-  if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
 
   // Everything is checked before the first frame is rendered.
@@ -244,6 +242,10 @@ int run_animate(const AnimateArgs& a) {
 
   const Scene scene = [&] {
     Scene s = load(a.scene, overrides, a.scene_options);
+    if (a.width || a.height) {
+      const std::string kept = resize_keeping_field(s.camera, a.width, a.height);
+      if (!kept.empty() && !a.quiet) std::fprintf(stderr, "lightcone: %s\n", kept.c_str());
+    }
     if (a.scale) scale_image_size(s.camera, *a.scale);
     return s;
   }();

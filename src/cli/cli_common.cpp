@@ -4,9 +4,12 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <sstream>
+#include <utility>
 
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/input_error.hpp"
@@ -130,6 +133,41 @@ void scale_image_size(Camera& camera, double factor) {
                     factor, camera.width, camera.height));
   camera.width = std::max(1, static_cast<int>(width));
   camera.height = std::max(1, static_cast<int>(height));
+}
+
+std::string resize_keeping_field(Camera& camera, std::optional<int> width,
+                                 std::optional<int> height) {
+  for (const auto& [option, size] : {std::pair{"--width", width}, std::pair{"--height", height}})
+    if (size && !(*size >= 1 && *size <= kMaxCameraSide))
+      throw InputError(fmt::format("{}: must be an integer from 1 to {}, got {}", option,
+                                   kMaxCameraSide, *size));
+  const int new_width = width.value_or(camera.width), new_height = height.value_or(camera.height);
+  if (std::int64_t{new_width} * new_height > kMaxCameraPixels)
+    throw InputError(fmt::format("{}: {} x {} pixels is more than the limit of {} (2^27)",
+                                 width ? "--width" : "--height", new_width, new_height,
+                                 kMaxCameraPixels));
+  const double old_aspect = double(camera.width) / camera.height,
+               new_aspect = double(new_width) / new_height;
+  camera.width = new_width;
+  camera.height = new_height;
+  if (new_aspect == old_aspect) return "";
+  const double half_tan = std::tan(camera.fov_degrees * std::numbers::pi / 360);
+  const auto degrees = [](double half_tangent) {
+    return 360 / std::numbers::pi * std::atan(half_tangent);
+  };
+  if (new_aspect > old_aspect)
+    return fmt::format(
+        "{}x{} is wider than the scene: its vertical field of {:.4g} degrees is "
+        "kept, the horizontal one widens from {:.4g} to {:.4g}",
+        new_width, new_height, camera.fov_degrees, degrees(half_tan * old_aspect),
+        degrees(half_tan * new_aspect));
+  const double horizontal = degrees(half_tan * old_aspect);
+  const double old_vertical = camera.fov_degrees;
+  camera.fov_degrees = degrees(half_tan * old_aspect / new_aspect);
+  return fmt::format(
+      "{}x{} is narrower than the scene: its horizontal field of {:.4g} degrees "
+      "is kept, the vertical one widens from {:.4g} to {:.4g}",
+      new_width, new_height, horizontal, old_vertical, camera.fov_degrees);
 }
 
 std::string counted(std::size_t count, const std::string& noun) {

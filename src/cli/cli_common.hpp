@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -68,6 +69,14 @@ bool same_file(const std::string& a, const std::string& b);
 // vertical field of view is kept, and the aspect as nearly as whole pixels allow). F must be
 // above 0 and make at most 16384 pixels a side (InputError otherwise).
 void scale_image_size(Camera& camera, double factor);
+
+// --width W and --height H: the picture at that size shows at least the scene's own field of
+// view both ways. A wider picture than the scene's keeps the vertical field (camera.fov) and
+// shows more at the sides; a narrower one keeps the horizontal field and shows more above and
+// below. Returns a line saying which was kept (empty where the aspect is the scene's); sizes
+// outside the camera's limits are InputErrors naming the option.
+std::string resize_keeping_field(Camera& camera, std::optional<int> width,
+                                 std::optional<int> height);
 
 // "1 sample", "4 samples": a count and its noun, singular or plural.
 std::string counted(std::size_t count, const std::string& noun);

@@ -118,8 +118,6 @@ RenderOutputs checked_outputs(const RenderArgs& a) {
 // cannot be drawn near a black hole.
 Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
   std::vector<std::string> overrides = a.overrides;
-  if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
-  if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
   if (a.preview) overrides.push_back("camera.samples=1");
 
@@ -127,14 +125,10 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
     try {
       return load(a.scene, overrides, a.scene_options);
     } catch (const InputError& e) {
-      // --width, --height and --samples travel as overrides; name the option the user typed.
-      const std::string message = e.what();
-      for (const auto& [option, path, given] :
-           {std::tuple{"--width", "--set camera.width:", a.width.has_value()},
-            std::tuple{"--height", "--set camera.height:", a.height.has_value()},
-            std::tuple{"--samples", "--set camera.samples:", a.samples.has_value()}})
-        if (given && message.rfind(path, 0) == 0)
-          throw InputError(std::string(option) + ":" + message.substr(std::string(path).size()));
+      // --samples travels as an override; name the option the user typed.
+      const std::string message = e.what(), path = "--set camera.samples:";
+      if (a.samples && message.rfind(path, 0) == 0)
+        throw InputError("--samples:" + message.substr(path.size()));
       throw;
     }
   }();
@@ -143,6 +137,10 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
       require_drawable_near_black_hole(scene, a.scene, false,
                                        ("the output variable " + aov_name(aov)).c_str());
   require_drawable_near_black_hole(scene, a.scene, out.raster);
+  if (a.width || a.height) {
+    const std::string kept = resize_keeping_field(scene.camera, a.width, a.height);
+    if (!kept.empty() && !a.quiet) std::fprintf(stderr, "lightcone: %s\n", kept.c_str());
+  }
   if (a.scale) scale_image_size(scene.camera, *a.scale);
   if (a.preview) scale_image_size(scene.camera, 0.25);  // a quarter of the size, the same view
   return scene;

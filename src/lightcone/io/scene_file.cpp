@@ -30,8 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kMaxImageSide = 16384;
-constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
 constexpr int kMaxSamples = 65536;
 
 }  // namespace
@@ -126,11 +124,11 @@ Camera SceneReader::camera(const Node& n) const {
            fmt::format("must be between 0 and 180 degrees (both excluded), got {}", c.fov_degrees));
   }
   const Node width = member(n, "width"), height = member(n, "height");
-  if (width.value) c.width = integer(width, 1, kMaxImageSide);
-  if (height.value) c.height = integer(height, 1, kMaxImageSide);
-  if (std::int64_t{c.width} * c.height > kMaxPixels)
+  if (width.value) c.width = integer(width, 1, kMaxCameraSide);
+  if (height.value) c.height = integer(height, 1, kMaxCameraSide);
+  if (std::int64_t{c.width} * c.height > kMaxCameraPixels)
     fail(width, fmt::format("{} x {} pixels is more than the limit of {} (2^27)", c.width, c.height,
-                            kMaxPixels));
+                            kMaxCameraPixels));
   if (Node s = member(n, "samples"); s.value) c.samples = integer(s, 1, kMaxSamples);
   if (Node sh = member(n, "shutter"); sh.value) {
     c.shutter = non_negative(sh) * c_;

@@ -232,6 +232,10 @@ struct Light {
 inline constexpr double kCameraHorizonMargin = 1e-9;
 inline constexpr double kCameraInnermostRadius = 0.05;
 
+// The largest picture a camera takes: on each side, and in all.
+inline constexpr int kMaxCameraSide = 16384;
+inline constexpr std::int64_t kMaxCameraPixels = std::int64_t{1} << 27;
+
 struct Camera {
   // The observation event is (world_line.time, world_line.position), and world_line.velocity
   // the camera's velocity there: what renderers read. A camera described by `motion` has them
