@@ -941,7 +941,8 @@ TEST_F(CliTest, AutomaticExposure) {
     expect_exr(*read_exr(), 0.5f);
     // Shown through the filmic curve.
     const int png = static_cast<int>(std::lround(255 * srgb_encode(filmic_curve(0.5))));
-    for (const float v : read_png()->rgb) ASSERT_EQ(png_byte(v), png);
+    const auto picture = read_png();  // held: a range over a temporary's member would dangle
+    for (const float v : picture->rgb) ASSERT_EQ(png_byte(v), png);
   }
   {
     // A few very bright pixels (2 % of 192) do not set it: they clip, and the wall is still

@@ -217,11 +217,16 @@ TEST_F(HostileInput, SigtermKeepsWholeFramesAndRemovesTemporaries) {
   // too). setsid gives the run its own group.
   const fs::path video = dir_ / "v.mp4";
   test::write_text(video, "the old video");
+  // Stopped once its first frame is whole (frames are renamed into place), however slow the build
+  // (a sanitized one takes seconds a frame); never before a second, so the video is under way.
+  const std::string first_frame_or_a_minute = "sleep 1; for i in $(seq 600); do [ -e " +
+                                              quoted(dir_ / "f-0000.png") +
+                                              " ] && break; sleep 0.1; done; ";
   const std::string command = "setsid " + std::string(LIGHTCONE_BINARY) + " animate " + terrell() +
                               " --frames 0-500 -o " + quoted(dir_ / "f-%04d.png") + " --video " +
                               quoted(video) + " --width 320 --height 180 --samples 4 --quiet 2>" +
-                              quoted(dir_ / "err.txt") +
-                              " & pid=$!; sleep 2; kill -TERM -- -$pid; wait $pid; echo $? > " +
+                              quoted(dir_ / "err.txt") + " & pid=$!; " + first_frame_or_a_minute +
+                              "kill -TERM -- -$pid; wait $pid; echo $? > " +
                               quoted(dir_ / "status.txt");
   test::write_text(dir_ / "stop.sh", command + "\n");
   ASSERT_EQ(std::system(("bash " + quoted(dir_ / "stop.sh")).c_str()), 0);

@@ -48,6 +48,15 @@ class SceneFileTest : public ::testing::Test {
     return file;
   }
 
+  // A 2 x 1 PNG of the two linear colours `rgb` holds, beside the scene.
+  void write_two_texel_png(const std::string& name, std::vector<float> rgb) {
+    Image image;
+    image.width = 2;
+    image.height = 1;
+    image.rgb = std::move(rgb);
+    write_images(image, dir_ / name, std::nullopt);
+  }
+
   Scene load(const std::string& text, const std::vector<std::string>& overrides = {}) {
     report_ = {};
     return load_scene_file(write("scene.json", text), overrides, report_);
@@ -175,6 +184,33 @@ TEST_F(SceneFileTest, FullSceneMapsOntoTheModel) {
   EXPECT_FALSE(s.render.light_delay);
   EXPECT_EQ(s.render.exposure, -1.5);
   EXPECT_TRUE(report_.warnings.empty());
+}
+
+// A scene given as text (the Python module's Scene.from_dict): the same scene as from its file,
+// relative paths beside the name it is given, and errors located in that name.
+TEST_F(SceneFileTest, SceneTextLoadsAsItsFileWould) {
+  write_two_texel_png("sky.png", {1, 0, 0, 0, 0, 1});
+  const std::string text = R"({
+  "camera": {"position": [0, 0, 0], "velocity": [0, 0, -0.5]},
+  "sky": {"image": "sky.png"}
+})";
+  const Scene from_file = load(text);
+  SceneLoadReport report;
+  const Scene from_text =
+      load_scene_text(text, dir_ / "made-in-code.json", {"camera.fov=50"}, report);
+  EXPECT_EQ(from_text.camera.world_line.velocity.z, from_file.camera.world_line.velocity.z);
+  EXPECT_EQ(from_text.camera.fov_degrees, 50);
+  ASSERT_TRUE(std::holds_alternative<SkyImage>(from_text.sky.pattern));
+  try {
+    load_scene_text("{\n  \"camera\": {\"position\": [0, 0, 0], \"fov\": 200}\n}",
+                    dir_ / "made-in-code.json", {}, report);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find((dir_ / "made-in-code.json").string() +
+                                         ":2: camera.fov: must be between 0 and 180"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(SceneFileTest, CameraMotionAndProperTimeSelectTheObservation) {
@@ -612,11 +648,7 @@ TEST_F(SceneFileTest, LightDefaultsAreTheDocumentedOnes) {
 }
 
 TEST_F(SceneFileTest, LitMaterials) {
-  Image albedo;
-  albedo.width = 2;
-  albedo.height = 1;
-  albedo.rgb = {1, 0, 0, 0, 0, 0.5f};
-  write_images(albedo, dir_ / "albedo.png", std::nullopt);
+  write_two_texel_png("albedo.png", {1, 0, 0, 0, 0, 0.5f});
   const Scene s = load(with_object(R"(
     {"name": "matte", "shape": {"sphere": {"radius": 1}},
      "material": {"color": [0.5, 0.25, 1], "unlit": false}},
@@ -1426,11 +1458,7 @@ TEST_F(SceneFileTest, MeshErrorsAreLocatedInTheScene) {
 }
 
 TEST_F(SceneFileTest, TexturesAndSkyImagesAreSharedAndLocated) {
-  Image image;
-  image.width = 2;
-  image.height = 1;
-  image.rgb = {1, 0, 0, 0, 0, 1};
-  write_images(image, dir_ / "tex.png", std::nullopt);
+  write_two_texel_png("tex.png", {1, 0, 0, 0, 0, 1});
   const Scene s = load(R"({
     "camera": {"position": [0, 0, 5]},
     "objects": [

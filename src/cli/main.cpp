@@ -23,6 +23,7 @@
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/spelling.hpp"
 #include "lightcone/trace/renderer.hpp"
@@ -255,54 +256,11 @@ int run_locate(const LocateArgs& a) {
     throw InputError(a.scene + ": --object: " + e.what());
   }
   // A point so far away that its light path overflows double precision has no answer to print.
-  const auto finite = [](const Vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-  };
-  if (!finite(r.direction) || !std::isfinite(r.doppler) ||
-      (r.in_view && !(std::isfinite(r.pixel_x) && std::isfinite(r.pixel_y))) ||
-      (r.emission_time && !std::isfinite(*r.emission_time)) ||
-      (r.emission_proper_time && !std::isfinite(*r.emission_proper_time)) ||
-      (r.emission_position && !finite(*r.emission_position)) ||
-      (r.distance && !std::isfinite(*r.distance)))
+  if (!locate_result_is_finite(r))
     throw InputError(fmt::format(
         "{}: too far from the camera to be located in double precision",
         a.point ? "--point " + *a.point : "--world-point " + a.world_point.value_or("")));
-  nlohmann::ordered_json out = {{"pixel", {r.pixel_x, r.pixel_y}},
-                                {"direction", to_json(r.direction)},
-                                {"emission_time", nullptr},
-                                {"emission_position", nullptr},
-                                {"emission_proper_time", nullptr},
-                                {"distance", nullptr},
-                                {"in_view", r.in_view},
-                                {"doppler", r.doppler}};
-  if (!r.in_view) out["pixel"] = nullptr;  // behind the camera or outside the image
-  // Times in the scene's units (the model's are c t).
-  const double c = scene.speed_of_light;
-  if (r.emission_time) out["emission_time"] = *r.emission_time / c;
-  if (r.emission_proper_time) out["emission_proper_time"] = *r.emission_proper_time / c;
-  if (r.emission_position) out["emission_position"] = to_json(*r.emission_position);
-  if (r.distance) out["distance"] = *r.distance;
-  if (scene.black_hole) {
-    // Every image, the primary first (whose pixel and direction are the fields above).
-    nlohmann::ordered_json images = nlohmann::ordered_json::array();
-    for (const LocateImage& image : r.images) {
-      nlohmann::ordered_json one = {{"order", image.order},
-                                    {"pixel", {image.pixel_x, image.pixel_y}},
-                                    {"direction", to_json(image.direction)},
-                                    {"emission_time", nullptr},
-                                    {"emission_position", nullptr},
-                                    {"emission_proper_time", nullptr},
-                                    {"in_view", image.in_view},
-                                    {"g", image.shift}};
-      if (!image.in_view) one["pixel"] = nullptr;
-      if (image.emission_time) one["emission_time"] = *image.emission_time / c;
-      if (image.emission_position) one["emission_position"] = to_json(*image.emission_position);
-      if (image.emission_proper_time) one["emission_proper_time"] = *image.emission_proper_time / c;
-      images.push_back(one);
-    }
-    out["images"] = images;
-  }
-  std::printf("%s\n", out.dump().c_str());
+  std::printf("%s\n", locate_json(r, scene).c_str());
   return 0;
 }
 

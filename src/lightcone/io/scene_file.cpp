@@ -507,7 +507,12 @@ RenderSettings file_render_defaults() {
 
 Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report, const SceneLoadOptions& options) {
-  std::string text = read_scene_text(file);
+  return load_scene_text(read_scene_text(file), file, overrides, report, options);
+}
+
+Scene load_scene_text(std::string text, const std::filesystem::path& file,
+                      const std::vector<std::string>& overrides, SceneLoadReport& report,
+                      const SceneLoadOptions& options) {
   const DocumentArena arena;  // for the document, which is gone when the scene is returned
   bool repeated_key = false;
   SceneJson document = parse_scene_document(file, text, repeated_key);

@@ -32,4 +32,10 @@ RenderSettings file_render_defaults();
 Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                       SceneLoadReport& report, const SceneLoadOptions& options = {});
 
+// The same for a scene file's text: `file` names it in messages, and relative paths are
+// resolved against its folder (it need not exist).
+Scene load_scene_text(std::string text, const std::filesystem::path& file,
+                      const std::vector<std::string>& overrides, SceneLoadReport& report,
+                      const SceneLoadOptions& options = {});
+
 }  // namespace lightcone

@@ -1,0 +1,20 @@
+// locate's answer as JSON: what `lightcone locate` prints and the Python module returns.
+#pragma once
+
+#include <string>
+
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+// Whether every number of the answer is finite (a point so far away that its light path
+// overflows double precision has none to give).
+bool locate_result_is_finite(const LocateResult& r);
+
+// The fields of docs/guide.md's "locate": pixel (null out of view), direction, the emission
+// event (times in the scene's units), distance, in_view, doppler; near a black hole every image.
+// One line, the fields in that order.
+std::string locate_json(const LocateResult& r, const Scene& scene);
+
+}  // namespace lightcone
