@@ -3,6 +3,7 @@
 #   ./setup.sh            the build and the tests
 #   ./setup.sh --checks   also clang and its sanitizer and fuzzer runtimes (scripts/sanitize.sh,
 #                         scripts/fuzz.sh)
+#   ./setup.sh --web      also emscripten and chromium (scripts/build-web.sh, the page's tests)
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format
@@ -14,6 +15,7 @@ packages=(
   kstars-data
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
+if [ "${1:-}" = "--web" ]; then packages+=(emscripten chromium); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

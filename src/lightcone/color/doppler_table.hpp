@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 
@@ -67,10 +67,11 @@ inline const GridLogTable grid_log_table;
 
 inline double grid_log(double d) {
   if (!(d > 1e-300 && d < 1e300)) return std::log(d);
-  const auto bits = std::bit_cast<std::uint64_t>(d);
+  const auto bits = lightcone::bit_cast<std::uint64_t>(d);
   const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
   const auto k = static_cast<int>((bits >> 42) & 0x3ff);
-  const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  const double m =
+      lightcone::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
   const double x = (m - (1 + k * (1.0 / 1024))) * detail::grid_log_table.inverse_node[k];
   const double series = x * (1 - x * (0.5 - x * (1.0 / 3 - x * 0.25)));
   return e * 0.6931471805599453 + detail::grid_log_table.log_node[k] + series;

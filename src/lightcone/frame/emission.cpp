@@ -1,13 +1,12 @@
 #include "lightcone/frame/emission.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "lightcone/color/spectrum.hpp"
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/shading.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -72,7 +71,7 @@ namespace {
 struct ParallelNodes {
   template <class F>
   void operator()(int n, const F& f) const {
-    tbb::parallel_for(0, n, [&](int k) { f(k); });
+    parallel_for(0, n, [&](int k) { f(k); });
   }
 };
 
@@ -93,7 +92,7 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
     nodes_.resize(static_cast<std::size_t>(kRgbEmitterCases) * kRgbToSpectrumRes);
     node_built_.assign(nodes_.size(), false);
     if (has_per_lookup_colours(scene_)) {
-      tbb::parallel_for(std::size_t{0}, nodes_.size(), [&](std::size_t i) {
+      parallel_for(std::size_t{0}, nodes_.size(), [&](std::size_t i) {
         const int node_case = static_cast<int>(i) / kRgbToSpectrumRes;
         const int node = static_cast<int>(i) % kRgbToSpectrumRes;
         nodes_[i] = DopplerXyzTable::under(rgb_emitter_node(node_case, node), illuminant_, grid_);

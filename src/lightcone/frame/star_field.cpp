@@ -1,7 +1,5 @@
 #include "lightcone/frame/star_field.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,6 +10,7 @@
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/stars.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -53,7 +52,7 @@ template <class One>
 std::vector<StarImage> over_stars(std::size_t count, const One& one) {
   constexpr std::size_t kBlock = 512;
   std::vector<std::vector<StarImage>> parts((count + kBlock - 1) / kBlock);
-  tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t b) {
+  parallel_for(std::size_t{0}, parts.size(), [&](std::size_t b) {
     for (std::size_t k = b * kBlock; k < std::min(count, (b + 1) * kBlock); ++k) one(k, parts[b]);
   });
   std::size_t total = 0;

@@ -1,14 +1,13 @@
 #include "lightcone/frame/tone_map.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
 #include <utility>
 #include <vector>
+
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -118,24 +117,25 @@ Image tone_map(const Image& linear, ToneMap curve) {
   Image out = linear;
   // Each pixel on its own: in parallel, off the critical path of an animation's next frame.
   const std::size_t pixels = out.rgb.size() / 3;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels, 4096), [&](const auto& range) {
-    for (std::size_t p = 3 * range.begin(); p < 3 * range.end(); p += 3) {
-      float* c = &out.rgb[p];
-      switch (curve) {
-        case ToneMap::kClamp:
-          for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k]);
-          break;
-        case ToneMap::kReinhard: {
-          const double scale = 1.0 / (1.0 + std::max(0.0, luminance(c)));
-          for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k] * scale);
-          break;
-        }
-        case ToneMap::kFilmic:
-          filmic_on_luminance(c);
-          break;
-      }
-    }
-  });
+  parallel_for_pieces(std::size_t{0}, pixels, std::size_t{4096},
+                      [&](std::size_t begin, std::size_t end) {
+                        for (std::size_t p = 3 * begin; p < 3 * end; p += 3) {
+                          float* c = &out.rgb[p];
+                          switch (curve) {
+                            case ToneMap::kClamp:
+                              for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k]);
+                              break;
+                            case ToneMap::kReinhard: {
+                              const double scale = 1.0 / (1.0 + std::max(0.0, luminance(c)));
+                              for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k] * scale);
+                              break;
+                            }
+                            case ToneMap::kFilmic:
+                              filmic_on_luminance(c);
+                              break;
+                          }
+                        }
+                      });
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "lightcone/io/srgb.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
@@ -14,11 +15,6 @@ namespace lightcone {
 // through OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels. Throws
 // InputError naming the file when it is missing, unreadable or not an image.
 std::shared_ptr<Image> load_image_file(const std::filesystem::path& file);
-
-// sRGB opto-electronic transfer function for a linear value in [0, 1].
-double srgb_encode(double linear);
-// Its inverse.
-double srgb_decode(double encoded);
 
 enum class ImageFormat { kPng, kJpeg, kExr };
 

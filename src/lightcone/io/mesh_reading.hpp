@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lightcone/io/mesh_file.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone::mesh_io {
 
@@ -52,7 +53,7 @@ void for_each_line(std::string_view text, F&& f) {
 
 template <class T>
 bool parse_number(std::string_view s, T& value) {
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  const auto [end, ec] = lightcone::from_chars(s.data(), s.data() + s.size(), value);
   return ec == std::errc() && end == s.data() + s.size();
 }
 

@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #endif
 
+#if LIGHTCONE_HAVE_MEMORY_RESOURCE
 namespace lightcone {
 namespace {
 
@@ -61,3 +62,4 @@ std::pmr::memory_resource& DocumentArena::blocks() {
 }
 
 }  // namespace lightcone
+#endif

@@ -9,12 +9,18 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <memory_resource>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "lightcone/portable.hpp"
+#if LIGHTCONE_HAVE_MEMORY_RESOURCE
+#include <memory_resource>
+#endif
+
 namespace lightcone {
+
+#if LIGHTCONE_HAVE_MEMORY_RESOURCE
 
 // Memory for the documents made on this thread while it lives, freed all at once when it ends.
 // Every value made under it must be destroyed before it ends.
@@ -60,6 +66,18 @@ struct DocumentAllocator {
 
   friend bool operator==(const DocumentAllocator&, const DocumentAllocator&) { return true; }
 };
+
+#else
+// Without <memory_resource> (the browser build), documents are made on the heap.
+class DocumentArena {
+ public:
+  DocumentArena() {}  // user-provided, so that a const one may be made
+  DocumentArena(const DocumentArena&) = delete;
+  DocumentArena& operator=(const DocumentArena&) = delete;
+};
+template <class T>
+using DocumentAllocator = std::allocator<T>;
+#endif
 
 using SceneJson = nlohmann::basic_json<std::map, std::vector, std::string, bool, std::int64_t,
                                        std::uint64_t, double, DocumentAllocator>;

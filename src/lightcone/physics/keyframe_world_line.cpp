@@ -1,8 +1,9 @@
 #include "lightcone/physics/keyframe_world_line.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -62,11 +63,7 @@ const GaussLegendre& gauss_legendre() {
 
 // x in the fewest digits that read back as x, or in `digits` significant digits.
 std::string to_text(double x, int digits = 0) {
-  char text[32];
-  const std::to_chars_result written =
-      digits > 0 ? std::to_chars(text, std::end(text), x, std::chars_format::general, digits)
-                 : std::to_chars(text, std::end(text), x);
-  return std::string(text, written.ptr);
+  return digits > 0 ? fmt::format("{:.{}g}", x, digits) : fmt::format("{}", x);
 }
 
 bool is_finite(const Vec3& v) {

@@ -1,5 +1,6 @@
 #include "lightcone/physics/radial_observer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 

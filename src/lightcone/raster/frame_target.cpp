@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "lightcone/raster/gl.hpp"
-#include "lightcone/raster/shader_sources.hpp"
+#include "lightcone/raster/shader_build.hpp"
 
 namespace lightcone {
 
@@ -86,11 +86,10 @@ Image FloatTarget::read() const {
 }
 
 DisplayPass::DisplayPass() {
-  program_ = link_program(std::string("#version 330 core\n") + shader_sources::common_glsl +
-                              shader_sources::fullscreen_vert,
-                          std::string("#version 330 core\n#define LIGHTCONE_FRAGMENT_STAGE 1\n") +
-                              shader_sources::common_glsl + shader_sources::tone_map_glsl +
-                              shader_sources::display_frag);
+  program_ = link_program(
+      version_line(false) + shader_sources::common_glsl + shader_sources::fullscreen_vert,
+      version_line(false) + "#define LIGHTCONE_FRAGMENT_STAGE 1\n" + shader_sources::common_glsl +
+          shader_sources::tone_map_glsl + shader_sources::display_frag);
   glGenVertexArrays(1, &vertex_array_);
   check_gl("creating the display pass");
 }
@@ -121,6 +120,11 @@ void DisplayPass::draw(const FloatTarget& relativistic, const FloatTarget* class
                                                                                         : 0);
   glBindVertexArray(vertex_array_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  // The targets are drawn into next: left bound, WebGL refuses those draws as feedback loops.
+  for (const GLenum unit : {GL_TEXTURE1, GL_TEXTURE0}) {
+    glActiveTexture(unit);
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
   check_gl("drawing the display pass");
 }
 

@@ -1,12 +1,30 @@
-// The OpenGL 3.3 core functions, as libglvnd's libOpenGL exports them, and small helpers that
-// turn GL errors into exceptions.
+// The OpenGL 3.3 core functions, as libglvnd's libOpenGL exports them (in the browser build,
+// OpenGL ES 3.0's, which WebGL 2 is), and small helpers that turn GL errors into exceptions.
 #pragma once
 
+#include <stdexcept>
+
+#ifdef __EMSCRIPTEN__
+#include <GLES3/gl3.h>
+// WebGL 2 has no tessellation stages (gl_has_tessellation_shaders is false there, so the GPU
+// tessellation path is never taken) and sizes points from the shader always: the names the
+// native code uses, with OpenGL 4's values.
+constexpr GLenum GL_TESS_CONTROL_SHADER = 0x8E88;
+constexpr GLenum GL_TESS_EVALUATION_SHADER = 0x8E87;
+constexpr GLenum GL_PATCHES = 0x000E;
+constexpr GLenum GL_PATCH_VERTICES = 0x8E72;
+inline void glPatchParameteri(GLenum, GLint) {
+  throw std::logic_error("tessellation shaders in WebGL 2");
+}
+inline void glClearDepth(double depth) {
+  glClearDepthf(static_cast<float>(depth));
+}
+#else
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
+#endif
 
-#include <stdexcept>
 #include <string>
 
 #include "lightcone/physics/lorentz.hpp"

@@ -1,7 +1,5 @@
 #include "lightcone/raster/hole_bodies.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <array>
 #include <cmath>
 #include <map>
@@ -11,6 +9,7 @@
 
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/shading.hpp"
+#include "lightcone/portable.hpp"
 #include "lightcone/raster/adaptive_split.hpp"
 #include "lightcone/raster/body_patterns.hpp"
 
@@ -247,7 +246,7 @@ std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
                                                    const TessellationLimits& limits) {
   const BlackHole& hole = *scene.scene->black_hole;
   std::vector<std::vector<float>> parts(bodies.size() * kRasterHoleOrders);
-  tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t k) {
+  parallel_for(std::size_t{0}, parts.size(), [&](std::size_t k) {
     const HoleBodiesPass::Body& body = bodies[k / kRasterHoleOrders];
     const Object& object = *scene.bodies[body.index].object;
     HoleLitBody lit{

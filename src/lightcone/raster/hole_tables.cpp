@@ -1,7 +1,5 @@
 #include "lightcone/raster/hole_tables.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +7,7 @@
 
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -146,7 +145,7 @@ HoleRayTables hole_ray_tables(const HoleView& hole, int rows, int nodes) {
     const int n = HoleRayTables::kInnerNodes;
     t.inner_angle.resize(n);
     const double bc = critical_impact_parameter(hole.mass);
-    tbb::parallel_for(0, n, [&](int j) {
+    parallel_for(0, n, [&](int j) {
       // (The last node a hair below b_c, where the closed form's pair of roots meets.)
       const double b = bc * std::min(static_cast<double>(j) / (n - 1), 1 - 1e-12);
       t.inner_angle[j] = static_cast<float>(
@@ -167,7 +166,7 @@ HoleRayTables hole_ray_tables(const HoleView& hole, int rows, int nodes) {
     t.x_step[side] = (std::log((d - e) / e) - t.x_first[side]) / (t.rows - 1);
   }
   t.texels.resize(4 * static_cast<std::size_t>(t.width) * 2 * t.rows);
-  tbb::parallel_for(0, 2 * t.rows, [&](int k) {
+  parallel_for(0, 2 * t.rows, [&](int k) {
     const int side = k / t.rows, i = k % t.rows;
     // The row's angle from its side's far end: alpha on the escape side, pi - alpha on the other.
     const double far = t.side_width[side] * logistic(-(t.x_first[side] + i * t.x_step[side]));

@@ -1,6 +1,5 @@
 // One frame's preparation for the raster renderer: the colour rows every body, the sky and the
 // lights read, each body's tessellation, and the tables lit surfaces read.
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/shading.hpp"
+#include "lightcone/portable.hpp"
 #include "lightcone/raster/body_patterns.hpp"
 #include "lightcone/raster/raster_renderer_impl.hpp"
 #include "lightcone/raster/shader_build.hpp"
@@ -359,7 +359,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       kept->resize(draws.size());
       for (std::vector<float>& part : *kept) part.clear();
     }
-    tbb::parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
+    parallel_for(std::size_t{0}, draws.size(), [&](std::size_t d) {
       tessellate(resolved, body_view(resolved, resolved.bodies[draws[d].body]), *draws[d].mesh,
                  limits, parts[d], draws[d].face_uvs ? &uv_parts[d] : nullptr, draws[d].hidden);
     });

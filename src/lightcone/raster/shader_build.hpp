@@ -11,9 +11,16 @@
 
 namespace lightcone {
 
-// GLSL 330 for the CPU tessellation path, 400 for the GPU one (tessellation shaders).
+// GLSL 330 for the CPU tessellation path, 400 for the GPU one (tessellation shaders); in the
+// browser, GLSL ES 3.00 (WebGL 2), which the shaders are also written in (tests/test_raster.cpp).
 inline std::string version_line(bool tessellation) {
+#ifdef __EMSCRIPTEN__
+  (void)tessellation;
+  return "#version 300 es\nprecision highp float;\nprecision highp int;\n"
+         "precision highp sampler2D;\n";
+#else
   return tessellation ? "#version 400 core\n" : "#version 330 core\n";
+#endif
 }
 inline std::string vertex_shader(const char* source, bool tessellation = false,
                                  const std::string& defines = "") {

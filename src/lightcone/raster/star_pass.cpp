@@ -71,7 +71,9 @@ void StarPass::draw(const ResolvedScene& scene) const {
   glBlendEquation(GL_FUNC_ADD);
   // colour += star * destination alpha; the alpha stays.
   glBlendFuncSeparate(GL_DST_ALPHA, GL_ONE, GL_ZERO, GL_ONE);
-  glEnable(GL_PROGRAM_POINT_SIZE);
+#ifndef __EMSCRIPTEN__
+  glEnable(GL_PROGRAM_POINT_SIZE);  // (always so in WebGL 2)
+#endif
   GLint viewport[4];
   glGetIntegerv(GL_VIEWPORT, viewport);
   glViewport(viewport[0] - kViewportMargin, viewport[1] - kViewportMargin,

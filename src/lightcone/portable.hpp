@@ -1,0 +1,85 @@
+// The few things the browser build lacks, in one place. Emscripten's libc++ has no std::bit_cast,
+// no floating-point std::from_chars and no <memory_resource> (the scene document is then made on
+// the heap), and a page without threads has no TBB: there, parallel loops run in order on the one
+// thread. Native builds use the standard library and TBB unchanged.
+#pragma once
+
+#include <cctype>
+#include <charconv>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+#ifdef __EMSCRIPTEN__
+#define LIGHTCONE_HAVE_MEMORY_RESOURCE 0
+#else
+#define LIGHTCONE_HAVE_MEMORY_RESOURCE 1
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <bit>
+#endif
+
+namespace lightcone {
+
+// std::bit_cast where the library has it.
+template <class To, class From>
+To bit_cast(const From& from) noexcept {
+  static_assert(sizeof(To) == sizeof(From) && std::is_trivially_copyable_v<From> &&
+                std::is_trivially_copyable_v<To>);
+#ifdef __EMSCRIPTEN__
+  To to;
+  std::memcpy(&to, &from, sizeof(To));
+  return to;
+#else
+  return std::bit_cast<To>(from);
+#endif
+}
+
+// std::from_chars where the library has it; in the browser, floating-point values are read by
+// strtod (as from_chars reads them: no leading space or plus sign, no hexadecimal).
+template <class T>
+std::from_chars_result from_chars(const char* first, const char* last, T& value) {
+#ifdef __EMSCRIPTEN__
+  if constexpr (std::is_floating_point_v<T>) {
+    const std::string text(first, last);
+    const bool refused = text.empty() || text[0] == '+' ||
+                         std::isspace(static_cast<unsigned char>(text[0])) ||
+                         text.find_first_of("xX") != std::string::npos;
+    char* end = nullptr;
+    const double parsed = refused ? 0 : std::strtod(text.c_str(), &end);
+    if (refused || end == text.c_str()) return {first, std::errc::invalid_argument};
+    value = static_cast<T>(parsed);
+    return {first + (end - text.c_str()), std::errc()};
+  } else {
+    return std::from_chars(first, last, value);
+  }
+#else
+  return std::from_chars(first, last, value);
+#endif
+}
+
+// body(i) for every i in [first, last), in any order and on any thread.
+template <class Index, class Body>
+void parallel_for(Index first, Index last, const Body& body) {
+#ifdef __EMSCRIPTEN__
+  for (Index i = first; i < last; ++i) body(i);
+#else
+  tbb::parallel_for(first, last, body);
+#endif
+}
+
+// body(begin, end) over pieces of [first, last) of about `grain` items each.
+template <class Index, class Body>
+void parallel_for_pieces(Index first, Index last, Index grain, const Body& body) {
+#ifdef __EMSCRIPTEN__
+  (void)grain;
+  if (first < last) body(first, last);
+#else
+  tbb::parallel_for(tbb::blocked_range<Index>(first, last, grain),
+                    [&](const tbb::blocked_range<Index>& r) { body(r.begin(), r.end()); });
+#endif
+}
+
+}  // namespace lightcone
