@@ -3,7 +3,8 @@
 #   ./setup.sh            the build and the tests
 #   ./setup.sh --checks   also clang and its sanitizer and fuzzer runtimes (scripts/sanitize.sh,
 #                         scripts/fuzz.sh)
-#   ./setup.sh --web      also emscripten and chromium (scripts/build-web.sh, the page's tests)
+#   ./setup.sh --web      also emscripten, chromium and, from npm, playwright-core (the web page,
+#                         scripts/build-web.sh, and its tests: the README's test command)
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format
@@ -15,7 +16,10 @@ packages=(
   kstars-data
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
-if [ "${1:-}" = "--web" ]; then packages+=(emscripten chromium); fi
+if [ "${1:-}" = "--web" ]; then
+  packages+=(emscripten chromium)
+  command -v npm >/dev/null || packages+=(npm)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -25,4 +29,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
   $sudo_cmd apt-get update
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+if [ "${1:-}" = "--web" ]; then
+  # The page's tests drive Debian's Chromium with playwright-core (no browser download).
+  (cd "$(dirname "$0")/web/test" && npm ci --no-audit --no-fund --loglevel=error)
 fi

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders every picture in README.md and docs/ with the commands the docs show, into
-# docs/images/. Run after ./scripts/build.sh; it takes a few minutes on 2 cores.
+# docs/images/. Run after ./scripts/build.sh (and ./setup.sh --web, for the web page); it takes
+# a few minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 lc=./build/lightcone
@@ -95,3 +96,16 @@ view_screenshot() {
   rm -rf "$dir"
 }
 view_screenshot
+
+# The web page (docs/web.md): built and served as the docs show, opened on a link.
+web_screenshot() {
+  echo "./scripts/build-web.sh && ./scripts/serve-web.sh; open #scene=street&beta=0.9" >&2
+  ./scripts/build-web.sh >/dev/null
+  PORT=8765 ./scripts/serve-web.sh >/dev/null 2>&1 &
+  local server=$!
+  sleep 1
+  node web/test/screenshot_page.mjs "http://127.0.0.1:8765/#scene=street&beta=0.9" \
+    "$out/web-page.png"
+  kill "$server"
+}
+web_screenshot

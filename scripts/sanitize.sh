@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flags="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1"
-CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLIGHTCONE_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build build-sanitize -j"$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -23,7 +23,8 @@ fi
 # The five slowest end-to-end comparisons (each over 100 s sanitized, the README's commands ten
 # minutes) are left to the plain build: every path they take is also taken here by smaller tests
 # and by the renders of every bundled scene below.
-slow='^(Readme\.EveryCommandRunsAsWritten|RasterAgreement\.(TessellatedOnTheGpuTooTheyMatch|TexturesAndSkyImagesMatchTheRayTracer|RetardedShadowsMatchTheRayTracer)|RasterHoleBodies\.MatchTheRayTracerOffTheOutlines)$'
+# The web page's tests judge the page (WebAssembly), not this build.
+slow='^(WebPage\..*|Readme\.EveryCommandRunsAsWritten|RasterAgreement\.(TessellatedOnTheGpuTooTheyMatch|TexturesAndSkyImagesMatchTheRayTracer|RetardedShadowsMatchTheRayTracer)|RasterHoleBodies\.MatchTheRayTracerOffTheOutlines)$'
 ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" -E "$slow"
 out=$(mktemp -d)
 for scene in scenes/*.json; do

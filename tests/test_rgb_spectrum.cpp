@@ -220,7 +220,7 @@ TEST(RgbAlbedoSpectrum, RoundTripUnderTheReferenceIlluminant) {
 // deterministic (its columns are independent of each other and of the threads).
 TEST(RgbToSpectrumTable, IsWhatTheFitProduces) {
   const int res = kRgbToSpectrumRes;
-  const float* built = detail::rgb_to_spectrum_table();
+  const float* built = detail::rgb_to_spectrum_table(0, 0, 0);  // (all of it, natively)
   std::vector<float> refit(kRgbToSpectrumTableFloats, std::numeric_limits<float>::quiet_NaN());
   const rgb2spec::Fitter fitter;
   const int columns[][3] = {{0, 0, 0},

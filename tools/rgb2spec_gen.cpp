@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
            "    \".popsection\\n\");\n\n"
            "extern \"C\" __attribute__((visibility(\"hidden\"))) const float "
            "lightcone_rgb2spec_table_data[];\n\n"
-           "const float* lightcone::detail::rgb_to_spectrum_table() {\n"
+           "const float* lightcone::detail::rgb_to_spectrum_table(int, int, int) {\n"
            "  return lightcone_rgb2spec_table_data;\n"
            "}\n";
     if (!cpp) {

@@ -13,8 +13,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/color/sigmoid_polynomial.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
@@ -23,33 +26,28 @@
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "page_images.hpp"
 #include "viewer/flight.hpp"
+#include "viewer/frame_loop.hpp"
 
 namespace lightcone {
 namespace {
-
-// As the native viewer: the emission tables are kept while they serve the frames, and the
-// automatic exposure is metered on every 4th pixel of every 4th row and followed with a time
-// constant of half a second.
-constexpr double kEmissionMargin = 0.25;
-constexpr int kMeteringStep = 4;
-constexpr double kMeteringTime = 0.5;
 
 struct Page {
   EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context = 0;
   std::unique_ptr<RasterRenderer> renderer;
   std::unique_ptr<DisplayPass> display;
   std::unique_ptr<FloatTarget> relativistic, classical;
-  // The scene as loaded, and as drawn (the flight's camera): each kept with its emission tables.
+  // The scene as loaded (from `path`), and as drawn (the flight's camera): each kept with its
+  // emission tables.
+  std::string path;
   std::unique_ptr<Scene> scene;
   Scene frame, still;
   std::unique_ptr<EmissionTable> frame_emission, still_emission;
   std::unique_ptr<Flight> flight;
   bool split = false;
   double proper_time = 0;  // the camera's clock
-  double metered = 0;
-  bool metered_yet = false;
-  std::vector<float> subject;
+  ExposureMeter meter;
   std::string result;  // what the last call returns to JavaScript
 };
 
@@ -65,20 +63,6 @@ const char* answer(std::string text) {
 
 const char* failure(const std::string& message) {
   return answer(nlohmann::json{{"error", message}}.dump());
-}
-
-// One picture of `scene` into `target`, as the native viewer draws it.
-LogDopplerRange draw_scene(const Scene& scene, const FloatTarget& target,
-                           std::unique_ptr<EmissionTable>& emission) {
-  const ResolvedScene resolved = resolve_scene(scene);
-  if (!emission || !emission->serves(resolved)) {
-    emission.reset();
-    emission = std::make_unique<EmissionTable>(resolved, kEmissionMargin);
-  }
-  target.bind();
-  page().renderer->prepare(resolved, *emission, {}, false);
-  page().renderer->pass();
-  return visible_log_doppler(resolved, false);
 }
 
 }  // namespace
@@ -116,27 +100,38 @@ EMSCRIPTEN_KEEPALIVE const char* lc_start() {
 }
 
 // Reads the scene file at `path` (in the page's file system) with `overrides` ("key.path=value"
-// lines, as --set takes them). On success the page draws it from its camera; on failure the
-// previous scene stays. Returns {"warnings", "differences"} or {"error"}.
-EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides) {
+// lines, as --set takes them). With `keep_flight`, and the same file as before, the camera
+// stays where the flight has taken it (a switch changed); else it starts at the scene's camera.
+// On failure the previous scene stays. Returns {"warnings", "differences", "beta"}; {"images"}
+// when the scene needs images the browser has not decoded yet (decode them and call again); or
+// {"error"}.
+EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides, int keep_flight) {
   std::vector<std::string> sets;
   std::istringstream lines(overrides);
   for (std::string line; std::getline(lines, line);)
     if (!line.empty()) sets.push_back(line);
   try {
+    wanted_images().clear();
     SceneLoadReport report;
     auto scene = std::make_unique<Scene>(load_scene_file(path, sets, report));
+    if (!wanted_images().empty())
+      return answer(nlohmann::json{{"images", std::exchange(wanted_images(), {})}}.dump());
     Page& p = page();
+    const bool keep = keep_flight && p.flight && p.path == path;
+    p.path = path;
     p.scene = std::move(scene);
     p.frame = p.still = *p.scene;
     p.frame_emission.reset();
     p.still_emission.reset();
-    p.flight = std::make_unique<Flight>(p.scene->camera);
-    p.metered_yet = false;
-    p.proper_time = p.scene->camera.motion.proper_time;
-    return answer(
-        nlohmann::json{{"warnings", report.warnings}, {"differences", raster_differences(*p.scene)}}
-            .dump());
+    if (!keep) {
+      p.flight = std::make_unique<Flight>(p.scene->camera);
+      p.proper_time = p.scene->camera.motion.proper_time;
+    }
+    p.meter.reset();
+    return answer(nlohmann::json{{"warnings", report.warnings},
+                                 {"differences", raster_differences(*p.scene)},
+                                 {"beta", p.flight->speed}}
+                      .dump());
   } catch (const std::exception& e) {
     return failure(e.what());
   }
@@ -155,6 +150,13 @@ EMSCRIPTEN_KEEPALIVE void lc_turn(double yaw, double pitch) {
 EMSCRIPTEN_KEEPALIVE void lc_set_split(int split) {
   page().split = split != 0;
 }
+// Advances the flight by `seconds` of the camera's proper time without drawing (a link's "tau").
+EMSCRIPTEN_KEEPALIVE void lc_fly(double seconds) {
+  Page& p = page();
+  if (!p.flight || !p.scene) return;
+  p.flight->advance(seconds, p.scene->black_hole ? &*p.scene->black_hole : nullptr);
+  p.proper_time += seconds;
+}
 
 // Advances the flight by `seconds` of the camera's proper time and draws a frame of
 // `width` x `height` pixels into the canvas. Returns the numbers the page shows.
@@ -172,23 +174,18 @@ EMSCRIPTEN_KEEPALIVE const char* lc_frame(double seconds, int width, int height)
     p.frame.camera = p.flight->camera;
     p.frame.camera.width = width;
     p.frame.camera.height = height;
-    const LogDopplerRange seen = draw_scene(p.frame, *p.relativistic, p.frame_emission);
+    const FrameDraw seen =
+        draw_scene(*p.renderer, p.frame, *p.relativistic, false, p.frame_emission);
     const bool split = p.split && !p.scene->black_hole;
     if (split) {
       p.still.camera = p.frame.camera;
       p.still.render.relativity = false;
-      draw_scene(p.still, *p.classical, p.still_emission);
+      draw_scene(*p.renderer, p.still, *p.classical, false, p.still_emission);
     }
     const RenderSettings& render = p.scene->render;
-    if (render.auto_exposure) {
-      const double target = auto_exposure(p.relativistic->sampled(kMeteringStep, p.subject),
-                                          render.tonemap, p.subject);
-      p.metered = p.metered_yet
-                      ? p.metered + (target - p.metered) * (1 - std::exp(-seconds / kMeteringTime))
-                      : target;
-      p.metered_yet = true;
-    }
-    const double exposure = render.auto_exposure ? p.metered : render.exposure;
+    const double exposure = render.auto_exposure
+                                ? p.meter.follow(*p.relativistic, render.tonemap, seconds)
+                                : render.exposure;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
     p.display->draw(*p.relativistic, split ? p.classical.get() : nullptr, exposure, render.tonemap);
@@ -197,13 +194,27 @@ EMSCRIPTEN_KEEPALIVE const char* lc_frame(double seconds, int width, int height)
     return answer(nlohmann::json{
         {"beta", beta},
         {"gamma", 1 / std::sqrt(std::max(0.0, 1 - beta * beta))},
-        {"doppler", {std::exp(seen.lo), std::exp(seen.hi)}},
+        {"doppler", {seen.doppler_min, seen.doppler_max}},
         {"proper_time", p.proper_time},
         {"exposure",
          exposure}}.dump());
   } catch (const std::exception& e) {
     return failure(e.what());
   }
+}
+
+// Table l's column (j, i) of RGB-to-spectrum coefficients as the page fits them (64 nodes of
+// 3), for the test that compares them with the native build's table.
+EMSCRIPTEN_KEEPALIVE const char* lc_table_column(int l, int j, int i) {
+  constexpr int res = kRgbToSpectrumRes;
+  if (l < 0 || l > 2 || j < 0 || j > res - 2 || i < 0 || i > res - 2) return failure("no column");
+  const float* table = detail::rgb_to_spectrum_table(l, j, i);
+  std::vector<float> column;
+  for (int k = 0; k < res; ++k)
+    for (int n = 0; n < 3; ++n)
+      column.push_back(
+          table[((static_cast<std::size_t>(l * res + k) * res + j) * res + i) * 3 + n]);
+  return answer(nlohmann::json(column).dump());
 }
 
 }  // extern "C"

@@ -1,13 +1,18 @@
-// The page's images: the browser decodes each PNG and JPEG file of the page's file system
-// (createImageBitmap, in web/page.js) and hands its 8-bit sRGB pixels here; load_image_file,
-// which the scene reader calls for textures and sky images, takes them from here, decoded to
-// linear with the native build's table. The page has no OpenEXR decoder.
+// The page's images: load_image_file, which the scene reader calls for textures and sky images,
+// takes them from here. An image not decoded yet is named in wanted_images (page_images.hpp);
+// the browser decodes it (createImageBitmap, in web/page.js) and hands its 8-bit sRGB pixels
+// to lc_add_image, which decodes them to linear with the native build's table. The page has no
+// OpenEXR decoder.
+#include "page_images.hpp"
+
 #include <emscripten/emscripten.h>
 #include <fmt/format.h>
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <system_error>
 
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
@@ -24,22 +29,29 @@ std::map<std::string, std::shared_ptr<Image>>& decoded_images() {
 
 std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
   const auto& images = decoded_images();
-  const auto found = images.find(file.lexically_normal().string());
+  const std::string key = file.lexically_normal().string();
+  const auto found = images.find(key);
   if (found != images.end()) return found->second;
-  if (image_format_of(file) == ImageFormat::kExr)
+  const std::optional<ImageFormat> format = image_format_of(file);
+  if (format == ImageFormat::kExr)
     throw InputError(fmt::format("{}: OpenEXR images are not read in the browser (use PNG or JPEG)",
                                  file.string()));
-  throw InputError(
-      fmt::format("{}: no such PNG or JPEG image among the page's files", file.string()));
+  std::error_code error;
+  if (!format || !std::filesystem::is_regular_file(file, error))
+    throw InputError(
+        fmt::format("{}: no such PNG or JPEG image among the page's files", file.string()));
+  // Not decoded yet: the page decodes it and reads the scene again. Meanwhile a black pixel.
+  wanted_images().push_back(key);
+  auto placeholder = std::make_shared<Image>();
+  placeholder->source = key;
+  placeholder->width = placeholder->height = 1;
+  placeholder->rgb.assign(3, 0.0f);
+  return placeholder;
 }
 
-std::optional<ImageFormat> image_format_of(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".png") return ImageFormat::kPng;
-  if (extension == ".jpg" || extension == ".jpeg") return ImageFormat::kJpeg;
-  if (extension == ".exr") return ImageFormat::kExr;
-  return std::nullopt;
+std::vector<std::string>& wanted_images() {
+  static std::vector<std::string> wanted;
+  return wanted;
 }
 
 }  // namespace lightcone

@@ -29,47 +29,16 @@
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "viewer/flight.hpp"
+#include "viewer/frame_loop.hpp"
 #include "viewer/frame_rate.hpp"
 
 namespace lightcone {
 namespace {
 
-// One picture of the scene as the camera now sees it: resolved, tabulated, tessellated, drawn.
-struct FrameDraw {
-  std::size_t triangles = 0;
-  double doppler_min = 1, doppler_max = 1;
-};
-
-// A frame's emission tables, kept from frame to frame while they serve (EmissionTable::serves):
-// they are built over a wider range of the Doppler factor than a frame needs, for the same Scene
-// object, which the viewer keeps and changes only in its camera and render settings.
-constexpr double kEmissionMargin = 0.25;
-
 // The caption of the split view, and of the picture alone while presenting.
 std::string caption(bool split, double speed) {
   return fmt::format("{}   beta = {:.3f}", split ? "classical | relativistic" : "relativistic",
                      speed);
-}
-// The automatic exposure is metered on every 4th pixel of every 4th row, and followed with a
-// time constant of half a second.
-constexpr int kMeteringStep = 4;
-constexpr double kMeteringTime = 0.5;
-
-FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target,
-                     bool on_gpu, std::unique_ptr<EmissionTable>& emission) {
-  const ResolvedScene resolved = resolve_scene(scene);
-  if (!emission || !emission->serves(resolved)) {
-    emission.reset();  // (the old tables go before the new are built)
-    emission = std::make_unique<EmissionTable>(resolved, kEmissionMargin);
-  }
-  target.bind();
-  FrameDraw draw;
-  draw.triangles = renderer.prepare(resolved, *emission, {}, on_gpu).triangles;
-  renderer.pass();
-  const LogDopplerRange seen = visible_log_doppler(resolved, false);
-  draw.doppler_min = std::exp(seen.lo);
-  draw.doppler_max = std::exp(seen.hi);
-  return draw;
 }
 
 // A name for the next screenshot in the working folder that is not taken yet.
@@ -156,9 +125,8 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     // frame (auto_exposure on a sample of it), followed smoothly so that it does not pump, plus
     // the slider's offset; else the slider's EV.
     bool automatic = scene.render.auto_exposure;
-    double exposure_offset = automatic ? 0.0 : scene.render.exposure, metered = 0;
-    bool metered_yet = false;
-    std::vector<float> subject;
+    double exposure_offset = automatic ? 0.0 : scene.render.exposure;
+    ExposureMeter meter;
     auto last = std::chrono::steady_clock::now();
     const auto started = last;
     double fps = 0;
@@ -258,14 +226,9 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         draw_scene(renderer, still, *classical, on_gpu, still_emission);
       }
 
-      if (automatic) {
-        const double target = auto_exposure(relativistic->sampled(kMeteringStep, subject),
-                                            scene.render.tonemap, subject);
-        metered = metered_yet ? metered + (target - metered) * (1 - std::exp(-dt / kMeteringTime))
-                              : target;
-        metered_yet = true;
-      }
-      const double exposure = automatic ? metered + exposure_offset : exposure_offset;
+      const double exposure =
+          automatic ? meter.follow(*relativistic, scene.render.tonemap, dt) + exposure_offset
+                    : exposure_offset;
 
       // F12: the view as a PNG, as `lightcone render` would write it (no panel).
       if (screenshot) {
@@ -353,13 +316,13 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           if (ImGui::Checkbox("automatic exposure", &automatic)) {
             // Off: the picture stays as it was. On: the metered EV, at once.
             exposure_offset = automatic ? 0.0 : exposure;
-            metered_yet = false;
+            meter.reset();
           }
           float ev = static_cast<float>(exposure_offset);
           if (ImGui::SliderFloat(automatic ? "exposure offset (EV)" : "exposure (EV)", &ev, -10.0f,
                                  10.0f, "%.1f"))
             exposure_offset = ev;
-          if (automatic) ImGui::Text("metered %.1f EV", metered);
+          if (automatic) ImGui::Text("metered %.1f EV", meter.metered());
           int curve = index_of(kToneMapValues, scene.render.tonemap);
           if (ImGui::Combo("tone map", &curve, kToneMaps, 3))
             scene.render.tonemap = kToneMapValues[curve];

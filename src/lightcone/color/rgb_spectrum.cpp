@@ -55,7 +55,7 @@ SigmoidPolynomial rgb_to_sigmoid(const LinearRgb& rgb) {
       kRes - 2);
   const double dz = (z - nodes[zi]) / (nodes[zi + 1] - nodes[zi]);
 
-  const float* table = detail::rgb_to_spectrum_table();
+  const float* table = detail::rgb_to_spectrum_table(l, yi, xi);
   const auto cell = [&](int k, int j, int i) {
     return table + ((static_cast<std::size_t>(l * kRes + k) * kRes + j) * kRes + i) * 3;
   };

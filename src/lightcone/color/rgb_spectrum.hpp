@@ -70,9 +70,12 @@ struct RgbEmitterSpectrum {
 SigmoidPolynomial rgb_emitter_node(int node_case, int i);
 
 namespace detail {
-// The coefficient table built into the library (kRgbToSpectrumTableFloats floats, layout in
-// sigmoid_polynomial.hpp). For tests.
-const float* rgb_to_spectrum_table();
+// The coefficient table (kRgbToSpectrumTableFloats floats, layout in sigmoid_polynomial.hpp)
+// with at least the columns (j, i), (j, i + 1), (j + 1, i) and (j + 1, i + 1) of table l in
+// place. The native library embeds the whole table, fitted at build time; the web page fits a
+// column the first time it is asked for (web/page_tables.cpp), with the same fit, rather than
+// download 9 MB.
+const float* rgb_to_spectrum_table(int l, int j, int i);
 // The emitter nodes built into the library (kRgbEmitterNodeDoubles doubles).
 const double* rgb_emitter_nodes();
 }  // namespace detail

@@ -456,16 +456,6 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
   return starts_with(kPng) ? load_png(file, bytes) : load_jpeg(file, bytes);
 }
 
-std::optional<ImageFormat> image_format_of(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".png") return ImageFormat::kPng;
-  if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::kJpeg;
-  if (ext == ".exr") return ImageFormat::kExr;
-  return std::nullopt;
-}
-
 std::vector<unsigned char> encode_png(const Image& display) {
   return png_bytes(display);
 }

@@ -150,9 +150,13 @@ GLuint RasterRenderer::Impl::upload(const Image& image) {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT,
-                 image.rgb.data());
+    // RGBA: mip levels are generated only for colour-renderable formats in GLES 3 (WebGL 2),
+    // and RGB32F is not one.
+    std::vector<float> rgba(4 * static_cast<std::size_t>(image.width) * image.height, 1.0f);
+    for (std::size_t i = 0; i < rgba.size() / 4; ++i)
+      for (int c = 0; c < 3; ++c) rgba[4 * i + c] = image.rgb[3 * i + c];
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, image.width, image.height, 0, GL_RGBA, GL_FLOAT,
+                 rgba.data());
     glGenerateMipmap(GL_TEXTURE_2D);
     check_gl("uploading an image");
   }

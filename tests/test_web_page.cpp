@@ -1,0 +1,200 @@
+// The web page (web/, built by scripts/build-web.sh), judged from what web/test/drive_page.mjs
+// saw in headless Chromium (the ctest fixture WebPage.DriveThePageInChromium runs it first):
+// its pictures against `lightcone render --renderer raster`, its keys, links and dropped files,
+// and the spectrum table it fits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/color/sigmoid_polynomial.hpp"
+#include "lightcone/io/image_file.hpp"
+#include "support/raster_agreement.hpp"
+#include "support/test_support.hpp"
+
+namespace lightcone {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSeen = LIGHTCONE_WEB_TEST_OUTPUT;
+
+nlohmann::json results() {
+  std::ifstream in(kSeen / "results.json");
+  if (!in) return nullptr;
+  return nlohmann::json::parse(in, nullptr, false);
+}
+
+std::shared_ptr<Image> seen(const std::string& name) {
+  const fs::path file = kSeen / name;
+  if (!fs::exists(file)) return nullptr;
+  return load_image_file(file);
+}
+
+// The largest difference of two PNGs' 8-bit levels, over every pixel and channel.
+int largest_difference(const Image& a, const Image& b) {
+  int worst = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const Rgb p = a.texel(x, y), q = b.texel(x, y);
+      worst = std::max({worst, std::abs(test::png_level(p.r) - test::png_level(q.r)),
+                        std::abs(test::png_level(p.g) - test::png_level(q.g)),
+                        std::abs(test::png_level(p.b) - test::png_level(q.b))});
+    }
+  return worst;
+}
+
+// The page's picture of `scene` against the native raster renderer's, at 640x360, exposure 0:
+// the share of pixels within 4/255 off a one-pixel band along the bodies' outlines (the ray
+// tracer's object ids mark them).
+void expect_page_agrees(const fs::path& scene, const std::string& page_png) {
+  const auto page = seen(page_png);
+  ASSERT_NE(page, nullptr) << page_png << ": the page's picture is missing (see the fixture)";
+  const fs::path dir = test::fresh_temp_dir("web-agreement");
+  const std::string common =
+      " --width 640 --height 360 --samples 1 --set render.exposure=0 --quiet";
+  const auto raster =
+      test::run_lightcone("render " + test::quoted(scene) + common + " --renderer raster -o " +
+                          test::quoted(dir / "raster.png"));
+  ASSERT_EQ(raster.status, 0) << raster.err;
+  const auto traced = test::run_lightcone("render " + test::quoted(scene) + common + " -o " +
+                                          test::quoted(dir / "trace.png") + " --exr " +
+                                          test::quoted(dir / "trace.exr") + " --aov object");
+  ASSERT_EQ(traced.status, 0) << traced.err;
+  const auto native = load_image_file(dir / "raster.png");
+  const auto exr = load_image_file(dir / "trace.exr");
+  ASSERT_EQ(page->width, 640);
+  ASSERT_EQ(page->height, 360);
+  ASSERT_EQ(native->width, 640);
+  const std::vector<float>* object = nullptr;
+  for (const NamedChannel& c : exr->channels)
+    if (c.name == "object") object = &c.values;
+  ASSERT_NE(object, nullptr);
+  const int w = 640, h = 360;
+  std::size_t compared = 0, within = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float id = (*object)[static_cast<std::size_t>(y) * w + x];
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
+          edge = edge || (*object)[static_cast<std::size_t>(ny) * w + nx] != id;
+        }
+      if (edge) continue;
+      ++compared;
+      const Rgb p = page->texel(x, y), q = native->texel(x, y);
+      within += std::abs(test::png_level(p.r) - test::png_level(q.r)) <= 4 &&
+                std::abs(test::png_level(p.g) - test::png_level(q.g)) <= 4 &&
+                std::abs(test::png_level(p.b) - test::png_level(q.b)) <= 4;
+    }
+  const double share = static_cast<double>(within) / std::max<std::size_t>(compared, 1);
+  std::printf("%s: the page within 4/255 of `render --renderer raster` on %.4f of %zu pixels\n",
+              page_png.c_str(), share, compared);
+  EXPECT_GE(share, 0.99) << page_png;
+  EXPECT_GT(compared, 640u * 360u / 2) << page_png;
+  fs::remove_all(dir);
+}
+
+const fs::path kScenes = fs::path(LIGHTCONE_SOURCE_DIR) / "scenes";
+
+TEST(WebPage, DrawsTerrellAsTheNativeRasterRenderer) {
+  expect_page_agrees(kScenes / "terrell.json", "terrell.png");
+}
+
+TEST(WebPage, DrawsStreetAsTheNativeRasterRenderer) {
+  expect_page_agrees(kScenes / "street.json", "street.png");
+}
+
+// A scene of the user's own, chosen in the file dialog with the image it names.
+TEST(WebPage, DrawsAUsersSceneAndItsImageAsTheNativeRasterRenderer) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.value("user_message", "?"), "");
+  expect_page_agrees(kScenes / "texture-mapping.json", "texture-mapping.png");
+}
+
+TEST(WebPage, TheWKeyRaisesTheSpeedAndChangesThePicture) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  const double before = r.value("beta_before_key", 0.0), after = r.value("beta_after_key", 0.0);
+  EXPECT_NEAR(before, 0.8, 1e-9);  // street.json's camera
+  // One step of the native viewer's W: a tenth of rapidity more.
+  EXPECT_NEAR(after, std::tanh(std::atanh(0.8) + 0.1), 1e-9);
+  const auto a = seen("key-before.png"), b = seen("key-after.png");
+  ASSERT_TRUE(a && b);
+  EXPECT_GT(largest_difference(*a, *b), 20);
+}
+
+TEST(WebPage, APresetLinkGivesThePictureOfItsSwitchesSetByHand) {
+  const auto a = seen("preset.png"), b = seen("by-hand.png");
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(largest_difference(*a, *b), 0);
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  const std::string hash = r.value("hash_by_hand", "");
+  EXPECT_NE(hash.find("doppler=off"), std::string::npos) << hash;
+  EXPECT_NE(hash.find("beta=0.9"), std::string::npos) << hash;
+  // And the switches make a difference: street without colour shift at 0.9c is not street.
+  const auto street = seen("street.png");
+  ASSERT_TRUE(street);
+  EXPECT_GT(largest_difference(*a, *street), 20);
+}
+
+TEST(WebPage, ADroppedSceneWithAnErrorSaysWhereAndKeepsThePreviousScene) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  const std::string message = r.value("drop_message", "");
+  EXPECT_EQ(message.rfind("bad.json:3: objectz: unknown key", 0), 0u) << message;
+  const auto a = seen("drop-before.png"), b = seen("drop-after.png");
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(largest_difference(*a, *b), 0);
+}
+
+// The page fits the RGB-to-spectrum table's columns as it needs them, with the same fit as the
+// native build's table: the same coefficients, but for WebAssembly's libm and sums (relative
+// 1e-5; a colour's spectrum then differs by far less than a level of 8 bits).
+TEST(WebPage, FitsTheNativeSpectrumTable) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  ASSERT_TRUE(r.contains("columns"));
+  constexpr int res = kRgbToSpectrumRes;
+  double worst = 0;
+  for (const auto& [key, values] : r["columns"].items()) {
+    int l = 0, j = 0, i = 0;
+    ASSERT_EQ(std::sscanf(key.c_str(), "%d,%d,%d", &l, &j, &i), 3);
+    ASSERT_EQ(values.size(), 3u * res);
+    const float* table = detail::rgb_to_spectrum_table(l, j, i);
+    for (int k = 0; k < res; ++k)
+      for (int n = 0; n < 3; ++n) {
+        const double native =
+            table[((static_cast<std::size_t>(l * res + k) * res + j) * res + i) * 3 + n];
+        const double page = values[3 * k + n].get<double>();
+        worst = std::max(worst, std::abs(page - native) / std::max(1.0, std::abs(native)));
+      }
+  }
+  std::printf("the page's table columns: largest relative difference %.3g\n", worst);
+  EXPECT_LT(worst, 1e-5);
+}
+
+TEST(WebPage, ReportsItsFrameRateAndLoadTimeWithNoConsoleError) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  const double fps = r.value("fps", 0.0);
+  std::printf(
+      "the page on street.json at 640x360 (SwiftShader): %.1f fps; first frame after "
+      "%.0f ms (terrell %.0f ms)\n",
+      fps, r["load_ms"].value("street", 0.0), r["load_ms"].value("terrell", 0.0));
+  EXPECT_GT(fps, 0.5);
+  EXPECT_TRUE(r["console"].empty()) << r["console"].dump(1);
+}
+
+}  // namespace
+}  // namespace lightcone

@@ -1,0 +1,147 @@
+// Drives the web page (build-web/) in Debian's Chromium, headless on SwiftShader, as a user
+// would, and writes what it saw into OUT for tests/test_web_page.cpp to judge:
+//   terrell.png, street.png    each scene at 640x360 (exposure 0, paused at the scene's time)
+//   key-before.png, key-after.png   street before and after the W key
+//   preset.png, by-hand.png    a preset link, and the same switches set in the panel
+//   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
+//   texture-mapping.png        a user's scene and its image, chosen in the file dialog
+//   results.json               the numbers: speeds, messages, load times, frame rate, console
+//
+//   node web/test/drive_page.mjs SITE OUT [CHROMIUM]
+import { writeFile, mkdir } from "node:fs/promises";
+import { join } from "node:path";
+import { serve, launch } from "./site.mjs";
+
+const [site, out, executable] = process.argv.slice(2);
+if (!site || !out) {
+  console.error("usage: node drive_page.mjs SITE OUT [CHROMIUM]");
+  process.exit(2);
+}
+await mkdir(out, { recursive: true });
+const server = await serve(site);
+const base = `http://127.0.0.1:${server.address().port}/`;
+const browser = await launch(executable);
+const results = { console: [], load_ms: {} };
+const step = (text) => console.error(`drive_page: ${text}`);
+
+// A fresh page at `hash`, once it has drawn `frames` frames.
+async function open(hash, frames = 3) {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 800 } });
+  page.on("console", (m) => { if (m.type() === "error") results.console.push(m.text()); });
+  page.on("pageerror", (e) => results.console.push(String(e)));
+  await page.goto(base + "#" + hash);
+  await framesAfter(page, 0, frames);
+  return page;
+}
+const count = (page, key) => page.evaluate((k) => Number(document.body.dataset[k] || 0), key);
+async function framesAfter(page, from, frames = 3) {
+  await page.waitForFunction((n) => Number(document.body.dataset.frames || 0) >= n,
+    from + frames, { timeout: 120000 });
+}
+async function settle(page, frames = 3) { await framesAfter(page, await count(page, "frames"), frames); }
+async function shot(page, name) {
+  const url = await page.evaluate(() => document.getElementById("canvas").toDataURL("image/png"));
+  await writeFile(join(out, name), Buffer.from(url.split(",")[1], "base64"));
+}
+const text = (page, id) => page.evaluate((i) => document.getElementById(i).textContent, id);
+const still = "exposure=0&paused=on";
+
+try {
+  for (const scene of ["terrell", "street"]) {
+    step(`${scene} at 640x360`);
+    const page = await open(`scene=${scene}&${still}`);
+    results.load_ms[scene] = await page.evaluate(() => Number(document.body.dataset.firstFrame));
+    await shot(page, `${scene}.png`);
+    await page.close();
+  }
+
+  step("the W key");
+  {
+    const page = await open(`scene=street&${still}`);
+    results.beta_before_key = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
+    await shot(page, "key-before.png");
+    await page.keyboard.press("w");
+    await settle(page);
+    results.beta_after_key = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
+    await shot(page, "key-after.png");
+    await page.close();
+  }
+
+  step("a preset link, and its switches set by hand");
+  {
+    const preset = await open(`scene=street&beta=0.9&doppler=off&${still}`);
+    await shot(preset, "preset.png");
+    await preset.close();
+    const page = await open(`scene=street&${still}`);
+    const loads = await count(page, "loads");
+    await page.selectOption("#doppler", "off");
+    await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads);
+    await page.evaluate(() => {
+      const slider = document.getElementById("beta");
+      slider.value = "0.9";
+      slider.dispatchEvent(new Event("input"));
+    });
+    await settle(page);
+    await shot(page, "by-hand.png");
+    results.hash_by_hand = await page.evaluate(() => location.hash);
+    await page.close();
+  }
+
+  step("a dropped scene with an error");
+  {
+    const page = await open(`scene=street&${still}`);
+    await shot(page, "drop-before.png");
+    const loads = await count(page, "loads");
+    await page.evaluate(() => {
+      const files = new DataTransfer();
+      files.items.add(new File(['{\n  "camera": {"fov": 60},\n  "objectz": []\n}\n'], "bad.json"));
+      window.dispatchEvent(new DragEvent("drop", { dataTransfer: files, cancelable: true }));
+    });
+    await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads);
+    results.drop_message = await text(page, "message");
+    await settle(page);
+    await shot(page, "drop-after.png");
+    await page.close();
+  }
+
+  step("a user's scene and its image, from the file dialog");
+  {
+    const page = await open(`scene=street&${still}`);
+    const loads = await count(page, "loads");
+    await page.setInputFiles("#files", ["scenes/texture-mapping.json", "scenes/uv-grid.png"]
+      .map((f) => join(site, "..", f)));
+    await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads, { timeout: 60000 });
+    results.user_message = await text(page, "message");
+    await settle(page);
+    await shot(page, "texture-mapping.png");
+    await page.close();
+  }
+
+  step("the spectrum table's columns the page fits");
+  {
+    const page = await open(`scene=street&${still}`, 1);
+    results.columns = await page.evaluate(() => {
+      const columns = {};
+      for (const [l, j, i] of [[1, 7, 40], [2, 62, 0], [0, 12, 48], [0, 0, 0]])
+        columns[`${l},${j},${i}`] = JSON.parse(window.lightcone.ccall("lc_table_column", "string",
+          ["number", "number", "number"], [l, j, i]));
+      return columns;
+    });
+    await page.close();
+  }
+
+  step("the frame rate on street.json at 640x360, flying");
+  {
+    const page = await open("scene=street", 5);
+    const [frames0, t0] = await page.evaluate(() => [Number(document.body.dataset.frames), performance.now()]);
+    await page.waitForTimeout(5000);
+    const [frames1, t1] = await page.evaluate(() => [Number(document.body.dataset.frames), performance.now()]);
+    results.fps = (frames1 - frames0) / ((t1 - t0) / 1000);
+    await page.close();
+  }
+} finally {
+  await writeFile(join(out, "results.json"), JSON.stringify(results, null, 1));
+  await browser.close();
+  server.close();
+}
+step(`done: ${JSON.stringify({ load_ms: results.load_ms, fps: results.fps })}`);
