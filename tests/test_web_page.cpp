@@ -133,6 +133,20 @@ TEST(WebPage, TheWKeyRaisesTheSpeedAndChangesThePicture) {
   EXPECT_GT(largest_difference(*a, *b), 20);
 }
 
+// A drag to the left by 100 pixels turns the view by 0.4 radians to the left (as the native
+// viewer's drag), and the link says so; a finger holding the joystick up speeds the camera up.
+TEST(WebPage, ADragTurnsTheViewAndTheJoystickSpeedsUp) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  EXPECT_NEAR(r.value("yaw_after_drag", 0.0), 0.4, 1e-3);
+  const auto a = seen("key-before.png"), b = seen("dragged.png");
+  ASSERT_TRUE(a && b);
+  EXPECT_GT(largest_difference(*a, *b), 20);
+  EXPECT_TRUE(r.value("joystick_shown", false));  // on a touch screen
+  ASSERT_TRUE(r.contains("joystick_beta"));
+  EXPECT_GT(r["joystick_beta"][1].get<double>(), r["joystick_beta"][0].get<double>() + 0.01);
+}
+
 TEST(WebPage, APresetLinkGivesThePictureOfItsSwitchesSetByHand) {
   const auto a = seen("preset.png"), b = seen("by-hand.png");
   ASSERT_TRUE(a && b);
@@ -193,6 +207,12 @@ TEST(WebPage, ReportsItsFrameRateAndLoadTimeWithNoConsoleError) {
       "%.0f ms (terrell %.0f ms)\n",
       fps, r["load_ms"].value("street", 0.0), r["load_ms"].value("terrell", 0.0));
   EXPECT_GT(fps, 0.5);
+  // `lightcone view scenes/street.json --benchmark 100 --width 640 --height 360`'s flight.
+  const auto& benchmark = r["benchmark"];
+  ASSERT_TRUE(benchmark.is_object()) << r.dump(1);
+  std::printf("its --benchmark 100 flight: %.1f fps (%zu triangles a frame)\n",
+              benchmark.value("fps", 0.0), benchmark.value("triangles", std::size_t{0}));
+  EXPECT_GT(benchmark.value("triangles", std::size_t{0}), 1000u);
   EXPECT_TRUE(r["console"].empty()) << r["console"].dump(1);
 }
 

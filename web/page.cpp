@@ -203,6 +203,25 @@ EMSCRIPTEN_KEEPALIVE const char* lc_frame(double seconds, int width, int height)
   }
 }
 
+// `lightcone view --benchmark FRAMES` in the page: the same scripted flight through the current
+// scene, drawn `frames` times at width x height with the GL finished after each frame, for the
+// comparison with the native viewer. Returns {"frames", "seconds", "fps", "triangles"}.
+EMSCRIPTEN_KEEPALIVE const char* lc_benchmark(int frames, int width, int height) {
+  Page& p = page();
+  if (!p.scene || !p.renderer) return failure("no scene");
+  try {
+    const FloatTarget target(width, height);
+    const FlightBenchmark run = benchmark_flight(*p.renderer, *p.scene, target, frames, false);
+    return answer(nlohmann::json{{"frames", frames},
+                                 {"seconds", run.seconds},
+                                 {"fps", frames / std::max(run.seconds, 1e-9)},
+                                 {"triangles", run.triangles}}
+                      .dump());
+  } catch (const std::exception& e) {
+    return failure(e.what());
+  }
+}
+
 // Table l's column (j, i) of RGB-to-spectrum coefficients as the page fits them (64 nodes of
 // 3), for the test that compares them with the native build's table.
 EMSCRIPTEN_KEEPALIVE const char* lc_table_column(int l, int j, int i) {

@@ -26,6 +26,16 @@ struct FrameDraw {
 FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target,
                      bool on_gpu, std::unique_ptr<EmissionTable>& emission);
 
+// `lightcone view --benchmark`'s scripted flight, drawn `frames` times into `target` with the
+// GL finished after each frame: from the scene's camera, up to 0.9c along the view within the
+// first third, turning a little each frame. The native viewer and the web page run the same.
+struct FlightBenchmark {
+  double seconds = 0;
+  std::size_t triangles = 0;  // per frame
+};
+FlightBenchmark benchmark_flight(RasterRenderer& renderer, const Scene& scene,
+                                 const FloatTarget& target, int frames, bool on_gpu);
+
 // The automatic exposure: metered on every 4th pixel of every 4th row of each frame and
 // followed with a time constant of half a second, so that it does not pump; the first frame
 // after a reset takes the metered value at once.

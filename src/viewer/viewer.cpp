@@ -354,33 +354,16 @@ int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellatio
   RasterRenderer renderer;
   const bool on_gpu = tessellate_on_gpu(tessellation, renderer.driver());
   const FloatTarget target(scene.camera.width, scene.camera.height);
-  // The scripted flight: from the scene's camera, up to 0.9c along the view within the first
-  // third, turning a little each frame.
-  Flight flight(scene.camera);
-  std::size_t triangles = 0;
-  Scene frame = scene;
-  std::unique_ptr<EmissionTable> emission;
-  const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < frames; ++i) {
-    flight.set_speed(0.9 * std::min(1.0, 3.0 * i / std::max(frames, 1)));
-    flight.turn(0.002, 0);
-    flight.advance(1.0 / 30, scene.black_hole ? &*scene.black_hole : nullptr);
-    frame.camera = flight.camera;
-    triangles += draw_scene(renderer, frame, target, on_gpu, emission).triangles;
-    glFinish();
-  }
-  glFinish();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const nlohmann::ordered_json line = {
-      {"frames", frames},
-      {"seconds", seconds},
-      {"fps", frames / std::max(seconds, 1e-9)},
-      {"triangles", frames > 0 ? triangles / static_cast<std::size_t>(frames) : 0},
-      {"width", scene.camera.width},
-      {"height", scene.camera.height},
-      {"tessellation", on_gpu ? "gpu" : "cpu"},
-      {"gl", context.description()}};
+  const FlightBenchmark run = benchmark_flight(renderer, scene, target, frames, on_gpu);
+  const double seconds = run.seconds;
+  const nlohmann::ordered_json line = {{"frames", frames},
+                                       {"seconds", seconds},
+                                       {"fps", frames / std::max(seconds, 1e-9)},
+                                       {"triangles", run.triangles},
+                                       {"width", scene.camera.width},
+                                       {"height", scene.camera.height},
+                                       {"tessellation", on_gpu ? "gpu" : "cpu"},
+                                       {"gl", context.description()}};
   std::printf("%s\n", line.dump().c_str());
   return 0;
 }

@@ -208,7 +208,7 @@ createLightcone({ canvas }).then(async (lc) => {
     if (e.key.startsWith("Arrow")) e.preventDefault();
     held.add(e.key);
   });
-  addEventListener("keyup", (e) => held.delete(e.key));
+  addEventListener("keyup", (e) => { held.delete(e.key); writeHash(); });
   // Turning: the keyboard's arrows, a drag on the picture (mouse or finger), the joystick's
   // and the gamepad's horizontal axes. Speed: the joystick's and gamepad's vertical axes.
   const turn = (dyaw, dpitch) => { yaw += dyaw; pitch += dpitch; run("lc_turn", dyaw, dpitch); };
@@ -219,7 +219,7 @@ createLightcone({ canvas }).then(async (lc) => {
     turn(-(e.clientX - drag[0]) * 0.004, -(e.clientY - drag[1]) * 0.004);
     drag = [e.clientX, e.clientY];
   });
-  canvas.addEventListener("pointerup", () => { drag = null; });
+  canvas.addEventListener("pointerup", () => { drag = null; writeHash(); });
   const stick = { x: 0, y: 0, pointer: null };
   const joystick = $("joystick");
   if (matchMedia("(pointer: coarse)").matches) joystick.hidden = false;

@@ -2,6 +2,7 @@
 // would, and writes what it saw into OUT for tests/test_web_page.cpp to judge:
 //   terrell.png, street.png    each scene at 640x360 (exposure 0, paused at the scene's time)
 //   key-before.png, key-after.png   street before and after the W key
+//   dragged.png                street after a drag on the picture
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
 //   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
 //   texture-mapping.png        a user's scene and its image, chosen in the file dialog
@@ -25,8 +26,8 @@ const results = { console: [], load_ms: {} };
 const step = (text) => console.error(`drive_page: ${text}`);
 
 // A fresh page at `hash`, once it has drawn `frames` frames.
-async function open(hash, frames = 3) {
-  const page = await browser.newPage({ viewport: { width: 1100, height: 800 } });
+async function open(hash, frames = 3, options = {}) {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 800 }, ...options });
   page.on("console", (m) => { if (m.type() === "error") results.console.push(m.text()); });
   page.on("pageerror", (e) => results.console.push(String(e)));
   await page.goto(base + "#" + hash);
@@ -64,6 +65,40 @@ try {
     await settle(page);
     results.beta_after_key = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
     await shot(page, "key-after.png");
+    await page.close();
+  }
+
+  step("a drag on the picture, and the touch screen's joystick");
+  {
+    const page = await open(`scene=street&${still}`);
+    await page.mouse.move(400, 200);
+    await page.mouse.down();
+    await page.mouse.move(300, 200, { steps: 5 });
+    await page.mouse.up();
+    await settle(page);
+    await shot(page, "dragged.png");
+    results.yaw_after_drag = await page.evaluate(() => Number(new URLSearchParams(location.hash.slice(1)).get("yaw")));
+    await page.close();
+  }
+  {
+    // A finger holding the joystick up for a second: faster (touch events, as a tablet sends).
+    const page = await open(`scene=street&${still}`, 3, { hasTouch: true, isMobile: true });
+    const before = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
+    const box = await page.evaluate(() => {
+      const b = document.getElementById("joystick").getBoundingClientRect();
+      return { hidden: document.getElementById("joystick").hidden, x: b.left + b.width / 2, y: b.top };
+    });
+    results.joystick_shown = !box.hidden;
+    const touch = await page.context().newCDPSession(page);
+    const at = (y) => [{ x: box.x, y }];
+    await touch.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: at(box.y + 60) });
+    await touch.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: at(box.y + 30) });
+    await touch.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: at(box.y + 2) });
+    await page.waitForTimeout(1000);
+    await touch.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+    await settle(page);
+    results.joystick_beta = [before,
+      Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta))];
     await page.close();
   }
 
@@ -137,6 +172,9 @@ try {
     await page.waitForTimeout(5000);
     const [frames1, t1] = await page.evaluate(() => [Number(document.body.dataset.frames), performance.now()]);
     results.fps = (frames1 - frames0) / ((t1 - t0) / 1000);
+    // And `lightcone view --benchmark 100` in the page: the same scripted flight, draws alone.
+    results.benchmark = await page.evaluate(() => JSON.parse(window.lightcone.ccall("lc_benchmark",
+      "string", ["number", "number", "number"], [100, 640, 360])));
     await page.close();
   }
 } finally {
