@@ -5,7 +5,10 @@
 #pragma once
 
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -37,21 +40,47 @@ To bit_cast(const From& from) noexcept {
 #endif
 }
 
+namespace detail {
+// Floating-point from_chars by strtod, as from_chars reads: no leading space or plus sign, no
+// hexadecimal. The browser's; compiled everywhere, so that the native tests check it against
+// std::from_chars.
+template <class T>
+std::from_chars_result from_chars_by_strtod(const char* first, const char* last, T& value) {
+  static_assert(std::is_floating_point_v<T>);
+  // strtod reads a terminated string: a copy on the stack (on the heap past 63 characters).
+  char buffer[64];
+  std::string long_text;
+  const auto size = static_cast<std::size_t>(last - first);
+  const char* text = buffer;
+  if (size < sizeof buffer) {
+    std::memcpy(buffer, first, size);
+    buffer[size] = '\0';
+  } else {
+    long_text.assign(first, last);
+    text = long_text.c_str();
+  }
+  // from_chars reads "0x1p3" as 0 followed by text: so does strtod, cut before the x.
+  if (char* x = std::strpbrk(text == buffer ? buffer : long_text.data(), "xX")) *x = '\0';
+  const bool refused =
+      size == 0 || text[0] == '+' || std::isspace(static_cast<unsigned char>(text[0]));
+  char* end = nullptr;
+  errno = 0;
+  const double parsed = refused ? 0 : std::strtod(text, &end);
+  if (refused || end == text) return {first, std::errc::invalid_argument};
+  const char* stop = first + (end - text);
+  if (errno == ERANGE && std::abs(parsed) > 1) return {stop, std::errc::result_out_of_range};
+  value = static_cast<T>(parsed);
+  return {stop, std::errc()};
+}
+}  // namespace detail
+
 // std::from_chars where the library has it; in the browser, floating-point values are read by
-// strtod (as from_chars reads them: no leading space or plus sign, no hexadecimal).
+// detail::from_chars_by_strtod.
 template <class T>
 std::from_chars_result from_chars(const char* first, const char* last, T& value) {
 #ifdef __EMSCRIPTEN__
   if constexpr (std::is_floating_point_v<T>) {
-    const std::string text(first, last);
-    const bool refused = text.empty() || text[0] == '+' ||
-                         std::isspace(static_cast<unsigned char>(text[0])) ||
-                         text.find_first_of("xX") != std::string::npos;
-    char* end = nullptr;
-    const double parsed = refused ? 0 : std::strtod(text.c_str(), &end);
-    if (refused || end == text.c_str()) return {first, std::errc::invalid_argument};
-    value = static_cast<T>(parsed);
-    return {first + (end - text.c_str()), std::errc()};
+    return detail::from_chars_by_strtod(first, last, value);
   } else {
     return std::from_chars(first, last, value);
   }
