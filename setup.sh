@@ -14,6 +14,7 @@ packages=(
   libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools libglfw3-dev libimgui-dev
   xvfb xdotool x11-apps ffmpeg slurm-wlm munge
   kstars-data
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-venv python3-setuptools
 )
 if [ "${1:-}" = "--checks" ]; then packages+=(clang libclang-rt-14-dev); fi
 if [ "${1:-}" = "--web" ]; then

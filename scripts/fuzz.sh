@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-30}
 flags="-fsanitize=fuzzer-no-link,address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DLIGHTCONE_FUZZ=ON -DCMAKE_CXX_FLAGS="$flags" \
+  -DLIGHTCONE_FUZZ=ON -DLIGHTCONE_PYTHON=OFF -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target fuzz_scene fuzz_mesh fuzz_image fuzz_stars
 for harness in scene mesh image stars; do

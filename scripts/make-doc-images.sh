@@ -109,3 +109,7 @@ web_screenshot() {
   kill "$server"
 }
 web_screenshot
+
+# The Python tour (docs/python.md), as the page shows it.
+echo "PYTHONPATH=build/python python3 examples/python/tour.py docs/images" >&2
+PYTHONPATH=build/python python3 examples/python/tour.py "$out" >/dev/null

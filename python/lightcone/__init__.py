@@ -1,0 +1,238 @@
+"""lightcone: special-relativistic rendering from Python.
+
+The same library as the ``lightcone`` program, called directly (never the executable): the
+same scene files, the same pictures bit for bit, the same error messages.
+
+    import lightcone as lc
+    scene = lc.load("scenes/street.json", overrides={"camera.velocity": [0, 0, -0.9]})
+    img = lc.render(scene, samples=16)        # numpy float32 (H, W, 3), linear, unclamped
+    aov = lc.render(scene, aovs=["doppler", "depth"])   # dict of arrays, "rgb" among them
+    png = lc.tonemap(img, exposure=0, curve="filmic")   # uint8 (H, W, 3)
+    hit = lc.locate(scene, object="ball", point=[0, 1.4, 0])
+    fast = lc.render(scene, renderer="raster")          # the real-time renderer, headless
+    lc.physics.doppler_factor(dirs, beta_emitter=[0, 0, 0.5])
+
+See docs/python.md.
+"""
+
+from __future__ import annotations
+
+import json as _json
+import sys as _sys
+import time as _time
+import warnings as _warnings
+from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Union
+
+import numpy as _np
+
+from . import _lightcone
+from . import physics
+from ._lightcone import Scene, SceneError
+
+__all__ = ["Scene", "SceneError", "Image", "load", "render", "tonemap", "locate", "read_image",
+           "physics"]
+
+_MAX_SAMPLES = 65536  # as the scene format's camera.samples
+_TONE_CURVES = ("filmic", "reinhard", "clamp")
+
+
+class Image(_np.ndarray):
+    """A rendered picture: a float32 array (H, W, 3) of linear radiance, the exposure applied.
+
+    It is a numpy array in every way; in a notebook it shows itself (tone-mapped with the
+    filmic curve, as the program's PNG)."""
+
+    def _repr_png_(self) -> bytes:
+        return _lightcone.png(_np.asarray(self, dtype=_np.float32), 0.0)
+
+
+def _override_lines(overrides: Union[None, Mapping[str, Any], Sequence[str]]) -> list:
+    """--set's "key.path=value" lines from a dict (values as JSON) or from such strings."""
+    if overrides is None:
+        return []
+    if isinstance(overrides, Mapping):
+        lines = []
+        for key, value in overrides.items():
+            if not isinstance(key, str):
+                raise TypeError(f"overrides: a key must be a JSON path string, got {key!r}")
+            if isinstance(value, _np.ndarray):
+                value = value.tolist()
+            lines.append(f"{key}={_json.dumps(value)}")
+        return lines
+    if isinstance(overrides, str) or not all(isinstance(o, str) for o in overrides):
+        raise TypeError("overrides: a dict {path: value} or a list of 'path=value' strings")
+    return list(overrides)
+
+
+def _warn(warnings: Iterable[str]) -> None:
+    for w in warnings:
+        _warnings.warn(w, stacklevel=3)
+
+
+def load(path: str, overrides: Union[None, Mapping[str, Any], Sequence[str]] = None) -> Scene:
+    """Reads a scene file (docs/scene-format.md), as ``lightcone render`` reads it.
+
+    overrides: values to replace before the scene is checked, as ``--set`` gives them: a dict
+    {"camera.velocity": [0, 0, -0.9]} (values as JSON) or a list of "path=value" strings.
+
+    Raises SceneError (with .file, .line and .field) for a scene with an error."""
+    scene, warnings = _lightcone.load(str(path), _override_lines(overrides))
+    _warn(warnings)
+    return scene
+
+
+def _from_dict(document: Mapping[str, Any], name: str = "scene.json",
+               overrides: Union[None, Mapping[str, Any], Sequence[str]] = None) -> Scene:
+    """A scene built in code: the scene format's JSON as dicts and lists. `name` names it in
+    messages, and relative file names in it (meshes, textures) are read from its folder."""
+    if not isinstance(document, Mapping):
+        raise TypeError("Scene.from_dict: a dict in the scene format (docs/scene-format.md)")
+    text = _json.dumps(document, indent=1, default=lambda v: v.tolist()
+                       if isinstance(v, _np.ndarray) else str(v))
+    scene, warnings = _lightcone.load_text(text, str(name), _override_lines(overrides))
+    _warn(warnings)
+    return scene
+
+
+Scene.from_dict = staticmethod(_from_dict)
+
+
+class _Progress:
+    """The render's progress, once it has run a second: tqdm if installed, else a line on
+    stderr."""
+
+    def __init__(self) -> None:
+        self.start = _time.monotonic()
+        self.bar = None
+        self.text = False
+
+    def __call__(self, done: int, total: int) -> None:
+        if _time.monotonic() - self.start < 1.0 or total == 0:
+            return
+        if self.bar is None and not self.text:
+            try:
+                from tqdm.auto import tqdm  # type: ignore
+                self.bar = tqdm(total=total, desc="lightcone", unit="tile")
+            except ImportError:
+                self.text = True
+        if self.bar is not None:
+            self.bar.update(done - self.bar.n)
+        else:
+            _sys.stderr.write(f"\rlightcone: {100 * done // total:3d}% of {total} tiles")
+            _sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+        elif self.text:
+            _sys.stderr.write("\n")
+
+
+def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trace",
+           aovs: Optional[Sequence[str]] = None, seed: int = 0, threads: int = 0,
+           tessellation: str = "auto", progress: Union[bool, Callable[[int, int], None]] = True):
+    """Renders the scene: what ``lightcone render`` writes to its EXR, as numpy arrays.
+
+    samples: per pixel (default: the scene's camera.samples).
+    renderer: "trace" (the spectral ray tracer) or "raster" (the real-time renderer, headless
+        through EGL: it needs OpenGL 3.3, e.g. Mesa's llvmpipe).
+    aovs: output variables of the ray tracer: "doppler", "emission_time", "distance",
+        "object", "depth", "normal", "image_order". Then the result is a dict of arrays: "rgb"
+        and each variable ((H, W), or (H, W, 3) for "normal").
+    seed: of the sample pattern (each seed gives another deterministic picture).
+    threads: 0 for all cores.
+    progress: True shows a bar (tqdm if installed, else text) once the render has run a
+        second; False shows none; a function f(done, total) of tiles is called instead.
+
+    Returns an Image (float32 (H, W, 3), linear radiance times 2^exposure, unclamped), or the
+    dict. The render runs without the GIL; Ctrl-C stops it and raises KeyboardInterrupt, whose
+    .partial["rgb"] holds the tiles finished."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"render: scene must be a lightcone.Scene (from load), got {type(scene).__name__}")
+    if renderer not in ("trace", "raster"):
+        raise ValueError(f"render: renderer must be 'trace' or 'raster', got {renderer!r}")
+    if tessellation not in ("auto", "cpu", "gpu"):
+        raise ValueError(f"render: tessellation must be 'auto', 'cpu' or 'gpu', got {tessellation!r}")
+    if samples is not None:
+        if isinstance(samples, bool) or not isinstance(samples, (int, _np.integer)):
+            raise TypeError(f"render: samples must be a whole number, got {samples!r}")
+        if not 1 <= samples <= _MAX_SAMPLES:
+            raise ValueError(f"render: samples must be from 1 to {_MAX_SAMPLES}, got {samples}")
+        scene = scene.with_samples(int(samples))
+    if isinstance(seed, bool) or not isinstance(seed, (int, _np.integer)) or not 0 <= seed < 2**64:
+        raise ValueError(f"render: seed must be a whole number from 0 to {2**64 - 1}, got {seed!r}")
+    if isinstance(threads, bool) or not isinstance(threads, (int, _np.integer)) or threads < 0:
+        raise ValueError(f"render: threads must be 0 (all cores) or more, got {threads!r}")
+    names = list(aovs or [])
+    known = _lightcone.aov_names()
+    for name in names:
+        if name not in known:
+            raise ValueError(f"render: unknown output variable {name!r} (use {', '.join(known)})")
+    if names and renderer == "raster":
+        raise ValueError("render: output variables come from the ray tracer (renderer='trace')")
+    shown = _Progress() if progress is True else (progress if callable(progress) else None)
+    try:
+        result = _lightcone.render(scene, renderer, names, int(seed), int(threads), tessellation,
+                                   shown)
+    finally:
+        if isinstance(shown, _Progress):
+            shown.close()
+    rgb = result["rgb"].view(Image)
+    if not names:
+        return rgb
+    out = {"rgb": rgb}
+    for name in names:
+        if name in result:
+            out[name] = result[name]
+        else:  # "normal.X", "normal.Y", "normal.Z"
+            out[name] = _np.stack([result[f"{name}.{axis}"] for axis in "XYZ"], axis=-1)
+    return out
+
+
+def tonemap(image, exposure: float = 0.0, curve: str = "filmic") -> _np.ndarray:
+    """The 8-bit picture of a linear image, as the program's PNG: times 2^exposure, through the
+    tone curve ("filmic", "reinhard" or "clamp"), sRGB-encoded. Returns uint8 (H, W, 3)."""
+    if curve not in _TONE_CURVES:
+        raise ValueError(f"tonemap: curve must be one of {', '.join(_TONE_CURVES)}, got {curve!r}")
+    array = _np.asarray(image, dtype=_np.float32)
+    if array.ndim != 3 or array.shape[2] != 3:
+        raise ValueError(f"tonemap: the image must have shape (H, W, 3), got {array.shape}")
+    return _lightcone.tonemap(array, float(exposure), curve)
+
+
+def _triple(name: str, value) -> list:
+    array = _np.asarray(value, dtype=_np.float64)
+    if array.shape != (3,):
+        raise ValueError(f"locate: {name} must be three numbers, got shape {array.shape}")
+    if not _np.all(_np.isfinite(array)):
+        raise ValueError(f"locate: {name} must be finite")
+    return array.tolist()
+
+
+def locate(scene: Scene, object: Optional[str] = None, point=None, world_point=None,
+           direction=None) -> dict:
+    """Where a point or direction appears in the picture: the fields of ``lightcone locate``'s
+    JSON (pixel, direction, emission event, distance, in_view, doppler; near a black hole every
+    image). Give exactly one of point (in the object's own coordinates, with object),
+    world_point (at rest in the scene's frame) or direction (of the sky)."""
+    given = [v is not None for v in (point, world_point, direction)]
+    if sum(given) != 1:
+        raise ValueError("locate: give exactly one of point (with object), world_point, direction")
+    if point is not None:
+        if not isinstance(object, str):
+            raise ValueError("locate: point needs object=NAME")
+        return _json.loads(_lightcone.locate(scene, "point", object, _triple("point", point)))
+    if world_point is not None:
+        return _json.loads(_lightcone.locate(scene, "world_point", "",
+                                             _triple("world_point", world_point)))
+    d = _np.asarray(_triple("direction", direction))
+    largest = _np.max(_np.abs(d))
+    if largest == 0:
+        raise ValueError("locate: direction must not be zero")
+    return _json.loads(_lightcone.locate(scene, "direction", "", (d / largest).tolist()))
+
+
+def read_image(path: str) -> dict:
+    """An image file as the program reads it (PNG, JPEG: linear from sRGB; OpenEXR: as stored,
+    with its output variables): a dict with "rgb" (float32 (H, W, 3)) and each other channel."""
+    return _lightcone.read_image(str(path))

@@ -1,0 +1,88 @@
+"""lightcone's physics kernels over numpy arrays.
+
+Each function broadcasts its arguments (numpy's rules) and calls the library's scalar kernel
+on every element, so that it gives the C++ kernel's numbers bit for bit. Directions and
+velocities are 3-vectors in the last axis; velocities are in units of c (|beta| < 1); events
+are (t, x, y, z).
+"""
+
+from __future__ import annotations
+
+import numpy as _np
+
+from . import _lightcone
+
+__all__ = ["aberrate", "doppler_factor", "lorentz_boost", "retarded_time"]
+
+_kernels = _lightcone.physics
+
+
+def _vectors(name: str, value, width: int) -> _np.ndarray:
+    array = _np.asarray(value, dtype=_np.float64)
+    if array.ndim == 0 or array.shape[-1] != width:
+        raise ValueError(f"{name}: the last axis must hold {width} numbers, got shape {array.shape}")
+    return array
+
+
+def _speeds(name: str, beta: _np.ndarray) -> None:
+    if not _np.all(_np.isfinite(beta)):
+        raise ValueError(f"{name}: must be finite")
+    if _np.any(_np.einsum("...i,...i->...", beta, beta) >= 1):
+        raise ValueError(f"{name}: every speed must be below c (|beta| < 1)")
+
+
+def _rows(*arrays):
+    """The arrays broadcast to one shape, each as rows of its last axis, and that shape."""
+    shape = _np.broadcast_shapes(*(a.shape[:-1] for a in arrays))
+    rows = [_np.ascontiguousarray(_np.broadcast_to(a, shape + a.shape[-1:]).reshape(-1, a.shape[-1]))
+            for a in arrays]
+    return rows, shape
+
+
+def aberrate(directions, beta):
+    """Look directions (unit, from the observer toward the source) as seen in a frame moving
+    with velocity beta relative to the frame they are given in. Exact (docs/physics.md)."""
+    d = _vectors("directions", directions, 3)
+    b = _vectors("beta", beta, 3)
+    _speeds("beta", b)
+    (dr, br), shape = _rows(d, b)
+    return _kernels.aberrate(dr, br).reshape(shape + (3,))
+
+
+def doppler_factor(n, beta_emitter, beta_receiver=(0.0, 0.0, 0.0)):
+    """D = nu_received / nu_emitted for light travelling along the unit direction n (from the
+    emitter toward the receiver), the emitter and the receiver moving with beta_emitter and
+    beta_receiver in one frame: the ratio of k.U of the photon's 4-momentum with their
+    4-velocities. D > 1 is a blueshift."""
+    nn = _vectors("n", n, 3)
+    e = _vectors("beta_emitter", beta_emitter, 3)
+    r = _vectors("beta_receiver", beta_receiver, 3)
+    _speeds("beta_emitter", e)
+    _speeds("beta_receiver", r)
+    (nr, er, rr), shape = _rows(nn, e, r)
+    return _kernels.doppler_factor(nr, er, rr).reshape(shape)
+
+
+def lorentz_boost(events, beta):
+    """Events (t, x, y, z) in the coordinates of a frame moving with velocity beta (the pure
+    boost, c = 1)."""
+    x = _vectors("events", events, 4)
+    b = _vectors("beta", beta, 3)
+    _speeds("beta", b)
+    (xr, br), shape = _rows(x, b)
+    return _kernels.lorentz_boost(xr, br).reshape(shape + (4,))
+
+
+def retarded_time(observer_events, position, velocity, time=0.0):
+    """The time at which light seen at observer_events (t, x, y, z) left a body moving
+    inertially, X(t) = position + velocity (t - time): the root on the past light cone, in
+    closed form (exact in both directions of motion)."""
+    obs = _vectors("observer_events", observer_events, 4)
+    p = _vectors("position", position, 3)
+    v = _vectors("velocity", velocity, 3)
+    _speeds("velocity", v)
+    t0 = _np.asarray(time, dtype=_np.float64)[..., None]
+    (obs_r, p_r, v_r, t_r), shape = _rows(obs, p, v, t0)
+    t_receive = obs_r[:, 0]
+    delta = p_r + v_r * (t_receive - t_r[:, 0])[:, None] - obs_r[:, 1:]
+    return (t_receive - _kernels.retarded_delay(_np.ascontiguousarray(delta), v_r)).reshape(shape)

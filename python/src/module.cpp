@@ -1,0 +1,336 @@
+// lightcone._lightcone: the library for Python, called as the `lightcone` program calls it
+// (src/cli), so that the same scene gives the same numbers and the same messages. Arguments are
+// checked in python/lightcone/__init__.py; this layer takes them as the library does.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/tone_map.hpp"
+#include "lightcone/io/image_file.hpp"
+#include "lightcone/io/input_error.hpp"
+#include "lightcone/io/locate_json.hpp"
+#include "lightcone/io/scene_file.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/trace/aov.hpp"
+#include "lightcone/trace/renderer.hpp"
+#include "physics_kernels.hpp"
+
+namespace py = pybind11;
+
+namespace lightcone {
+namespace {
+
+// A float32 array over `values` (moved into the array's owner: no copy), of shape `shape`.
+py::array_t<float> array_of(std::vector<float>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<float>(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+  return py::array_t<float>(shape, owned->data(), owner);
+}
+
+Scene load(const std::string& path, const std::vector<std::string>& overrides,
+           std::vector<std::string>& warnings) {
+  SceneLoadReport report;
+  Scene scene = load_scene_file(path, overrides, report);
+  warnings = std::move(report.warnings);
+  return scene;
+}
+
+Scene load_text(const std::string& text, const std::string& name,
+                const std::vector<std::string>& overrides, std::vector<std::string>& warnings) {
+  SceneLoadReport report;
+  Scene scene = load_scene_text(text, name, overrides, report);
+  warnings = std::move(report.warnings);
+  return scene;
+}
+
+// Set while a render runs: Python's SIGINT handler is replaced by one that asks the renderer to
+// stop after its tiles in flight (RenderOptions::cancel), and restored afterwards.
+std::atomic<bool> interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  interrupted = true;
+}
+
+struct InterruptScope {
+  using Handler = void (*)(int);
+  Handler previous = SIG_DFL;
+  InterruptScope() {
+    interrupted = false;
+    previous = std::signal(SIGINT, on_interrupt);
+  }
+  ~InterruptScope() { std::signal(SIGINT, previous); }
+};
+
+// The render: {"rgb": (H, W, 3) float32, linear, exposure applied; each output variable: (H, W)
+// or (H, W, k)}, and "exposure", "seconds", "cancelled".
+py::dict render(const Scene& scene, const std::string& renderer,
+                const std::vector<std::string>& aovs, std::uint64_t seed, int threads,
+                const std::string& tessellation, const py::object& progress) {
+  RenderOptions options;
+  options.threads = threads;
+  options.seed = seed;
+  options.cancel = &interrupted;
+  for (const std::string& name : aovs) options.aovs.push_back(*aov_from_name(name));
+  Image image;
+  double exposure = 0, seconds = 0;
+  bool cancelled = false;
+  {
+    // Progress from the render's worker threads: only counted there, reported to Python from
+    // this thread (which holds the GIL for it) as the render goes.
+    std::atomic<std::size_t> done{0}, total{0};
+    options.progress = [&](std::size_t d, std::size_t t) {
+      std::size_t seen = done.load();
+      while (d > seen && !done.compare_exchange_weak(seen, d)) {
+      }
+      total = t;
+    };
+    InterruptScope interrupt;
+    if (renderer == "raster") {
+      RasterStats stats;
+      const RasterTessellation mode = tessellation == "cpu"   ? RasterTessellation::kCpu
+                                      : tessellation == "gpu" ? RasterTessellation::kGpu
+                                                              : RasterTessellation::kAuto;
+      py::gil_scoped_release unlocked;
+      try {
+        image = render_raster(scene, &stats, {}, seed, mode);
+      } catch (const GlUnavailable& e) {
+        throw std::runtime_error(std::string("renderer='raster': ") + e.what() +
+                                 ": the raster renderer needs OpenGL 3.3 (core profile) through "
+                                 "EGL, e.g. Mesa's llvmpipe; the ray tracer needs neither");
+      }
+      exposure = stats.exposure;
+      seconds = stats.seconds;
+    } else {
+      RenderStats stats;
+      std::exception_ptr failed;
+      std::atomic<bool> finished{false};
+      {
+        py::gil_scoped_release unlocked;
+        std::thread worker([&] {
+          try {
+            image = render_image(scene, options, &stats);
+          } catch (...) {
+            failed = std::current_exception();
+          }
+          finished = true;
+        });
+        std::size_t reported = 0;
+        while (!finished) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(50));
+          if (progress.is_none() || done == reported) continue;
+          reported = done;
+          py::gil_scoped_acquire locked;
+          progress(reported, total.load());
+        }
+        worker.join();
+      }
+      if (failed) std::rethrow_exception(failed);
+      exposure = stats.exposure;
+      seconds = stats.seconds;
+      cancelled = stats.cancelled;
+    }
+  }
+  if (interrupted) {
+    // Ctrl-C: the finished tiles stay in the image KeyboardInterrupt carries (partial).
+    py::dict partial;
+    partial["rgb"] = array_of(std::move(image.rgb), {image.height, image.width, 3});
+    py::object error =
+        py::module_::import("builtins")
+            .attr("KeyboardInterrupt")(
+                "the render was interrupted: the finished tiles are in .partial['rgb']");
+    error.attr("partial") = partial;
+    PyErr_SetObject(PyExc_KeyboardInterrupt, error.ptr());
+    throw py::error_already_set();
+  }
+  py::dict result;
+  const int w = image.width, h = image.height;
+  // Each output variable's channels by their EXR names ("doppler"; "normal.X", ...): the
+  // package gathers a variable's channels into one array.
+  for (NamedChannel& channel : image.channels)
+    result[py::str(channel.name)] = array_of(std::move(channel.values), {h, w});
+  result["rgb"] = array_of(std::move(image.rgb), {h, w, 3});
+  result["exposure"] = exposure;
+  result["seconds"] = seconds;
+  result["cancelled"] = cancelled;
+  return result;
+}
+
+// The PNG's 8-bit picture of a linear image: times 2^exposure, tone-mapped by `curve`, sRGB.
+py::array_t<std::uint8_t> tonemap(
+    const py::array_t<float, py::array::c_style | py::array::forcecast>& linear, double exposure,
+    ToneMap curve) {
+  if (linear.ndim() != 3 || linear.shape(2) != 3)
+    throw py::value_error("tonemap: the image must be an array of shape (H, W, 3)");
+  Image image;
+  image.height = static_cast<int>(linear.shape(0));
+  image.width = static_cast<int>(linear.shape(1));
+  image.rgb.assign(linear.data(), linear.data() + linear.size());
+  const auto scale = static_cast<float>(std::exp2(exposure));
+  for (float& v : image.rgb) v *= scale;
+  const std::vector<unsigned char> codes = display_rgb8(tone_map(image, curve));
+  py::array_t<std::uint8_t> out({linear.shape(0), linear.shape(1), py::ssize_t{3}});
+  std::copy(codes.begin(), codes.end(), out.mutable_data());
+  return out;
+}
+
+std::string located(const Scene& scene, const std::string& kind, const std::string& object,
+                    const std::array<double, 3>& value) {
+  LocateQuery query;
+  query.kind = kind == "point"         ? LocateQuery::Kind::ObjectPoint
+               : kind == "world_point" ? LocateQuery::Kind::WorldPoint
+                                       : LocateQuery::Kind::SkyDirection;
+  query.object = object;
+  query.value = {value[0], value[1], value[2]};
+  LocateResult r;
+  try {
+    r = lightcone::locate(scene, query);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("object: ") + e.what());
+  }
+  if (!locate_result_is_finite(r))
+    throw py::value_error("too far from the camera to be located in double precision");
+  return locate_json(r, scene);
+}
+
+// "FILE:LINE: FIELD: what" (or "--set FIELD: what") into SceneError's attributes.
+void set_location(py::object& error, const std::string& message) {
+  static const std::regex located(R"(^(.*?):(\d+): ([^:]+): )");
+  static const std::regex overridden(R"(^--set ([^:]+): )");
+  std::smatch m;
+  error.attr("file") = py::none();
+  error.attr("line") = py::none();
+  error.attr("field") = py::none();
+  if (std::regex_search(message, m, located)) {
+    error.attr("file") = m[1].str();
+    error.attr("line") = std::stoi(m[2].str());
+    error.attr("field") = m[3].str();
+  } else if (std::regex_search(message, m, overridden)) {
+    error.attr("field") = m[1].str();
+  }
+}
+
+}  // namespace
+}  // namespace lightcone
+
+PYBIND11_MODULE(_lightcone, m) {
+  using namespace lightcone;
+  m.doc() = "lightcone's library (use the package lightcone, which checks the arguments)";
+
+  static py::exception<InputError> scene_error(m, "SceneError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      py::object error = py::reinterpret_borrow<py::object>(scene_error.ptr())(e.what());
+      set_location(error, e.what());
+      PyErr_SetObject(scene_error.ptr(), error.ptr());
+    }
+  });
+
+  py::class_<Scene>(m, "Scene")
+      .def_property_readonly("width", [](const Scene& s) { return s.camera.width; })
+      .def_property_readonly("height", [](const Scene& s) { return s.camera.height; })
+      .def_property_readonly("samples", [](const Scene& s) { return s.camera.samples; })
+      .def_property_readonly("objects",
+                             [](const Scene& s) {
+                               std::vector<std::string> names;
+                               for (const Object& o : s.objects) names.push_back(o.name);
+                               return names;
+                             })
+      .def("with_samples",
+           [](const Scene& s, int samples) {
+             Scene copy = s;
+             copy.camera.samples = samples;
+             return copy;
+           })
+      .def("with_size", [](const Scene& s, int width, int height) {
+        Scene copy = s;
+        copy.camera.width = width;
+        copy.camera.height = height;
+        return copy;
+      });
+
+  m.def(
+      "load",
+      [](const std::string& path, const std::vector<std::string>& overrides) {
+        std::vector<std::string> warnings;
+        Scene scene = load(path, overrides, warnings);
+        return std::pair{std::move(scene), warnings};
+      },
+      py::arg("path"), py::arg("overrides"));
+  m.def(
+      "load_text",
+      [](const std::string& text, const std::string& name,
+         const std::vector<std::string>& overrides) {
+        std::vector<std::string> warnings;
+        Scene scene = load_text(text, name, overrides, warnings);
+        return std::pair{std::move(scene), warnings};
+      },
+      py::arg("text"), py::arg("name"), py::arg("overrides"));
+  m.def("render", &render, py::arg("scene"), py::arg("renderer"), py::arg("aovs"), py::arg("seed"),
+        py::arg("threads"), py::arg("tessellation"), py::arg("progress"));
+  m.def(
+      "tonemap",
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& image,
+         double exposure, const std::string& curve) {
+        const ToneMap map = curve == "clamp"      ? ToneMap::kClamp
+                            : curve == "reinhard" ? ToneMap::kReinhard
+                                                  : ToneMap::kFilmic;
+        return tonemap(image, exposure, map);
+      },
+      py::arg("image"), py::arg("exposure"), py::arg("curve"));
+  m.def("locate", &located, py::arg("scene"), py::arg("kind"), py::arg("object"), py::arg("value"));
+  m.def("aov_names", [] {
+    std::vector<std::string> names;
+    for (int i = 0; i <= static_cast<int>(Aov::kImageOrder); ++i)
+      names.push_back(aov_name(static_cast<Aov>(i)));
+    return names;
+  });
+  m.def(
+      "read_image",
+      [](const std::string& path) {
+        std::shared_ptr<Image> image = load_image_file(path);
+        py::dict result;
+        const int w = image->width, h = image->height;
+        for (const NamedChannel& channel : image->channels) {
+          std::vector<float> values = channel.values;
+          result[py::str(channel.name)] = array_of(std::move(values), {h, w});
+        }
+        std::vector<float> rgb = image->rgb;
+        result["rgb"] = array_of(std::move(rgb), {h, w, 3});
+        return result;
+      },
+      py::arg("path"));
+  m.def(
+      "png",
+      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear,
+         double exposure) {
+        if (linear.ndim() != 3 || linear.shape(2) != 3)
+          throw py::value_error("the image must be an array of shape (H, W, 3)");
+        Image image;
+        image.height = static_cast<int>(linear.shape(0));
+        image.width = static_cast<int>(linear.shape(1));
+        image.rgb.assign(linear.data(), linear.data() + linear.size());
+        const auto scale = static_cast<float>(std::exp2(exposure));
+        for (float& v : image.rgb) v *= scale;
+        const std::vector<unsigned char> png = encode_png(tone_map(image, ToneMap::kFilmic));
+        return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
+      },
+      py::arg("image"), py::arg("exposure"));
+  add_physics_kernels(m.def_submodule("physics", "vectorised physics kernels"));
+}

@@ -1,0 +1,243 @@
+"""The Python module against the `lightcone` program and against independent formulas.
+
+Run by ctest (Python.pytest) with PYTHONPATH at the build's python/ folder, LIGHTCONE_BINARY
+the program and LIGHTCONE_SOURCE_DIR the repository."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+
+import lightcone as lc
+
+BINARY = os.environ.get("LIGHTCONE_BINARY", "build/lightcone")
+SOURCE = os.environ.get("LIGHTCONE_SOURCE_DIR", ".")
+TERRELL = os.path.join(SOURCE, "scenes", "terrell.json")
+SMALL = {"camera.width": 160, "camera.height": 90}
+SMALL_SET = ["--set", "camera.width=160", "--set", "camera.height=90"]
+
+
+def cli(*args):
+    done = subprocess.run([BINARY, *args], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+@pytest.mark.parametrize("renderer", ["trace", "raster"])
+def test_render_equals_the_programs_exr_bit_for_bit(tmp_path, renderer):
+    exr = tmp_path / "cli.exr"
+    cli("render", TERRELL, "-o", str(exr), "--samples", "3", "--seed", "5", "--renderer",
+        renderer, "--quiet", *SMALL_SET)
+    ours = lc.render(lc.load(TERRELL, overrides=SMALL), samples=3, seed=5, renderer=renderer)
+    theirs = lc.read_image(exr)["rgb"]
+    assert ours.shape == (90, 160, 3) and ours.dtype == np.float32
+    assert np.array_equal(ours.view(np.uint32), theirs.view(np.uint32))
+
+
+def test_output_variables_equal_the_programs(tmp_path):
+    exr = tmp_path / "cli.exr"
+    cli("render", TERRELL, "-o", str(exr), "--samples", "1", "--aov", "doppler,normal,object",
+        "--quiet", *SMALL_SET)
+    ours = lc.render(lc.load(TERRELL, overrides=SMALL), samples=1,
+                     aovs=["doppler", "normal", "object"])
+    theirs = lc.read_image(exr)
+    assert np.array_equal(ours["doppler"], theirs["doppler"])
+    assert np.array_equal(ours["object"], theirs["object"])
+    assert ours["normal"].shape == (90, 160, 3)
+    assert np.array_equal(ours["normal"][..., 1], theirs["normal.Y"])
+    # The ball recedes: its light is redshifted (Terrell scene: D about 0.4 to 0.5).
+    ball = ours["object"] == 0
+    assert ball.any() and np.all(ours["doppler"][ball] < 0.7)
+
+
+def test_tonemap_equals_the_programs_png(tmp_path):
+    png, exr = tmp_path / "cli.png", tmp_path / "cli.exr"
+    cli("render", TERRELL, "-o", str(png), "--exr", str(exr), "--samples", "1", "--quiet",
+        *SMALL_SET)
+    linear = lc.read_image(exr)["rgb"]
+    codes = lc.tonemap(linear, exposure=0, curve="filmic")  # terrell.json's curve: the default
+    decoded = lc.read_image(png)["rgb"]  # linear from the PNG's sRGB codes
+    srgb = np.where(decoded <= 0.0031308, 12.92 * decoded, 1.055 * decoded ** (1 / 2.4) - 0.055)
+    assert codes.dtype == np.uint8 and codes.shape == (90, 160, 3)
+    assert np.array_equal(codes, np.rint(255 * srgb).astype(np.uint8))
+
+
+def test_locate_equals_the_programs_json():
+    theirs = json.loads(cli("locate", TERRELL, "--object", "ball", "--point", "0,1.4,0"))
+    ours = lc.locate(lc.load(TERRELL), object="ball", point=[0, 1.4, 0])
+    assert ours == theirs
+    theirs = json.loads(cli("locate", TERRELL, "--direction", "0,0,-2"))
+    assert lc.locate(lc.load(TERRELL), direction=[0, 0, -2]) == theirs
+
+
+def test_a_scene_with_an_error_raises_scene_error_with_its_line(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text('{\n  "camera": {"fov": 60},\n  "objectz": []\n}\n')
+    with pytest.raises(lc.SceneError) as caught:
+        lc.load(bad)
+    error = caught.value
+    assert (error.file, error.line, error.field) == (str(bad), 3, "objectz")
+    assert str(error).startswith(f"{bad}:3: objectz: unknown key")
+    assert isinstance(error, ValueError)
+    with pytest.raises(lc.SceneError) as caught:
+        lc.load(TERRELL, overrides={"camera.velocity": [0, 0, 1.5]})
+    assert caught.value.field == "camera.velocity" and caught.value.line is None
+
+
+def test_scene_from_dict_renders_as_its_file(tmp_path):
+    with open(TERRELL) as f:
+        text = "\n".join(line for line in f if not line.lstrip().startswith("//"))
+    document = json.loads(text)
+    document["camera"].update(width=160, height=90)
+    built = lc.Scene.from_dict(document, name=TERRELL)
+    loaded = lc.load(TERRELL, overrides=SMALL)
+    assert np.array_equal(lc.render(built, samples=1), lc.render(loaded, samples=1))
+
+
+def test_bad_arguments_raise_value_or_type_errors():
+    scene = lc.load(TERRELL, overrides=SMALL)
+    with pytest.raises(ValueError):
+        lc.render(scene, renderer="photon")
+    with pytest.raises(ValueError):
+        lc.render(scene, samples=0)
+    with pytest.raises(TypeError):
+        lc.render(scene, samples=1.5)
+    with pytest.raises(ValueError):
+        lc.render(scene, aovs=["speed"])
+    with pytest.raises(TypeError):
+        lc.render("scene.json")
+    with pytest.raises(ValueError):
+        lc.tonemap(np.zeros((4, 4)))
+    with pytest.raises(ValueError):
+        lc.physics.aberrate(np.zeros((5, 2)), [0, 0, 0.5])
+    with pytest.raises(ValueError):
+        lc.physics.doppler_factor([0, 0, 1], [0, 0, 1.0])  # at c: refused, never clamped
+    with pytest.raises(ValueError):
+        lc.locate(scene, point=[0, 0, 0])  # no object
+
+
+# Independent derivations of the kernels, in numpy.
+def boost_matrix(beta):
+    b2 = beta @ beta
+    g = 1 / np.sqrt(1 - b2)
+    m = np.eye(4)
+    m[0, 0] = g
+    m[0, 1:] = m[1:, 0] = -g * beta
+    if b2 > 0:
+        m[1:, 1:] += (g - 1) * np.outer(beta, beta) / b2
+    return m
+
+
+def random_cases(n, seed=1):
+    rng = np.random.default_rng(seed)
+    d = rng.normal(size=(n, 3))
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    v = rng.normal(size=(n, 3))
+    v *= (rng.uniform(0, 0.99, size=n) / np.linalg.norm(v, axis=1))[:, None]
+    return d, v
+
+
+def test_doppler_factor_is_the_ratio_of_four_momentum_products():
+    n, be = random_cases(100000)
+    _, br = random_cases(100000, seed=2)
+    got = lc.physics.doppler_factor(n, be, br)
+    ge = 1 / np.sqrt(1 - np.einsum("ij,ij->i", be, be))
+    gr = 1 / np.sqrt(1 - np.einsum("ij,ij->i", br, br))
+    # k = (1, n); k.U = gamma (1 - n.beta) (signature - + + +, up to sign)
+    expected = gr * (1 - np.einsum("ij,ij->i", n, br)) / (ge * (1 - np.einsum("ij,ij->i", n, be)))
+    assert np.allclose(got, expected, rtol=1e-12, atol=0)
+    # beta -> 0: no shift; broadcasting of one velocity over many directions
+    assert np.allclose(lc.physics.doppler_factor(n, [0, 0, 1e-12]), 1, rtol=0, atol=1e-11)
+    assert lc.physics.doppler_factor(n[:7].reshape(7, 1, 3), np.zeros((1, 5, 3))).shape == (7, 5)
+
+
+def test_aberration_is_the_boost_of_the_photons_momentum():
+    d, v = random_cases(20000, seed=3)
+    got = lc.physics.aberrate(d, v)
+    for i in range(0, 20000, 997):
+        # the photon travels along -d; its 4-momentum boosted into the moving frame
+        k = boost_matrix(v[i]) @ np.concatenate([[1.0], -d[i]])
+        assert np.allclose(got[i], -k[1:] / k[0], rtol=0, atol=1e-12)
+    assert np.allclose(np.linalg.norm(got, axis=1), 1, atol=1e-12)
+    assert np.allclose(lc.physics.aberrate(d, [0, 0, 0]), d, rtol=0, atol=0)
+
+
+def test_lorentz_boost_keeps_the_interval_and_undoes_itself():
+    rng = np.random.default_rng(4)
+    events = rng.normal(size=(100000, 4))
+    _, v = random_cases(100000, seed=5)
+    boosted = lc.physics.lorentz_boost(events, v)
+    interval = lambda x: -x[:, 0] ** 2 + np.einsum("ij,ij->i", x[:, 1:], x[:, 1:])
+    assert np.allclose(interval(boosted), interval(events), rtol=1e-9, atol=1e-9)
+    assert np.allclose(lc.physics.lorentz_boost(boosted, -v), events, rtol=1e-9, atol=1e-9)
+
+
+def test_retarded_time_is_on_the_past_light_cone():
+    rng = np.random.default_rng(6)
+    observers = rng.normal(size=(100000, 4)) * 10
+    p = rng.normal(size=(100000, 3)) * 10
+    _, v = random_cases(100000, seed=7)
+    t = lc.physics.retarded_time(observers, p, v)
+    emitted = p + v * t[:, None]
+    distance = np.linalg.norm(emitted - observers[:, 1:], axis=1)
+    assert np.all(t <= observers[:, 0])
+    assert np.allclose(observers[:, 0] - t, distance, rtol=1e-12, atol=1e-12)
+    # beta -> 0: the delay is the distance to where the body is
+    still = lc.physics.retarded_time(observers, p, [0, 0, 0])
+    assert np.allclose(observers[:, 0] - still, np.linalg.norm(p - observers[:, 1:], axis=1))
+
+
+def test_ctrl_c_raises_keyboard_interrupt_within_a_second():
+    script = textwrap.dedent(f"""
+        import sys, time, lightcone as lc
+        scene = lc.load({TERRELL!r}, overrides={{"camera.width": 1920, "camera.height": 1080}})
+        print("rendering", flush=True)
+        try:
+            lc.render(scene, samples=4096, progress=False)
+        except KeyboardInterrupt as e:
+            print("interrupted", time.monotonic(), e.partial["rgb"].shape, flush=True)
+    """)
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,
+                             env=os.environ)
+    assert child.stdout.readline().strip() == "rendering"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=60)
+    words = out.split()
+    assert words[0] == "interrupted", out
+    assert float(words[1]) - sent < 1.0
+    assert "(1080, 1920, 3)" in out
+
+
+def test_an_image_shows_itself_in_a_notebook():
+    img = lc.render(lc.load(TERRELL, overrides=SMALL), samples=1)
+    png = img._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_pip_install_in_a_fresh_virtual_environment(tmp_path):
+    """`pip install .` (setuptools over the project's CMake, reusing the build folder), then
+    import lightcone and render terrell.json from that environment."""
+    venv = tmp_path / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    env["LIGHTCONE_BUILD_DIR"] = os.path.dirname(os.path.abspath(BINARY))
+    done = subprocess.run([str(venv / "bin" / "pip"), "install", "--no-build-isolation",
+                           "--no-deps", "--no-index", "--quiet", SOURCE],
+                          capture_output=True, text=True, env=env)
+    assert done.returncode == 0, done.stdout + done.stderr
+    script = (f"import lightcone as lc; img = lc.render(lc.load({TERRELL!r}, overrides={SMALL!r}),"
+              " samples=1); print(lc.__file__); print(img.shape)")
+    ran = subprocess.run([str(venv / "bin" / "python"), "-c", script], capture_output=True,
+                         text=True, env=env, cwd=tmp_path)
+    assert ran.returncode == 0, ran.stderr
+    where, shape = ran.stdout.split()[:2]
+    assert where.startswith(str(venv))
+    assert "(90," in ran.stdout
