@@ -32,10 +32,16 @@ def _speeds(name: str, beta: _np.ndarray) -> None:
 
 
 def _rows(*arrays):
-    """The arrays broadcast to one shape, each as rows of its last axis, and that shape."""
+    """The arrays broadcast to one shape, each as rows of its last axis, and that shape. An
+    array of one vector stays one row (the kernels read it for every element: no copy)."""
     shape = _np.broadcast_shapes(*(a.shape[:-1] for a in arrays))
-    rows = [_np.ascontiguousarray(_np.broadcast_to(a, shape + a.shape[-1:]).reshape(-1, a.shape[-1]))
-            for a in arrays]
+    rows = []
+    for a in arrays:
+        if a.size == a.shape[-1]:
+            rows.append(_np.ascontiguousarray(a.reshape(1, a.shape[-1])))
+        else:
+            rows.append(_np.ascontiguousarray(
+                _np.broadcast_to(a, shape + a.shape[-1:]).reshape(-1, a.shape[-1])))
     return rows, shape
 
 

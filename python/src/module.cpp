@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -117,8 +118,8 @@ py::dict render(const Scene& scene, const std::string& renderer,
       seconds = stats.seconds;
     } else {
       RenderStats stats;
-      std::exception_ptr failed;
-      std::atomic<bool> finished{false};
+      std::exception_ptr failed, progress_failed;
+      std::promise<void> finished;
       {
         py::gil_scoped_release unlocked;
         std::thread worker([&] {
@@ -127,18 +128,26 @@ py::dict render(const Scene& scene, const std::string& renderer,
           } catch (...) {
             failed = std::current_exception();
           }
-          finished = true;
+          finished.set_value();
         });
+        // Woken at once when the render ends; meanwhile the progress every 50 ms.
+        // A progress function that raises stops the render, and its error is raised.
+        const std::future<void> ended = finished.get_future();
         std::size_t reported = 0;
-        while (!finished) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(50));
-          if (progress.is_none() || done == reported) continue;
+        while (ended.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+          if (progress.is_none() || done == reported || progress_failed) continue;
           reported = done;
           py::gil_scoped_acquire locked;
-          progress(reported, total.load());
+          try {
+            progress(reported, total.load());
+          } catch (...) {
+            progress_failed = std::current_exception();
+            interrupted = true;
+          }
         }
         worker.join();
       }
+      if (progress_failed) std::rethrow_exception(progress_failed);
       if (failed) std::rethrow_exception(failed);
       exposure = stats.exposure;
       seconds = stats.seconds;
