@@ -29,8 +29,8 @@ from . import _lightcone
 from . import physics
 from ._lightcone import Scene, SceneError
 
-__all__ = ["Scene", "SceneError", "Image", "load", "render", "tonemap", "locate", "read_image",
-           "physics"]
+__all__ = ["Scene", "SceneError", "Image", "load", "render", "animate", "tonemap", "locate",
+           "read_image", "physics"]
 
 _MAX_SAMPLES = 65536  # as the scene format's camera.samples
 _TONE_CURVES = ("filmic", "reinhard", "clamp")
@@ -187,6 +187,30 @@ def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trac
         else:  # "normal.X", "normal.Y", "normal.Z"
             out[name] = _np.stack([result[f"{name}.{axis}"] for axis in "XYZ"], axis=-1)
     return out
+
+
+def animate(scene: Scene, fps: float = 30, frames: Iterable[int] = range(0, 1), *,
+            clock: str = "camera", **render_options):
+    """Renders frames of an animation, as ``lightcone animate`` sees them: frame i at the
+    camera's proper time tau_0 + i / fps (clock="camera") or at its world time t_0 + i / fps
+    (clock="world"), in the scene's units of time. Yields (i, picture) for each i of `frames`;
+    render_options are render's (samples, renderer, aovs, seed, threads, progress).
+
+    Each frame is exposed on its own: where the scene's exposure is automatic, the program's
+    animation instead averages it over half a second either side of each frame. For frames to
+    put in a video, give the scene a fixed exposure (overrides={"render.exposure": EV})."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"animate: scene must be a lightcone.Scene, got {type(scene).__name__}")
+    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not 0 < fps < float("inf"):
+        raise ValueError(f"animate: fps must be a positive number, got {fps!r}")
+    if clock not in ("camera", "world"):
+        raise ValueError(f"animate: clock must be 'camera' or 'world', got {clock!r}")
+    render_options.setdefault("progress", False)
+    for i in frames:
+        if isinstance(i, bool) or not isinstance(i, (int, _np.integer)):
+            raise TypeError(f"animate: a frame number must be a whole number, got {i!r}")
+        yield int(i), render(_lightcone.animation_frame(scene, int(i), float(fps), clock),
+                             **render_options)
 
 
 def tonemap(image, exposure: float = 0.0, curve: str = "filmic") -> _np.ndarray:

@@ -27,6 +27,7 @@
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/scene/animation.hpp"
 #include "lightcone/trace/aov.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "physics_kernels.hpp"
@@ -310,6 +311,18 @@ PYBIND11_MODULE(_lightcone, m) {
       names.push_back(aov_name(static_cast<Aov>(i)));
     return names;
   });
+  m.def(
+      "animation_frame",
+      [](const Scene& scene, long long i, double fps, const std::string& clock) {
+        if (const auto refused = animation_refused(scene)) throw InputError(*refused);
+        Scene frame;
+        if (const auto why = animation_frame(
+                scene, i, fps, clock == "world" ? AnimationClock::kWorld : AnimationClock::kCamera,
+                frame))
+          throw InputError(*why);
+        return frame;
+      },
+      py::arg("scene"), py::arg("frame"), py::arg("fps"), py::arg("clock"));
   m.def(
       "read_image",
       [](const std::string& path) {

@@ -22,6 +22,7 @@
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/scene/animation.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "progress_bar.hpp"
 #include "video.hpp"
@@ -110,16 +111,6 @@ namespace {
 
 // An animation's automatic exposure is averaged over this many seconds either side of a frame.
 constexpr double kExposureSmoothing = 0.5;
-
-// The camera's proper time (in the model's units) at world time `time` on its world-line.
-double proper_time_at_world_time(const Camera& camera, double time) {
-  const Camera::Motion& m = camera.motion;
-  if (m.geodesic) return geodesic_proper_time_at(*m.geodesic, time);
-  if (!m.keyframes.empty()) return KeyframeWorldLine(m.keyframes).at_world_time(time).proper_time;
-  return AcceleratedWorldLine(m.start.time, m.start.position, m.start.velocity, m.phases)
-      .at_world_time(time)
-      .proper_time;
-}
 
 // Every file the run writes, checked before the first frame: under each pattern, each frame's
 // name is a regular file or absent, in a folder that exists and is writable, and no file is
@@ -258,63 +249,12 @@ int run_animate(const AnimateArgs& a) {
       std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                    a.scene.c_str(), difference.c_str());
 
-  // Frame i is seen at the camera's proper time tau_0 + i / fps (in the scene's units of time),
-  // or at its world time t_0 + i / fps; either way set as camera.proper_time would set it.
-  const double c = scene.speed_of_light;
-  const double proper_start = camera.motion.proper_time / c,
-               world_start = camera.world_line.time / c;
-  // Near a black hole a camera without a geodesic motion is a static one (a moving camera with no
-  // motion is not on a free path there): it stays where it is, and its clock runs at sqrt(f) of
-  // W's (Schwarzschild coordinate) time.
-  const bool static_near_hole = scene.black_hole && !camera.motion.geodesic;
-  if (static_near_hole && length(camera.world_line.velocity) > 0)
-    throw InputError(
-        a.scene +
-        ": camera: a camera that moves near a black hole is animated along a geodesic motion "
-        "(\"motion\": {\"orbit\": ...} or {\"fall\": ...}); a velocity alone is not a free path "
-        "there");
+  if (const auto refused = animation_refused(scene)) throw InputError(a.scene + ": " + *refused);
+  const AnimationClock clock =
+      a.clock == "world" ? AnimationClock::kWorld : AnimationClock::kCamera;
   const auto frame_scene = [&](long long i) {
-    Scene s = scene;
-    const double step = static_cast<double>(i) / a.fps;
-    if (static_near_hole) {
-      const double r = length(camera.world_line.position - scene.black_hole->position);
-      const double rate = std::sqrt(1 - 2 * scene.black_hole->mass / r);
-      s.camera.world_line.time =
-          (a.clock == "world" ? world_start + step : world_start + step / rate) * c;
-      return s;
-    }
-    s.camera.motion.proper_time = a.clock == "world"
-                                      ? proper_time_at_world_time(camera, (world_start + step) * c)
-                                      : (proper_start + step) * c;
-    // A falling camera is drawn down to r = kCameraInnermostRadius M; from inside the horizon
-    // it sees the sky and the disk only.
-    if (const auto why = geodesic_camera_refused(s.camera.motion, c)) throw InputError(*why);
-    s.camera.world_line = camera_observation(s.camera.motion);
-    if (camera_inside_horizon(s.camera.motion)) {
-      if (!s.objects.empty())
-        throw InputError(fmt::format(
-            "frame {}: the falling camera is inside the black hole's horizon by then, where "
-            "objects are not drawn yet (this version draws the sky and the disk from there)",
-            i));
-    }
-    const double speed = length(s.camera.world_line.velocity);
-    if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))
-      throw InputError(fmt::format("frame {}: the camera is at the speed of light by then", i));
-    // The scene file's limits hold at its own moment; the camera's clock moves them. Checked
-    // at the frame's observation and, with a shutter, at its close. Not near a black hole,
-    // where the flat speed of a body relative to the camera means nothing (the loader held each
-    // body's speed, measured by the local static observers, to the limit instead).
-    for (const double later : {0.0, s.camera.shutter}) {
-      if (s.black_hole) break;
-      const Vec3 v =
-          later > 0 ? observation_after(s.camera, later).velocity : s.camera.world_line.velocity;
-      const Fastest fastest = fastest_relative_to(s, four_velocity(v));
-      if (!(fastest.gamma <= kMaxLorentzFactor))
-        throw InputError(fmt::format(
-            "frame {}: by then {} moves too close to the speed of light relative to the camera "
-            "(gamma {:.3g}; at most {:g})",
-            i, fastest.name, fastest.gamma, kMaxLorentzFactor));
-    }
+    Scene s;
+    if (const auto why = animation_frame(scene, i, a.fps, clock, s)) throw InputError(*why);
     return s;
   };
 
