@@ -27,6 +27,12 @@ class CMakeBuild(build_ext):
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built, target)
+        # The star catalogue (scenes with "stars"), in the package's data/ folder.
+        catalogue = os.path.join(build, "data", "stars-bright.lcstars")
+        if os.path.exists(catalogue):
+            os.makedirs(os.path.join(os.path.dirname(target), "data"), exist_ok=True)
+            shutil.copyfile(catalogue, os.path.join(os.path.dirname(target), "data",
+                                                    os.path.basename(catalogue)))
 
 
 setup(

@@ -18,6 +18,7 @@ See docs/python.md.
 from __future__ import annotations
 
 import json as _json
+import os as _os
 import sys as _sys
 import time as _time
 import warnings as _warnings
@@ -29,8 +30,11 @@ from . import _lightcone
 from . import physics
 from ._lightcone import Scene, SceneError
 
+# The star catalogue (scenes with "stars") travels in the package's data/ folder.
+_lightcone.set_data_folder(_os.path.join(_os.path.dirname(__file__), "data"))
+
 __all__ = ["Scene", "SceneError", "Image", "load", "render", "animate", "tonemap", "locate",
-           "read_image", "physics"]
+           "info", "read_image", "physics"]
 
 _MAX_SAMPLES = 65536  # as the scene format's camera.samples
 _TONE_CURVES = ("filmic", "reinhard", "clamp")
@@ -254,6 +258,15 @@ def locate(scene: Scene, object: Optional[str] = None, point=None, world_point=N
     if largest == 0:
         raise ValueError("locate: direction must not be zero")
     return _json.loads(_lightcone.locate(scene, "direction", "", (d / largest).tolist()))
+
+
+def info(scene: Scene) -> dict:
+    """What ``lightcone info --json`` tells of the scene: the image, each body's speed and
+    gamma, the Doppler range, when the light seen left the scene, triangles, memory; near a
+    black hole its horizon, photon sphere, ISCO and shadow; the stars."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"info: scene must be a lightcone.Scene, got {type(scene).__name__}")
+    return _json.loads(_lightcone.info(scene))
 
 
 def read_image(path: str) -> dict:

@@ -25,11 +25,13 @@
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
+#include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/animation.hpp"
 #include "lightcone/trace/aov.hpp"
 #include "lightcone/trace/renderer.hpp"
+#include "lightcone/trace/scene_info.hpp"
 #include "physics_kernels.hpp"
 
 namespace py = pybind11;
@@ -311,6 +313,12 @@ PYBIND11_MODULE(_lightcone, m) {
       names.push_back(aov_name(static_cast<Aov>(i)));
     return names;
   });
+  m.def(
+      "set_data_folder", [](const std::string& folder) { set_star_catalogue_folder(folder); },
+      py::arg("folder"));
+  m.def(
+      "info", [](const Scene& scene) { return scene_info_json(scene_info(scene), scene); },
+      py::arg("scene"));
   m.def(
       "animation_frame",
       [](const Scene& scene, long long i, double fps, const std::string& clock) {

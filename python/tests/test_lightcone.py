@@ -257,3 +257,20 @@ def test_animate_gives_the_programs_frames(tmp_path):
         theirs = lc.read_image(tmp_path / f"f{i:02d}.exr")["rgb"]
         assert np.array_equal(frames[i].view(np.uint32), theirs.view(np.uint32)), i
     assert not np.array_equal(frames[0], frames[3])  # the camera flew on
+
+
+@pytest.mark.parametrize("name", ["terrell.json", "black-hole.json", "sky.json"])
+def test_info_equals_the_programs_json(name):
+    path = os.path.join(SOURCE, "scenes", name)
+    assert lc.info(lc.load(path)) == json.loads(cli("info", path, "--json"))
+
+
+def test_locate_near_a_black_hole_gives_every_image():
+    path = os.path.join(SOURCE, "scenes", "black-hole.json")
+    scene = lc.load(path)
+    name = scene.objects[0] if scene.objects else None
+    args = ["--direction", "0,0,-1"]
+    theirs = json.loads(cli("locate", path, *args))
+    ours = lc.locate(scene, direction=[0, 0, -1])
+    assert ours == theirs
+    assert "images" in ours

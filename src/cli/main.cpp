@@ -91,10 +91,6 @@ Vec3 parse_triple(const std::string& option, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-nlohmann::ordered_json to_json(const Vec3& v) {
-  return nlohmann::json::array({v.x, v.y, v.z});
-}
-
 // Warnings on stderr for the bodies the camera does not see (bodies_out_of_view), at most ten
 // named, then a hint.
 void warn_out_of_view(const Scene& scene) {
@@ -138,39 +134,7 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
   warn_out_of_view(scene);
   const SceneInfo info = scene_info(scene);
   if (json) {
-    nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
-    for (const BodyInfo& b : info.bodies)
-      bodies.push_back({{"name", b.name},
-                        {"kind", b.kind},
-                        {"velocity", to_json(b.velocity)},
-                        {"speed", b.speed},
-                        {"gamma", b.gamma}});
-    nlohmann::ordered_json out = {
-        {"image", {{"width", info.width}, {"height", info.height}, {"samples", info.samples}}},
-        {"bodies", bodies},
-        {"doppler", {info.doppler_min, info.doppler_max}},
-        {"observation_time", info.observation_time},
-        {"emission_time", nullptr},
-        {"triangles", info.triangles},
-        {"memory_bytes", info.memory_bytes}};
-    if (info.emission_time_min)
-      out["emission_time"] = {*info.emission_time_min, *info.emission_time_max};
-    if (const auto& stars = scene.sky.stars)
-      out["stars"] = {{"catalogue", stars->catalogue},
-                      {"count", stars->stars ? stars->stars->size() : 0},
-                      {"magnitude_limit", stars->magnitude_limit},
-                      {"exposure", stars->exposure}};
-    if (const auto& h = info.hole)
-      out["black_hole"] = {{"mass", h->mass},
-                           {"horizon", h->horizon},
-                           {"photon_sphere", h->photon_sphere},
-                           {"isco", h->isco},
-                           {"camera_radius", h->camera_radius},
-                           {"shadow_degrees", h->shadow_degrees},
-                           {"shadow_static_degrees", h->shadow_static_degrees},
-                           {"shift", {h->shift_min, h->shift_max}},
-                           {"mean_image_order", h->mean_image_order}};
-    std::printf("%s\n", out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+    std::printf("%s\n", scene_info_json(info, scene).c_str());
     return 0;
   }
   std::printf("%s: %dx%d pixels, %s each\n", file.c_str(), info.width, info.height,

@@ -122,7 +122,21 @@ std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path
   return stars;
 }
 
+namespace {
+
+std::optional<std::filesystem::path>& star_catalogue_folder() {
+  static std::optional<std::filesystem::path> folder;
+  return folder;
+}
+
+}  // namespace
+
+void set_star_catalogue_folder(const std::filesystem::path& folder) {
+  star_catalogue_folder() = folder;
+}
+
 std::filesystem::path bright_star_catalogue_path() {
+  if (const auto& folder = star_catalogue_folder()) return *folder / kBrightCatalogueFile;
   std::error_code ec;
   const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ec);
   const std::filesystem::path folder = ec ? std::filesystem::current_path() : program.parent_path();

@@ -29,5 +29,8 @@ std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path
 // (the build folder's data/) or in the installed data folder (../share/lightcone/ from it).
 inline constexpr const char* kBrightCatalogueFile = "stars-bright.lcstars";
 std::filesystem::path bright_star_catalogue_path();
+// Where bright_star_catalogue_path looks instead, for a library loaded by another program (the
+// Python module keeps the catalogue in its package folder).
+void set_star_catalogue_folder(const std::filesystem::path& folder);
 
 }  // namespace lightcone

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "lightcone/frame/camera_model.hpp"
@@ -157,6 +158,50 @@ SceneInfo scene_info(const Scene& scene) {
   // The image being rendered, its tone-mapped copy and the 8-bit output.
   info.memory_bytes += static_cast<std::uint64_t>(info.width) * info.height * (12 + 12 + 3);
   return info;
+}
+
+namespace {
+
+nlohmann::ordered_json to_json(const Vec3& v) {
+  return nlohmann::ordered_json::array({v.x, v.y, v.z});
+}
+
+}  // namespace
+
+std::string scene_info_json(const SceneInfo& info, const Scene& scene) {
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (const BodyInfo& b : info.bodies)
+    bodies.push_back({{"name", b.name},
+                      {"kind", b.kind},
+                      {"velocity", to_json(b.velocity)},
+                      {"speed", b.speed},
+                      {"gamma", b.gamma}});
+  nlohmann::ordered_json out = {
+      {"image", {{"width", info.width}, {"height", info.height}, {"samples", info.samples}}},
+      {"bodies", bodies},
+      {"doppler", {info.doppler_min, info.doppler_max}},
+      {"observation_time", info.observation_time},
+      {"emission_time", nullptr},
+      {"triangles", info.triangles},
+      {"memory_bytes", info.memory_bytes}};
+  if (info.emission_time_min)
+    out["emission_time"] = {*info.emission_time_min, *info.emission_time_max};
+  if (const auto& stars = scene.sky.stars)
+    out["stars"] = {{"catalogue", stars->catalogue},
+                    {"count", stars->stars ? stars->stars->size() : 0},
+                    {"magnitude_limit", stars->magnitude_limit},
+                    {"exposure", stars->exposure}};
+  if (const auto& h = info.hole)
+    out["black_hole"] = {{"mass", h->mass},
+                         {"horizon", h->horizon},
+                         {"photon_sphere", h->photon_sphere},
+                         {"isco", h->isco},
+                         {"camera_radius", h->camera_radius},
+                         {"shadow_degrees", h->shadow_degrees},
+                         {"shadow_static_degrees", h->shadow_static_degrees},
+                         {"shift", {h->shift_min, h->shift_max}},
+                         {"mean_image_order", h->mean_image_order}};
+  return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace lightcone

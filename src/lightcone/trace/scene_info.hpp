@@ -54,4 +54,7 @@ double shadow_angle_for_camera(const HoleView& hole, const Vec3& beta);
 
 SceneInfo scene_info(const Scene& scene);
 
+// `lightcone info --json`'s line (docs/guide.md), which the Python module's info returns.
+std::string scene_info_json(const SceneInfo& info, const Scene& scene);
+
 }  // namespace lightcone
