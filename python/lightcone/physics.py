@@ -12,7 +12,8 @@ import numpy as _np
 
 from . import _lightcone
 
-__all__ = ["aberrate", "doppler_factor", "lorentz_boost", "retarded_time"]
+__all__ = ["aberrate", "doppler_factor", "lorentz_boost", "retarded_time", "blackbody",
+           "received_blackbody"]
 
 _kernels = _lightcone.physics
 
@@ -92,3 +93,45 @@ def retarded_time(observer_events, position, velocity, time=0.0):
     t_receive = obs_r[:, 0]
     delta = p_r + v_r * (t_receive - t_r[:, 0])[:, None] - obs_r[:, 1:]
     return (t_receive - _kernels.retarded_delay(_np.ascontiguousarray(delta), v_r)).reshape(shape)
+
+
+def _scalars(name: str, value) -> _np.ndarray:
+    array = _np.asarray(value, dtype=_np.float64)
+    if not _np.all(_np.isfinite(array)):
+        raise ValueError(f"{name}: must be finite")
+    return array[..., None]
+
+
+def blackbody(wavelength_nm, temperature_k):
+    """Planck's law: the spectral radiance of a blackbody (W sr^-1 m^-2 nm^-1) at each
+    wavelength (nm) and temperature (K)."""
+    lam = _scalars("wavelength_nm", wavelength_nm)
+    t = _scalars("temperature_k", temperature_k)
+    if _np.any(lam <= 0) or _np.any(t <= 0):
+        raise ValueError("blackbody: wavelengths and temperatures must be positive")
+    (lr, tr), shape = _rows(lam, t)
+    return _kernels.blackbody(lr, tr).reshape(shape)
+
+
+def received_blackbody(temperature_k, doppler, luminance=None, searchlight="physical"):
+    """The linear sRGB colour received from a blackbody of temperature T seen with Doppler
+    factor D: the CIE 1931 observer's integral of the received spectral radiance, the
+    searchlight factor (D^5 "physical", D "chang1996", 1 "off") times L(D lambda). `luminance`:
+    the blackbody scaled to that CIE Y at rest (the scene format's "luminance"); None: Planck's
+    radiance itself. Returns (..., 3)."""
+    t = _scalars("temperature_k", temperature_k)
+    d = _scalars("doppler", doppler)
+    if _np.any(t <= 0) or _np.any(d <= 0):
+        raise ValueError("received_blackbody: temperatures and Doppler factors must be positive")
+    if searchlight not in ("physical", "chang1996", "off"):
+        raise ValueError(f"received_blackbody: searchlight must be physical, chang1996 or off, "
+                         f"got {searchlight!r}")
+    if luminance is None:
+        scale = _np.ones_like(t)
+    else:
+        lum = _np.broadcast_to(_np.asarray(luminance, dtype=_np.float64), t.shape[:-1])
+        flat_t = _np.broadcast_to(t[..., 0], lum.shape).ravel()
+        scale = _np.array([_kernels.luminance_scale(a, b) for a, b in zip(flat_t, lum.ravel())])
+        scale = scale.reshape(lum.shape + (1,))
+    (tr, dr, sr), shape = _rows(t, d, scale)
+    return _kernels.received_blackbody(tr, dr, sr, searchlight).reshape(shape + (3,))

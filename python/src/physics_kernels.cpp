@@ -4,6 +4,9 @@
 
 #include <string>
 
+#include "lightcone/color/cie.hpp"
+#include "lightcone/color/spectrum.hpp"
+#include "lightcone/frame/received_colour.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -97,6 +100,47 @@ void add_physics_kernels(py::module_ m) {
         return out;
       },
       py::arg("events"), py::arg("beta"));
+  m.def(
+      "blackbody",
+      [](const Rows& wavelength, const Rows& temperature) {
+        const py::ssize_t n = count({&wavelength, &temperature});
+        const RowReader l = rows(wavelength, n, 1, "wavelength_nm"),
+                        t = rows(temperature, n, 1, "temperature_k");
+        py::array_t<double> out(n);
+        double* o = out.mutable_data();
+        each_row(n, [&](py::ssize_t i) { o[i] = planck_radiance(l[i][0], t[i][0]); });
+        return out;
+      },
+      py::arg("wavelength_nm"), py::arg("temperature_k"));
+  m.def(
+      "received_blackbody",
+      [](const Rows& temperature, const Rows& doppler, const Rows& scale,
+         const std::string& searchlight) {
+        const py::ssize_t n = count({&temperature, &doppler, &scale});
+        const RowReader t = rows(temperature, n, 1, "temperature_k"),
+                        d = rows(doppler, n, 1, "doppler"), k = rows(scale, n, 1, "scale");
+        const SearchlightModel model = searchlight == "chang1996" ? SearchlightModel::kChang1996
+                                       : searchlight == "off"     ? SearchlightModel::kOff
+                                                                  : SearchlightModel::kPhysical;
+        py::array_t<double> out({n, py::ssize_t{3}});
+        double* o = out.mutable_data();
+        each_row(n, [&](py::ssize_t i) {
+          // The received spectral radiance: the searchlight factor times L_E(D lambda).
+          const BlackbodySpectrum emitted{t[i][0], k[i][0]};
+          const double dd = d[i][0], factor = spectral_searchlight(dd, model);
+          const LinearRgb c = linear_srgb_from_xyz(
+              xyz_from_spectrum([&](double lambda) { return factor * emitted(dd * lambda); }));
+          o[3 * i] = c.r, o[3 * i + 1] = c.g, o[3 * i + 2] = c.b;
+        });
+        return out;
+      },
+      py::arg("temperature_k"), py::arg("doppler"), py::arg("scale"), py::arg("searchlight"));
+  m.def(
+      "luminance_scale",
+      [](double temperature, double luminance) {
+        return BlackbodySpectrum::with_luminance(temperature, luminance).scale;
+      },
+      py::arg("temperature_k"), py::arg("luminance"));
   m.def(
       "retarded_delay",
       [](const Rows& delta, const Rows& beta) {

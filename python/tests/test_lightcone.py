@@ -274,3 +274,29 @@ def test_locate_near_a_black_hole_gives_every_image():
     ours = lc.locate(scene, direction=[0, 0, -1])
     assert ours == theirs
     assert "images" in ours
+
+
+def test_blackbody_is_plancks_law():
+    lam = np.linspace(100, 3000, 1000)
+    h, c, k = 6.62607015e-34, 299792458.0, 1.380649e-23
+    for t in (3000.0, 5762.0, 10000.0):
+        m = lam * 1e-9
+        expected = 2 * h * c**2 / m**5 / np.expm1(h * c / (m * k * t)) * 1e-9  # per nm
+        assert np.allclose(lc.physics.blackbody(lam, t), expected, rtol=1e-12, atol=0)
+
+
+def test_a_blackbody_seen_with_d_is_a_blackbody_at_d_t():
+    """Planck's scaling, B(lambda; D T) = D^5 B(D lambda; T): with the physical searchlight the
+    received colour of T seen with D is the rest colour of D T."""
+    t = np.array([3000.0, 5762.0, 8000.0])[:, None]
+    d = np.array([0.5, 0.8, 1.0, 1.7, 2.5])[None, :]
+    seen = lc.physics.received_blackbody(t, d)
+    rest = lc.physics.received_blackbody(t * d, 1.0)
+    assert seen.shape == (3, 5, 3)
+    assert np.allclose(seen, rest, rtol=1e-10, atol=0)
+    # searchlight off: only the hue changes, by D^-5 of the physical law's brightness
+    off = lc.physics.received_blackbody(t, d, searchlight="off")
+    assert np.allclose(off * d[..., None] ** 5, seen, rtol=1e-12, atol=0)
+    # luminance 1 at rest: CIE Y of the linear sRGB colour is 1
+    rgb = lc.physics.received_blackbody(5762.0, 1.0, luminance=1.0)
+    assert abs(0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2] - 1) < 2e-4
