@@ -63,8 +63,22 @@ def numpy_aberrate(d, b):
     return -spatial / energy[:, None]
 
 
+def numpy_doppler_each(n, be, br):
+    """The kernel's formula element by element: (k.U_R) / (k.U_E), k = (1, n)."""
+    ge = 1 / np.sqrt(1 - np.einsum("ij,ij->i", be, be))
+    gr = 1 / np.sqrt(1 - np.einsum("ij,ij->i", br, br))
+    return (gr * (1 - np.einsum("ij,ij->i", n, br))) / (ge * (1 - np.einsum("ij,ij->i", n, be)))
+
+
+each_e = rng.normal(size=(1_000_000, 3)) * 0.3
+each_r = rng.normal(size=(1_000_000, 3)) * 0.3
+each_e[np.einsum("ij,ij->i", each_e, each_e) >= 0.98] = 0
+each_r[np.einsum("ij,ij->i", each_r, each_r) >= 0.98] = 0
+
 for name, ours, theirs in [
-    ("doppler_factor", lambda: lc.physics.doppler_factor(n, beta), lambda: numpy_doppler(n, beta)),
+    ("doppler_factor, a velocity each", lambda: lc.physics.doppler_factor(n, each_e, each_r),
+     lambda: numpy_doppler_each(n, each_e, each_r)),
+    ("doppler_factor, one velocity", lambda: lc.physics.doppler_factor(n, beta), lambda: numpy_doppler(n, beta)),
     ("aberrate", lambda: lc.physics.aberrate(n, beta), lambda: numpy_aberrate(n, beta)),
 ]:
     assert np.allclose(ours(), theirs(), rtol=1e-9, atol=1e-12), name
