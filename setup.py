@@ -38,7 +38,7 @@ class CMakeBuild(build_ext):
 setup(
     packages=["lightcone"],
     package_dir={"": "python"},
-    package_data={"lightcone": ["py.typed"]},
+    package_data={"lightcone": ["py.typed", "_lightcone.pyi"]},
     ext_modules=[Extension("lightcone._lightcone", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
     options={"build": {"build_base": "build/setuptools"}, "egg_info": {"egg_base": "build"}},

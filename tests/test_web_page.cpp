@@ -121,6 +121,17 @@ TEST(WebPage, DrawsAUsersSceneAndItsImageAsTheNativeRasterRenderer) {
   expect_page_agrees(kScenes / "texture-mapping.json", "texture-mapping.png");
 }
 
+// The screenshot button downloads the canvas as a PNG named after the scene.
+TEST(WebPage, TheScreenshotButtonDownloadsThePicture) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.value("screenshot_name", ""), "lightcone-terrell.png");
+  const auto a = seen("screenshot-button.png"), b = seen("screenshot-canvas.png");
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->width, 640);
+  EXPECT_EQ(largest_difference(*a, *b), 0);
+}
+
 TEST(WebPage, TheWKeyRaisesTheSpeedAndChangesThePicture) {
   const auto r = results();
   ASSERT_TRUE(r.is_object());

@@ -80,19 +80,41 @@ def lorentz_boost(events, beta):
     return _kernels.lorentz_boost(xr, br).reshape(shape + (4,))
 
 
-def retarded_time(observer_events, position, velocity, time=0.0):
-    """The time at which light seen at observer_events (t, x, y, z) left a body moving
-    inertially, X(t) = position + velocity (t - time): the root on the past light cone, in
-    closed form (exact in both directions of motion)."""
+def retarded_time(observer_events, position, velocity, time=0.0, phases=None):
+    """The time at which light seen at observer_events (t, x, y, z) left a body.
+
+    Inertial (phases None): X(t) = position + velocity (t - time), the root on the past light
+    cone in closed form (exact in both directions of motion); every argument broadcasts.
+
+    Accelerated: the scene format's world-line through (time, position) with `velocity` at
+    proper time 0, then each phase (duration, [ax, ay, az]) in turn: a constant proper
+    acceleration for that proper duration (a hyperbola), inertial before the first and after
+    the last. One world-line for all the events; the root is in closed form on each piece."""
     obs = _vectors("observer_events", observer_events, 4)
     p = _vectors("position", position, 3)
     v = _vectors("velocity", velocity, 3)
     _speeds("velocity", v)
+    if phases is not None:
+        if p.shape != (3,) or v.shape != (3,) or _np.ndim(time) != 0:
+            raise ValueError("retarded_time: with phases, one position, velocity and time")
+        pieces = []
+        for phase in phases:
+            duration, acceleration = phase
+            a = _vectors("phases' acceleration", acceleration, 3)
+            if not (float(duration) >= 0 and _np.all(_np.isfinite(a)) and a.shape == (3,)):
+                raise ValueError("retarded_time: each phase is (duration >= 0, [ax, ay, az]), finite")
+            pieces.append((float(duration), a.tolist()))
+        rows = _np.ascontiguousarray(obs.reshape(-1, 4))
+        return _kernels.retarded_time_accelerated(rows, float(time), p.tolist(), v.tolist(),
+                                                  pieces).reshape(obs.shape[:-1])
     t0 = _np.asarray(time, dtype=_np.float64)[..., None]
     (obs_r, p_r, v_r, t_r), shape = _rows(obs, p, v, t0)
+    n = max(len(obs_r), len(p_r), len(v_r), len(t_r))
+    obs_r, p_r, v_r, t_r = (_np.broadcast_to(a, (n, a.shape[1])) for a in (obs_r, p_r, v_r, t_r))
     t_receive = obs_r[:, 0]
     delta = p_r + v_r * (t_receive - t_r[:, 0])[:, None] - obs_r[:, 1:]
-    return (t_receive - _kernels.retarded_delay(_np.ascontiguousarray(delta), v_r)).reshape(shape)
+    return (t_receive - _kernels.retarded_delay(_np.ascontiguousarray(delta),
+                                                 _np.ascontiguousarray(v_r))).reshape(shape)
 
 
 def _scalars(name: str, value) -> _np.ndarray:

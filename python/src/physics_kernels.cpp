@@ -1,8 +1,12 @@
 #include "physics_kernels.hpp"
 
 #include <pybind11/numpy.h>
+#include <pybind11/stl.h>
 
+#include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/spectrum.hpp"
@@ -11,6 +15,7 @@
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
+#include "lightcone/physics/world_line.hpp"
 #include "lightcone/portable.hpp"
 
 namespace py = pybind11;
@@ -141,6 +146,25 @@ void add_physics_kernels(py::module_ m) {
         return BlackbodySpectrum::with_luminance(temperature, luminance).scale;
       },
       py::arg("temperature_k"), py::arg("luminance"));
+  m.def(
+      "retarded_time_accelerated",
+      [](const Rows& events, double time, const std::array<double, 3>& position,
+         const std::array<double, 3>& velocity,
+         const std::vector<std::pair<double, std::array<double, 3>>>& phases) {
+        std::vector<AccelerationPhase> pieces;
+        for (const auto& [duration, a] : phases) pieces.push_back({duration, {a[0], a[1], a[2]}});
+        const AcceleratedWorldLine line(time, vec3(position.data()), vec3(velocity.data()), pieces);
+        const py::ssize_t n = events.ndim() == 2 ? events.shape(0) : 0;
+        const RowReader x = rows(events, n, 4, "observer_events");
+        py::array_t<double> out(n);
+        double* o = out.mutable_data();
+        each_row(n, [&](py::ssize_t i) {
+          o[i] = line.retarded(Vec4{x[i][0], vec3(x[i] + 1)}).event.t;
+        });
+        return out;
+      },
+      py::arg("events"), py::arg("time"), py::arg("position"), py::arg("velocity"),
+      py::arg("phases"));
   m.def(
       "retarded_delay",
       [](const Rows& delta, const Rows& beta) {

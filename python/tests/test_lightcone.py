@@ -300,3 +300,24 @@ def test_a_blackbody_seen_with_d_is_a_blackbody_at_d_t():
     # luminance 1 at rest: CIE Y of the linear sRGB colour is 1
     rgb = lc.physics.received_blackbody(5762.0, 1.0, luminance=1.0)
     assert abs(0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2] - 1) < 2e-4
+
+
+def test_retarded_time_of_an_accelerated_body_is_on_the_hyperbola():
+    """A body at rest at the origin from t = 0 accelerating along x with proper acceleration a
+    for proper time T: x(t) = (sqrt(1 + (a t)^2) - 1) / a while it accelerates (hyperbolic
+    motion). Light seen at each event left it where that event's past light cone meets it."""
+    a, proper = 0.5, 2.0
+    t_end = np.sinh(a * proper) / a
+    rng = np.random.default_rng(8)
+    observers = np.column_stack([rng.uniform(3, 5, 2000), rng.normal(size=(2000, 3)) * 2])
+    t = lc.physics.retarded_time(observers, [0, 0, 0], [0, 0, 0], phases=[(proper, [a, 0, 0])])
+    inside = (t > 0) & (t < t_end)
+    assert inside.sum() > 500
+    x = (np.sqrt(1 + (a * t[inside]) ** 2) - 1) / a
+    body = np.column_stack([x, np.zeros_like(x), np.zeros_like(x)])
+    distance = np.linalg.norm(observers[inside, 1:] - body, axis=1)
+    assert np.allclose(observers[inside, 0] - t[inside], distance, rtol=1e-10, atol=1e-10)
+    # No phases: the inertial closed form.
+    assert np.allclose(lc.physics.retarded_time(observers, [1, 0, 0], [0.3, 0, 0], phases=[]),
+                       lc.physics.retarded_time(observers, [1, 0, 0], [0.3, 0, 0]),
+                       rtol=1e-13, atol=1e-12)

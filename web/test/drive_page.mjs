@@ -6,6 +6,7 @@
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
 //   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
 //   texture-mapping.png        a user's scene and its image, chosen in the file dialog
+//   screenshot-button.png      what the screenshot button downloads (and the canvas then)
 //   results.json               the numbers: speeds, messages, load times, frame rate, console
 //
 //   node web/test/drive_page.mjs SITE OUT [CHROMIUM]
@@ -53,6 +54,17 @@ try {
     const page = await open(`scene=${scene}&${still}`);
     results.load_ms[scene] = await page.evaluate(() => Number(document.body.dataset.firstFrame));
     await shot(page, `${scene}.png`);
+    await page.close();
+  }
+
+  step("the screenshot button");
+  {
+    const page = await open(`scene=terrell&${still}`);
+    const [download] = await Promise.all([page.waitForEvent("download"),
+      page.click("#screenshot")]);
+    results.screenshot_name = download.suggestedFilename();
+    await download.saveAs(join(out, "screenshot-button.png"));
+    await shot(page, "screenshot-canvas.png");
     await page.close();
   }
 
