@@ -86,8 +86,17 @@ void add_physics_kernels(py::module_ m) {
                         r = rows(beta_r, n, 3, "beta_receiver");
         py::array_t<double> out(n);
         double* o = out.mutable_data();
-        each_row(n,
-                 [&](py::ssize_t i) { o[i] = doppler_factor(vec3(d[i]), vec3(e[i]), vec3(r[i])); });
+        if (e.step == 0 && r.step == 0) {
+          // One emitter and one receiver for every direction: their 4-velocities once (the
+          // same numbers the three-velocity form computes for each).
+          const Vec4 u_e = four_velocity(vec3(e[0])), u_r = four_velocity(vec3(r[0]));
+          each_row(n, [&](py::ssize_t i) {
+            o[i] = doppler_factor_of_four_velocities(vec3(d[i]), u_e, u_r);
+          });
+        } else {
+          each_row(
+              n, [&](py::ssize_t i) { o[i] = doppler_factor(vec3(d[i]), vec3(e[i]), vec3(r[i])); });
+        }
         return out;
       },
       py::arg("n"), py::arg("beta_emitter"), py::arg("beta_receiver"));
