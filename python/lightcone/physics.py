@@ -13,7 +13,7 @@ import numpy as _np
 from . import _lightcone
 
 __all__ = ["aberrate", "doppler_factor", "lorentz_boost", "retarded_time", "blackbody",
-           "received_blackbody"]
+           "received_blackbody", "received_spectrum"]
 
 _kernels = _lightcone.physics
 
@@ -157,3 +157,28 @@ def received_blackbody(temperature_k, doppler, luminance=None, searchlight="phys
         scale = scale.reshape(lum.shape + (1,))
     (tr, dr, sr), shape = _rows(t, d, scale)
     return _kernels.received_blackbody(tr, dr, sr, searchlight).reshape(shape + (3,))
+
+
+def received_spectrum(wavelengths_nm, values, doppler, searchlight="physical"):
+    """The linear sRGB colour received from an emitter whose spectral radiance at rest is the
+    table (wavelengths_nm, values) (piecewise linear, the end values held outside it: the
+    scene format's "spectrum"), seen with each Doppler factor: the CIE 1931 observer's integral
+    of the searchlight factor times L(D lambda). Returns doppler's shape + (3,)."""
+    lam = _np.asarray(wavelengths_nm, dtype=_np.float64)
+    val = _np.asarray(values, dtype=_np.float64)
+    if lam.ndim != 1 or lam.shape != val.shape or lam.size < 2:
+        raise ValueError("received_spectrum: wavelengths_nm and values: two 1-D arrays of one "
+                         "length, at least 2")
+    if not (_np.all(_np.isfinite(lam)) and _np.all(_np.isfinite(val)) and _np.all(lam > 0)
+            and _np.all(_np.diff(lam) > 0)):
+        raise ValueError("received_spectrum: wavelengths must be positive and increasing, "
+                         "values finite")
+    d = _scalars("doppler", doppler)
+    if _np.any(d <= 0):
+        raise ValueError("received_spectrum: Doppler factors must be positive")
+    if searchlight not in ("physical", "chang1996", "off"):
+        raise ValueError(f"received_spectrum: searchlight must be physical, chang1996 or off, "
+                         f"got {searchlight!r}")
+    rows = _np.ascontiguousarray(d.reshape(-1, 1))
+    return _kernels.received_spectrum(lam.tolist(), val.tolist(), rows,
+                                      searchlight).reshape(d.shape[:-1] + (3,))

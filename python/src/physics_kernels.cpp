@@ -150,6 +150,27 @@ void add_physics_kernels(py::module_ m) {
       },
       py::arg("temperature_k"), py::arg("doppler"), py::arg("scale"), py::arg("searchlight"));
   m.def(
+      "received_spectrum",
+      [](const std::vector<double>& wavelengths, const std::vector<double>& values,
+         const Rows& doppler, const std::string& searchlight) {
+        const TabulatedSpectrum emitted{wavelengths, values};
+        const py::ssize_t n = doppler.ndim() == 2 ? doppler.shape(0) : 0;
+        const RowReader d = rows(doppler, n, 1, "doppler");
+        const SearchlightModel model = searchlight == "chang1996" ? SearchlightModel::kChang1996
+                                       : searchlight == "off"     ? SearchlightModel::kOff
+                                                                  : SearchlightModel::kPhysical;
+        py::array_t<double> out({n, py::ssize_t{3}});
+        double* o = out.mutable_data();
+        each_row(n, [&](py::ssize_t i) {
+          const double dd = d[i][0], factor = spectral_searchlight(dd, model);
+          const LinearRgb c = linear_srgb_from_xyz(
+              xyz_from_spectrum([&](double lambda) { return factor * emitted(dd * lambda); }));
+          o[3 * i] = c.r, o[3 * i + 1] = c.g, o[3 * i + 2] = c.b;
+        });
+        return out;
+      },
+      py::arg("wavelengths_nm"), py::arg("values"), py::arg("doppler"), py::arg("searchlight"));
+  m.def(
       "luminance_scale",
       [](double temperature, double luminance) {
         return BlackbodySpectrum::with_luminance(temperature, luminance).scale;

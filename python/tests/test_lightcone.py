@@ -321,3 +321,19 @@ def test_retarded_time_of_an_accelerated_body_is_on_the_hyperbola():
     assert np.allclose(lc.physics.retarded_time(observers, [1, 0, 0], [0.3, 0, 0], phases=[]),
                        lc.physics.retarded_time(observers, [1, 0, 0], [0.3, 0, 0]),
                        rtol=1e-13, atol=1e-12)
+
+
+def test_a_tabulated_blackbody_is_received_as_the_blackbody():
+    """A blackbody tabulated every nanometre from 100 to 4000 nm is received, at every D that
+    keeps the visible range inside the table, as the blackbody itself."""
+    lam = np.arange(100.0, 4001.0)
+    table = lc.physics.blackbody(lam, 5762.0)
+    d = np.array([0.4, 0.7, 1.0, 1.5, 2.5])
+    tabulated = lc.physics.received_spectrum(lam, table, d)
+    exact = lc.physics.received_blackbody(5762.0, d)
+    assert tabulated.shape == (5, 3)
+    # (the table is linear between its nanometres: h^2 B''/8, at most 3e-4 of B here)
+    assert np.allclose(tabulated, exact, rtol=1e-3, atol=0)
+    # A flat spectrum seen with D under the physical law: D^5 brighter, the same colour
+    flat = lc.physics.received_spectrum([100, 4000], [1, 1], d)
+    assert np.allclose(flat / d[:, None] ** 5, flat[2], rtol=1e-12)
