@@ -71,10 +71,20 @@ void add_physics_kernels(py::module_ m) {
         const RowReader d = rows(directions, n, 3, "directions"), b = rows(beta, n, 3, "beta");
         py::array_t<double> out({n, py::ssize_t{3}});
         double* o = out.mutable_data();
-        each_row(n, [&](py::ssize_t i) {
-          const Vec3 v = aberrate_into_moving_frame(vec3(d[i]), vec3(b[i]));
-          o[3 * i] = v.x, o[3 * i + 1] = v.y, o[3 * i + 2] = v.z;
-        });
+        if (b.step == 0) {
+          // One frame for every direction: its gamma once.
+          const Vec3 beta0 = vec3(b[0]);
+          const double g = lorentz_gamma(beta0);
+          each_row(n, [&](py::ssize_t i) {
+            const Vec3 v = aberrate_into_moving_frame_with_gamma(vec3(d[i]), beta0, g);
+            o[3 * i] = v.x, o[3 * i + 1] = v.y, o[3 * i + 2] = v.z;
+          });
+        } else {
+          each_row(n, [&](py::ssize_t i) {
+            const Vec3 v = aberrate_into_moving_frame(vec3(d[i]), vec3(b[i]));
+            o[3 * i] = v.x, o[3 * i + 1] = v.y, o[3 * i + 2] = v.z;
+          });
+        }
         return out;
       },
       py::arg("directions"), py::arg("beta"));
