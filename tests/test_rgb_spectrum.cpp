@@ -234,7 +234,7 @@ TEST(RgbToSpectrumTable, IsWhatTheFitProduces) {
     const int l = column[0], j = column[1], i = column[2];
     fitter.fit_column(res, l, j, i, refit.data());
     for (int k = 0; k < res; ++k) {
-      const std::size_t at = ((static_cast<std::size_t>(l * res + k) * res + j) * res + i) * 3;
+      const std::size_t at = rgb_to_spectrum_cell(l, k, j, i, res);
       EXPECT_EQ(std::memcmp(&refit[at], &built[at], 3 * sizeof(float)), 0)
           << "l " << l << " k " << k << " j " << j << " i " << i;
     }

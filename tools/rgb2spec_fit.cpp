@@ -202,7 +202,7 @@ void Fitter::fit_column(int res, int l, int j, int i, float* table) const {
     // The table's colours are white-balanced reflectances (sigmoid_polynomial.hpp): the
     // target under the reference illuminant is rgb times the illuminant's white.
     const FitResult r = fit({rgb[0] * white.r, rgb[1] * white.g, rgb[2] * white.b}, start);
-    float* cell = table + ((static_cast<size_t>(l * res + k) * res + j) * res + i) * 3;
+    float* cell = table + rgb_to_spectrum_cell(l, k, j, i, res);
     for (int n = 0; n < 3; ++n) cell[n] = static_cast<float>(r.c[n]);
     return r.c;
   };
@@ -215,8 +215,8 @@ void Fitter::fit_column(int res, int l, int j, int i, float* table) const {
   // Node 0 is black (z = 0), which only c2 = -infinity reaches exactly; it takes node 1's
   // coefficients instead, so a colour darker than node 1 (max component below ~2e-6 at res 64)
   // gets node 1's spectrum: an absolute error below that node's brightness.
-  float* node0 = table + ((static_cast<size_t>(l * res + 0) * res + j) * res + i) * 3;
-  const float* node1 = table + ((static_cast<size_t>(l * res + 1) * res + j) * res + i) * 3;
+  float* node0 = table + rgb_to_spectrum_cell(l, 0, j, i, res);
+  const float* node1 = table + rgb_to_spectrum_cell(l, 1, j, i, res);
   std::copy(node1, node1 + 3, node0);
 }
 

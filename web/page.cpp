@@ -103,19 +103,16 @@ EMSCRIPTEN_KEEPALIVE const char* lc_start() {
 // lines, as --set takes them). With `keep_flight`, and the same file as before, the camera
 // stays where the flight has taken it (a switch changed); else it starts at the scene's camera.
 // On failure the previous scene stays. Returns {"warnings", "differences", "beta"}; {"images"}
-// when the scene needs images the browser has not decoded yet (decode them and call again); or
-// {"error"}.
+// when the scene names an image the browser has not decoded yet (decode it and call again: one
+// image a call); or {"error"}.
 EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides, int keep_flight) {
   std::vector<std::string> sets;
   std::istringstream lines(overrides);
   for (std::string line; std::getline(lines, line);)
     if (!line.empty()) sets.push_back(line);
   try {
-    wanted_images().clear();
     SceneLoadReport report;
     auto scene = std::make_unique<Scene>(load_scene_file(path, sets, report));
-    if (!wanted_images().empty())
-      return answer(nlohmann::json{{"images", std::exchange(wanted_images(), {})}}.dump());
     Page& p = page();
     const bool keep = keep_flight && p.flight && p.path == path;
     p.path = path;
@@ -132,6 +129,8 @@ EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides
                                  {"differences", raster_differences(*p.scene)},
                                  {"beta", p.flight->speed}}
                       .dump());
+  } catch (const ImageNotDecoded& image) {
+    return answer(nlohmann::json{{"images", nlohmann::json::array({image.path})}}.dump());
   } catch (const std::exception& e) {
     return failure(e.what());
   }
@@ -230,9 +229,7 @@ EMSCRIPTEN_KEEPALIVE const char* lc_table_column(int l, int j, int i) {
   const float* table = detail::rgb_to_spectrum_table(l, j, i);
   std::vector<float> column;
   for (int k = 0; k < res; ++k)
-    for (int n = 0; n < 3; ++n)
-      column.push_back(
-          table[((static_cast<std::size_t>(l * res + k) * res + j) * res + i) * 3 + n]);
+    for (int n = 0; n < 3; ++n) column.push_back(table[rgb_to_spectrum_cell(l, k, j, i, res) + n]);
   return answer(nlohmann::json(column).dump());
 }
 

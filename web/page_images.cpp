@@ -1,5 +1,5 @@
 // The page's images: load_image_file, which the scene reader calls for textures and sky images,
-// takes them from here. An image not decoded yet is named in wanted_images (page_images.hpp);
+// takes them from here. An image not decoded yet is thrown as ImageNotDecoded (page_images.hpp);
 // the browser decodes it (createImageBitmap, in web/page.js) and hands its 8-bit sRGB pixels
 // to lc_add_image, which decodes them to linear with the native build's table. The page has no
 // OpenEXR decoder.
@@ -40,18 +40,7 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
   if (!format || !std::filesystem::is_regular_file(file, error))
     throw InputError(
         fmt::format("{}: no such PNG or JPEG image among the page's files", file.string()));
-  // Not decoded yet: the page decodes it and reads the scene again. Meanwhile a black pixel.
-  wanted_images().push_back(key);
-  auto placeholder = std::make_shared<Image>();
-  placeholder->source = key;
-  placeholder->width = placeholder->height = 1;
-  placeholder->rgb.assign(3, 0.0f);
-  return placeholder;
-}
-
-std::vector<std::string>& wanted_images() {
-  static std::vector<std::string> wanted;
-  return wanted;
+  throw ImageNotDecoded{key};
 }
 
 }  // namespace lightcone

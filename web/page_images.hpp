@@ -1,12 +1,15 @@
-// The images a scene read in the page asked for that the browser has not decoded yet
-// (page_images.cpp): the page decodes them and reads the scene again.
+// An image a scene read in the page names that the browser has not decoded yet: thrown by
+// load_image_file (page_images.cpp). It is not a std::exception, so that the scene reader,
+// which turns those into located InputErrors, lets it through to lc_load; the page decodes the
+// image and reads the scene again.
 #pragma once
 
 #include <string>
-#include <vector>
 
 namespace lightcone {
 
-std::vector<std::string>& wanted_images();
+struct ImageNotDecoded {
+  std::string path;
+};
 
 }  // namespace lightcone

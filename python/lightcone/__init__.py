@@ -253,11 +253,10 @@ def locate(scene: Scene, object: Optional[str] = None, point=None, world_point=N
     if world_point is not None:
         return _json.loads(_lightcone.locate(scene, "world_point", "",
                                              _triple("world_point", world_point)))
-    d = _np.asarray(_triple("direction", direction))
-    largest = _np.max(_np.abs(d))
-    if largest == 0:
+    d = _triple("direction", direction)
+    if not any(d):
         raise ValueError("locate: direction must not be zero")
-    return _json.loads(_lightcone.locate(scene, "direction", "", (d / largest).tolist()))
+    return _json.loads(_lightcone.locate(scene, "direction", "", d))
 
 
 def info(scene: Scene) -> dict:

@@ -124,6 +124,11 @@ def _scalars(name: str, value) -> _np.ndarray:
     return array[..., None]
 
 
+def _searchlight(function: str, name: str) -> None:
+    if name not in ("physical", "chang1996", "off"):
+        raise ValueError(f"{function}: searchlight must be physical, chang1996 or off, got {name!r}")
+
+
 def blackbody(wavelength_nm, temperature_k):
     """Planck's law: the spectral radiance of a blackbody (W sr^-1 m^-2 nm^-1) at each
     wavelength (nm) and temperature (K)."""
@@ -145,18 +150,15 @@ def received_blackbody(temperature_k, doppler, luminance=None, searchlight="phys
     d = _scalars("doppler", doppler)
     if _np.any(t <= 0) or _np.any(d <= 0):
         raise ValueError("received_blackbody: temperatures and Doppler factors must be positive")
-    if searchlight not in ("physical", "chang1996", "off"):
-        raise ValueError(f"received_blackbody: searchlight must be physical, chang1996 or off, "
-                         f"got {searchlight!r}")
+    _searchlight("received_blackbody", searchlight)
     if luminance is None:
-        scale = _np.ones_like(t)
+        y = -_np.ones_like(t)  # (the kernel's mark for Planck's radiance itself)
     else:
-        lum = _np.broadcast_to(_np.asarray(luminance, dtype=_np.float64), t.shape[:-1])
-        flat_t = _np.broadcast_to(t[..., 0], lum.shape).ravel()
-        scale = _np.array([_kernels.luminance_scale(a, b) for a, b in zip(flat_t, lum.ravel())])
-        scale = scale.reshape(lum.shape + (1,))
-    (tr, dr, sr), shape = _rows(t, d, scale)
-    return _kernels.received_blackbody(tr, dr, sr, searchlight).reshape(shape + (3,))
+        y = _scalars("luminance", luminance)
+        if _np.any(y < 0):
+            raise ValueError("received_blackbody: luminance must be 0 or more")
+    (tr, dr, yr), shape = _rows(t, d, y)
+    return _kernels.received_blackbody(tr, dr, yr, searchlight).reshape(shape + (3,))
 
 
 def received_spectrum(wavelengths_nm, values, doppler, searchlight="physical"):
@@ -176,9 +178,7 @@ def received_spectrum(wavelengths_nm, values, doppler, searchlight="physical"):
     d = _scalars("doppler", doppler)
     if _np.any(d <= 0):
         raise ValueError("received_spectrum: Doppler factors must be positive")
-    if searchlight not in ("physical", "chang1996", "off"):
-        raise ValueError(f"received_spectrum: searchlight must be physical, chang1996 or off, "
-                         f"got {searchlight!r}")
+    _searchlight("received_spectrum", searchlight)
     rows = _np.ascontiguousarray(d.reshape(-1, 1))
     return _kernels.received_spectrum(lam.tolist(), val.tolist(), rows,
                                       searchlight).reshape(d.shape[:-1] + (3,))

@@ -182,19 +182,28 @@ py::dict render(const Scene& scene, const std::string& renderer,
   return result;
 }
 
-// The PNG's 8-bit picture of a linear image: times 2^exposure, tone-mapped by `curve`, sRGB.
-py::array_t<std::uint8_t> tonemap(
-    const py::array_t<float, py::array::c_style | py::array::forcecast>& linear, double exposure,
-    ToneMap curve) {
+using LinearArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// A linear picture from Python, (H, W, 3), times 2^exposure as the renderers expose theirs.
+Image exposed_image(const LinearArray& linear, double exposure, const char* function) {
   if (linear.ndim() != 3 || linear.shape(2) != 3)
-    throw py::value_error("tonemap: the image must be an array of shape (H, W, 3)");
+    throw py::value_error(std::string(function) +
+                          ": the image must be an array of shape (H, W, 3)");
   Image image;
   image.height = static_cast<int>(linear.shape(0));
   image.width = static_cast<int>(linear.shape(1));
   image.rgb.assign(linear.data(), linear.data() + linear.size());
-  const auto scale = static_cast<float>(std::exp2(exposure));
-  for (float& v : image.rgb) v *= scale;
-  const std::vector<unsigned char> codes = display_rgb8(tone_map(image, curve));
+  RenderSettings fixed;
+  fixed.auto_exposure = false;
+  fixed.exposure = exposure;
+  apply_exposure(image, fixed);
+  return image;
+}
+
+// The PNG's 8-bit picture of a linear image: times 2^exposure, tone-mapped by `curve`, sRGB.
+py::array_t<std::uint8_t> tonemap(const LinearArray& linear, double exposure, ToneMap curve) {
+  const std::vector<unsigned char> codes =
+      display_rgb8(tone_map(exposed_image(linear, exposure, "tonemap"), curve));
   py::array_t<std::uint8_t> out({linear.shape(0), linear.shape(1), py::ssize_t{3}});
   std::copy(codes.begin(), codes.end(), out.mutable_data());
   return out;
@@ -264,16 +273,9 @@ PYBIND11_MODULE(_lightcone, m) {
                                for (const Object& o : s.objects) names.push_back(o.name);
                                return names;
                              })
-      .def("with_samples",
-           [](const Scene& s, int samples) {
-             Scene copy = s;
-             copy.camera.samples = samples;
-             return copy;
-           })
-      .def("with_size", [](const Scene& s, int width, int height) {
+      .def("with_samples", [](const Scene& s, int samples) {
         Scene copy = s;
-        copy.camera.width = width;
-        copy.camera.height = height;
+        copy.camera.samples = samples;
         return copy;
       });
 
@@ -298,8 +300,7 @@ PYBIND11_MODULE(_lightcone, m) {
         py::arg("threads"), py::arg("tessellation"), py::arg("progress"));
   m.def(
       "tonemap",
-      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& image,
-         double exposure, const std::string& curve) {
+      [](const LinearArray& image, double exposure, const std::string& curve) {
         const ToneMap map = curve == "clamp"      ? ToneMap::kClamp
                             : curve == "reinhard" ? ToneMap::kReinhard
                                                   : ToneMap::kFilmic;
@@ -348,17 +349,9 @@ PYBIND11_MODULE(_lightcone, m) {
       py::arg("path"));
   m.def(
       "png",
-      [](const py::array_t<float, py::array::c_style | py::array::forcecast>& linear,
-         double exposure) {
-        if (linear.ndim() != 3 || linear.shape(2) != 3)
-          throw py::value_error("the image must be an array of shape (H, W, 3)");
-        Image image;
-        image.height = static_cast<int>(linear.shape(0));
-        image.width = static_cast<int>(linear.shape(1));
-        image.rgb.assign(linear.data(), linear.data() + linear.size());
-        const auto scale = static_cast<float>(std::exp2(exposure));
-        for (float& v : image.rgb) v *= scale;
-        const std::vector<unsigned char> png = encode_png(tone_map(image, ToneMap::kFilmic));
+      [](const LinearArray& linear, double exposure) {
+        const std::vector<unsigned char> png =
+            encode_png(tone_map(exposed_image(linear, exposure, "png"), ToneMap::kFilmic));
         return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
       },
       py::arg("image"), py::arg("exposure"));

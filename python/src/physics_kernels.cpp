@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
+#include "lightcone/color/doppler_table.hpp"
 #include "lightcone/color/spectrum.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/physics/aberration.hpp"
@@ -49,6 +50,24 @@ py::ssize_t count(std::initializer_list<const Rows*> arrays) {
 
 Vec3 vec3(const double* p) {
   return {p[0], p[1], p[2]};
+}
+
+// The package checks the name.
+SearchlightModel searchlight_named(const std::string& name) {
+  return name == "chang1996" ? SearchlightModel::kChang1996
+         : name == "off"     ? SearchlightModel::kOff
+                             : SearchlightModel::kPhysical;
+}
+
+// The linear sRGB colour received from `emitted` seen with factor d (three numbers at out):
+// the emission tables' quadrature of L(d lambda) against the CIE observer, times the
+// searchlight factor on spectral radiance.
+template <class Spectrum>
+void put_received(const Spectrum& emitted, double d, SearchlightModel model, double* out) {
+  const Xyz seen = xyz_seen_with_doppler(emitted, d);
+  const double factor = spectral_searchlight(d, model);
+  const LinearRgb c = linear_srgb_from_xyz({seen.x * factor, seen.y * factor, seen.z * factor});
+  out[0] = c.r, out[1] = c.g, out[2] = c.b;
 }
 
 // body(i) for i in [0, n), on every core, without the GIL.
@@ -138,27 +157,24 @@ void add_physics_kernels(py::module_ m) {
       py::arg("wavelength_nm"), py::arg("temperature_k"));
   m.def(
       "received_blackbody",
-      [](const Rows& temperature, const Rows& doppler, const Rows& scale,
+      [](const Rows& temperature, const Rows& doppler, const Rows& luminance,
          const std::string& searchlight) {
-        const py::ssize_t n = count({&temperature, &doppler, &scale});
+        const py::ssize_t n = count({&temperature, &doppler, &luminance});
         const RowReader t = rows(temperature, n, 1, "temperature_k"),
-                        d = rows(doppler, n, 1, "doppler"), k = rows(scale, n, 1, "scale");
-        const SearchlightModel model = searchlight == "chang1996" ? SearchlightModel::kChang1996
-                                       : searchlight == "off"     ? SearchlightModel::kOff
-                                                                  : SearchlightModel::kPhysical;
+                        d = rows(doppler, n, 1, "doppler"), y = rows(luminance, n, 1, "luminance");
+        const SearchlightModel model = searchlight_named(searchlight);
         py::array_t<double> out({n, py::ssize_t{3}});
         double* o = out.mutable_data();
         each_row(n, [&](py::ssize_t i) {
-          // The received spectral radiance: the searchlight factor times L_E(D lambda).
-          const BlackbodySpectrum emitted{t[i][0], k[i][0]};
-          const double dd = d[i][0], factor = spectral_searchlight(dd, model);
-          const LinearRgb c = linear_srgb_from_xyz(
-              xyz_from_spectrum([&](double lambda) { return factor * emitted(dd * lambda); }));
-          o[3 * i] = c.r, o[3 * i + 1] = c.g, o[3 * i + 2] = c.b;
+          // A luminance below 0: Planck's radiance itself (scale 1).
+          const BlackbodySpectrum emitted =
+              y[i][0] < 0 ? BlackbodySpectrum{t[i][0], 1.0}
+                          : BlackbodySpectrum::with_luminance(t[i][0], y[i][0]);
+          put_received(emitted, d[i][0], model, o + 3 * i);
         });
         return out;
       },
-      py::arg("temperature_k"), py::arg("doppler"), py::arg("scale"), py::arg("searchlight"));
+      py::arg("temperature_k"), py::arg("doppler"), py::arg("luminance"), py::arg("searchlight"));
   m.def(
       "received_spectrum",
       [](const std::vector<double>& wavelengths, const std::vector<double>& values,
@@ -166,26 +182,13 @@ void add_physics_kernels(py::module_ m) {
         const TabulatedSpectrum emitted{wavelengths, values};
         const py::ssize_t n = doppler.ndim() == 2 ? doppler.shape(0) : 0;
         const RowReader d = rows(doppler, n, 1, "doppler");
-        const SearchlightModel model = searchlight == "chang1996" ? SearchlightModel::kChang1996
-                                       : searchlight == "off"     ? SearchlightModel::kOff
-                                                                  : SearchlightModel::kPhysical;
+        const SearchlightModel model = searchlight_named(searchlight);
         py::array_t<double> out({n, py::ssize_t{3}});
         double* o = out.mutable_data();
-        each_row(n, [&](py::ssize_t i) {
-          const double dd = d[i][0], factor = spectral_searchlight(dd, model);
-          const LinearRgb c = linear_srgb_from_xyz(
-              xyz_from_spectrum([&](double lambda) { return factor * emitted(dd * lambda); }));
-          o[3 * i] = c.r, o[3 * i + 1] = c.g, o[3 * i + 2] = c.b;
-        });
+        each_row(n, [&](py::ssize_t i) { put_received(emitted, d[i][0], model, o + 3 * i); });
         return out;
       },
       py::arg("wavelengths_nm"), py::arg("values"), py::arg("doppler"), py::arg("searchlight"));
-  m.def(
-      "luminance_scale",
-      [](double temperature, double luminance) {
-        return BlackbodySpectrum::with_luminance(temperature, luminance).scale;
-      },
-      py::arg("temperature_k"), py::arg("luminance"));
   m.def(
       "retarded_time_accelerated",
       [](const Rows& events, double time, const std::array<double, 3>& position,

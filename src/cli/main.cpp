@@ -201,11 +201,8 @@ int run_locate(const LocateArgs& a) {
   } else {
     query.kind = LocateQuery::Kind::SkyDirection;
     query.value = parse_triple("--direction", *a.direction);
-    // Scaled first, so that components near the limits of double precision square safely.
-    const double largest =
-        std::max({std::abs(query.value.x), std::abs(query.value.y), std::abs(query.value.z)});
-    if (largest == 0) throw InputError("--direction: must not be zero");
-    query.value = query.value / largest;
+    if (query.value.x == 0 && query.value.y == 0 && query.value.z == 0)
+      throw InputError("--direction: must not be zero");
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
   require_drawable_near_black_hole(scene, a.scene, false);

@@ -19,6 +19,30 @@ int png_level(float linear) {
   return static_cast<int>(std::lround(255 * srgb_encode(linear)));
 }
 
+double share_within_4_off_outlines(const Image& a, const Image& b, const std::vector<float>& object,
+                                   std::size_t& compared) {
+  const int w = a.width, h = a.height;
+  std::size_t within = 0;
+  compared = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float id = object[static_cast<std::size_t>(y) * w + x];
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
+          edge = edge || object[static_cast<std::size_t>(ny) * w + nx] != id;
+        }
+      if (edge) continue;
+      ++compared;
+      const Rgb p = a.texel(x, y), q = b.texel(x, y);
+      within += std::abs(png_level(p.r) - png_level(q.r)) <= 4 &&
+                std::abs(png_level(p.g) - png_level(q.g)) <= 4 &&
+                std::abs(png_level(p.b) - png_level(q.b)) <= 4;
+    }
+  return static_cast<double>(within) / std::max<std::size_t>(compared, 1);
+}
+
 Agreement agreement(const std::string& scene, int samples, const std::string& extra,
                     const std::string& raster_extra) {
   const fs::path dir = test::fresh_temp_dir("agreement");
@@ -45,25 +69,7 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
     if (c.name == "object") object = &c.values;
   EXPECT_NE(object, nullptr);
   if (object == nullptr || a->width != b->width || a->height != b->height) return result;
-  const int w = a->width, h = a->height;
-  std::size_t within = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float id = (*object)[static_cast<std::size_t>(y) * w + x];
-      bool edge = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
-          edge = edge || (*object)[static_cast<std::size_t>(ny) * w + nx] != id;
-        }
-      if (edge) continue;
-      ++result.compared;
-      const Rgb p = a->texel(x, y), q = b->texel(x, y);
-      within += std::abs(png_level(p.r) - png_level(q.r)) <= 4 &&
-                std::abs(png_level(p.g) - png_level(q.g)) <= 4 &&
-                std::abs(png_level(p.b) - png_level(q.b)) <= 4;
-    }
-  result.within = static_cast<double>(within) / std::max<std::size_t>(result.compared, 1);
+  result.within = share_within_4_off_outlines(*a, *b, *object, result.compared);
   fs::remove_all(dir);
   return result;
 }

@@ -4,11 +4,20 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
+
+#include "lightcone/scene/scene.hpp"
 
 namespace lightcone::test {
 
 // The 8-bit value a PNG holds for a pixel read back as linear.
 int png_level(float linear);
+
+// The share of the pixels of a and b (PNGs of one size, read back) within 4/255 in every
+// channel, off a one-pixel band along the outlines that the object ids (per pixel) mark;
+// `compared` is set to the number of pixels compared.
+double share_within_4_off_outlines(const Image& a, const Image& b, const std::vector<float>& object,
+                                   std::size_t& compared);
 
 struct Agreement {
   double within = 0;         // fraction of the compared pixels within 4/255 in every channel

@@ -78,11 +78,21 @@ createLightcone({ canvas }).then(async (lc) => {
   const load = async (keep, path, fromLink = true) => {
     path = path || (userScene && settings.scene === userScene ? userScene
       : `/scenes/${settings.scene}.json`);
+    // The scene names its images one at a time, as the reader meets them undecoded.
     let result;
+    const decoded = new Set();
     for (;;) {
       result = JSON.parse(call("lc_load", path, overrides(), keep ? 1 : 0));
       if (!result.images) break;
-      for (const image of result.images) await decodeImage(image);
+      const image = result.images[0];
+      try {
+        if (decoded.has(image)) throw new Error("decoded, yet asked for again");
+        await decodeImage(image);
+        decoded.add(image);
+      } catch (e) {
+        result = { error: `${image}: the browser cannot decode this image (${e.message})` };
+        break;
+      }
     }
     document.body.dataset.loads = String(Number(document.body.dataset.loads || 0) + 1);
     if (result.error) { say(result.error); return false; }

@@ -57,7 +57,7 @@ SigmoidPolynomial rgb_to_sigmoid(const LinearRgb& rgb) {
 
   const float* table = detail::rgb_to_spectrum_table(l, yi, xi);
   const auto cell = [&](int k, int j, int i) {
-    return table + ((static_cast<std::size_t>(l * kRes + k) * kRes + j) * kRes + i) * 3;
+    return table + rgb_to_spectrum_cell(l, k, j, i, kRes);
   };
   double out[3] = {0, 0, 0};
   for (int a = 0; a < 2; ++a) {

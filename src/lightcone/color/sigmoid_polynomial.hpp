@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "lightcone/color/cie.hpp"
 
@@ -81,6 +82,11 @@ LinearRgb reference_white();
 inline constexpr int kRgbToSpectrumRes = 64;
 inline constexpr int kRgbToSpectrumTableFloats =
     3 * kRgbToSpectrumRes * kRgbToSpectrumRes * kRgbToSpectrumRes * 3;
+
+// Where cell (l, k, j, i)'s c0 is in a table of `res` nodes per axis.
+constexpr std::size_t rgb_to_spectrum_cell(int l, int k, int j, int i, int res) {
+  return ((static_cast<std::size_t>(l * res + k) * res + j) * res + i) * 3;
+}
 
 // The scale axis node k of a table with `res` nodes: smoothstep(smoothstep(k / (res - 1))),
 // denser near 0 (dark colours) and 1 (bright, near the limit of what a reflectance can reach),

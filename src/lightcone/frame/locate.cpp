@@ -17,6 +17,13 @@
 namespace lightcone {
 namespace {
 
+// A sky direction of any nonzero length, made unit: scaled by its largest component first, so
+// that components near the limits of double precision square safely.
+Vec3 unit_direction(const Vec3& v) {
+  const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return normalize(v / largest);
+}
+
 void set_pixel(const CameraBasis& camera, LocateResult& result) {
   const ImagePoint p = project_direction(camera, result.direction);
   result.pixel_x = p.x;
@@ -200,7 +207,7 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
     std::optional<HoleImageRay> ray;
     double r_e = std::numeric_limits<double>::infinity();
     if (query.kind == LocateQuery::Kind::SkyDirection) {
-      const auto image = hole_sky_image(hole, scene, normalize(query.value), order);
+      const auto image = hole_sky_image(hole, scene, unit_direction(query.value), order);
       if (!image) continue;
       out.direction = image->direction;
       out.shift = image->shift;
@@ -280,7 +287,7 @@ LocateResult locate(const Scene& scene, const ResolvedScene& r, const LocateQuer
   LocateResult result;
   if (query.kind == LocateQuery::Kind::SkyDirection) {
     result.direction =
-        r.look_direction_from_sky(scene.sky.rotation.transposed() * normalize(query.value));
+        r.look_direction_from_sky(scene.sky.rotation.transposed() * unit_direction(query.value));
     result.doppler = r.doppler(result.direction, r.sky_velocity);
     set_pixel(r.camera, result);
     return result;

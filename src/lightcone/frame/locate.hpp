@@ -15,7 +15,8 @@ struct LocateQuery {
   enum class Kind { ObjectPoint, WorldPoint, SkyDirection };
   Kind kind = Kind::WorldPoint;
   std::string object;  // for ObjectPoint
-  Vec3 value;          // point in the object's shape coordinates / point at rest in W / direction
+  Vec3 value;  // point in the object's shape coordinates / point at rest in W / direction (any
+               // nonzero length)
 };
 
 // One image of the point near a black hole (orders 0, 1, 2: the primary, the one round the far
