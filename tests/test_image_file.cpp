@@ -1,6 +1,7 @@
 // Image files: the sRGB curves, PNG and EXR round trips, all-or-nothing writing and the error
 // messages for unreadable inputs.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "lightcone/io/image_file.hpp"
@@ -104,6 +106,43 @@ TEST(Srgb, EightBitCodesAreTheRoundedEncodingExactly) {
   const std::vector<unsigned char> codes = display_rgb8(image);
   for (std::size_t i = 0; i < values.size(); ++i)
     ASSERT_EQ(codes[3 * i], expected(values[i])) << values[i];
+}
+
+// The parallel encoder's file, read back by libspng, holds exactly display_rgb8's codes, and its
+// bytes do not depend on the number of threads: pictures of one strip, of many, with a strip
+// of a single row, and of incompressible noise whose stream needs several IDAT chunks.
+TEST_F(ImageFileTest, PngEncodedInStripsReadsBackExactlyOnAnyNumberOfThreads) {
+  std::uint32_t state = 99;
+  const auto noise = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / 16777216.0f;
+  };
+  for (const auto& [width, height, smooth] :
+       {std::tuple{3, 2, true}, std::tuple{640, 360, true}, std::tuple{50000, 3, true},
+        std::tuple{1, 700, true}, std::tuple{800, 700, false}}) {
+    std::vector<float> rgb(3 * static_cast<std::size_t>(width) * height);
+    for (std::size_t i = 0; i < rgb.size(); ++i)
+      rgb[i] = smooth ? 0.5f + 0.5f * std::sin(0.001f * static_cast<float>(i % 9973)) : noise();
+    const Image image = make_image(width, height, rgb);
+    std::vector<unsigned char> one;
+    {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = encode_png(image);
+    }
+    EXPECT_EQ(encode_png(image), one) << width << "x" << height;
+    const fs::path png = dir_ / "strips.png";
+    write_images(image, png, std::nullopt);
+    const auto loaded = load_image_file(png);
+    ASSERT_EQ(loaded->width, width);
+    ASSERT_EQ(loaded->height, height);
+    const std::vector<unsigned char> codes = display_rgb8(image);
+    const std::vector<unsigned char> read = display_rgb8(*loaded);
+    ASSERT_EQ(read.size(), codes.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < codes.size(); ++i) differing += read[i] != codes[i];
+    EXPECT_EQ(differing, 0u) << width << "x" << height;
+    fs::remove(png);
+  }
 }
 
 TEST_F(ImageFileTest, PngRoundTrip) {

@@ -182,6 +182,7 @@ std::string describe_frames(long long first, long long last) {
 
 int run_animate(const AnimateArgs& a) {
   const StopSignals stop_signals;
+  const std::unique_ptr<tbb::global_control> threads = thread_limit(a.threads);
   std::vector<std::string> overrides = a.overrides;
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
 

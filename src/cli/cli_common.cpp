@@ -170,6 +170,12 @@ std::string resize_keeping_field(Camera& camera, std::optional<int> width,
       new_width, new_height, horizontal, old_vertical, camera.fov_degrees);
 }
 
+std::unique_ptr<tbb::global_control> thread_limit(int threads) {
+  if (threads <= 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               static_cast<std::size_t>(threads));
+}
+
 std::string counted(std::size_t count, const std::string& noun) {
   return fmt::format("{} {}{}", count, noun, count == 1 ? "" : "s");
 }

@@ -2,8 +2,11 @@
 // stop signals and the exit statuses.
 #pragma once
 
+#include <tbb/global_control.h>
+
 #include <atomic>
 #include <csignal>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -80,6 +83,10 @@ std::string resize_keeping_field(Camera& camera, std::optional<int> width,
 
 // "1 sample", "4 samples": a count and its noun, singular or plural.
 std::string counted(std::size_t count, const std::string& noun);
+
+// --threads N (N > 0) bounds the whole command, while the returned limit lives: the render,
+// and the tone mapping and image encoding around it, which are parallel too.
+std::unique_ptr<tbb::global_control> thread_limit(int threads);
 
 // Where an interrupted render's image goes, beside its target: out.png -> out.partial.png.
 std::string partial_name(const std::string& path);

@@ -289,6 +289,7 @@ int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs&
 
 int run_render(const RenderArgs& a) {
   const StopSignals stop_signals;
+  const std::unique_ptr<tbb::global_control> threads = thread_limit(a.threads);
   const RenderOutputs outputs = checked_outputs(a);
   const Scene scene = render_scene(a, outputs);
   const Rendered rendered = render_with_progress(a, scene, outputs);

@@ -114,11 +114,18 @@ double apply_exposure(Image& linear, const RenderSettings& settings,
 }
 
 Image tone_map(const Image& linear, ToneMap curve) {
-  Image out = linear;
-  // Each pixel on its own: in parallel, off the critical path of an animation's next frame.
+  // The picture alone (not the output variables), each pixel on its own: in parallel, and
+  // without first copying the linear picture serially, off the critical path of an animation's
+  // next frame.
+  Image out;
+  out.width = linear.width;
+  out.height = linear.height;
+  out.rgb.resize(linear.rgb.size());
   const std::size_t pixels = out.rgb.size() / 3;
   parallel_for_pieces(std::size_t{0}, pixels, std::size_t{4096},
                       [&](std::size_t begin, std::size_t end) {
+                        std::copy(linear.rgb.begin() + 3 * begin, linear.rgb.begin() + 3 * end,
+                                  out.rgb.begin() + 3 * begin);
                         for (std::size_t p = 3 * begin; p < 3 * end; p += 3) {
                           float* c = &out.rgb[p];
                           switch (curve) {

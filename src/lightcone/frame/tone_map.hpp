@@ -27,6 +27,7 @@ double apply_exposure(Image& linear, const RenderSettings& settings,
 //   clamp:    min(max(L, 0), 1) per channel;
 //   reinhard: L / (1 + Y) on the luminance Y, so hue is kept while highlights compress;
 //   filmic:   filmic_on_luminance.
+// The picture only: the linear image's output variables (channels) are not carried.
 Image tone_map(const Image& linear, ToneMap curve);
 
 // The ACES filmic fit of Narkowicz (2015), y (2.51 y + 0.03) / (y (2.43 y + 0.59) + 0.14), at

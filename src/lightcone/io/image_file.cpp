@@ -1,5 +1,6 @@
-// Images: PNG through libspng, JPEG through libjpeg-turbo and EXR through OpenEXR, each both
-// read and written; only those three formats, recognised by their signatures, reach a decoder.
+// Images: PNG read through libspng (written by png_encode.cpp), JPEG through libjpeg-turbo and
+// EXR through OpenEXR, each both read and written; only those three formats, recognised by their
+// signatures, reach a decoder.
 #include "lightcone/io/image_file.hpp"
 
 #include <OpenEXR/ImfChannelList.h>
@@ -26,12 +27,14 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
 
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/input_file.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 
@@ -229,10 +232,11 @@ unsigned char encoded_8bit(float v) {
 // For each code k = 1..255, the smallest float in [0, 1] whose code is at least k, found by
 // bisection over the ordered bit patterns of non-negative floats with encoded_8bit itself: the
 // code of any value is then the number of thresholds at or below it, exactly encoded_8bit's
-// (which is monotonic), without a pow per value.
-const std::array<float, 255>& code_thresholds() {
-  static const std::array<float, 255> thresholds = [] {
-    std::array<float, 255> t{};
+// (which is monotonic), without a pow per value. A 256th threshold, infinity, ends the list.
+const std::array<float, 256>& code_thresholds() {
+  static const std::array<float, 256> thresholds = [] {
+    std::array<float, 256> t{};
+    t[255] = std::numeric_limits<float>::infinity();
     const auto bits = [](float f) {
       std::uint32_t b;
       std::memcpy(&b, &f, sizeof b);
@@ -257,10 +261,10 @@ const std::array<float, 255>& code_thresholds() {
 }
 
 // The code at the start of each run of 2^16 float bit patterns in [0, 1], from which the code
-// of any value in the run is a step or two up the thresholds.
+// of any value in the run is at most one step up the thresholds.
 const std::array<unsigned char, 0x3F81>& run_codes() {
   static const std::array<unsigned char, 0x3F81> codes = [] {
-    const std::array<float, 255>& thresholds = code_thresholds();
+    const std::array<float, 256>& thresholds = code_thresholds();
     std::array<unsigned char, 0x3F81> c{};
     for (std::uint32_t run = 0; run < c.size(); ++run) {
       float first;
@@ -277,23 +281,24 @@ const std::array<unsigned char, 0x3F81>& run_codes() {
 }  // namespace
 
 std::vector<unsigned char> display_rgb8(const Image& image) {
-  const std::array<float, 255>& thresholds = code_thresholds();
+  const std::array<float, 256>& thresholds = code_thresholds();
   const std::array<unsigned char, 0x3F81>& runs = run_codes();
   std::vector<unsigned char> pixels(image.rgb.size());
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const float v = image.rgb[i];
-    if (!(v > 0)) {  // NaN too
-      pixels[i] = 0;
-    } else if (v >= 1) {
-      pixels[i] = 255;
-    } else {
-      std::uint32_t bits;
-      std::memcpy(&bits, &v, sizeof bits);
-      unsigned code = runs[bits >> 16];
-      while (code < 255 && v >= thresholds[code]) ++code;
-      pixels[i] = static_cast<unsigned char>(code);
-    }
-  }
+  parallel_for_pieces(std::size_t{0}, pixels.size(), std::size_t{1} << 16,
+                      [&](std::size_t begin, std::size_t end) {
+                        for (std::size_t i = begin; i < end; ++i) {
+                          const float v = std::min(image.rgb[i] > 0 ? image.rgb[i] : 0.0f, 1.0f);
+                          std::uint32_t bits;
+                          std::memcpy(&bits, &v, sizeof bits);
+                          // A run of 2^16 bit patterns spans less than one code (two thirds of
+                          // one at most, just above 0.5), so one step up the thresholds
+                          // suffices (tested at every code boundary); without a branch, as the
+                          // step is not predictable.
+                          unsigned code = runs[bits >> 16];
+                          code += v >= thresholds[code];
+                          pixels[i] = static_cast<unsigned char>(code);
+                        }
+                      });
   return pixels;
 }
 
@@ -321,43 +326,6 @@ void write_bytes(const std::vector<unsigned char>& encoded, const char* kind, co
   if (error == 0 && ::fsync(fd) != 0) error = errno;
   if (::close(fd) != 0 && error == 0) error = errno;
   if (error != 0) failed(error);
-}
-
-struct MallocFree {
-  void operator()(void* p) const { std::free(p); }
-};
-
-// PNG encoded into memory by libspng, so that every write error is then checked in one place.
-std::vector<unsigned char> png_bytes(const Image& image) {
-  const std::vector<unsigned char> pixels = display_rgb8(image);
-  const SpngContext ctx(spng_ctx_new(SPNG_CTX_ENCODER));
-  if (!ctx) throw std::bad_alloc();
-  const auto check = [](int error) {
-    if (error != 0)
-      throw std::runtime_error(fmt::format("cannot encode PNG image ({})", spng_strerror(error)));
-  };
-  check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1));
-  // zlib level 4 with the Up filter on every row, chosen by measurement against libspng's
-  // default (level 6, each row's best filter: 201 ms for street.json at 1920x1080) and the
-  // Paeth filter at level 4 (75 ms, 550 KB): 65 ms for 545 KB. Levels 1 to 3 save a few
-  // milliseconds more for files up to 1.3x larger.
-  check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, 4));
-  check(spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_UP));
-  spng_ihdr header{};
-  header.width = static_cast<std::uint32_t>(image.width);
-  header.height = static_cast<std::uint32_t>(image.height);
-  header.bit_depth = 8;
-  header.color_type = SPNG_COLOR_TYPE_TRUECOLOR;
-  check(spng_set_ihdr(ctx.get(), &header));
-  check(spng_encode_image(ctx.get(), pixels.data(), pixels.size(), SPNG_FMT_PNG,
-                          SPNG_ENCODE_FINALIZE));
-  std::size_t size = 0;
-  int error = 0;
-  const std::unique_ptr<unsigned char, MallocFree> buffer(
-      static_cast<unsigned char*>(spng_get_png_buffer(ctx.get(), &size, &error)));
-  check(error);
-  if (!buffer) throw std::runtime_error("cannot encode PNG image");
-  return {buffer.get(), buffer.get() + size};
 }
 
 void write_jpeg(const Image& image, const fs::path& temp, const fs::path& target) {
@@ -457,10 +425,6 @@ std::shared_ptr<Image> load_image_file(const std::filesystem::path& file) {
   return starts_with(kPng) ? load_png(file, bytes) : load_jpeg(file, bytes);
 }
 
-std::vector<unsigned char> encode_png(const Image& display) {
-  return png_bytes(display);
-}
-
 void write_images(const Image& linear, const std::optional<std::filesystem::path>& png,
                   const std::optional<std::filesystem::path>& exr) {
   write_images(linear, linear, png, exr);
@@ -498,7 +462,7 @@ void write_images(const Image& display, const Image& linear,
         case ImageFormat::kPng: {
           std::vector<unsigned char> encoded;
           try {
-            encoded = png_bytes(display);
+            encoded = encode_png(display);
           } catch (const std::runtime_error&) {
             fail_write(target, "cannot encode PNG image");
           }
