@@ -68,7 +68,7 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit);
 // tables are built when the scene has textures or sky images, those used otherwise.
 class EmissionTable {
  public:
-  static constexpr std::size_t kMaxColourTables = 4096;
+  static constexpr std::size_t kMaxColourTables = 1024;
 
   // `margin`: the tables cover the factors the scene is seen with widened by this much of ln D
   // on each side, so that a renderer can keep them for the next frames (serves()).

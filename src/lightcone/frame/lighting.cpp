@@ -185,6 +185,7 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
     made.push_back({{albedo.r, albedo.g, albedo.b, l, co_moving}, t});
     return t;
   };
+  if (lights_.empty()) return;  // nothing is lit: no object's row is read
   object_reflections_.resize(s.objects.size());
   for (std::size_t o = 0; o < s.objects.size(); ++o) {
     const Material& m = s.objects[o].material;

@@ -216,9 +216,11 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
   r.trace_to_world = invert(r.world_to_trace);
 
   r.bodies.reserve(scene.objects.size());
+  const bool with_world_maps = !scene.lights.empty() || scene.black_hole.has_value();
+  if (with_world_maps) r.world_maps.reserve(scene.objects.size());
   // Each body's centre world-line in W and bounding radius, for its shadow bounds below.
   std::vector<std::pair<TraceWorldLine, double>> world_centres;
-  world_centres.reserve(scene.objects.size());
+  if (with_world_maps) world_centres.reserve(scene.objects.size());
   // A shape's bounds and the radius of the ball about their centre that holds it scaled, once
   // for all the bodies of one mesh and scale: a swarm of one mesh would otherwise go through its
   // vertices once a body.
@@ -285,9 +287,11 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
     body.time_column = to_shape * time_column(trace_to_body.linear);
     body.ray_offset = body.time_column * r.ray_time;
     body.spatial = to_shape * trace_to_body.linear.spatial();
-    body.shadow_origin = to_shape * world_to_body.offset.x;
-    body.shadow_time_column = to_shape * time_column(world_to_body.linear);
-    body.shadow_spatial = to_shape * world_to_body.linear.spatial();
+    if (with_world_maps)
+      r.world_maps.push_back({to_shape * world_to_body.offset.x,
+                              to_shape * time_column(world_to_body.linear),
+                              to_shape * world_to_body.linear.spatial(),
+                              {}});
 
     const ShapeExtent& extent = extent_of(object);
     const Vec3 centre = (extent.local.lower + extent.local.upper) * 0.5;
@@ -307,7 +311,8 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
     body.rest_centre = rest_centre;
     body.radius = radius;
     r.bodies.push_back(body);
-    world_centres.emplace_back(trace_world_line(world_to_body, rest_centre), radius);
+    if (with_world_maps)
+      world_centres.emplace_back(trace_world_line(world_to_body, rest_centre), radius);
   }
 
   WorldLine sky_line;
@@ -373,9 +378,9 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
   const double b = length(Vec3{to_world.m[0][1], to_world.m[0][2], to_world.m[0][3]});
   r.shadow_time_min = r.observation_event.t + a * t_min - b * reach_f;
   r.shadow_time_max = r.observation_event.t + b * reach_f;
-  for (std::size_t i = 0; i < r.bodies.size(); ++i) {
+  for (std::size_t i = 0; i < r.world_maps.size(); ++i) {
     const auto& [centre, radius] = world_centres[i];
-    Bounds3& bounds = r.bodies[i].shadow_bounds;
+    Bounds3& bounds = r.world_maps[i].shadow_bounds;
     bounds = empty_bounds();
     for (double t : {r.shadow_time_min, r.shadow_time_max})
       expand(bounds, centre.position_at_zero + centre.velocity * t, radius);

@@ -85,15 +85,6 @@ struct ResolvedBody {
   // capsule's box.
   Capsule trace_capsule;
   Bounds3 trace_bounds;
-  // Shadow rays are traced in the world frame W, where scenes usually keep most bodies at rest
-  // (so their bounds need no sweep): shape coordinates of the W event (t, x) are
-  // shadow_origin + shadow_time_column t + shadow_spatial x, and shadow_bounds holds every
-  // point the body occupies at W-times in [ResolvedScene::shadow_time_min,
-  // ResolvedScene::shadow_time_max].
-  Vec3 shadow_origin;
-  Vec3 shadow_time_column;
-  Mat3 shadow_spatial;
-  Bounds3 shadow_bounds;
   Vec3 velocity;  // in F, for the Doppler factor
   // The body's own clock at the F event (t, x): proper_time_origin + proper_time_row . (t, x)
   // (its rest-frame time; every point of a rigid body keeps the clock of its origin).
@@ -116,11 +107,24 @@ struct ResolvedBody {
   double proper_time(const Vec4& event) const {
     return proper_time_origin + proper_time_row.t * event.t + dot(proper_time_row.x, event.x);
   }
-  Vec3 shadow_shape_point(const Vec4& world_event) const {
-    return shadow_origin + shadow_time_column * world_event.t + shadow_spatial * world_event.x;
+};
+
+// A body seen from the world frame W, where shadow rays are traced (scenes usually keep most
+// bodies at rest there, so their bounds need no sweep) and, near a black hole, curved rays
+// followed: shape coordinates of the W event (t, x) are origin + time_column t + spatial x, and
+// shadow_bounds holds every point the body occupies at W-times in
+// [ResolvedScene::shadow_time_min, ResolvedScene::shadow_time_max].
+struct WorldShapeMap {
+  Vec3 origin;
+  Vec3 time_column;
+  Mat3 spatial;
+  Bounds3 shadow_bounds;
+
+  Vec3 shape_point(const Vec4& world_event) const {
+    return origin + time_column * world_event.t + spatial * world_event.x;
   }
-  Vec3 shadow_shape_vector(const Vec4& world_direction) const {
-    return shadow_time_column * world_direction.t + shadow_spatial * world_direction.x;
+  Vec3 shape_vector(const Vec4& world_direction) const {
+    return time_column * world_direction.t + spatial * world_direction.x;
   }
 };
 
@@ -207,6 +211,9 @@ struct ResolvedScene {
   AffineMap4 world_to_trace;
   AffineMap4 trace_to_world;
   std::vector<ResolvedBody> bodies;
+  // bodies[i] seen from W, for scenes with lights or a black hole (empty otherwise: a scene of
+  // many unlit bodies does not carry them).
+  std::vector<WorldShapeMap> world_maps;
   std::vector<ResolvedSpin> spins;
   // Look direction in the sky's pattern coordinates of the ray event (ray_time, u):
   // normalize(sky_time_column * ray_time + sky_spatial * u).

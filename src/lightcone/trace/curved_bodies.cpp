@@ -273,10 +273,9 @@ bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
   return segment_distance(a.x, b.x, s0.position, s1.position) <= radius + margin + bow;
 }
 
-Vec3 CurvedBodies::Body::shape_point(const ResolvedBody& resolved, const Vec4& event,
+Vec3 CurvedBodies::Body::shape_point(const WorldShapeMap& world, const Vec4& event,
                                      const Vec3& hole, const HoleWorldLineState* known) const {
-  if (std::holds_alternative<HoleWorldLine::Straight>(line.path()))
-    return resolved.shadow_shape_point(event);
+  if (std::holds_alternative<HoleWorldLine::Straight>(line.path())) return world.shape_point(event);
   // Its rest frame's coordinates of a point simultaneous in W with its origin at offset d:
   // d stretched by gamma along its velocity.
   const HoleWorldLineState state = known ? *known : line.at(event.t);
@@ -314,7 +313,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
     const double span = step * std::sqrt(0.25 / kChordError);
     const double span_margin = m > 0 ? 0.375 * m * path.impact * span * span / r_min : 0.0;
     const auto shape_of = [&](const Vec4& e, const HoleWorldLineState* state = nullptr) {
-      return body.shape_point(resolved, e, start.centre, state);
+      return body.shape_point(scene_.world_maps[body.index], e, start.centre, state);
     };
     // A geodesic's chords are timed only once they come near where it ever is.
     const bool straight = std::holds_alternative<HoleWorldLine::Straight>(body.line.path());

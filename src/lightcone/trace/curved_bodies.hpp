@@ -81,7 +81,7 @@ class CurvedBodies : public CurvedShadowQuery {
                           double& acceleration) const;
     // Where the body is at the event's time, in its shape's coordinates: by its resolved
     // (affine) map on a straight line, by its state then on a geodesic (`state`, if known).
-    Vec3 shape_point(const ResolvedBody& resolved, const Vec4& event, const Vec3& hole,
+    Vec3 shape_point(const WorldShapeMap& world, const Vec4& event, const Vec3& hole,
                      const HoleWorldLineState* state = nullptr) const;
   };
   const ResolvedScene& scene_;

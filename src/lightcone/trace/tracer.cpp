@@ -321,8 +321,10 @@ struct Tracer::Impl {
                                            ref->first_step + args->timeStep];
       return;
     }
-    const ResolvedBody& body = ref->impl->scene.bodies[ref->body(args->primID)];
-    *args->bounds_o = float_bounds(ref->shadow ? body.shadow_bounds : body.trace_bounds);
+    const ResolvedScene& scene = ref->impl->scene;
+    const std::size_t index = ref->body(args->primID);
+    *args->bounds_o = float_bounds(ref->shadow ? scene.world_maps[index].shadow_bounds
+                                               : scene.bodies[index].trace_bounds);
   }
 
   // Embree interpolates in single precision, at a label rounded to a float time: a margin of
@@ -345,10 +347,13 @@ struct Tracer::Impl {
   }
 
   // `origin` and `direction` are in F for camera rays, in W for shadow rays.
-  static ShapeRay shape_ray(const ResolvedBody& body, bool shadow, const Vec4& origin,
-                            const Vec4& direction) {
-    return shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
-                  : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
+  ShapeRay shape_ray(unsigned index, bool shadow, const Vec4& origin, const Vec4& direction) const {
+    if (shadow) {
+      const WorldShapeMap& map = scene.world_maps[index];
+      return {map.shape_point(origin), map.shape_vector(direction)};
+    }
+    const ResolvedBody& body = scene.bodies[index];
+    return {body.shape_point(origin), body.shape_vector(direction)};
   }
 
   bool meets_mesh_ball(unsigned index, const ShapeRay& ray, double tnear, double tfar,
@@ -369,7 +374,8 @@ struct Tracer::Impl {
     const ResolvedBody& body = scene.bodies[index];
     if (body.spin >= 0)
       return intersect_spinning(index, shadow, origin, direction, tnear, tfar, context);
-    return intersect_shape(index, shape_ray(body, shadow, origin, direction), tnear, tfar, context);
+    return intersect_shape(index, shape_ray(index, shadow, origin, direction), tnear, tfar,
+                           context);
   }
 
   // A body that does not spin, met by a ray in its shape's coordinates.
@@ -412,9 +418,7 @@ struct Tracer::Impl {
                               RTCIntersectContext* context) const {
     const ResolvedBody& body = scene.bodies[index];
     const ResolvedSpin& spin = scene.spins[body.spin];
-    const ShapeRay frozen =
-        shadow ? ShapeRay{body.shadow_shape_point(origin), body.shadow_shape_vector(direction)}
-               : ShapeRay{body.shape_point(origin), body.shape_vector(direction)};
+    const ShapeRay frozen = shape_ray(index, shadow, origin, direction);
     const Vec3 o = spin.rest_from_shape * frozen.origin;
     const Vec3 d = spin.rest_from_shape * frozen.direction;
     const Vec4& row = shadow ? spin.shadow_proper_time_row : body.proper_time_row;
@@ -613,7 +617,7 @@ struct Tracer::Impl {
     for (unsigned i = 0; i < n; ++i) {
       if (!valid[i]) continue;
       const ExactRay& exact = context.rays[RTCRayN_id(rays, n, i)];
-      const ShapeRay ray = shape_ray(body, shadow, exact.origin, exact.direction);
+      const ShapeRay ray = shape_ray(index, shadow, exact.origin, exact.direction);
       const double tnear = RTCRayN_tnear(rays, n, i), tfar = RTCRayN_tfar(rays, n, i);
       double entry = 0;
       if (!meets_mesh_ball(index, ray, tnear, tfar, &entry)) continue;
