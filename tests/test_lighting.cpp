@@ -800,5 +800,24 @@ TEST(BadStates, ALightExactlyAtTheLitPointGivesFinitePixels) {
         }
 }
 
+// The bodies' world-frame maps, which shadow rays (and curved rays) read, are resolved for
+// scenes with lights, one a body, and not carried by unlit scenes: a swarm of unlit bodies
+// does not pay for them. Each maps a body's W events to its shape as its own frame does.
+TEST(WorldShapeMaps, OnlyScenesWithLightsOrAHoleCarryThem) {
+  Scene s = top_down({0, 5, 0}, 60, 8);
+  s.objects.push_back(
+      make_object("ball", Sphere{0.5}, {1, 0.5, 2}, {0.3, 0, -0.2}, emitter({1, 0, 0})));
+  EXPECT_TRUE(resolve_scene(s).world_maps.empty());
+  s.lights.push_back(make_light(PointLight{}, {0, 3, 0}, 10));
+  const ResolvedScene r = resolve_scene(s);
+  ASSERT_EQ(r.world_maps.size(), r.bodies.size());
+  // The ball's centre is its shape's origin at every W time on its world-line.
+  for (const double t : {-3.0, 0.0, 2.5}) {
+    const Vec3 centre = Vec3{1, 0.5, 2} + Vec3{0.3, 0, -0.2} * t;
+    const Vec3 p = r.world_maps[1].shape_point(Vec4{t, centre});
+    EXPECT_NEAR(length(p), 0, 1e-12) << t;
+  }
+}
+
 }  // namespace
 }  // namespace lightcone
