@@ -215,8 +215,9 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
   return r;
 }
 
-// The picture the image files show: the tone-mapped render, or --map's colour map.
-Image display_of(const Rendered& r, const Scene& scene, const RenderOutputs& out) {
+// The picture the image files show: the tone-mapped render, or --map's colour map. Without
+// `keep_linear` the render is tone-mapped in place.
+Image display_of(Rendered& r, const Scene& scene, const RenderOutputs& out, bool keep_linear) {
   // A picture with non-finite values is wrong, not merely dark or bright: say so, write nothing.
   const auto non_finite = std::count_if(r.image.rgb.begin(), r.image.rgb.end(),
                                         [](float v) { return !std::isfinite(v); });
@@ -231,14 +232,17 @@ Image display_of(const Rendered& r, const Scene& scene, const RenderOutputs& out
                                       [&](const NamedChannel& c) { return c.name == names[0]; });
     return false_colour(*channel, r.image.width, r.image.height, aov_map_label(*out.map), r.sky);
   }
-  return tone_map(r.image, scene.render.tonemap);
+  return keep_linear ? tone_map(r.image, scene.render.tonemap)
+                     : tone_map(std::move(r.image), scene.render.tonemap);
 }
 
 // The files (or standard output), the summary line and --stats; a stopped render's files go
 // beside their targets.
-int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs& out,
-                   const Rendered& r) {
-  const Image display = display_of(r, scene, out);
+int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs& out, Rendered& r) {
+  // Only an EXR holds the linear picture.
+  const bool keep_linear =
+      a.exr.has_value() || (!out.to_stdout && *out.format == ImageFormat::kExr);
+  const Image display = display_of(r, scene, out, keep_linear);
   const bool stopped = r.stopped;
   if (stopped && out.to_stdout) {
     std::fprintf(stderr, "lightcone: stopped by %s: nothing written to standard output\n",
@@ -254,7 +258,7 @@ int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs&
   std::vector<ImageOutput> outputs;
   if (!out.to_stdout) outputs.push_back({target(a.output), *out.format});
   if (a.exr) outputs.push_back({target(*a.exr), ImageFormat::kExr});
-  write_images(display, r.image, outputs);
+  write_images(display, keep_linear ? r.image : display, outputs);
 
   const std::string written = out.to_stdout ? std::string("standard output") : target(a.output);
   const std::string also = a.exr ? " and " + target(*a.exr) : std::string();
@@ -292,7 +296,7 @@ int run_render(const RenderArgs& a) {
   const std::unique_ptr<tbb::global_control> threads = thread_limit(a.threads);
   const RenderOutputs outputs = checked_outputs(a);
   const Scene scene = render_scene(a, outputs);
-  const Rendered rendered = render_with_progress(a, scene, outputs);
+  Rendered rendered = render_with_progress(a, scene, outputs);
   return write_rendered(a, scene, outputs, rendered);
 }
 

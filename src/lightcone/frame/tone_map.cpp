@@ -113,21 +113,16 @@ double apply_exposure(Image& linear, const RenderSettings& settings,
   return ev;
 }
 
-Image tone_map(const Image& linear, ToneMap curve) {
-  // The picture alone (not the output variables), each pixel on its own: in parallel, and
-  // without first copying the linear picture serially, off the critical path of an animation's
-  // next frame.
-  Image out;
-  out.width = linear.width;
-  out.height = linear.height;
-  out.rgb.resize(linear.rgb.size());
-  const std::size_t pixels = out.rgb.size() / 3;
+namespace {
+
+// out[i] = the curve on in[i], pixel by pixel (in may be out): in parallel, off the critical
+// path of an animation's next frame and of a render's last steps.
+void tone_map_pixels(const float* in, float* out, std::size_t pixels, ToneMap curve) {
   parallel_for_pieces(std::size_t{0}, pixels, std::size_t{4096},
                       [&](std::size_t begin, std::size_t end) {
-                        std::copy(linear.rgb.begin() + 3 * begin, linear.rgb.begin() + 3 * end,
-                                  out.rgb.begin() + 3 * begin);
                         for (std::size_t p = 3 * begin; p < 3 * end; p += 3) {
-                          float* c = &out.rgb[p];
+                          float* c = &out[p];
+                          for (int k = 0; k < 3; ++k) c[k] = in[p + k];
                           switch (curve) {
                             case ToneMap::kClamp:
                               for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k]);
@@ -143,6 +138,25 @@ Image tone_map(const Image& linear, ToneMap curve) {
                           }
                         }
                       });
+}
+
+}  // namespace
+
+Image tone_map(const Image& linear, ToneMap curve) {
+  Image out;
+  out.width = linear.width;
+  out.height = linear.height;
+  out.rgb.resize(linear.rgb.size());
+  tone_map_pixels(linear.rgb.data(), out.rgb.data(), out.rgb.size() / 3, curve);
+  return out;
+}
+
+Image tone_map(Image&& linear, ToneMap curve) {
+  Image out;
+  out.width = linear.width;
+  out.height = linear.height;
+  out.rgb = std::move(linear.rgb);
+  tone_map_pixels(out.rgb.data(), out.rgb.data(), out.rgb.size() / 3, curve);
   return out;
 }
 

@@ -14,8 +14,8 @@ double display_white(ToneMap curve);
 // luminance) as 0.25, a mid-tone, unless that would take the brightest 2 % of the whole picture
 // past display_white(curve); then the EV that brings them there. `subject` weighs each pixel
 // (the share of its samples that met a body moving relative to the camera); without it, or
-// with less than 0.1 % of the picture's worth, the subject is the whole picture. 0 for an image without
-// light.
+// with less than 0.1 % of the picture's worth, the subject is the whole picture. 0 for an image
+// without light.
 double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject = {});
 
 // Scales a rendered image by 2^EV, EV the settings' exposure or (auto_exposure on) the automatic
@@ -27,8 +27,10 @@ double apply_exposure(Image& linear, const RenderSettings& settings,
 //   clamp:    min(max(L, 0), 1) per channel;
 //   reinhard: L / (1 + Y) on the luminance Y, so hue is kept while highlights compress;
 //   filmic:   filmic_on_luminance.
-// The picture only: the linear image's output variables (channels) are not carried.
+// The picture only: the linear image's output variables (channels) are not carried. The
+// second form maps the picture in place, without a new one to fill.
 Image tone_map(const Image& linear, ToneMap curve);
+Image tone_map(Image&& linear, ToneMap curve);
 
 // The ACES filmic fit of Narkowicz (2015), y (2.51 y + 0.03) / (y (2.43 y + 0.59) + 0.14), at
 // most 1 (the fit itself tends to 1.033).

@@ -281,10 +281,15 @@ const std::array<unsigned char, 0x3F81>& run_codes() {
 }  // namespace
 
 std::vector<unsigned char> display_rgb8(const Image& image) {
+  std::vector<unsigned char> pixels(image.rgb.size());
+  display_rgb8(image, pixels.data());
+  return pixels;
+}
+
+void display_rgb8(const Image& image, unsigned char* pixels) {
   const std::array<float, 256>& thresholds = code_thresholds();
   const std::array<unsigned char, 0x3F81>& runs = run_codes();
-  std::vector<unsigned char> pixels(image.rgb.size());
-  parallel_for_pieces(std::size_t{0}, pixels.size(), std::size_t{1} << 16,
+  parallel_for_pieces(std::size_t{0}, image.rgb.size(), std::size_t{1} << 16,
                       [&](std::size_t begin, std::size_t end) {
                         for (std::size_t i = begin; i < end; ++i) {
                           const float v = std::min(image.rgb[i] > 0 ? image.rgb[i] : 0.0f, 1.0f);
@@ -299,7 +304,6 @@ std::vector<unsigned char> display_rgb8(const Image& image) {
                           pixels[i] = static_cast<unsigned char>(code);
                         }
                       });
-  return pixels;
 }
 
 namespace {

@@ -36,6 +36,8 @@ void write_images(const Image& display, const Image& linear,
 
 // The 8-bit sRGB pixels (row-major, RGB) a PNG of the display image holds.
 std::vector<unsigned char> display_rgb8(const Image& display);
+// The same into `pixels` (3 width height bytes), which need not be initialised.
+void display_rgb8(const Image& display, unsigned char* pixels);
 
 // The PNG file's bytes for a display image (for writing to standard output).
 std::vector<unsigned char> encode_png(const Image& display);

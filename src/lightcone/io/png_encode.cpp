@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <vector>
@@ -66,26 +67,26 @@ class Deflater {
 
   // Deflates filtered[first, last), seeded with the window before `first`; the last strip
   // finishes the stream.
-  void strip(const std::vector<unsigned char>& filtered, std::size_t first, std::size_t last,
+  void strip(const unsigned char* filtered, std::size_t total, std::size_t first, std::size_t last,
              Strip& out) {
     if (deflateReset(&z_) != Z_OK) throw std::runtime_error("cannot encode PNG image (zlib)");
     const std::size_t window = std::min(first, kDictionaryBytes);
-    if (window > 0 && deflateSetDictionary(&z_, filtered.data() + first - window,
-                                           static_cast<uInt>(window)) != Z_OK)
+    if (window > 0 &&
+        deflateSetDictionary(&z_, filtered + first - window, static_cast<uInt>(window)) != Z_OK)
       throw std::runtime_error("cannot encode PNG image (zlib dictionary)");
     const std::size_t size = last - first;
     // deflateBound covers a finished stream; a sync flush adds an empty stored block.
     scratch_.resize(std::max<std::size_t>(scratch_.size(), deflateBound(&z_, size) + 16));
-    z_.next_in = const_cast<Bytef*>(filtered.data() + first);
+    z_.next_in = const_cast<Bytef*>(filtered + first);
     z_.avail_in = static_cast<uInt>(size);
     z_.next_out = scratch_.data();
     z_.avail_out = static_cast<uInt>(scratch_.size());
-    const bool final = last == filtered.size();
+    const bool final = last == total;
     const int status = deflate(&z_, final ? Z_FINISH : Z_SYNC_FLUSH);
     if (status != (final ? Z_STREAM_END : Z_OK) || z_.avail_in != 0)
       throw std::runtime_error("cannot encode PNG image (zlib)");
     out.deflated.assign(scratch_.data(), scratch_.data() + (scratch_.size() - z_.avail_out));
-    out.adler = adler32(adler32(0, nullptr, 0), filtered.data() + first, static_cast<uInt>(size));
+    out.adler = adler32(adler32(0, nullptr, 0), filtered + first, static_cast<uInt>(size));
     out.raw_bytes = size;
   }
 
@@ -97,14 +98,17 @@ class Deflater {
 }  // namespace
 
 std::vector<unsigned char> encode_png(const Image& display) {
-  const std::vector<unsigned char> pixels = display_rgb8(display);
   const std::size_t width = static_cast<std::size_t>(display.width);
   const std::size_t height = static_cast<std::size_t>(display.height);
   const std::size_t row = 3 * width, line = row + 1;
   const std::size_t strip_rows = std::max<std::size_t>(1, kStripBytes / line);
   const std::size_t strips = (height + strip_rows - 1) / strip_rows;
 
-  std::vector<unsigned char> filtered(height * line);
+  // Uninitialised (new[] without "()"), so that the pages are first touched by the threads
+  // that fill them rather than zeroed by one.
+  const std::unique_ptr<unsigned char[]> pixels(new unsigned char[height * row]);
+  const std::unique_ptr<unsigned char[]> filtered(new unsigned char[height * line]);
+  display_rgb8(display, pixels.get());
   std::vector<Strip> deflated(strips);
   // Each strip filters its own rows first, then deflates them with the window before them,
   // which the strip above filters: so the filtering is one pass and the deflating another.
@@ -125,7 +129,7 @@ std::vector<unsigned char> encode_png(const Image& display) {
   tbb::enumerable_thread_specific<Deflater> deflaters;
   tbb::parallel_for(std::size_t{0}, strips, [&](std::size_t s) {
     const std::size_t y0 = s * strip_rows, y1 = std::min(height, y0 + strip_rows);
-    deflaters.local().strip(filtered, y0 * line, y1 * line, deflated[s]);
+    deflaters.local().strip(filtered.get(), height * line, y0 * line, y1 * line, deflated[s]);
   });
 
   // The zlib stream: its header (deflate, 32 KiB window, the fastest level; the check bits
