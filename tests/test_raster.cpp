@@ -642,13 +642,24 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
     const char* scene;
     bool offsets;
     bool hue = false;
+    bool lit_textures = false;  // its textures lit by a lamp (the spectral fit per sample)
   };
-  for (const Case c : {Case{"street.json", false}, Case{"wheel.json", false},
-                       Case{"twin-paradox.json", false}, Case{"street-lit.json", false},
-                       Case{"cubes.json", true}, Case{"street-lit.json", false, true}}) {
+  for (const Case c :
+       {Case{"street.json", false}, Case{"wheel.json", false}, Case{"twin-paradox.json", false},
+        Case{"street-lit.json", false}, Case{"cubes.json", true},
+        Case{"street-lit.json", false, true}, Case{"texture-mapping.json", false, false, true}}) {
     SCOPED_TRACE(c.scene);
     Scene scene = test::load_repository_scene(c.scene);
     if (c.hue) scene.render.doppler = DopplerModel::kHue;
+    if (c.lit_textures) {
+      for (Object& o : scene.objects) o.material.unlit = false;
+      Light lamp;
+      lamp.name = "lamp";
+      lamp.kind = PointLight{};
+      lamp.world_line.position = scene.camera.world_line.position + Vec3{1, 2, 0};
+      lamp.intensity = 20;
+      scene.lights.push_back(lamp);
+    }
     scene.camera.width = 160, scene.camera.height = 90;
     const Image specialised = draw(scene, true, c.offsets), full = draw(scene, false, c.offsets);
     ASSERT_EQ(specialised.rgb.size(), full.rgb.size());
@@ -695,6 +706,10 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_LIT_TEXTURES 1\n"},
       {"body-lit-textured.vert", shader_sources::body_vert, false,
        shader_sources::body_projection_glsl, "#define LIGHTCONE_LIT_TEXTURES 1\n"},
+      {"body-lit-textured-spectral.frag", shader_sources::body_frag, true,
+       patterns_and_lighting.c_str(),
+       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_LIT_TEXTURES 1\n"
+       "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n"},
       {"body-mesh-clocks.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_MESH_CLOCKS 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).

@@ -1,13 +1,22 @@
 // The real-time renderer's textures against the ray tracer: textured spheres, boxes, meshes
-// and planes in motion under a moving sky image, unlit and lit, in every colour model; clocks on
-// meshes; and the sky image read from its mip levels at one sample a pixel.
+// and planes in motion under a moving sky image, unlit and lit, in every colour model (the
+// spectral fit of a lit texel against its C++ kernels); clocks on meshes; and the sky image read
+// from its mip levels at one sample a pixel.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 
+#include "lightcone/color/doppler_table.hpp"
+#include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/frame/lighting.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/spectral_albedo.hpp"
+#include "support/glsl_eval.hpp"
 #include "support/raster_agreement.hpp"
 #include "support/test_support.hpp"
 
@@ -19,6 +28,95 @@ using test::agreement;
 using test::Agreement;
 using test::expect_agreement;
 using test::quoted;
+
+// lighting.glsl's spectral fit of a lit texel against its C++ kernels: rgb_to_sigmoid's
+// reflectance at every 10 nm for random colours (greys, saturated and black among them), and
+// the reflected colour (xyz_of_reflection_seen_with_doppler, as linear sRGB) under a 5000 K
+// lamp and a coloured one, for random factors.
+TEST(GlslSpectralAlbedo, FitAndReflectedColourMatchTheKernels) {
+  const HeadlessGlContext context;
+  Scene scene;
+  for (const auto& [name, colour] :
+       {std::pair{"warm", Rgb{1, 0.8f, 0.6f}}, std::pair{"green", Rgb{0.2f, 1, 0.3f}}}) {
+    Light lamp;
+    lamp.name = name;
+    lamp.kind = PointLight{};
+    lamp.spectrum.emission = colour;
+    scene.lights.push_back(lamp);
+  }
+  scene.lights[0].spectrum.emission = Blackbody{5000};
+  scene.objects.push_back(
+      test::make_object("ground", Plane{10, 10}, {0, -1, 0}, {}, test::lit({0.5f, 0.5f, 0.5f})));
+  scene.camera.world_line.velocity = {0, 0, -0.6};
+  const ResolvedScene resolved = resolve_scene(scene);
+  const Lighting lighting(resolved, nullptr);
+  SpectralAlbedo tables;
+  tables.prepare(lighting, scene.lights.size(), -3, 3);
+  const std::string sources =
+      "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n" + std::string(shader_sources::lighting_glsl);
+  const auto setup = [&tables](GLuint program) { tables.bind(program, kSpectralAlbedoUnit); };
+
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(0, 1);
+  std::vector<LinearRgb> colours = {{0, 0, 0}, {1, 1, 1}, {0.5, 0.5, 0.5}, {1, 0, 0},
+                                    {0, 1, 0}, {0, 0, 1}, {0.9, 0.1, 0.0}};
+  while (colours.size() < 300) colours.push_back({unit(rng), unit(rng), unit(rng)});
+  std::vector<std::array<float, 9>> inputs;
+  for (const LinearRgb& c : colours)
+    for (int w = 0; w <= 47; ++w)
+      inputs.push_back({static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b),
+                        360.0f + 10 * w, 0, 0, 0, 0, 0});
+  const auto fitted =
+      evaluate_glsl("vec4(reflectance_at(rgb_to_sigmoid(a), b.x))", inputs, sources, setup);
+  double worst = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const LinearRgb& c = colours[i / 48];
+    const double want = RgbAlbedoSpectrum::from_rgb(c)(inputs[i][3]);
+    worst = std::max(worst, std::abs(fitted[i][0] - want));
+  }
+  EXPECT_LT(worst, 2e-5);
+  std::printf("fitted reflectance: largest difference %.2g\n", worst);
+
+  // The reflected colour, given the kernel's coefficients (texel_reflectance).
+  std::uniform_real_distribution<double> log_factor(-0.8, 0.8);
+  inputs.clear();
+  struct Case {
+    SigmoidPolynomial fit;
+    int light;
+    double d_camera, d_light;
+  };
+  std::vector<Case> cases;
+  for (std::size_t i = 0; i < 200; ++i) {
+    const Case c{rgb_to_sigmoid(colours[i % colours.size()]), static_cast<int>(i % 2),
+                 std::exp(log_factor(rng)), std::exp(log_factor(rng))};
+    cases.push_back(c);
+    inputs.push_back({static_cast<float>(c.fit.c0), static_cast<float>(c.fit.c1),
+                      static_cast<float>(c.fit.c2), static_cast<float>(c.light),
+                      static_cast<float>(c.d_camera), static_cast<float>(c.d_light), 0, 0, 0});
+  }
+  const auto reflected =
+      evaluate_glsl("vec4(texel_reflected_of(a, int(b.x), b.y, b.z), 0.0)", inputs,
+                    sources +
+                        "vec3 texel_reflected_of(vec3 fit, int l, float dc, float dl) {\n"
+                        "  texel_reflectance = fit;\n  return texel_reflected(l, dc, dl);\n}\n",
+                    setup);
+  double worst_relative = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    const auto light = [&](double lambda) { return lighting.light_spectral(c.light, lambda); };
+    // The factors as the shader has them (single precision).
+    const double dc = static_cast<float>(c.d_camera), dl = static_cast<float>(c.d_light);
+    const LinearRgb want = linear_srgb_from_xyz(
+        xyz_of_reflection_seen_with_doppler(RgbAlbedoSpectrum{c.fit}, light, dc, dl));
+    const double scale = std::max({std::abs(want.r), std::abs(want.g), std::abs(want.b), 1e-3});
+    for (int k = 0; k < 3; ++k) {
+      const double w = k == 0 ? want.r : k == 1 ? want.g : want.b;
+      worst_relative = std::max(worst_relative, std::abs(reflected[i][k] - w) / scale);
+    }
+  }
+  EXPECT_LT(worst_relative, 1e-4);
+  std::printf("reflected colour: largest difference %.2g of its largest channel\n", worst_relative);
+}
 
 // A clock on a mesh: its dial read at each face's texture coordinates, as the tracer does, on a
 // square of two triangles at 0.6c and on a lit one at rest.
@@ -130,8 +228,9 @@ f 1/7 4/4 3/5
     EXPECT_EQ(a.raster_err, "") << settings;
     std::printf("textures %s: %.4f of %zu pixels within 4/255\n", settings, a.within, a.compared);
   }
-  // Lit textures (the colour models linear in the albedo): the same bodies under a lamp and a
-  // sun, each sample's albedo its texel (without shadows: the moving mesh casts none here).
+  // Lit textures: the same bodies under a lamp and a sun, each sample's albedo its texel, under
+  // the spectral model fitted to a reflectance spectrum (without shadows: the moving mesh casts
+  // none here).
   std::string lit = test::bytes_of(dir / "scene.json");
   const std::string unlit_texture = R"("texture": "texture.exr"})";
   for (std::size_t at = lit.find(unlit_texture); at != std::string::npos;
@@ -143,10 +242,13 @@ f 1/7 4/4 3/5
     {"name": "sun", "type": "directional", "direction": [-0.3, -1, -0.4], "irradiance": 0.5}],
 )");
   test::write_text(dir / "lit.json", lit);
+  // Under the spectral model each sample's texel is fitted to a reflectance and its light
+  // summed nanometre by nanometre in both renderers: 4 samples a pixel, for time.
   for (const char* settings :
        {"--set render.doppler=rgb3", "--set render.doppler=off --set render.searchlight=off",
-        "--set render.doppler=hue --set render.searchlight=off"}) {
-    const Agreement a = agreement((dir / "lit.json").string(), 16,
+        "--set render.doppler=hue --set render.searchlight=off", "--set render.searchlight=off"}) {
+    const bool spectral = std::string(settings).find("doppler") == std::string::npos;
+    const Agreement a = agreement((dir / "lit.json").string(), spectral ? 4 : 16,
                                   std::string("--set render.shadows=false ") + settings);
     EXPECT_GE(a.within, 0.99) << settings << ": " << a.compared << " pixels compared";
     EXPECT_EQ(a.raster_err, "") << settings;

@@ -69,6 +69,11 @@ class Lighting {
   // What `received` reads, for a renderer that tabulates it (the raster renderer):
   // light l's colour at rest (Y = 1 per unit intensity);
   const LinearRgb& light_rgb(std::size_t l) const { return lights_[l].rgb; }
+  // light l's spectrum (spectral model, per unit spectral irradiance factor), which a lit point
+  // of fitted albedo reflects (the raster renderer's lit textures);
+  double light_spectral(std::size_t l, double lambda_nm) const {
+    return lights_[l].spectral(lambda_nm);
+  }
   // spectral model: the colour (before searchlight factors, per unit spectral irradiance
   // factor) of fixed colour `colour` of lit object `object` lit by light l, seen with the two
   // factors; whether that light is at rest relative to the object (then d_light is 1);

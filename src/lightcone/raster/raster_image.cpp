@@ -8,6 +8,7 @@
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/raster/shadow_maps.hpp"
+#include "lightcone/raster/spectral_albedo.hpp"
 
 namespace lightcone {
 
@@ -25,8 +26,10 @@ std::vector<std::string> raster_differences(const Scene& scene) {
   if (clock_mesh && scene.black_hole)
     differences.push_back("clocks on meshes near a black hole are drawn as their face alone");
 
-  if (lit_textured && scene.render.doppler == DopplerModel::kSpectral)
-    differences.push_back("lit textured materials under the spectral model are drawn black");
+  if (lit_textured && scene.render.doppler == DopplerModel::kSpectral &&
+      !spectral_albedo_available())
+    differences.push_back(
+        "lit textured materials under the spectral model are drawn black in the browser");
   if (lit && scene.render.shadows && !scene.lights.empty()) {
     bool uncast = false, from_centre = false;
     std::size_t exact = 0;

@@ -17,6 +17,7 @@
 #include "lightcone/raster/raster_renderer_impl.hpp"
 #include "lightcone/raster/shader_build.hpp"
 #include "lightcone/raster/shader_sources.hpp"
+#include "lightcone/raster/spectral_albedo.hpp"
 
 namespace lightcone {
 
@@ -215,14 +216,16 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     }
     if (body.spin >= 0) frame_features |= kBodySpin;
     const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
-    // Lit textures under the colour models linear in the albedo (not spectral: the tracer fits
-    // a spectrum to each texel's albedo).
-    const bool lit_texture = textured && !m.unlit && !spectral && !resolved.hole;
+    // Lit textures: under the colour models linear in the albedo each texel is the albedo;
+    // under the spectral model it is fitted to a reflectance per sample, as the tracer does
+    // (spectral_albedo.hpp), where the build has the whole coefficient table.
+    const bool lit_texture =
+        textured && !m.unlit && !resolved.hole && (!spectral || spectral_albedo_available());
     if (lit_texture) {
       draw.pattern = 2;
       draw.face_uvs = mesh;
       upload(*std::get<Texture>(m.pattern).image);
-      frame_features |= kBodyLitTextures;
+      frame_features |= kBodyLitTextures | (spectral ? kBodySpectralTextures : 0);
     }
     if (textured && !lit_texture) {
       draw.first_row = emission_row(kBlack);
@@ -248,8 +251,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       const std::size_t index_row = reflection_index.size();
       draw.reflection_body = static_cast<int>(index_row / reflection_row_floats);
       reflection_index.resize(index_row + reflection_row_floats, 0.0f);
-      // (Near a black hole lit bodies are coloured per vertex: raster/hole_bodies.hpp.)
-      for (int k = 0; k < (two_colours ? 2 : 1) && spectral && !resolved.hole; ++k) {
+      // (Near a black hole lit bodies are coloured per vertex: raster/hole_bodies.hpp. A lit
+      // texture's colours are summed per sample: spectral_albedo.hpp.)
+      for (int k = 0; k < (two_colours ? 2 : 1) && spectral && !resolved.hole && !textured; ++k) {
         const Rgb albedo = colours[k];
         for (std::size_t l = 0; l < lights.size(); ++l) {
           const ReflectionKey key{albedo.r, albedo.g, albedo.b, l};
@@ -287,6 +291,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern, draw.lit});
     else
       draws.push_back(draw);
+  }
+  if (frame_features & kBodySpectralTextures) {
+    if (!spectral_albedo) spectral_albedo = std::make_unique<SpectralAlbedo>();
+    // Every product of the factors the reflection tables span.
+    spectral_albedo->prepare(
+        lighting, lights.size(), table_camera_first + table_light_first,
+        table_camera_last + table_light_first + (table_light_nodes - 1) * kTableLightStep);
   }
   glActiveTexture(GL_TEXTURE8);
   glBindTexture(GL_TEXTURE_2D, reflection_index_texture);

@@ -213,6 +213,12 @@ void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
               maps ? 2.0f / static_cast<float>(shadow_maps->face_size()) : 0.0f);
   glUniform1i(uniform(p, "visible_depth"), 6);
   if (frame_features & kBodyShadows) shadow_maps->bind(5);
+  // The spectral fit's samplers on units of their own in every program that has them, bound or
+  // not: samplers of two types on one unit make a draw fail.
+  if (frame_features & kBodySpectralTextures)
+    spectral_albedo->bind(p, kSpectralAlbedoUnit);
+  else
+    SpectralAlbedo::assign_units(p, kSpectralAlbedoUnit);
   glUniform1i(uniform(p, "caster_count"), static_cast<GLint>(casters.size()));
   for (std::size_t k = 0; k < casters.size(); ++k) {
     const auto name = [k](const char* field) { return fmt::format("{}[{}]", field, k); };

@@ -16,6 +16,7 @@
 #include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/raster/shadow_maps.hpp"
+#include "lightcone/raster/spectral_albedo.hpp"
 #include "lightcone/raster/star_pass.hpp"
 
 namespace lightcone {
@@ -65,6 +66,8 @@ struct RasterRenderer::Impl {
   // The lights' shadow maps: made with the first frame that casts shadows, kept while they
   // serve.
   std::unique_ptr<ShadowMaps> shadow_maps;
+  // Lit textures under the spectral model: made with the first frame that has them.
+  std::unique_ptr<SpectralAlbedo> spectral_albedo;
   std::vector<ExactCaster> casters;         // the frame's bodies whose shadows are met exactly
   std::unique_ptr<Lighting> kept_lighting;  // the lights' tables (prepare())
   // The shapes' rest meshes with their edges indexed, kept from frame to frame while some body

@@ -52,8 +52,8 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 // patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
 // offsets (several samples a pixel), the hue model's law (received_rgb), shadows
 // (lighting.glsl), the lit program's test against the visible-depth pass (a frame with lit
-// bodies draws one), lit textures, and clocks on meshes (their faces' texture maps). The defines
-// take out those a frame does not use.
+// bodies draws one), lit textures (and their spectral fit), and clocks on meshes (their faces'
+// texture maps). The defines take out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
@@ -63,7 +63,8 @@ enum BodyFeature {
   kBodyVisibleDepth = 32,
   kBodyLitTextures = 64,
   kBodyMeshClocks = 128,
-  kAllBodyFeatures = 255,
+  kBodySpectralTextures = 256,
+  kAllBodyFeatures = 511,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -75,6 +76,7 @@ inline std::string body_variant_defines(int features) {
   if (!(features & kBodyVisibleDepth)) defines += "#define LIGHTCONE_NO_VISIBLE_DEPTH 1\n";
   if (features & kBodyLitTextures) defines += "#define LIGHTCONE_LIT_TEXTURES 1\n";
   if (features & kBodyMeshClocks) defines += "#define LIGHTCONE_MESH_CLOCKS 1\n";
+  if (features & kBodySpectralTextures) defines += "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n";
   return defines;
 }
 

@@ -197,8 +197,15 @@ void main() {
 #endif
   vec3 surface_albedo = albedo[k];
 #if defined(LIGHTCONE_LIT_TEXTURES)
-  // A lit texture (the colour models other than spectral: they are linear in the albedo).
-  if (pattern == 2) surface_albedo = sample_bilinear(texture_image, body_uv(p), true);
+  // A lit texture: each sample's texel is its albedo (the colour models other than spectral are
+  // linear in it; under the spectral model it is fitted to a reflectance).
+  if (pattern == 2) {
+    surface_albedo = sample_bilinear(texture_image, body_uv(p), true);
+#if defined(LIGHTCONE_SPECTRAL_TEXTURES)
+    texel_reflectance = rgb_to_sigmoid(surface_albedo);
+    k = -1;
+#endif
+  }
 #endif
   vec3 c =
       lit_colour(surface_albedo, k, u, s, d, surface_velocity, normal, fragment_light_sample());

@@ -303,8 +303,97 @@ vec3 reflection_table(int first_row, float log_camera, float log_light) {
   return mix(a, b, y - j);
 }
 
+#if defined(LIGHTCONE_SPECTRAL_TEXTURES)
+// A lit texture under the spectral model (raster/spectral_albedo.hpp): each sample's albedo is
+// fitted to a reflectance spectrum as the tracer fits it, and its light summed wavelength by
+// wavelength. The Jakob-Hanika coefficient table: texel (i, j, 64 l + k) holds cell (l, k, j, i)
+// (color/sigmoid_polynomial.hpp's layout).
+uniform highp sampler3D rgb_to_spectrum;
+// Row 0: the CIE 1931 functions at 360, 361, ..., 830 nm as linear sRGB (the matrix applied),
+// over the integral of y-bar.
+uniform highp sampler2D cie_srgb;
+// Each light's spectrum against ln(lambda) from light_spectra_grid.x in steps of
+// 1 / light_spectra_grid.y, folded into rows of light_spectra_grid.z texels,
+// light_spectra_grid.w rows a light.
+uniform highp sampler2D light_spectra;
+uniform vec4 light_spectra_grid;
+// The fitted reflectance of the fragment's texel (set before lit_colour).
+vec3 texel_reflectance;
+
+// color/sigmoid_polynomial.hpp, rgb_to_spectrum_scale_node.
+float scale_node(int k) {
+  float t = float(k) / 63.0;
+  t = t * t * (3.0 - 2.0 * t);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// color/rgb_spectrum.cpp, rgb_to_sigmoid: the table's cell by the largest component and the
+// other two over it, coefficients interpolated trilinearly.
+vec3 rgb_to_sigmoid(vec3 rgb) {
+  vec3 c = clamp(rgb, 0.0, 1.0);
+  int l = 0;
+  if (c.y > c[l]) l = 1;
+  if (c.z > c[l]) l = 2;
+  float z = c[l];
+  if (z <= 0.0) return vec3(0.0, 0.0, -1e18);  // black: 0 at every wavelength
+  float fx = c[(l + 1) % 3] / z * 63.0, fy = c[(l + 2) % 3] / z * 63.0;
+  int xi = min(int(fx), 62), yi = min(int(fy), 62);
+  float dx = fx - float(xi), dy = fy - float(yi);
+  // The last node at or below z (nodes[0] = 0 < z), at most 62.
+  int lo = 0, hi = 63;
+  while (hi - lo > 1) {
+    int mid = (lo + hi) / 2;
+    if (scale_node(mid) <= z) lo = mid; else hi = mid;
+  }
+  int zi = min(lo, 62);
+  float z0 = scale_node(zi);
+  float dz = (z - z0) / (scale_node(zi + 1) - z0);
+  vec3 out_c = vec3(0.0);
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (int e = 0; e < 2; ++e) {
+        float w = (a == 1 ? dz : 1.0 - dz) * (b == 1 ? dy : 1.0 - dy) * (e == 1 ? dx : 1.0 - dx);
+        out_c += w * texelFetch(rgb_to_spectrum, ivec3(xi + e, yi + b, 64 * l + zi + a), 0).xyz;
+      }
+  return out_c;
+}
+
+// color/sigmoid_polynomial.hpp, SigmoidPolynomial (flat beyond 360 and 830 nm) and sigmoid.
+float reflectance_at(vec3 coefficients, float lambda) {
+  float u = (clamp(lambda, 360.0, 830.0) - 595.0) / 235.0;
+  float x = (coefficients.x * u + coefficients.y) * u + coefficients.z;
+  float r = sqrt(1.0 + x * x);
+  return x >= 0.0 ? (r + x) / (2.0 * r) : 1.0 / (2.0 * r * (r - x));
+}
+
+// Light l's spectrum at ln(lambda) = x, linear between the table's samples.
+float light_spectrum(int l, float x) {
+  float last = light_spectra_grid.z * light_spectra_grid.w - 2.0;
+  float p = clamp((x - light_spectra_grid.x) * light_spectra_grid.y, 0.0, last);
+  int j = int(p);
+  int width = int(light_spectra_grid.z), first_row = l * int(light_spectra_grid.w);
+  float a = texelFetch(light_spectra, ivec2(j % width, first_row + j / width), 0).r;
+  float b = texelFetch(light_spectra, ivec2((j + 1) % width, first_row + (j + 1) / width), 0).r;
+  return mix(a, b, p - float(j));
+}
+
+// color/doppler_table.hpp, xyz_of_reflection_seen_with_doppler: the texel's reflectance seen
+// with d_camera, lit by light l seen with d_light from the surface, by the 1 nm sum; as linear
+// sRGB.
+vec3 texel_reflected(int l, float d_camera, float d_light) {
+  float log_total = log(d_camera * d_light);
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < 471; ++i) {
+    float lambda = 360.0 + float(i);
+    sum += reflectance_at(texel_reflectance, d_camera * lambda) *
+           light_spectrum(l, log(lambda) + log_total) * texelFetch(cie_srgb, ivec2(i, 0), 0).rgb;
+  }
+  return sum;
+}
+#endif
+
 // frame/lighting.cpp, Lighting::received: the light a lit surface point of albedo `albedo`
-// (fixed colour `k`) sends to the camera, seen along u with factor d_camera; s is the ray
+// (fixed colour `k`, or -1 for a texel under the spectral model: texel_reflectance) sends to the camera, seen along u with factor d_camera; s is the ray
 // parameter of the surface point, surface_velocity its velocity in W (0 for the classical
 // picture) and normal its normal in its body's rest frame.
 vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surface_velocity,
@@ -325,10 +414,19 @@ vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surfac
     float gloss =
         glossy == 1 ? glossy_reflectance(normal, in_light.direction_to_light, to_camera) : 0.0;
     if (spectral == 1) {
-      vec2 index = texelFetch(reflection_index, ivec2(k * light_count + l, reflection_body), 0).xy;
-      vec3 reflected = index.y > 0.5 ? reflection_table(int(index.x), log(d_camera),
-                                                        log(in_light.doppler))
-                                     : received_colour(int(index.x), d_camera);
+      vec3 reflected;
+#if defined(LIGHTCONE_SPECTRAL_TEXTURES)
+      if (k < 0) {
+        reflected = texel_reflected(l, d_camera, in_light.doppler);
+      } else
+#endif
+      {
+        vec2 index =
+            texelFetch(reflection_index, ivec2(k * light_count + l, reflection_body), 0).xy;
+        reflected = index.y > 0.5
+                        ? reflection_table(int(index.x), log(d_camera), log(in_light.doppler))
+                        : received_colour(int(index.x), d_camera);
+      }
       seen += diffuse / kPi * in_light.spectral_factor * reflected;
       if (gloss > 0.0)
         seen += gloss * in_light.spectral_factor *

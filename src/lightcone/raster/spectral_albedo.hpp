@@ -1,0 +1,43 @@
+// Lit textures under the spectral model, for the raster renderer: what lighting.glsl needs to
+// colour a texel as the tracer does, fitting its albedo to a reflectance spectrum per sample
+// (rgb_to_sigmoid) and summing its light nanometre by nanometre
+// (xyz_of_reflection_seen_with_doppler): the coefficient table, the CIE functions, and each
+// light's spectrum tabulated against ln(lambda) over the wavelengths the frame's Doppler factors
+// reach (docs/design/raster.md, "Differences from the ray tracer").
+#pragma once
+
+#include "lightcone/frame/lighting.hpp"
+#include "lightcone/raster/gl.hpp"
+
+namespace lightcone {
+
+// Whether this build holds the whole coefficient table (the browser's page fits only the
+// columns it needs, so it draws these textures black).
+bool spectral_albedo_available();
+
+// The first of the three texture units the tables take.
+inline constexpr int kSpectralAlbedoUnit = 9;
+
+class SpectralAlbedo {
+ public:
+  // Uploads the coefficient table and the CIE functions (once).
+  SpectralAlbedo();
+  ~SpectralAlbedo();
+  SpectralAlbedo(const SpectralAlbedo&) = delete;
+  SpectralAlbedo& operator=(const SpectralAlbedo&) = delete;
+
+  // The lights' spectra for a frame whose camera-to-surface and surface-to-light factors
+  // multiply to at most e^(+-) the given logarithms.
+  void prepare(const Lighting& lighting, std::size_t light_count, double lowest_log_total,
+               double highest_log_total);
+  // Binds the tables to texture units first_unit .. first_unit + 2 for `program` (in use).
+  void bind(GLuint program, int first_unit) const;
+  // Points `program`'s samplers of the tables at those units, without the tables.
+  static void assign_units(GLuint program, int first_unit);
+
+ private:
+  GLuint coefficients_ = 0, cie_ = 0, spectra_ = 0;
+  float grid_[4] = {0, 1, 1, 1};  // lighting.glsl's light_spectra_grid
+};
+
+}  // namespace lightcone
