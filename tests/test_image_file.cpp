@@ -145,6 +145,16 @@ TEST_F(ImageFileTest, PngEncodedInStripsReadsBackExactlyOnAnyNumberOfThreads) {
   }
 }
 
+// An image with no pixels (or values that do not fill it) is refused, not written as a broken
+// file.
+TEST(PngEncode, RefusesAnEmptyImage) {
+  EXPECT_THROW(encode_png(make_image(0, 0, {})), std::runtime_error);
+  EXPECT_THROW(encode_png(make_image(2, 0, {})), std::runtime_error);
+  Image short_of_values = make_image(2, 2, std::vector<float>(12, 0.5f));
+  short_of_values.rgb.pop_back();
+  EXPECT_THROW(encode_png(short_of_values), std::runtime_error);
+}
+
 TEST_F(ImageFileTest, PngRoundTrip) {
   // Exact 8-bit levels come back exactly; other values within one level after encoding.
   std::vector<float> rgb;

@@ -5,6 +5,7 @@
 // that the strips joined are one zlib stream, as pigz writes gzip; the PNG container around it
 // is three chunks. The strips depend on the picture's width alone, so the bytes are
 // the same on any number of threads (tests/test_image_file.cpp reads them back with libspng).
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <zlib.h>
@@ -65,8 +66,8 @@ class Deflater {
   Deflater(const Deflater&) = delete;
   Deflater& operator=(const Deflater&) = delete;
 
-  // Deflates filtered[first, last), seeded with the window before `first`; the last strip
-  // finishes the stream.
+  // Deflates filtered[first, last) of `total` bytes, seeded with the bytes before `first`; the
+  // last strip finishes the stream.
   void strip(const unsigned char* filtered, std::size_t total, std::size_t first, std::size_t last,
              Strip& out) {
     if (deflateReset(&z_) != Z_OK) throw std::runtime_error("cannot encode PNG image (zlib)");
@@ -98,6 +99,11 @@ class Deflater {
 }  // namespace
 
 std::vector<unsigned char> encode_png(const Image& display) {
+  // PNG's sides are 1 to 2^31 - 1 pixels.
+  if (display.width <= 0 || display.height <= 0 ||
+      display.rgb.size() != 3 * static_cast<std::size_t>(display.width) * display.height)
+    throw std::runtime_error(fmt::format("cannot encode a {}x{} image of {} values as PNG",
+                                         display.width, display.height, display.rgb.size()));
   const std::size_t width = static_cast<std::size_t>(display.width);
   const std::size_t height = static_cast<std::size_t>(display.height);
   const std::size_t row = 3 * width, line = row + 1;
@@ -110,8 +116,8 @@ std::vector<unsigned char> encode_png(const Image& display) {
   const std::unique_ptr<unsigned char[]> filtered(new unsigned char[height * line]);
   display_rgb8(display, pixels.get());
   std::vector<Strip> deflated(strips);
-  // Each strip filters its own rows first, then deflates them with the window before them,
-  // which the strip above filters: so the filtering is one pass and the deflating another.
+  // Each strip filters its own rows first, then deflates them with the byte before them, which
+  // the strip above filters: so the filtering is one pass and the deflating another.
   parallel_for_pieces(std::size_t{0}, height, strip_rows, [&](std::size_t y0, std::size_t y1) {
     for (std::size_t y = y0; y < y1; ++y) {
       unsigned char* out = &filtered[y * line];
