@@ -452,6 +452,7 @@ void Lighting::prepare(const LitPoint& point, Shading& shading) const {
   shading.diffuse = object.material.glossy ? 1 - object.material.glossy->specular : 1.0;
   if (settings.doppler != DopplerModel::kSpectral) return;
   shading.camera_stencil = grid_stencil(camera_grid_, point.d_camera);
+  if (lights_.empty()) return;  // nothing to reflect (and no rows kept: the constructor)
   if (point.surface.fixed_colour >= 0)
     shading.reflections =
         &object_reflections_[hit.body][static_cast<std::size_t>(point.surface.fixed_colour)];
