@@ -8,13 +8,17 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "lightcone/color/doppler_table.hpp"
 #include "lightcone/color/rgb_spectrum.hpp"
+#include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/raster/spectral_albedo.hpp"
 #include "support/glsl_eval.hpp"
 #include "support/raster_agreement.hpp"
@@ -116,6 +120,51 @@ TEST(GlslSpectralAlbedo, FitAndReflectedColourMatchTheKernels) {
   }
   EXPECT_LT(worst_relative, 1e-4);
   std::printf("reflected colour: largest difference %.2g of its largest channel\n", worst_relative);
+}
+
+// A viewer keeps the lights' spectra with the lights' tables while they cover the frame: after
+// a frame from elsewhere, the next frame of lit textures under the spectral model is the one a
+// fresh renderer draws, whether the camera moved a little (spectra kept) or fast enough to need
+// wider ones.
+TEST(RasterSpectralTextures, KeptSpectraDrawWhatFreshOnesDo) {
+  const HeadlessGlContext context;
+  Scene scene = test::load_repository_scene("texture-mapping.json");
+  for (Object& o : scene.objects) o.material.unlit = false;
+  Light lamp;
+  lamp.name = "lamp";
+  lamp.kind = PointLight{};
+  lamp.world_line.position = scene.camera.world_line.position + Vec3{1, 2, 0};
+  lamp.world_line.velocity = {0.3, 0, 0};
+  lamp.intensity = 20;
+  scene.lights.push_back(lamp);
+  scene.camera.width = 160, scene.camera.height = 90;
+  const auto draw = [](RasterRenderer& renderer, const Scene& frame) {
+    const FloatTarget target(frame.camera.width, frame.camera.height);
+    target.bind();
+    const ResolvedScene resolved = resolve_scene(frame);
+    const EmissionTable emission(resolved);
+    renderer.prepare(resolved, emission, {}, /*on_gpu=*/false);
+    renderer.pass(0.5, 0.5, nullptr);
+    return target.read();
+  };
+  RasterRenderer kept;
+  draw(kept, scene);
+  for (const Vec3 velocity : {Vec3{0, 0, -0.05}, Vec3{0, 0, -0.9}}) {
+    SCOPED_TRACE(velocity.z);
+    Scene next = scene;
+    next.camera.world_line.velocity = velocity;
+    const Image again = draw(kept, next);
+    RasterRenderer fresh_renderer;
+    const Image fresh = draw(fresh_renderer, next);
+    ASSERT_EQ(again.rgb.size(), fresh.rgb.size());
+    std::size_t differing = 0, lit = 0;
+    for (std::size_t i = 0; i < fresh.rgb.size(); ++i) {
+      differing += std::abs(again.rgb[i] - fresh.rgb[i]) > 1e-5f * (1 + std::abs(fresh.rgb[i]));
+      lit += fresh.rgb[i] > 0;
+    }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_GT(lit, fresh.rgb.size() / 10);
+  }
 }
 
 // A clock on a mesh: its dial read at each face's texture coordinates, as the tracer does, on a
@@ -244,11 +293,13 @@ f 1/7 4/4 3/5
   test::write_text(dir / "lit.json", lit);
   // Under the spectral model each sample's texel is fitted to a reflectance and its light
   // summed nanometre by nanometre in both renderers: 4 samples a pixel, for time.
-  for (const char* settings :
-       {"--set render.doppler=rgb3", "--set render.doppler=off --set render.searchlight=off",
-        "--set render.doppler=hue --set render.searchlight=off", "--set render.searchlight=off"}) {
-    const bool spectral = std::string(settings).find("doppler") == std::string::npos;
-    const Agreement a = agreement((dir / "lit.json").string(), spectral ? 4 : 16,
+  const std::pair<const char*, int> lit_cases[] = {
+      {"--set render.doppler=rgb3", 16},
+      {"--set render.doppler=off --set render.searchlight=off", 16},
+      {"--set render.doppler=hue --set render.searchlight=off", 16},
+      {"--set render.searchlight=off", 4}};  // spectral
+  for (const auto& [settings, samples] : lit_cases) {
+    const Agreement a = agreement((dir / "lit.json").string(), samples,
                                   std::string("--set render.shadows=false ") + settings);
     EXPECT_GE(a.within, 0.99) << settings << ": " << a.compared << " pixels compared";
     EXPECT_EQ(a.raster_err, "") << settings;

@@ -73,7 +73,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   const RenderSettings& settings = s.render;
   // The lights' tables, kept from frame to frame while they serve (a viewer's frames differ in
   // the camera alone); built 0.25 of ln D wider than a frame needs, as the emission tables are.
-  if (kept_lighting && kept_lighting->serves(resolved))
+  const bool lighting_kept = kept_lighting && kept_lighting->serves(resolved);
+  if (lighting_kept)
     kept_lighting->follow(resolved);
   else
     kept_lighting = std::make_unique<Lighting>(resolved, nullptr, nullptr, 0.25);
@@ -294,10 +295,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   }
   if (frame_features & kBodySpectralTextures) {
     if (!spectral_albedo) spectral_albedo = std::make_unique<SpectralAlbedo>();
-    // Every product of the factors the reflection tables span.
-    spectral_albedo->prepare(
-        lighting, lights.size(), table_camera_first + table_light_first,
-        table_camera_last + table_light_first + (table_light_nodes - 1) * kTableLightStep);
+    // Every product of the factors the reflection tables span; the lights' spectra are kept
+    // with the lights' tables while they cover it.
+    const double lowest = table_camera_first + table_light_first;
+    const double highest =
+        table_camera_last + table_light_first + (table_light_nodes - 1) * kTableLightStep;
+    if (!lighting_kept || !spectral_albedo->covers(lowest, highest))
+      spectral_albedo->prepare(lighting, lights.size(), lowest, highest);
   }
   glActiveTexture(GL_TEXTURE8);
   glBindTexture(GL_TEXTURE_2D, reflection_index_texture);

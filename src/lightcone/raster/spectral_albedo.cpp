@@ -41,19 +41,21 @@ SpectralAlbedo::SpectralAlbedo() {
   // The table's layout is the texture's: cell (l, k, j, i) is texel (i, j, res l + k).
   glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, res, res, 3 * res, 0, GL_RGB, GL_FLOAT,
                detail::rgb_to_spectrum_table(0, 0, 0));
-  // The CIE functions as linear sRGB over the integral of y-bar: the sum of spectrum times row
-  // is then the colour's linear sRGB (the conversion is linear).
+  // The CIE functions as linear sRGB over the integral of y-bar (the sum of spectrum times row
+  // is then the colour's linear sRGB: the conversion is linear), and ln(lambda) beside them, so
+  // that the shader's sum takes no logarithm per wavelength.
   std::vector<float> rows;
-  rows.reserve(3 * kCieTableSize);
+  rows.reserve(4 * kCieTableSize);
   const double n = 1.0 / cie_y_integral();
   for (int i = 0; i < kCieTableSize; ++i) {
     const double* c = cie_data::kXyzBar1931[i];
     const LinearRgb rgb = linear_srgb_from_xyz({c[0] * n, c[1] * n, c[2] * n});
     rows.insert(rows.end(),
-                {static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b)});
+                {static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b),
+                 static_cast<float>(std::log(kCieMinWavelength + i))});
   }
   cie_ = nearest_texture(GL_TEXTURE_2D);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, kCieTableSize, 1, 0, GL_RGB, GL_FLOAT, rows.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kCieTableSize, 1, 0, GL_RGBA, GL_FLOAT, rows.data());
   spectra_ = nearest_texture(GL_TEXTURE_2D);
   check_gl("uploading the spectral albedo tables");
 }
@@ -65,8 +67,11 @@ SpectralAlbedo::~SpectralAlbedo() {
 
 void SpectralAlbedo::prepare(const Lighting& lighting, std::size_t light_count,
                              double lowest_log_total, double highest_log_total) {
-  const double first = std::log(kCieMinWavelength) + lowest_log_total;
-  const double last = std::log(kCieMaxWavelength) + highest_log_total;
+  lowest_ = lowest_log_total - kLogMargin;
+  highest_ = highest_log_total + kLogMargin;
+  prepared_ = true;
+  const double first = std::log(kCieMinWavelength) + lowest_;
+  const double last = std::log(kCieMaxWavelength) + highest_;
   const int samples = static_cast<int>(std::ceil((last - first) * kSamplesPerLogUnit)) + 2;
   const int rows = (samples + kRowTexels - 1) / kRowTexels;
   const std::size_t lights = std::max<std::size_t>(light_count, 1);

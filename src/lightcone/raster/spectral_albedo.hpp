@@ -27,9 +27,15 @@ class SpectralAlbedo {
   SpectralAlbedo& operator=(const SpectralAlbedo&) = delete;
 
   // The lights' spectra for a frame whose camera-to-surface and surface-to-light factors
-  // multiply to at most e^(+-) the given logarithms.
+  // multiply to between e^lowest_log_total and e^highest_log_total, tabulated kLogMargin wider
+  // on each side so that the next frames of a moving camera can keep them.
   void prepare(const Lighting& lighting, std::size_t light_count, double lowest_log_total,
                double highest_log_total);
+  // Whether the lights' spectra as last prepared cover those products.
+  bool covers(double lowest_log_total, double highest_log_total) const {
+    return prepared_ && lowest_log_total >= lowest_ && highest_log_total <= highest_;
+  }
+  static constexpr double kLogMargin = 0.25;
   // Binds the tables to texture units first_unit .. first_unit + 2 for `program` (in use).
   void bind(GLuint program, int first_unit) const;
   // Points `program`'s samplers of the tables at those units, without the tables.
@@ -38,6 +44,8 @@ class SpectralAlbedo {
  private:
   GLuint coefficients_ = 0, cie_ = 0, spectra_ = 0;
   float grid_[4] = {0, 1, 1, 1};  // lighting.glsl's light_spectra_grid
+  bool prepared_ = false;
+  double lowest_ = 0, highest_ = 0;  // the products of factors the spectra cover
 };
 
 }  // namespace lightcone

@@ -310,7 +310,7 @@ vec3 reflection_table(int first_row, float log_camera, float log_light) {
 // (color/sigmoid_polynomial.hpp's layout).
 uniform highp sampler3D rgb_to_spectrum;
 // Row 0: the CIE 1931 functions at 360, 361, ..., 830 nm as linear sRGB (the matrix applied),
-// over the integral of y-bar.
+// over the integral of y-bar, and ln(lambda) in alpha.
 uniform highp sampler2D cie_srgb;
 // Each light's spectrum against ln(lambda) from light_spectra_grid.x in steps of
 // 1 / light_spectra_grid.y, folded into rows of light_spectra_grid.z texels,
@@ -385,8 +385,9 @@ vec3 texel_reflected(int l, float d_camera, float d_light) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < 471; ++i) {
     float lambda = 360.0 + float(i);
+    vec4 cie = texelFetch(cie_srgb, ivec2(i, 0), 0);
     sum += reflectance_at(texel_reflectance, d_camera * lambda) *
-           light_spectrum(l, log(lambda) + log_total) * texelFetch(cie_srgb, ivec2(i, 0), 0).rgb;
+           light_spectrum(l, cie.a + log_total) * cie.rgb;
   }
   return sum;
 }
