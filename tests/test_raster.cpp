@@ -615,8 +615,9 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
 
 // A frame's body programs hold only the features its bodies use (raster/shader_build.hpp,
 // body_variant_defines); each such frame is drawn exactly as by the programs with every feature:
-// street.json (none), the spinning wheel, the twin paradox's clocks, street-lit.json (lit), and
-// the cubes with several samples a pixel (per-pixel shading offsets).
+// street.json (none), the spinning wheel, the twin paradox's clocks, street-lit.json (lit; and
+// with its towers moving, their shadows met exactly), and the cubes with several samples a pixel
+// (per-pixel shading offsets).
 TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
   const auto draw = [](const Scene& scene, bool specialise, bool offsets) {
     const HeadlessGlContext context;
@@ -643,14 +644,19 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
     bool offsets;
     bool hue = false;
     bool lit_textures = false;  // its textures lit by a lamp (the spectral fit per sample)
+    bool moving_meshes = false;  // its meshes moving relative to the lamps (met exactly)
   };
   for (const Case c :
        {Case{"street.json", false}, Case{"wheel.json", false}, Case{"twin-paradox.json", false},
         Case{"street-lit.json", false}, Case{"cubes.json", true},
-        Case{"street-lit.json", false, true}, Case{"texture-mapping.json", false, false, true}}) {
+        Case{"street-lit.json", false, true}, Case{"texture-mapping.json", false, false, true},
+        Case{"street-lit.json", false, false, false, true}}) {
     SCOPED_TRACE(c.scene);
     Scene scene = test::load_repository_scene(c.scene);
     if (c.hue) scene.render.doppler = DopplerModel::kHue;
+    if (c.moving_meshes)
+      for (Object& o : scene.objects)
+        if (std::holds_alternative<MeshShape>(o.shape)) o.world_line.velocity = {0, 0, 0.3};
     if (c.lit_textures) {
       for (Object& o : scene.objects) o.material.unlit = false;
       Light lamp;
@@ -712,6 +718,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n"},
       {"body-mesh-clocks.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_MESH_CLOCKS 1\n"},
+      {"body-lit-mesh-shadows.frag", shader_sources::body_frag, true,
+       patterns_and_lighting.c_str(), "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

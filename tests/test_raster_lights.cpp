@@ -10,6 +10,11 @@
 #include <numbers>
 #include <string>
 
+#include <random>
+
+#include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/shadow_casters.hpp"
+#include "lightcone/raster/shadow_maps.hpp"
 #include "support/raster_agreement.hpp"
 #include "support/test_support.hpp"
 
@@ -121,6 +126,160 @@ TEST(RasterAgreement, ShadowsOfMovingOccludersMatchTheRayTracer) {
   std::printf("moving occluders, raster without shadows: %.4f within 4/255\n", without.within);
   EXPECT_LT(without.within, 0.98);
   fs::remove_all(dir);
+}
+
+// Every kind of body casts: a mesh at 0.6c and the same mesh at rest (in the lamp's maps,
+// met exactly for the sun and the sphere lamp), an accelerated crate and a keyframed ball on
+// their tangent world-lines, a round ball spinning, and a row of twenty crates at 0.4c (any
+// number of exactly cast bodies), over a floor lit by a lamp, the sun and a sphere lamp.
+TEST(RasterAgreement, ShadowsOfMeshesAndBodiesInAnyMotionMatchTheRayTracer) {
+  const fs::path dir = test::fresh_temp_dir("casters");
+  // An arrowhead: a tetrahedron with a notch, eight faces, closed.
+  test::write_text(dir / "arrow.obj", R"(v 0 0 1.2
+v -0.8 0 -0.6
+v 0.8 0 -0.6
+v 0 0.7 -0.3
+v 0 -0.7 -0.3
+v 0 0 -0.1
+f 1 3 4
+f 1 4 2
+f 1 2 5
+f 1 5 3
+f 6 4 3
+f 6 2 4
+f 6 5 2
+f 6 3 5
+)");
+  std::string crates;
+  for (int i = 0; i < 20; ++i)
+    crates += fmt::format(
+        R"(,
+    {{"name": "crate-{}", "shape": {{"box": {{"size": [0.35, 0.35, 0.35]}}}},)"
+        R"( "position": [{:.2f}, 1.2, -6.5], "time": -4, "velocity": [0.4, 0, 0],)"
+        R"( "material": {{"color": [0.8, 0.6, 0.3], "unlit": false}}}})",
+        i, -7.5 + 0.7 * i);
+  test::write_text(dir / "scene.json", R"({
+  "camera": {"position": [0, 7, 9], "forward": [0, -0.65, -1], "fov": 65},
+  "objects": [
+    {"name": "floor", "shape": {"plane": {"size": [40, 40]}}, "position": [0, 0, -2],
+     "material": {"checker": {"size": 2, "colors": [[0.7, 0.7, 0.7], [0.5, 0.5, 0.55]]},
+                  "unlit": false}},
+    {"name": "dart", "shape": {"mesh": {"file": "arrow.obj"}}, "scale": [1.5, 1.5, 1.5],
+     "position": [-6, 2.2, -1], "time": -10, "velocity": [0.6, 0, 0],
+     "material": {"color": [0.3, 0.5, 0.9], "unlit": false}},
+    {"name": "statue", "shape": {"mesh": {"file": "arrow.obj"}}, "scale": [1.3, 1.3, 1.3],
+     "position": [3.5, 1.5, 1], "material": {"color": [0.9, 0.8, 0.6], "unlit": false}},
+    {"name": "rocket", "shape": {"box": {"size": [1.4, 0.8, 0.8]}}, "position": [-3, 2.5, 2],
+     "velocity": [0.3, 0, 0], "motion": {"phases": [{"duration": 4, "acceleration": [0.008, 0, -0.004]}]},
+     "material": {"color": [0.8, 0.3, 0.3], "unlit": false}},
+    {"name": "drone", "shape": {"sphere": {"radius": 0.6}},
+     "motion": {"keyframes": [{"time": -14, "position": [1, 2, -3]}, {"time": -4, "position": [2, 2.6, -2]},
+                              {"time": 6, "position": [2.5, 2.2, -1]}]},
+     "material": {"color": [0.4, 0.8, 0.4], "unlit": false}},
+    {"name": "globe", "shape": {"sphere": {"radius": 0.8}}, "position": [-1, 1.8, -4],
+     "velocity": [0, 0, 0.3], "time": -3, "spin": {"axis": [0.3, 1, 0], "rate": 20},
+     "material": {"checker": {"size": 0.4, "colors": [[0.9, 0.9, 0.9], [0.2, 0.2, 0.6]]},
+                  "unlit": false}})" + crates + R"(
+  ],
+  "lights": [
+    {"name": "lamp", "type": "point", "position": [0, 8, -1], "intensity": 220},
+    {"name": "sun", "type": "directional", "direction": [0.4, -1, -0.3], "irradiance": 0.3},
+    {"name": "bulb", "type": "sphere", "position": [5, 5, -2], "radius": 0.3, "intensity": 50}
+  ],
+  "sky": {"color": [0.02, 0.02, 0.03]},
+  "render": {"doppler": "off", "searchlight": "off", "exposure": 0}
+})");
+  const std::string scene = (dir / "scene.json").string();
+  expect_agreement(scene, "", 16);
+  // The shadows are seen: without them, more than 2 % of the pixels differ.
+  const Agreement without = agreement(scene, 16, "", "--set render.shadows=false");
+  std::printf("every caster, raster without shadows: %.4f within 4/255\n", without.within);
+  EXPECT_LT(without.within, 0.98);
+  fs::remove_all(dir);
+}
+
+// How each body casts (raster_shadow_cast): in a point or spot light's maps where it stands
+// still relative to the light, exactly otherwise, and not at all only where it spins and is not
+// a round sphere; the CLI's warning names just that.
+TEST(RasterShadowCast, EveryBodyCastsButSpinningShapesOtherThanSpheres) {
+  Scene scene;
+  Light lamp;
+  lamp.kind = PointLight{};
+  Light bulb = lamp;
+  bulb.kind = SphereLight{0.2};
+  Light sun;
+  sun.kind = DirectionalLight{};
+  auto mesh = std::make_shared<Mesh>();
+  mesh->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh->triangles = {{0, 1, 2}};
+  Object box, moving_mesh, ball, flat, spinning_box, still_mesh;
+  box.shape = Box{{1, 1, 1}};
+  still_mesh.shape = MeshShape{mesh};
+  moving_mesh.shape = MeshShape{mesh};
+  moving_mesh.world_line.velocity = {0.5, 0, 0};
+  ball.shape = Sphere{1};
+  ball.spin = Spin{{0, 1, 0}, 3};
+  flat = ball;
+  flat.scale = {1, 0.5, 1};
+  spinning_box = box;
+  spinning_box.spin = Spin{{0, 1, 0}, 3};
+  const RenderSettings& r = scene.render;
+  EXPECT_EQ(raster_shadow_cast(box, lamp, r), RasterShadowCast::kMap);
+  EXPECT_EQ(raster_shadow_cast(still_mesh, lamp, r), RasterShadowCast::kMap);
+  for (const Light& light : {bulb, sun}) {
+    EXPECT_EQ(raster_shadow_cast(box, light, r), RasterShadowCast::kExact);
+    EXPECT_EQ(raster_shadow_cast(still_mesh, light, r), RasterShadowCast::kExact);
+  }
+  EXPECT_EQ(raster_shadow_cast(moving_mesh, lamp, r), RasterShadowCast::kExact);
+  EXPECT_EQ(raster_shadow_cast(ball, lamp, r), RasterShadowCast::kExact);
+  EXPECT_EQ(raster_shadow_cast(flat, lamp, r), RasterShadowCast::kNone);
+  EXPECT_EQ(raster_shadow_cast(spinning_box, lamp, r), RasterShadowCast::kNone);
+
+  scene.lights = {lamp};
+  box.material.unlit = false;
+  scene.objects = {box, moving_mesh, ball, flat};
+  const std::vector<std::string> differences = raster_differences(scene);
+  ASSERT_EQ(differences.size(), 1u);
+  EXPECT_EQ(differences[0], "spinning bodies other than spheres cast no shadows");
+  scene.objects = {box, moving_mesh, ball};
+  EXPECT_TRUE(raster_differences(scene).empty());
+}
+
+// A mesh's hierarchy for exact shadows: every triangle in one leaf, every leaf's box holding
+// its triangles and every inner box its children's, leaves of at most four triangles, and a
+// depth the shader's stack holds (median splits: about log2 of the leaves).
+TEST(RasterShadowCast, MeshHierarchyHoldsEveryTriangleOnce) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-5, 5);
+  Mesh mesh;
+  for (int i = 0; i < 3000; ++i) mesh.positions.push_back({coordinate(random), coordinate(random), coordinate(random)});
+  std::uniform_int_distribution<std::uint32_t> vertex(0, 2999);
+  for (int i = 0; i < 5001; ++i) mesh.triangles.push_back({vertex(random), vertex(random), vertex(random)});
+  const CasterBvh bvh = build_caster_bvh(mesh);
+  std::vector<int> seen(mesh.triangles.size(), 0);
+  const auto holds = [](const CasterBvh::Node& n, const Vec3& p) {
+    for (int i = 0; i < 3; ++i)
+      if (p[i] < n.lower[i] || p[i] > n.upper[i]) return false;
+    return true;
+  };
+  for (std::size_t k = 0; k < bvh.nodes.size(); ++k) {
+    const CasterBvh::Node& n = bvh.nodes[k];
+    if (n.count == 0) {
+      for (const std::size_t child : {k + 1, static_cast<std::size_t>(n.second)}) {
+        ASSERT_LT(child, bvh.nodes.size());
+        EXPECT_TRUE(holds(n, bvh.nodes[child].lower) && holds(n, bvh.nodes[child].upper));
+      }
+      continue;
+    }
+    EXPECT_LE(n.count, 4);
+    for (int i = n.first; i < n.first + n.count; ++i) {
+      const std::uint32_t t = bvh.order[static_cast<std::size_t>(i)];
+      ++seen[t];
+      for (const std::uint32_t v : mesh.triangles[t]) EXPECT_TRUE(holds(n, mesh.positions[v]));
+    }
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size()));
+  EXPECT_LE(bvh.depth, 12);  // 5001 triangles: 11 halvings to leaves of four or fewer
 }
 
 // Each colour, searchlight and light-delay model on the lit street (shaded at the ray tracer's

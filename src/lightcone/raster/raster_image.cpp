@@ -31,33 +31,18 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     differences.push_back(
         "lit textured materials under the spectral model are drawn black in the browser");
   if (lit && scene.render.shadows && !scene.lights.empty()) {
-    bool uncast = false, from_centre = false;
-    std::size_t exact = 0;
-    for (const Object& o : scene.objects) {
-      bool any_exact = false;
-      for (const Light& light : scene.lights) {
-        const RasterShadowCast cast = raster_shadow_cast(o, light, scene.render);
-        uncast = uncast || cast == RasterShadowCast::kNone;
-        any_exact = any_exact || cast == RasterShadowCast::kExact;
-        from_centre = from_centre || (cast == RasterShadowCast::kMap &&
-                                      std::holds_alternative<SphereLight>(light.kind));
-      }
-      exact += any_exact;
-    }
     if (scene.black_hole) {
       differences.push_back("no shadows are cast near a black hole");
     } else {
-      if (uncast)
-        differences.push_back(
-            "accelerated, keyframed or spinning bodies and lights, and meshes moving relative to "
-            "a light or lit by a directional one, cast no shadows");
-      if (exact > static_cast<std::size_t>(kRasterMaxExactCasters))
-        differences.push_back(
-            fmt::format("only the first {} of the {} bodies moving relative to a light cast "
-                        "shadows of it",
-                        kRasterMaxExactCasters, exact));
-      if (from_centre)
-        differences.push_back("sphere lights cast meshes' shadows from their centres");
+      // Accelerated and keyframed bodies and lights cast on their tangent world-lines, as in
+      // the tracer.
+      const std::shared_ptr<const Scene> tangent = tangent_scene(scene);
+      const Scene& drawn = tangent ? *tangent : scene;
+      bool uncast = false;
+      for (const Object& o : drawn.objects)
+        for (const Light& light : drawn.lights)
+          uncast = uncast || raster_shadow_cast(o, light, drawn.render) == RasterShadowCast::kNone;
+      if (uncast) differences.push_back("spinning bodies other than spheres cast no shadows");
     }
   }
   if (scene.black_hole && textured)

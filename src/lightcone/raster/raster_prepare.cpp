@@ -315,7 +315,6 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
 
   // Shadows of the lights on the lit bodies (not near a black hole: its bodies are lit per
   // vertex, raster/hole_bodies.hpp).
-  casters.clear();
   const bool any_lit =
       std::any_of(draws.begin(), draws.end(), [](const BodyDraw& d) { return d.lit; });
   // Lit fragments are dear: a pass finds the visible depth first, so that hidden ones skip it.
@@ -323,8 +322,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   if (settings.shadows && any_lit && !resolved.hole && !lights.empty()) {
     if (!shadow_maps) shadow_maps = std::make_unique<ShadowMaps>();
     shadow_maps->prepare(resolved, lights.size());
-    casters = exact_casters(resolved, lights.size());
-    frame_features |= kBodyShadows;
+    if (!shadow_casters) shadow_casters = std::make_unique<ShadowCasters>();
+    shadow_casters->prepare(resolved, lights.size());
+    frame_features |= kBodyShadows | (shadow_casters->any_mesh() ? kBodyMeshShadows : 0);
   }
   RasterFrameStats stats;
   if (resolved.hole && !hole_body_list.empty()) {

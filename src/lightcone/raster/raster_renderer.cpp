@@ -219,14 +219,10 @@ void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
     spectral_albedo->bind(p, kSpectralAlbedoUnit);
   else
     SpectralAlbedo::assign_units(p, kSpectralAlbedoUnit);
-  glUniform1i(uniform(p, "caster_count"), static_cast<GLint>(casters.size()));
-  for (std::size_t k = 0; k < casters.size(); ++k) {
-    const auto name = [k](const char* field) { return fmt::format("{}[{}]", field, k); };
-    glUniform1i(uniform(p, name("caster_kind").c_str()), casters[k].kind);
-    set_mat4(p, name("caster_linear").c_str(), casters[k].linear);
-    set_vec3(p, name("caster_offset").c_str(), casters[k].offset);
-    set_vec3(p, name("caster_size").c_str(), casters[k].size);
-  }
+  if (frame_features & kBodyShadows)
+    shadow_casters->bind(p, kCasterTableUnit, kCasterMeshUnit);
+  else
+    glUniform1i(uniform(p, "caster_count"), 0);
   // The linear part of the map from F to W: events relative to the observation event.
   set_mat4(p, "trace_to_world", resolved.trace_to_world.linear);
   set_vec3(p, "camera_velocity",

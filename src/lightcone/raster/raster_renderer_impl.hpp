@@ -15,6 +15,7 @@
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/raster/shadow_casters.hpp"
 #include "lightcone/raster/shadow_maps.hpp"
 #include "lightcone/raster/spectral_albedo.hpp"
 #include "lightcone/raster/star_pass.hpp"
@@ -68,7 +69,8 @@ struct RasterRenderer::Impl {
   std::unique_ptr<ShadowMaps> shadow_maps;
   // Lit textures under the spectral model: made with the first frame that has them.
   std::unique_ptr<SpectralAlbedo> spectral_albedo;
-  std::vector<ExactCaster> casters;         // the frame's bodies whose shadows are met exactly
+  // The bodies whose shadows are met exactly: made with the first frame that casts shadows.
+  std::unique_ptr<ShadowCasters> shadow_casters;
   std::unique_ptr<Lighting> kept_lighting;  // the lights' tables (prepare())
   // The shapes' rest meshes with their edges indexed, kept from frame to frame while some body
   // has the shape: keyed by the shape's values (a mesh's by its address, held so that it

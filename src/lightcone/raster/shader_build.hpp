@@ -52,8 +52,9 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 // patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
 // offsets (several samples a pixel), the hue model's law (received_rgb), shadows
 // (lighting.glsl), the lit program's test against the visible-depth pass (a frame with lit
-// bodies draws one), lit textures (and their spectral fit), and clocks on meshes (their faces'
-// texture maps). The defines take out those a frame does not use.
+// bodies draws one), lit textures (and their spectral fit), clocks on meshes (their faces'
+// texture maps), and the shadows of meshes met exactly. The defines take out those a frame
+// does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
@@ -64,7 +65,8 @@ enum BodyFeature {
   kBodyLitTextures = 64,
   kBodyMeshClocks = 128,
   kBodySpectralTextures = 256,
-  kAllBodyFeatures = 511,
+  kBodyMeshShadows = 512,
+  kAllBodyFeatures = 1023,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -77,6 +79,7 @@ inline std::string body_variant_defines(int features) {
   if (features & kBodyLitTextures) defines += "#define LIGHTCONE_LIT_TEXTURES 1\n";
   if (features & kBodyMeshClocks) defines += "#define LIGHTCONE_MESH_CLOCKS 1\n";
   if (features & kBodySpectralTextures) defines += "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n";
+  if (features & kBodyMeshShadows) defines += "#define LIGHTCONE_MESH_SHADOWS 1\n";
   return defines;
 }
 

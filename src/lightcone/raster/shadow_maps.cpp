@@ -34,61 +34,20 @@ void append(std::vector<double>& key, const Vec3& v) {
 
 RasterShadowCast raster_shadow_cast(const Object& object, const Light& light,
                                     const RenderSettings& settings) {
-  if (!object.motion.inertial() || object.spin || object.motion.geodesic ||
-      !light.motion.inertial())
-    return RasterShadowCast::kNone;
-  const bool analytic = !std::holds_alternative<MeshShape>(object.shape);
+  if (object.motion.geodesic) return RasterShadowCast::kNone;
+  if (object.spin) {
+    // A sphere spinning about its centre keeps its shape; other shapes turn along the ray.
+    const Vec3 k{std::abs(object.scale.x), std::abs(object.scale.y), std::abs(object.scale.z)};
+    const bool round = std::holds_alternative<Sphere>(object.shape) && k.x == k.y && k.y == k.z;
+    return round && object.motion.inertial() ? RasterShadowCast::kExact : RasterShadowCast::kNone;
+  }
+  // Resolved scenes hold no other motion; a body or light beyond its tangent is not cast.
+  if (!object.motion.inertial() || !light.motion.inertial()) return RasterShadowCast::kNone;
   const Vec3 relative = object.world_line.velocity - light.world_line.velocity;
   const bool at_rest = !settings.relativity || dot(relative, relative) <= 1e-24;
-  if (at_rest && !std::holds_alternative<DirectionalLight>(light.kind) &&
-      !(analytic && std::holds_alternative<SphereLight>(light.kind)))
-    return RasterShadowCast::kMap;
-  return analytic ? RasterShadowCast::kExact : RasterShadowCast::kNone;
-}
-
-std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t lights,
-                                       std::size_t* left_out) {
-  const Scene& s = *scene.scene;
-  std::vector<ExactCaster> out;
-  std::size_t more = 0;
-  for (const Object& o : s.objects) {
-    bool exact = false;
-    for (std::size_t l = 0; l < lights && !exact; ++l)
-      exact = raster_shadow_cast(o, s.lights[l], s.render) == RasterShadowCast::kExact;
-    if (!exact) continue;
-    if (out.size() == static_cast<std::size_t>(kRasterMaxExactCasters)) {
-      ++more;
-      continue;
-    }
-    ExactCaster c;
-    Vec3 scale_inverse{1 / o.scale.x, 1 / o.scale.y, 1 / o.scale.z};
-    if (const auto* box = std::get_if<Box>(&o.shape)) {
-      c.kind = 1;
-      c.size = box->size;
-    } else if (const auto* plane = std::get_if<Plane>(&o.shape)) {
-      c.kind = 2;
-      c.size = {plane->size_x, 0, plane->size_z};
-    } else if (const auto* sphere = std::get_if<Sphere>(&o.shape)) {
-      c.kind = 3;
-      c.size = {sphere->radius, 0, 0};
-    }
-    // W event -> the body's rest frame (about its origin) -> shape coordinates, for events
-    // relative to the observation event.
-    const AffineMap4 rest = body_frame_map(s.render, o.world_line);
-    const Mat3 unshape = Mat3::diagonal(scale_inverse) * o.rotation.transposed();
-    const Vec4 at_observation = rest(scene.observation_event);
-    for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 4; ++k) {
-        double v = 0;
-        for (int j = 0; j < 3; ++j) v += unshape.m[r][j] * rest.linear.m[1 + j][k];
-        c.linear.m[r][k] = v;
-      }
-    for (int k = 0; k < 4; ++k) c.linear.m[3][k] = 0;
-    c.offset = unshape * at_observation.x;
-    out.push_back(c);
-  }
-  if (left_out) *left_out = more;
-  return out;
+  const bool from_a_point =
+      std::holds_alternative<PointLight>(light.kind) || std::holds_alternative<SpotLight>(light.kind);
+  return at_rest && from_a_point ? RasterShadowCast::kMap : RasterShadowCast::kExact;
 }
 
 ShadowMaps::ShadowMaps() {

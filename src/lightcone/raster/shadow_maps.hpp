@@ -1,12 +1,12 @@
-// Retarded shadows for the raster renderer. For each point, spot or sphere light, a cube of
+// Retarded shadows for the raster renderer. For each point or spot light, a cube of
 // distance maps of the bodies at rest relative to it, in its rest frame R. There those bodies
 // and the light stand still, so the backward null ray from a lit surface event to the light's
 // emission event (the tracer's shadow ray) runs along the straight segment from the light's
 // fixed position to the surface's position in R, whatever the event's time: the map answers
 // the tracer's question exactly, to its resolution. In the classical picture the bodies stand
 // where they are at the camera's time and the map is of that instant (docs/design/raster.md,
-// "Shadows"). Bodies moving relative to a light are met exactly along each shadow ray where
-// their shapes allow it (raster_shadow_cast).
+// "Shadows"). Other bodies are met exactly along each shadow ray (raster_shadow_cast,
+// raster/shadow_casters.hpp).
 #pragma once
 
 #include <map>
@@ -18,34 +18,19 @@
 
 namespace lightcone {
 
-// How the raster renderer casts body `object`'s shadow of light `light`:
-// - kMap: in the light's maps. The body stands still relative to the light (inertial, not
-//   spinning, at the light's velocity; in the classical picture every inertial, unspinning body
-//   does, at the camera's time), the light is a point, spot or sphere light (a sphere light's
-//   maps are made from its centre; spheres, boxes and planes are tested exactly instead);
+// How the raster renderer casts body `object`'s shadow of light `light`, both of a resolved
+// scene (accelerated and keyframed bodies and lights on their tangent world-lines, as the tracer
+// draws them: ResolvedScene::scene):
+// - kMap: in the light's maps (point and spot lights). The body stands still relative to the
+//   light: inertial, not spinning, at the light's velocity (in the classical picture every
+//   inertial, unspinning body does, at the camera's time);
 // - kExact: by meeting its shape exactly along each shadow ray, carried into its rest frame as
-//   the tracer does (a sphere, box or plane moving relative to the light, or lit by a
-//   directional or sphere light);
-// - kNone: not at all (accelerated, keyframed or spinning bodies or lights, and meshes moving
-//   relative to the light or lit by a directional light).
+//   the tracer does (raster/shadow_casters.hpp): every other body, lit by any light, except
+// - kNone: spinning bodies other than round spheres (their shape turns along the shadow ray),
+//   and bodies on geodesics near a black hole.
 enum class RasterShadowCast { kMap, kExact, kNone };
 RasterShadowCast raster_shadow_cast(const Object& object, const Light& light,
                                     const RenderSettings& settings);
-
-// The bodies whose shadows are met exactly, at most kRasterMaxExactCasters of them (lighting.glsl's
-// uniform arrays): a shape kind (box 1, plane 2, sphere 3, as patterns.glsl's shape_kind), the
-// map from W events (relative to the observation event) to its shape coordinates, (linear e).x
-// + offset, and its size (box sides; plane sides in x and z; sphere radius in x).
-inline constexpr int kRasterMaxExactCasters = 16;
-struct ExactCaster {
-  int kind = 0;
-  Mat4 linear;
-  Vec3 offset, size;
-};
-// Of the scene's bodies, those cast exactly for any of its first `lights` lights, in the scene's
-// order, and how many more there were.
-std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t lights,
-                                       std::size_t* left_out = nullptr);
 
 // What the lit body programs read of one light's maps (lighting.glsl's shadow uniforms).
 struct ShadowMapView {

@@ -156,34 +156,97 @@ bool shadowed(Lamp light, vec4 surface, float cos_incidence) {
   return stored < 1.0 && distance > stored * light.shadow_far + bias;
 }
 
-// raster/shadow_maps.hpp's exact casters: each body's shape met along the shadow ray carried
-// into its rest frame, where it stands still (trace/tracer.cpp's shadow rays: the segment
-// between kShadowEpsilon and 1 - kShadowEpsilon of the way to the emission event).
-const int kMaxExactCasters = 16;
+// raster/shadow_casters.hpp: each body's shape met along the shadow ray carried into its rest
+// frame, where it stands still (trace/tracer.cpp's shadow rays: the segment between
+// kShadowEpsilon and 1 - kShadowEpsilon of the way to the emission event). Any number of them,
+// five texels each in caster_table: (size, kind), the map's three rows (spatial, time) from W
+// events relative to the observation event to shape coordinates, (offset, a mesh's root node).
 uniform int caster_count;
-uniform int caster_kind[kMaxExactCasters];     // 1 box, 2 plane, 3 sphere
-uniform mat4 caster_linear[kMaxExactCasters];  // W events to shape coordinates: (linear e).xyz
-uniform vec3 caster_offset[kMaxExactCasters];  // + offset
-uniform vec3 caster_size[kMaxExactCasters];    // box sides; plane sides in x and z; radius
+uniform highp sampler2D caster_table;
+const int kCasterTexelsPerRow = 2048;  // shadow_casters.cpp's kTexelsPerRow
 const float kShadowEpsilon = 1e-5;
 
-// Whether caster k meets the segment a + t (b - a), t in (t_near, t_far), of shape coordinates.
-bool caster_meets(int k, vec3 a, vec3 d, float t_near, float t_far) {
-  vec3 size = caster_size[k];
-  if (caster_kind[k] == 3) {
+vec4 caster_texel(int i) {
+  return texelFetch(caster_table, ivec2(i % kCasterTexelsPerRow, i / kCasterTexelsPerRow), 0);
+}
+
+#ifdef LIGHTCONE_MESH_SHADOWS
+// The meshes' hierarchies (shadow_casters.hpp's CasterBvh): a node is two texels, (lower, leaf
+// count) and (upper, its second child's texel or its first triangle's), its first child the
+// next node; a triangle is three texels, its corners.
+uniform highp sampler2D caster_meshes;
+const int kCasterBvhMaxDepth = 32;  // shadow_casters.hpp
+
+vec4 mesh_texel(int i) {
+  return texelFetch(caster_meshes, ivec2(i % kCasterTexelsPerRow, i / kCasterTexelsPerRow), 0);
+}
+
+// Whether the segment a + t d, t in (t_near, t_far), meets a triangle of the mesh whose root
+// node is texel `root`: trace/tracer.cpp's mesh hits (Moller and Trumbore's test).
+bool mesh_meets(int root, vec3 a, vec3 d, float t_near, float t_far) {
+  // A zero component would make 0 * inf in the slabs.
+  vec3 safe = mix(d, vec3(1e-30), equal(d, vec3(0.0)));
+  vec3 inv = 1.0 / safe;
+  int stack[kCasterBvhMaxDepth];
+  int top = 0;
+  int node = root;
+  while (true) {
+    vec4 lower = mesh_texel(node), upper = mesh_texel(node + 1);
+    vec3 t0 = (lower.xyz - a) * inv, t1 = (upper.xyz - a) * inv;
+    vec3 enter = min(t0, t1), leave = max(t0, t1);
+    float near = max(t_near, max(enter.x, max(enter.y, enter.z)));
+    float far = min(t_far, min(leave.x, min(leave.y, leave.z)));
+    if (near <= far) {
+      int count = int(lower.w);
+      if (count == 0) {
+        stack[top++] = int(upper.w);
+        node += 2;
+        continue;
+      }
+      int first = int(upper.w);
+      for (int i = 0; i < count; ++i) {
+        vec3 v0 = mesh_texel(first + 3 * i).xyz;
+        vec3 e1 = mesh_texel(first + 3 * i + 1).xyz - v0;
+        vec3 e2 = mesh_texel(first + 3 * i + 2).xyz - v0;
+        vec3 p = cross(d, e2);
+        float det = dot(e1, p);
+        if (det == 0.0) continue;
+        float inv_det = 1.0 / det;
+        vec3 s = a - v0;
+        float u = dot(s, p) * inv_det;
+        vec3 q = cross(s, e1);
+        float v = dot(d, q) * inv_det;
+        float t = dot(e2, q) * inv_det;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > t_near && t < t_far) return true;
+      }
+    }
+    if (top == 0) return false;
+    node = stack[--top];
+  }
+  return false;
+}
+#endif
+
+// Whether a caster of kind `kind` (1 box, 2 plane, 3 sphere, 4 mesh) and size `size` (a mesh's
+// root node `root`) meets the segment a + t d, t in (t_near, t_far), of shape coordinates.
+bool caster_meets(int kind, vec3 size, int root, vec3 a, vec3 d, float t_near, float t_far) {
+  if (kind == 3) {
     float qa = dot(d, d), qb = dot(a, d), qc = dot(a, a) - size.x * size.x;
     float disc = qb * qb - qa * qc;
     if (disc < 0.0) return false;
-    float root = sqrt(disc);
-    float t0 = (-qb - root) / qa, t1 = (-qb + root) / qa;
+    float root_of = sqrt(disc);
+    float t0 = (-qb - root_of) / qa, t1 = (-qb + root_of) / qa;
     return (t0 > t_near && t0 < t_far) || (t1 > t_near && t1 < t_far);
   }
-  if (caster_kind[k] == 2) {
+  if (kind == 2) {
     if (d.y == 0.0) return false;
     float t = -a.y / d.y;
     vec3 p = a + t * d;
     return t > t_near && t < t_far && abs(p.x) <= 0.5 * size.x && abs(p.z) <= 0.5 * size.z;
   }
+#ifdef LIGHTCONE_MESH_SHADOWS
+  if (kind == 4) return mesh_meets(root, a, d, t_near, t_far);
+#endif
   // A box: the slabs' overlap, the nearer of its ends within the segment.
   vec3 h = 0.5 * size;
   vec3 inv = 1.0 / d;
@@ -197,11 +260,20 @@ bool caster_meets(int k, vec3 a, vec3 d, float t_near, float t_far) {
 // Whether any exact caster blocks the shadow ray from the surface event to `end` (or backward
 // along direction `end` without end).
 bool exactly_shadowed(vec4 surface, vec4 end, bool to_infinity) {
-  for (int k = 0; k < kMaxExactCasters; ++k) {
-    if (k >= caster_count) break;
-    vec3 a = (caster_linear[k] * surface).xyz + caster_offset[k];
-    vec3 d = (caster_linear[k] * (to_infinity ? -end : end - surface)).xyz;
-    if (caster_meets(k, a, d, kShadowEpsilon, to_infinity ? 1e30 : 1.0 - kShadowEpsilon))
+  vec4 direction = to_infinity ? -end : end - surface;
+  float t_far = to_infinity ? 1e30 : 1.0 - kShadowEpsilon;
+  for (int k = 0; k < caster_count; ++k) {
+    int base = 5 * k;
+    vec4 head = caster_texel(base);
+    vec4 r0 = caster_texel(base + 1), r1 = caster_texel(base + 2), r2 = caster_texel(base + 3);
+    vec4 tail = caster_texel(base + 4);
+    vec3 a = vec3(dot(r0.xyz, surface.yzw) + r0.w * surface.x,
+                  dot(r1.xyz, surface.yzw) + r1.w * surface.x,
+                  dot(r2.xyz, surface.yzw) + r2.w * surface.x) + tail.xyz;
+    vec3 d = vec3(dot(r0.xyz, direction.yzw) + r0.w * direction.x,
+                  dot(r1.xyz, direction.yzw) + r1.w * direction.x,
+                  dot(r2.xyz, direction.yzw) + r2.w * direction.x);
+    if (caster_meets(int(head.w), head.xyz, int(tail.w), a, d, kShadowEpsilon, t_far))
       return true;
   }
   return false;

@@ -1,0 +1,216 @@
+#include "lightcone/raster/shadow_casters.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/shadow_maps.hpp"
+
+namespace lightcone {
+namespace {
+
+// Both textures are rows of this many RGBA texels (lighting.glsl's kCasterTexelsPerRow).
+constexpr int kTexelsPerRow = 2048;
+// A caster's texels in the table: its kind and size, the three rows of its map, its offset and
+// (a mesh) its root node.
+constexpr int kCasterTexels = 5;
+constexpr int kLeafTriangles = 4;
+
+// Uploads `texels` RGBA floats as rows of kTexelsPerRow texels.
+void upload_rows(GLuint texture, int unit, std::vector<float>& texels, const char* what) {
+  const std::size_t count = std::max<std::size_t>(texels.size() / 4, 1);
+  const std::size_t rows = (count + kTexelsPerRow - 1) / kTexelsPerRow;
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+  // A texel's index must also stay exact as a float (2^24).
+  if (rows > static_cast<std::size_t>(largest) || count > (std::size_t{1} << 24))
+    throw GlUnavailable(std::string("the ") + what + " need " + std::to_string(rows) +
+                        " rows of a texture, more than this GL driver allows (" +
+                        std::to_string(largest) + ")");
+  texels.resize(4 * rows * kTexelsPerRow, 0.0f);
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTexelsPerRow, static_cast<GLsizei>(rows), 0,
+               GL_RGBA, GL_FLOAT, texels.data());
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void push(std::vector<float>& out, const Vec3& v, double w) {
+  out.insert(out.end(), {static_cast<float>(v.x), static_cast<float>(v.y),
+                         static_cast<float>(v.z), static_cast<float>(w)});
+}
+
+Bounds3 nothing() {
+  const double inf = std::numeric_limits<double>::infinity();
+  return {{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+
+void extend(Bounds3& b, const Vec3& p) {
+  for (int i = 0; i < 3; ++i) {
+    b.lower[i] = std::min(b.lower[i], p[i]);
+    b.upper[i] = std::max(b.upper[i], p[i]);
+  }
+}
+
+struct BvhBuilder {
+  const Mesh& mesh;
+  std::vector<Vec3> centres;
+  CasterBvh bvh;
+
+  Bounds3 bounds_of(std::size_t begin, std::size_t end) const {
+    Bounds3 b = nothing();
+    for (std::size_t i = begin; i < end; ++i)
+      for (const std::uint32_t v : mesh.triangles[bvh.order[i]]) extend(b, mesh.positions[v]);
+    return b;
+  }
+
+  void build(std::size_t begin, std::size_t end, int depth) {
+    bvh.depth = std::max(bvh.depth, depth);
+    const int index = static_cast<int>(bvh.nodes.size());
+    bvh.nodes.emplace_back();
+    const Bounds3 box = bounds_of(begin, end);
+    bvh.nodes[index].lower = box.lower;
+    bvh.nodes[index].upper = box.upper;
+    // Median splits halve the count, so the depth stays within the stack for any mesh that
+    // fits the texture; the guard keeps it there regardless.
+    if (end - begin <= kLeafTriangles || depth == kCasterBvhMaxDepth) {
+      bvh.nodes[index].count = static_cast<int>(end - begin);
+      bvh.nodes[index].first = static_cast<int>(begin);
+      return;
+    }
+    Bounds3 spread = nothing();
+    for (std::size_t i = begin; i < end; ++i) extend(spread, centres[bvh.order[i]]);
+    const Vec3 size = spread.upper - spread.lower;
+    const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+    const std::size_t middle = begin + (end - begin) / 2;
+    std::nth_element(bvh.order.begin() + static_cast<std::ptrdiff_t>(begin),
+                     bvh.order.begin() + static_cast<std::ptrdiff_t>(middle),
+                     bvh.order.begin() + static_cast<std::ptrdiff_t>(end),
+                     [&](std::uint32_t a, std::uint32_t b) {
+                       return centres[a][axis] < centres[b][axis];
+                     });
+    build(begin, middle, depth + 1);
+    bvh.nodes[index].second = static_cast<int>(bvh.nodes.size());
+    build(middle, end, depth + 1);
+  }
+};
+
+}  // namespace
+
+std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t lights) {
+  const Scene& s = *scene.scene;
+  std::vector<ExactCaster> out;
+  for (std::size_t b = 0; b < s.objects.size(); ++b) {
+    const Object& o = s.objects[b];
+    bool exact = false;
+    for (std::size_t l = 0; l < lights && !exact; ++l)
+      exact = raster_shadow_cast(o, s.lights[l], s.render) == RasterShadowCast::kExact;
+    if (!exact) continue;
+    ExactCaster c;
+    if (const auto* box = std::get_if<Box>(&o.shape)) {
+      c.kind = 1;
+      c.size = box->size;
+    } else if (const auto* plane = std::get_if<Plane>(&o.shape)) {
+      c.kind = 2;
+      c.size = {plane->size_x, 0, plane->size_z};
+    } else if (const auto* sphere = std::get_if<Sphere>(&o.shape)) {
+      c.kind = 3;
+      c.size = {sphere->radius, 0, 0};
+    } else {
+      c.kind = 4;
+      c.mesh = std::get<MeshShape>(o.shape).mesh;
+      if (c.mesh->triangles.empty()) continue;  // casts nothing
+    }
+    // The tracer's map from W events to shape coordinates, for events relative to the
+    // observation event.
+    const WorldShapeMap& map = scene.world_maps[b];
+    for (int r = 0; r < 3; ++r)
+      c.rows[static_cast<std::size_t>(r)] = {
+          map.time_column[r], {map.spatial.m[r][0], map.spatial.m[r][1], map.spatial.m[r][2]}};
+    c.offset = map.shape_point(scene.observation_event);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+CasterBvh build_caster_bvh(const Mesh& mesh) {
+  BvhBuilder builder{mesh, {}, {}};
+  builder.centres.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    builder.centres.push_back(
+        (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0);
+  builder.bvh.order.resize(mesh.triangles.size());
+  std::iota(builder.bvh.order.begin(), builder.bvh.order.end(), 0u);
+  builder.build(0, mesh.triangles.size(), 1);
+  return std::move(builder.bvh);
+}
+
+ShadowCasters::ShadowCasters() {
+  glGenTextures(1, &table_texture_);
+  glGenTextures(1, &mesh_texture_);
+}
+
+ShadowCasters::~ShadowCasters() {
+  glDeleteTextures(1, &mesh_texture_);
+  glDeleteTextures(1, &table_texture_);
+}
+
+void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
+  const std::vector<ExactCaster> casters = exact_casters(scene, lights);
+  count_ = static_cast<int>(casters.size());
+  any_mesh_ = false;
+
+  // The meshes' hierarchies: made again only when the set of meshes cast changes.
+  std::map<std::shared_ptr<const Mesh>, int> roots;
+  for (const ExactCaster& c : casters)
+    if (c.mesh) roots.emplace(c.mesh, 0);
+  any_mesh_ = !roots.empty();
+  bool same = roots.size() == mesh_roots_.size() &&
+              std::equal(roots.begin(), roots.end(), mesh_roots_.begin(),
+                         [](const auto& a, const auto& b) { return a.first == b.first; });
+  if (!same && any_mesh_) {
+    // Per mesh: its nodes (two texels each: lower and leaf count, upper and second child or
+    // first triangle), then its triangles (three texels each, a corner a texel).
+    std::vector<float> texels;
+    for (auto& [mesh, root] : roots) {
+      const CasterBvh bvh = build_caster_bvh(*mesh);
+      root = static_cast<int>(texels.size() / 4);
+      const int triangles = root + 2 * static_cast<int>(bvh.nodes.size());
+      for (const CasterBvh::Node& n : bvh.nodes) {
+        push(texels, n.lower, n.count);
+        push(texels, n.upper, n.count ? triangles + 3 * n.first : root + 2 * n.second);
+      }
+      for (const std::uint32_t t : bvh.order)
+        for (const std::uint32_t v : mesh->triangles[t]) push(texels, mesh->positions[v], 0);
+    }
+    upload_rows(mesh_texture_, 0, texels, "shadows of meshes");
+  }
+  if (!same) mesh_roots_ = std::move(roots);
+
+  table_.clear();
+  for (const ExactCaster& c : casters) {
+    push(table_, c.size, c.kind);
+    for (const Vec4& row : c.rows) push(table_, row.x, row.t);
+    push(table_, c.offset, c.mesh ? mesh_roots_.at(c.mesh) : 0);
+  }
+  upload_rows(table_texture_, 0, table_, "shadow casters");
+  check_gl("preparing the shadow casters");
+}
+
+void ShadowCasters::bind(GLuint program, int table_unit, int mesh_unit) const {
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + table_unit));
+  glBindTexture(GL_TEXTURE_2D, table_texture_);
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + mesh_unit));
+  glBindTexture(GL_TEXTURE_2D, mesh_texture_);
+  glActiveTexture(GL_TEXTURE0);
+  glUniform1i(uniform(program, "caster_count"), count_);
+  glUniform1i(uniform(program, "caster_table"), table_unit);
+  glUniform1i(uniform(program, "caster_meshes"), mesh_unit);
+}
+
+}  // namespace lightcone
