@@ -88,10 +88,10 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
         "where its light left for the surface, along the curved ray");
   if (raster)
     for (const Object& o : scene.objects)
-      if (std::holds_alternative<Texture>(o.material.pattern))
+      if (std::holds_alternative<Texture>(o.material.pattern) && !o.material.unlit)
         refuse(fmt::format(
-            "the raster renderer and the viewer do not draw textured objects near a black hole "
-            "yet, and \"{}\" is textured; render with the ray tracer (the default)",
+            "the raster renderer and the viewer do not light textures near a black hole yet, "
+            "and \"{}\" is a lit texture; render with the ray tracer (the default)",
             o.name));
   if (what) refuse(std::string(what) + " is not available near a black hole yet");
 }

@@ -46,6 +46,7 @@ struct HoleSeeing {
   bool round = false;   // a sphere: its normal is its point's direction
   bool closed = false;  // a sphere or a box: its outward normals face the camera
   Vec3 face_normal;     // of the untessellated triangle being split (shape coordinates)
+  std::array<double, 8> face_uv{};  // and its texture coordinates' map (triangle_uv_map)
 
   // A lit corner's two colours, per corner and normal (a box's edge joins two faces).
   using Colours = std::array<float, 6>;
@@ -171,6 +172,10 @@ struct HoleSeeing {
       static const Colours kNone{};
       const Colours& lit_colours = lit ? colours_at(*k) : kNone;
       out.insert(out.end(), lit_colours.begin(), lit_colours.end());
+      const std::array<double, 8>& m = face_uv;
+      out.insert(out.end(),
+                 {static_cast<float>(m[0] * k->p.x + m[1] * k->p.y + m[2] * k->p.z + m[3]),
+                  static_cast<float>(m[4] * k->p.x + m[5] * k->p.y + m[6] * k->p.z + m[7])});
     }
   }
 };
@@ -199,6 +204,7 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
                     closed,
                     {},
                     {},
+                    {},
                     {}};
   const AdaptiveSplit split(seeing, mesh, limits.max_level);
   std::vector<HoleSeeing::Corner> corners;
@@ -213,6 +219,8 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
     const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
     const Vec3 n = cross(b - a, c - a);
     seeing.face_normal = length(n) > 0 ? normalize(n) : Vec3{0, 1, 0};
+    if (!mesh.uvs.empty())
+      seeing.face_uv = triangle_uv_map({a, b, c}, {mesh.uvs[i], mesh.uvs[j], mesh.uvs[k]});
     split.triangle(corners[i], corners[j], corners[k]);
   }
 }
@@ -224,7 +232,7 @@ HoleBodiesPass::HoleBodiesPass(GLuint program) : program_(program) {
   glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
   constexpr GLsizei stride = kHoleVertexFloats * sizeof(float);
   for (const auto& [location, size, first] :
-       {std::array<int, 3>{0, 3, 0}, {1, 3, 3}, {2, 2, 6}, {3, 3, 8}, {4, 3, 11}}) {
+       {std::array<int, 3>{0, 3, 0}, {1, 3, 3}, {2, 2, 6}, {3, 3, 8}, {4, 3, 11}, {5, 2, 14}}) {
     glEnableVertexAttribArray(static_cast<GLuint>(location));
     glVertexAttribPointer(static_cast<GLuint>(location), size, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(first * sizeof(float)));
@@ -297,7 +305,13 @@ void HoleBodiesPass::draw(const ResolvedScene& scene) const {
   glBindVertexArray(vertex_array_);
   // Depth: the light's coordinate time of flight, on the flat bodies' log scale.
   glUniform2f(uniform(p, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
+  glUniform1i(uniform(p, "texture_image"), 3);
   for (const Draw& d : draws_) {
+    if (d.body.texture) {
+      glActiveTexture(GL_TEXTURE3);
+      glBindTexture(GL_TEXTURE_2D, d.body.texture);
+      glActiveTexture(GL_TEXTURE0);
+    }
     glUniform1i(uniform(p, "colour_row"), d.body.first_row);
     glUniform1i(uniform(p, "lit"), d.body.lit ? 1 : 0);
     set_pattern_uniforms(p, *scene.bodies[d.body.index].object, d.body.pattern);

@@ -26,8 +26,9 @@ constexpr int kRasterHoleOrders = 2;
 // Per vertex: its apparent position in F (the look direction times the coordinate time the
 // light took, which orders the images met along one ray), its shape point, ln g and the body's
 // clock at its emission; for a lit body the linear RGB it sends the camera in each of its
-// material's two fixed colours (zero for an emitter, whose colour comes from its rows).
-constexpr int kHoleVertexFloats = 14;
+// material's two fixed colours (zero for an emitter, whose colour comes from its rows); and on
+// a mesh with texture coordinates, the face's coordinates at the point (triangle_uv_map).
+constexpr int kHoleVertexFloats = 16;
 
 // A lit body: its colours per vertex are the ray tracer's Lighting at the vertex's surface
 // point, and a lit edge longer than a pixel is also split until the colours interpolated along
@@ -57,6 +58,7 @@ class HoleBodiesPass {
     const RestMesh* mesh = nullptr;
     int first_row = 0, pattern = 0;
     bool lit = false;
+    GLuint texture = 0;  // an unlit texture's image (pattern 2)
   };
 
   explicit HoleBodiesPass(GLuint program);

@@ -211,7 +211,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                                                               : 0;
     if (draw.pattern >= 3) frame_features |= kBodyTimedPattern;
     if (draw.pattern == 4 && std::holds_alternative<MeshShape>(body.object->shape) &&
-        !resolved.hole) {
+        !resolved.hole) {  // (near a hole every vertex carries its face's coordinates)
       draw.face_uvs = true;
       frame_features |= kBodyMeshClocks;
     }
@@ -230,7 +230,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     }
     if (textured && !lit_texture) {
       draw.first_row = emission_row(kBlack);
-      const bool drawable = m.unlit && !resolved.hole;  // (near a hole textures are black)
+      const bool drawable = m.unlit;  // (a lit texture not drawn as one is black)
       draw.pattern = drawable ? 2 : 0;
       draw.face_uvs = drawable && mesh;
       if (drawable) upload(*std::get<Texture>(m.pattern).image);
@@ -289,7 +289,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     draw.mesh = &rest_mesh_for(body.object->shape, gpu_tessellation && !resolved.hole ? 8 : 2);
     draw.hidden = hidden_faces(*draw.mesh, body);
     if (resolved.hole)
-      hole_body_list.push_back({i, draw.mesh, draw.first_row, draw.pattern, draw.lit});
+      hole_body_list.push_back(
+          {i, draw.mesh, draw.first_row, draw.pattern, draw.lit,
+           draw.pattern == 2 ? images.at(std::get<Texture>(m.pattern).image.get()) : 0});
     else
       draws.push_back(draw);
   }

@@ -8,12 +8,15 @@ layout(location = 2) in vec2 shift_and_clock;  // ln g, the body's clock at the 
 // A lit body: what the vertex sends the camera in each of its material's two fixed colours.
 layout(location = 3) in vec3 lit_colour_0;
 layout(location = 4) in vec3 lit_colour_1;
+// A mesh face's texture coordinates at the vertex (zero for other shapes).
+layout(location = 5) in vec2 face_texture_uv;
 
 out vec3 shape_point;
 out float log_shift;
 out float proper_time;
 out vec3 received_0;
 out vec3 received_1;
+out vec2 face_uv;
 
 void main() {
   gl_Position = clip_of(vec4(apparent_position, length(apparent_position)));
@@ -22,4 +25,5 @@ void main() {
   proper_time = shift_and_clock.y;
   received_0 = lit_colour_0;
   received_1 = lit_colour_1;
+  face_uv = face_texture_uv;
 }
