@@ -616,8 +616,9 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
 // A frame's body programs hold only the features its bodies use (raster/shader_build.hpp,
 // body_variant_defines); each such frame is drawn exactly as by the programs with every feature:
 // street.json (none), the spinning wheel, the twin paradox's clocks, street-lit.json (lit; and
-// with its towers moving, their shadows met exactly), and the cubes with several samples a pixel
-// (per-pixel shading offsets).
+// with its towers moving, their shadows met exactly), the wheel lit by a lamp (a spinning mesh's
+// shadow met along its curve), and the cubes with several samples a pixel (per-pixel shading
+// offsets).
 TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
   const auto draw = [](const Scene& scene, bool specialise, bool offsets) {
     const HeadlessGlContext context;
@@ -650,7 +651,8 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
        {Case{"street.json", false}, Case{"wheel.json", false}, Case{"twin-paradox.json", false},
         Case{"street-lit.json", false}, Case{"cubes.json", true},
         Case{"street-lit.json", false, true}, Case{"texture-mapping.json", false, false, true},
-        Case{"street-lit.json", false, false, false, true}}) {
+        Case{"street-lit.json", false, false, false, true},
+        Case{"wheel.json", false, false, true}}) {
     SCOPED_TRACE(c.scene);
     Scene scene = test::load_repository_scene(c.scene);
     if (c.hue) scene.render.doppler = DopplerModel::kHue;
@@ -720,6 +722,9 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_MESH_CLOCKS 1\n"},
       {"body-lit-mesh-shadows.frag", shader_sources::body_frag, true,
        patterns_and_lighting.c_str(), "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"},
+      {"body-lit-spin-shadows.frag", shader_sources::body_frag, true,
+       patterns_and_lighting.c_str(),
+       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n#define LIGHTCONE_SPIN_SHADOWS 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

@@ -1,13 +1,11 @@
 // The raster renderer's choices: what it draws differently from the ray tracer, and where it
 // cuts edges.
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
 
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
-#include "lightcone/raster/shadow_maps.hpp"
 #include "lightcone/raster/spectral_albedo.hpp"
 
 namespace lightcone {
@@ -26,21 +24,8 @@ std::vector<std::string> raster_differences(const Scene& scene) {
       !spectral_albedo_available())
     differences.push_back(
         "lit textured materials under the spectral model are drawn black in the browser");
-  if (lit && scene.render.shadows && !scene.lights.empty()) {
-    if (scene.black_hole) {
-      differences.push_back("no shadows are cast near a black hole");
-    } else {
-      // Accelerated and keyframed bodies and lights cast on their tangent world-lines, as in
-      // the tracer.
-      const std::shared_ptr<const Scene> tangent = tangent_scene(scene);
-      const Scene& drawn = tangent ? *tangent : scene;
-      bool uncast = false;
-      for (const Object& o : drawn.objects)
-        for (const Light& light : drawn.lights)
-          uncast = uncast || raster_shadow_cast(o, light, drawn.render) == RasterShadowCast::kNone;
-      if (uncast) differences.push_back("spinning bodies other than spheres cast no shadows");
-    }
-  }
+  if (lit && scene.render.shadows && !scene.lights.empty() && scene.black_hole)
+    differences.push_back("no shadows are cast near a black hole");
   if (scene.black_hole && lit_textured)
     differences.push_back("lit textures near a black hole are drawn black");
   if (scene.black_hole && textured && !lit_textured)

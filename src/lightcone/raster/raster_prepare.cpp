@@ -326,7 +326,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     shadow_maps->prepare(resolved, lights.size());
     if (!shadow_casters) shadow_casters = std::make_unique<ShadowCasters>();
     shadow_casters->prepare(resolved, lights.size());
-    frame_features |= kBodyShadows | (shadow_casters->any_mesh() ? kBodyMeshShadows : 0);
+    frame_features |= kBodyShadows | (shadow_casters->any_mesh() ? kBodyMeshShadows : 0) |
+                      (shadow_casters->any_spinning() ? kBodySpinShadows : 0);
   }
   RasterFrameStats stats;
   if (resolved.hole && !hole_body_list.empty()) {

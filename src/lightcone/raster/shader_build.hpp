@@ -53,8 +53,8 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
 // offsets (several samples a pixel), the hue model's law (received_rgb), shadows
 // (lighting.glsl), the lit program's test against the visible-depth pass (a frame with lit
 // bodies draws one), lit textures (and their spectral fit), clocks on meshes (their faces'
-// texture maps), and the shadows of meshes met exactly. The defines take out those a frame
-// does not use.
+// texture maps), and the shadows of meshes and of spinning bodies met exactly. The defines take
+// out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
@@ -66,7 +66,8 @@ enum BodyFeature {
   kBodyMeshClocks = 128,
   kBodySpectralTextures = 256,
   kBodyMeshShadows = 512,
-  kAllBodyFeatures = 1023,
+  kBodySpinShadows = 1024,
+  kAllBodyFeatures = 2047,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -80,6 +81,7 @@ inline std::string body_variant_defines(int features) {
   if (features & kBodyMeshClocks) defines += "#define LIGHTCONE_MESH_CLOCKS 1\n";
   if (features & kBodySpectralTextures) defines += "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n";
   if (features & kBodyMeshShadows) defines += "#define LIGHTCONE_MESH_SHADOWS 1\n";
+  if (features & kBodySpinShadows) defines += "#define LIGHTCONE_SPIN_SHADOWS 1\n";
   return defines;
 }
 

@@ -14,9 +14,11 @@ namespace {
 
 // Both textures are rows of this many RGBA texels (lighting.glsl's kCasterTexelsPerRow).
 constexpr int kTexelsPerRow = 2048;
-// A caster's texels in the table: its kind and size, the three rows of its map, its offset and
-// (a mesh) its root node.
-constexpr int kCasterTexels = 5;
+// A caster's texels in the table (lighting.glsl's exactly_shadowed): its kind and size, the
+// three rows of its map, its offset and (a mesh) its root node; for a spinning body also the
+// rows of rest_from_shape and of shape_of_rest, its axis and rate, its clock's row, and the
+// radius of its ball and its clock's origin.
+constexpr int kCasterTexels = 14;
 constexpr int kLeafTriangles = 4;
 
 // Uploads `texels` RGBA floats as rows of kTexelsPerRow texels.
@@ -133,6 +135,14 @@ std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t l
       c.rows[static_cast<std::size_t>(r)] = {
           map.time_column[r], {map.spatial.m[r][0], map.spatial.m[r][1], map.spatial.m[r][2]}};
     c.offset = map.shape_point(scene.observation_event);
+    const Vec3& k = o.scale;
+    const bool round = c.kind == 3 && std::abs(k.x) == std::abs(k.y) && std::abs(k.y) == std::abs(k.z);
+    if (scene.bodies[b].spin >= 0 && !round) {
+      c.spin = &scene.spins[static_cast<std::size_t>(scene.bodies[b].spin)];
+      c.tau_row = c.spin->shadow_proper_time_row;
+      c.tau_origin = c.spin->shadow_proper_time_origin + c.tau_row.t * scene.observation_event.t +
+                     dot(c.tau_row.x, scene.observation_event.x);
+    }
     out.push_back(std::move(c));
   }
   return out;
@@ -163,7 +173,8 @@ ShadowCasters::~ShadowCasters() {
 void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
   const std::vector<ExactCaster> casters = exact_casters(scene, lights);
   count_ = static_cast<int>(casters.size());
-  any_mesh_ = false;
+  any_spinning_ = std::any_of(casters.begin(), casters.end(),
+                              [](const ExactCaster& c) { return c.spin != nullptr; });
 
   // The meshes' hierarchies: made again only when the set of meshes cast changes.
   std::map<std::shared_ptr<const Mesh>, int> roots;
@@ -194,9 +205,18 @@ void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
 
   table_.clear();
   for (const ExactCaster& c : casters) {
-    push(table_, c.size, c.kind);
+    push(table_, c.size, c.kind + (c.spin ? 8 : 0));
     for (const Vec4& row : c.rows) push(table_, row.x, row.t);
     push(table_, c.offset, c.mesh ? mesh_roots_.at(c.mesh) : 0);
+    if (!c.spin) {
+      table_.resize(table_.size() + 4 * (kCasterTexels - 5), 0.0f);
+      continue;
+    }
+    for (const Mat3* m : {&c.spin->rest_from_shape, &c.spin->shape_of_rest})
+      for (const auto& row : m->m) push(table_, {row[0], row[1], row[2]}, 0);
+    push(table_, c.spin->axis, c.spin->rate);
+    push(table_, c.tau_row.x, c.tau_row.t);
+    push(table_, {c.spin->radius, c.tau_origin, 0}, 0);
   }
   upload_rows(table_texture_, 0, table_, "shadow casters");
   check_gl("preparing the shadow casters");

@@ -17,13 +17,19 @@
 namespace lightcone {
 
 // One exactly cast body: a shape kind (box 1, plane 2, sphere 3, mesh 4), the map from W events
-// relative to the observation event to its shape coordinates, rows[r] . (t, x, y, z) + offset[r],
-// its size (box sides; plane sides in x and z; sphere radius in x) and, for a mesh, its mesh.
+// relative to the observation event to its shape coordinates (frozen at the angle its origin
+// shows, for a spinning body), rows[r] . (t, x, y, z) + offset[r], its size (box sides; plane
+// sides in x and z; sphere radius in x) and, for a mesh, its mesh. A spinning body (other than a
+// round sphere, which is the same at every angle) also has its spin (ResolvedSpin) and its clock
+// at W events relative to the observation event, tau_origin + tau_row . (t, x, y, z).
 struct ExactCaster {
   int kind = 0;
   std::array<Vec4, 3> rows;
   Vec3 offset, size;
   std::shared_ptr<const Mesh> mesh;
+  const ResolvedSpin* spin = nullptr;
+  double tau_origin = 0;
+  Vec4 tau_row;
 };
 
 // Of the scene's bodies, those cast exactly for any of its first `lights` lights
@@ -66,6 +72,7 @@ class ShadowCasters {
   void prepare(const ResolvedScene& scene, std::size_t lights);
   int count() const { return count_; }
   bool any_mesh() const { return any_mesh_; }
+  bool any_spinning() const { return any_spinning_; }
   // Binds the table to unit `table_unit` and the meshes' hierarchies to `mesh_unit`, and sets
   // lighting.glsl's caster uniforms on `program` (in use).
   void bind(GLuint program, int table_unit, int mesh_unit) const;
@@ -73,7 +80,7 @@ class ShadowCasters {
  private:
   GLuint table_texture_ = 0, mesh_texture_ = 0;
   int count_ = 0;
-  bool any_mesh_ = false;
+  bool any_mesh_ = false, any_spinning_ = false;
   std::vector<float> table_;
   // Each mesh's root node as a texel index of the mesh texture (the meshes held, so that no
   // other mesh can take a freed one's address).

@@ -34,15 +34,10 @@ void append(std::vector<double>& key, const Vec3& v) {
 
 RasterShadowCast raster_shadow_cast(const Object& object, const Light& light,
                                     const RenderSettings& settings) {
-  if (object.motion.geodesic) return RasterShadowCast::kNone;
-  if (object.spin) {
-    // A sphere spinning about its centre keeps its shape; other shapes turn along the ray.
-    const Vec3 k{std::abs(object.scale.x), std::abs(object.scale.y), std::abs(object.scale.z)};
-    const bool round = std::holds_alternative<Sphere>(object.shape) && k.x == k.y && k.y == k.z;
-    return round && object.motion.inertial() ? RasterShadowCast::kExact : RasterShadowCast::kNone;
-  }
   // Resolved scenes hold no other motion; a body or light beyond its tangent is not cast.
-  if (!object.motion.inertial() || !light.motion.inertial()) return RasterShadowCast::kNone;
+  if (object.motion.geodesic || !object.motion.inertial() || !light.motion.inertial())
+    return RasterShadowCast::kNone;
+  if (object.spin) return RasterShadowCast::kExact;  // its shape turns along the ray
   const Vec3 relative = object.world_line.velocity - light.world_line.velocity;
   const bool at_rest = !settings.relativity || dot(relative, relative) <= 1e-24;
   const bool from_a_point =

@@ -25,9 +25,10 @@ namespace lightcone {
 //   light: inertial, not spinning, at the light's velocity (in the classical picture every
 //   inertial, unspinning body does, at the camera's time);
 // - kExact: by meeting its shape exactly along each shadow ray, carried into its rest frame as
-//   the tracer does (raster/shadow_casters.hpp): every other body, lit by any light, except
-// - kNone: spinning bodies other than round spheres (their shape turns along the shadow ray),
-//   and bodies on geodesics near a black hole.
+//   the tracer does (raster/shadow_casters.hpp; a spinning body along the curve the ray traces
+//   through its turning shape): every other body, lit by any light;
+// - kNone: bodies on geodesics near a black hole (where no shadows are cast), and bodies or
+//   lights not on their tangent world-lines (not of a resolved scene).
 enum class RasterShadowCast { kMap, kExact, kNone };
 RasterShadowCast raster_shadow_cast(const Object& object, const Light& light,
                                     const RenderSettings& settings);

@@ -74,12 +74,6 @@ vec3 surface_point(vec3 p) {
   return p;
 }
 
-// v turned by `angle` about the unit `axis` (physics/vec.hpp, rotated).
-vec3 turned(vec3 axis, float angle, vec3 v) {
-  float c = cos(angle), s = sin(angle);
-  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
-}
-
 // A spinning body's point met by the ray (origin + s direction in frozen shape coordinates,
 // its clock tau0 + s tau1): the ray is a curve in the shape's own coordinates. A round ball is
 // met where the straight ray meets it; other shapes by Newton's method on the fragment's face

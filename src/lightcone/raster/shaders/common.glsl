@@ -9,6 +9,12 @@
 #define LIGHTCONE_FACE_UVS 1
 #endif
 
+// v turned by `angle` about the unit `axis` (physics/vec.hpp, rotated).
+vec3 turned(vec3 axis, float angle, vec3 v) {
+  float c = cos(angle), s = sin(angle);
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
+}
+
 // physics/retarded_time.cpp, retarded_delay: the root tau >= 0 of |delta - beta tau| = tau, with
 // 1 - beta.beta given (computed in double on the CPU, where it does not cancel).
 float retarded_delay(vec3 delta, vec3 beta, float one_minus_beta2) {

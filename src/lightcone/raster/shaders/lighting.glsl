@@ -159,11 +159,14 @@ bool shadowed(Lamp light, vec4 surface, float cos_incidence) {
 // raster/shadow_casters.hpp: each body's shape met along the shadow ray carried into its rest
 // frame, where it stands still (trace/tracer.cpp's shadow rays: the segment between
 // kShadowEpsilon and 1 - kShadowEpsilon of the way to the emission event). Any number of them,
-// five texels each in caster_table: (size, kind), the map's three rows (spatial, time) from W
-// events relative to the observation event to shape coordinates, (offset, a mesh's root node).
+// kCasterTexels each in caster_table: (size, kind, plus 8 for a spinning body), the map's three
+// rows (spatial, time) from W events relative to the observation event to shape coordinates,
+// (offset, a mesh's root node); for a spinning body then the rows of rest_from_shape and of
+// shape_of_rest, (axis, rate), its clock's row (spatial, time) and (ball radius, clock origin).
 uniform int caster_count;
 uniform highp sampler2D caster_table;
 const int kCasterTexelsPerRow = 2048;  // shadow_casters.cpp's kTexelsPerRow
+const int kCasterTexels = 14;          // and its kCasterTexels
 const float kShadowEpsilon = 1e-5;
 
 vec4 caster_texel(int i) {
@@ -257,13 +260,80 @@ bool caster_meets(int kind, vec3 size, int root, vec3 a, vec3 d, float t_near, f
   return (t0 > t_near && t0 < t_far) || (t1 > t_near && t1 < t_far);
 }
 
+#ifdef LIGHTCONE_SPIN_SHADOWS
+// trace/spinning_intersection.cpp, intersect_spinning_body, whether it meets and not where: the
+// straight ray in the rest frame is a curve through the turning shape's coordinates, followed in
+// chords that turn by at most kSpinChordAngle, each met against the shape as the tracer meets
+// it (a sphere's or a box's entry, a plane's or a mesh's crossing, within the chord).
+const float kSpinChordAngle = 0.03;
+const float kMaxSpinChords = 4096.0;
+
+bool chord_meets(int kind, vec3 size, int root, vec3 p, vec3 d) {
+  if (kind == 3) {
+    float qa = dot(d, d), qb = dot(p, d), qc = dot(p, p) - size.x * size.x;
+    float disc = qb * qb - qa * qc;
+    if (disc < 0.0) return false;
+    float entry = (-qb - sqrt(disc)) / qa;
+    return entry >= 0.0 && entry < 1.0;
+  }
+  if (kind == 2) {
+    if (d.y == 0.0) return false;
+    float t = -p.y / d.y;
+    vec3 at = p + t * d;
+    return t >= 0.0 && t <= 1.0 && abs(at.x) <= 0.5 * size.x && abs(at.z) <= 0.5 * size.z;
+  }
+#ifdef LIGHTCONE_MESH_SHADOWS
+  if (kind == 4) return mesh_meets(root, p, d, 0.0, 1.0);
+#endif
+  vec3 h = 0.5 * size;
+  vec3 inv = 1.0 / mix(d, vec3(1e-30), equal(d, vec3(0.0)));
+  vec3 lo = (-h - p) * inv, hi = (h - p) * inv;
+  vec3 enter = min(lo, hi), leave = max(lo, hi);
+  float t0 = max(enter.x, max(enter.y, enter.z)), t1 = min(leave.x, min(leave.y, leave.z));
+  return t0 <= t1 && t0 >= 0.0 && t0 < 1.0;
+}
+
+// Whether the spinning caster at texel `base` meets the frozen shadow ray a + s d, s in
+// (t_near, t_far), from the surface event along `direction` (W).
+bool spinning_caster_meets(int base, int kind, vec3 size, int root, vec3 a, vec3 d,
+                           vec4 surface, vec4 direction, float t_near, float t_far) {
+  mat3 rest_from_shape = transpose(mat3(caster_texel(base + 5).xyz, caster_texel(base + 6).xyz,
+                                        caster_texel(base + 7).xyz));
+  mat3 shape_of_rest = transpose(mat3(caster_texel(base + 8).xyz, caster_texel(base + 9).xyz,
+                                      caster_texel(base + 10).xyz));
+  vec4 axis_rate = caster_texel(base + 11), row = caster_texel(base + 12);
+  vec4 ball = caster_texel(base + 13);
+  float tau0 = ball.y + dot(row.xyz, surface.yzw) + row.w * surface.x;
+  float tau1 = dot(row.xyz, direction.yzw) + row.w * direction.x;
+  vec3 o = rest_from_shape * a, r = rest_from_shape * d;
+  // The part of the ray inside the ball that holds the shape at every angle.
+  float qa = dot(r, r), qb = dot(o, r), qc = dot(o, o) - ball.x * ball.x;
+  float disc = qb * qb - qa * qc;
+  if (disc < 0.0) return false;
+  float root_of = sqrt(disc);
+  float lo = max((-qb - root_of) / qa, t_near), hi = min((-qb + root_of) / qa, t_far);
+  if (!(lo < hi)) return false;
+  float rate = axis_rate.w;
+  float sweep = abs(rate * tau1) * (hi - lo);
+  int chunks = int(clamp(ceil(sweep / kSpinChordAngle), 1.0, kMaxSpinChords));
+  vec3 pa = shape_of_rest * turned(axis_rate.xyz, -rate * (tau0 + lo * tau1), o + lo * r);
+  for (int k = 1; k <= chunks; ++k) {
+    float s = lo + (hi - lo) * float(k) / float(chunks);
+    vec3 pb = shape_of_rest * turned(axis_rate.xyz, -rate * (tau0 + s * tau1), o + s * r);
+    if (chord_meets(kind, size, root, pa, pb - pa)) return true;
+    pa = pb;
+  }
+  return false;
+}
+#endif
+
 // Whether any exact caster blocks the shadow ray from the surface event to `end` (or backward
 // along direction `end` without end).
 bool exactly_shadowed(vec4 surface, vec4 end, bool to_infinity) {
   vec4 direction = to_infinity ? -end : end - surface;
   float t_far = to_infinity ? 1e30 : 1.0 - kShadowEpsilon;
   for (int k = 0; k < caster_count; ++k) {
-    int base = 5 * k;
+    int base = kCasterTexels * k;
     vec4 head = caster_texel(base);
     vec4 r0 = caster_texel(base + 1), r1 = caster_texel(base + 2), r2 = caster_texel(base + 3);
     vec4 tail = caster_texel(base + 4);
@@ -273,8 +343,16 @@ bool exactly_shadowed(vec4 surface, vec4 end, bool to_infinity) {
     vec3 d = vec3(dot(r0.xyz, direction.yzw) + r0.w * direction.x,
                   dot(r1.xyz, direction.yzw) + r1.w * direction.x,
                   dot(r2.xyz, direction.yzw) + r2.w * direction.x);
-    if (caster_meets(int(head.w), head.xyz, int(tail.w), a, d, kShadowEpsilon, t_far))
-      return true;
+    int kind = int(head.w);
+#ifdef LIGHTCONE_SPIN_SHADOWS
+    if (kind >= 8) {
+      if (spinning_caster_meets(base, kind - 8, head.xyz, int(tail.w), a, d, surface, direction,
+                                kShadowEpsilon, t_far))
+        return true;
+      continue;
+    }
+#endif
+    if (caster_meets(kind, head.xyz, int(tail.w), a, d, kShadowEpsilon, t_far)) return true;
   }
   return false;
 }
