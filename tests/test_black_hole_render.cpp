@@ -281,7 +281,7 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   const std::string with_body =
       scene_file("body.json", R"(, "objects": [{"name": "moon", "shape": {"sphere": {"radius": 1}},
                                       "position": [10, 0, 0],
-                                      "material": {"texture": "texture.exr"}}])");
+                                      "material": {"texture": "texture.exr", "unlit": false}}])");
   const std::string with_light = scene_file(
       "light.json", R"(, "lights": [{"name": "lamp", "type": "point", "position": [10, 0, 0]}],
                      "render": {"light_source_delay": "camera"})");
@@ -295,7 +295,7 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
            Case{"render " + with_light + " -o " + test::quoted(out), "light_source_delay"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
            Case{"render " + with_body + " --renderer raster -o " + test::quoted(out),
-                "\"moon\" is textured"},
+                "\"moon\" is a lit texture"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
        }) {

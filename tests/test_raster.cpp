@@ -644,7 +644,7 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
     const char* scene;
     bool offsets;
     bool hue = false;
-    bool lit_textures = false;  // its textures lit by a lamp (the spectral fit per sample)
+    bool lit_textures = false;   // its textures lit by a lamp (the spectral fit per sample)
     bool moving_meshes = false;  // its meshes moving relative to the lamps (met exactly)
   };
   for (const Case c :
@@ -720,11 +720,11 @@ TEST(RasterShaders, CompileAsGlslEs300) {
        "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n"},
       {"body-mesh-clocks.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_MESH_CLOCKS 1\n"},
-      {"body-lit-mesh-shadows.frag", shader_sources::body_frag, true,
-       patterns_and_lighting.c_str(), "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"},
-      {"body-lit-spin-shadows.frag", shader_sources::body_frag, true,
-       patterns_and_lighting.c_str(),
-       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n#define LIGHTCONE_SPIN_SHADOWS 1\n"},
+      {"body-lit-mesh-shadows.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"},
+      {"body-lit-spin-shadows.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n#define LIGHTCONE_SPIN_SHADOWS "
+       "1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

@@ -504,8 +504,8 @@ TEST(RasterBlackHole, UnlitTexturesAreDrawnAndLitOnesRefused) {
   "camera": {"position": [0, 0, 30], "fov": 32, "width": 96, "height": 54},
   "black_hole": {"mass": 1},
   "objects": [{"name": "crate", "shape": {"box": {"size": [4, 4, 4]}}, "position": [7, 1, -12],
-               "material": {"texture": ")") + grid + R"(", "unlit": )" +
-                                                 (lit ? "false" : "true") + R"(}}],
+               "material": {"texture": ")") + grid +
+                                             R"(", "unlit": )" + (lit ? "false" : "true") + R"(}}],
   "lights": [{"name": "sun", "type": "directional", "direction": [0, -1, 0]}]
 })");
     const fs::path out = dir / (lit ? "lit.png" : "unlit.png");

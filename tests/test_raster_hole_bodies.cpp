@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <memory>
-#include <numbers>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -129,12 +129,13 @@ TEST(RasterHoleBodies, TexturesAndMeshClocksMatchTheRayTracer) {
   struct Case {
     const char* name;
     Shape shape;
-    double least;  // the share of the bodies' pixels within 4/255 (measured: 0.78, 0.98, 0.96, 0.98)
+    double
+        least;  // the share of the bodies' pixels within 4/255 (measured: 0.78, 0.98, 0.96, 0.98)
     bool clock = false;
   };
-  for (const Case& c : {Case{"box", Box{{4, 4, 4}}, 0.75}, Case{"ball", Sphere{2.2}, 0.94},
-                        Case{"quad", MeshShape{quad}, 0.95},
-                        Case{"quad clock", MeshShape{quad}, 0.95, true}}) {
+  for (const Case& c :
+       {Case{"box", Box{{4, 4, 4}}, 0.75}, Case{"ball", Sphere{2.2}, 0.94},
+        Case{"quad", MeshShape{quad}, 0.95}, Case{"quad clock", MeshShape{quad}, 0.95, true}}) {
     SCOPED_TRACE(c.name);
     Scene s = test::load_repository_scene("lensed-clock.json");
     s.camera.height = s.camera.height * 320 / s.camera.width;

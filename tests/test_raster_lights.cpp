@@ -8,9 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <string>
-
 #include <random>
+#include <string>
 
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/raster/shadow_casters.hpp"
@@ -187,7 +186,8 @@ f 6 3 5
     {"name": "spinner", "shape": {"mesh": {"file": "arrow.obj"}}, "scale": [1.2, 1.2, 1.2],
      "position": [-5, 3, -3.5], "velocity": [0.2, 0, 0], "time": -5,
      "spin": {"axis": [0, 1, 0], "rate": 0.5},
-     "material": {"color": [0.6, 0.9, 0.9], "unlit": false}})" + crates + R"(
+     "material": {"color": [0.6, 0.9, 0.9], "unlit": false}})" +
+                                           crates + R"(
   ],
   "lights": [
     {"name": "lamp", "type": "point", "position": [0, 8, -1], "intensity": 220},
@@ -255,9 +255,11 @@ TEST(RasterShadowCast, MeshHierarchyHoldsEveryTriangleOnce) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> coordinate(-5, 5);
   Mesh mesh;
-  for (int i = 0; i < 3000; ++i) mesh.positions.push_back({coordinate(random), coordinate(random), coordinate(random)});
+  for (int i = 0; i < 3000; ++i)
+    mesh.positions.push_back({coordinate(random), coordinate(random), coordinate(random)});
   std::uniform_int_distribution<std::uint32_t> vertex(0, 2999);
-  for (int i = 0; i < 5001; ++i) mesh.triangles.push_back({vertex(random), vertex(random), vertex(random)});
+  for (int i = 0; i < 5001; ++i)
+    mesh.triangles.push_back({vertex(random), vertex(random), vertex(random)});
   const CasterBvh bvh = build_caster_bvh(mesh);
   std::vector<int> seen(mesh.triangles.size(), 0);
   const auto holds = [](const CasterBvh::Node& n, const Vec3& p) {

@@ -43,9 +43,9 @@ struct HoleSeeing {
   Vec3 across_x, across_y;  // unit, perpendicular to the axis and each other
   std::vector<float>& out;
   const HoleLitBody* lit = nullptr;
-  bool round = false;   // a sphere: its normal is its point's direction
-  bool closed = false;  // a sphere or a box: its outward normals face the camera
-  Vec3 face_normal;     // of the untessellated triangle being split (shape coordinates)
+  bool round = false;               // a sphere: its normal is its point's direction
+  bool closed = false;              // a sphere or a box: its outward normals face the camera
+  Vec3 face_normal;                 // of the untessellated triangle being split (shape coordinates)
   std::array<double, 8> face_uv{};  // and its texture coordinates' map (triangle_uv_map)
 
   // A lit corner's two colours, per corner and normal (a box's edge joins two faces).

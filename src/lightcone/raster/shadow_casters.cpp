@@ -37,14 +37,14 @@ void upload_rows(GLuint texture, int unit, std::vector<float>& texels, const cha
   glBindTexture(GL_TEXTURE_2D, texture);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTexelsPerRow, static_cast<GLsizei>(rows), 0,
-               GL_RGBA, GL_FLOAT, texels.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTexelsPerRow, static_cast<GLsizei>(rows), 0, GL_RGBA,
+               GL_FLOAT, texels.data());
   glActiveTexture(GL_TEXTURE0);
 }
 
 void push(std::vector<float>& out, const Vec3& v, double w) {
-  out.insert(out.end(), {static_cast<float>(v.x), static_cast<float>(v.y),
-                         static_cast<float>(v.z), static_cast<float>(w)});
+  out.insert(out.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
+                         static_cast<float>(w)});
 }
 
 Bounds3 nothing() {
@@ -90,12 +90,11 @@ struct BvhBuilder {
     const Vec3 size = spread.upper - spread.lower;
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
     const std::size_t middle = begin + (end - begin) / 2;
-    std::nth_element(bvh.order.begin() + static_cast<std::ptrdiff_t>(begin),
-                     bvh.order.begin() + static_cast<std::ptrdiff_t>(middle),
-                     bvh.order.begin() + static_cast<std::ptrdiff_t>(end),
-                     [&](std::uint32_t a, std::uint32_t b) {
-                       return centres[a][axis] < centres[b][axis];
-                     });
+    std::nth_element(
+        bvh.order.begin() + static_cast<std::ptrdiff_t>(begin),
+        bvh.order.begin() + static_cast<std::ptrdiff_t>(middle),
+        bvh.order.begin() + static_cast<std::ptrdiff_t>(end),
+        [&](std::uint32_t a, std::uint32_t b) { return centres[a][axis] < centres[b][axis]; });
     build(begin, middle, depth + 1);
     bvh.nodes[index].second = static_cast<int>(bvh.nodes.size());
     build(middle, end, depth + 1);
@@ -136,7 +135,8 @@ std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t l
           map.time_column[r], {map.spatial.m[r][0], map.spatial.m[r][1], map.spatial.m[r][2]}};
     c.offset = map.shape_point(scene.observation_event);
     const Vec3& k = o.scale;
-    const bool round = c.kind == 3 && std::abs(k.x) == std::abs(k.y) && std::abs(k.y) == std::abs(k.z);
+    const bool round =
+        c.kind == 3 && std::abs(k.x) == std::abs(k.y) && std::abs(k.y) == std::abs(k.z);
     if (scene.bodies[b].spin >= 0 && !round) {
       c.spin = &scene.spins[static_cast<std::size_t>(scene.bodies[b].spin)];
       c.tau_row = c.spin->shadow_proper_time_row;
@@ -152,8 +152,8 @@ CasterBvh build_caster_bvh(const Mesh& mesh) {
   BvhBuilder builder{mesh, {}, {}};
   builder.centres.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles)
-    builder.centres.push_back(
-        (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0);
+    builder.centres.push_back((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) /
+                              3.0);
   builder.bvh.order.resize(mesh.triangles.size());
   std::iota(builder.bvh.order.begin(), builder.bvh.order.end(), 0u);
   builder.build(0, mesh.triangles.size(), 1);

@@ -40,8 +40,8 @@ RasterShadowCast raster_shadow_cast(const Object& object, const Light& light,
   if (object.spin) return RasterShadowCast::kExact;  // its shape turns along the ray
   const Vec3 relative = object.world_line.velocity - light.world_line.velocity;
   const bool at_rest = !settings.relativity || dot(relative, relative) <= 1e-24;
-  const bool from_a_point =
-      std::holds_alternative<PointLight>(light.kind) || std::holds_alternative<SpotLight>(light.kind);
+  const bool from_a_point = std::holds_alternative<PointLight>(light.kind) ||
+                            std::holds_alternative<SpotLight>(light.kind);
   return at_rest && from_a_point ? RasterShadowCast::kMap : RasterShadowCast::kExact;
 }
 
