@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
-#include <stdexcept>
 #include <string>
 
 #include "lightcone/raster/gl_context.hpp"
@@ -199,7 +198,7 @@ void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
       for (const std::uint32_t t : bvh.order)
         for (const std::uint32_t v : mesh->triangles[t]) push(texels, mesh->positions[v], 0);
     }
-    upload_rows(mesh_texture_, 0, texels, "shadows of meshes");
+    upload_rows(mesh_texture_, kCasterMeshUnit, texels, "shadows of meshes");
   }
   if (!same) mesh_roots_ = std::move(roots);
 
@@ -218,7 +217,7 @@ void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
     push(table_, c.tau_row.x, c.tau_row.t);
     push(table_, {c.spin->radius, c.tau_origin, 0}, 0);
   }
-  upload_rows(table_texture_, 0, table_, "shadow casters");
+  upload_rows(table_texture_, kCasterTableUnit, table_, "shadow casters");
   check_gl("preparing the shadow casters");
 }
 
