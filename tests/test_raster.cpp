@@ -671,13 +671,9 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
     scene.camera.width = 160, scene.camera.height = 90;
     const Image specialised = draw(scene, true, c.offsets), full = draw(scene, false, c.offsets);
     ASSERT_EQ(specialised.rgb.size(), full.rgb.size());
-    std::size_t differing = 0, lit = 0;
-    for (std::size_t i = 0; i < full.rgb.size(); ++i) {
-      differing += std::abs(specialised.rgb[i] - full.rgb[i]) > 1e-6f * (1 + std::abs(full.rgb[i]));
-      lit += full.rgb[i] > 0;
-    }
-    EXPECT_EQ(differing, 0u);
-    EXPECT_GT(lit, full.rgb.size() / 10);
+    const test::ValueDifference d = test::compare_values(specialised, full, 1e-6f);
+    EXPECT_EQ(d.differing, 0u);
+    EXPECT_GT(d.lit, full.rgb.size() / 10);
   }
 }
 

@@ -157,13 +157,9 @@ TEST(RasterSpectralTextures, KeptSpectraDrawWhatFreshOnesDo) {
     RasterRenderer fresh_renderer;
     const Image fresh = draw(fresh_renderer, next);
     ASSERT_EQ(again.rgb.size(), fresh.rgb.size());
-    std::size_t differing = 0, lit = 0;
-    for (std::size_t i = 0; i < fresh.rgb.size(); ++i) {
-      differing += std::abs(again.rgb[i] - fresh.rgb[i]) > 1e-5f * (1 + std::abs(fresh.rgb[i]));
-      lit += fresh.rgb[i] > 0;
-    }
-    EXPECT_EQ(differing, 0u);
-    EXPECT_GT(lit, fresh.rgb.size() / 10);
+    const test::ValueDifference d = test::compare_values(again, fresh, 1e-5f);
+    EXPECT_EQ(d.differing, 0u);
+    EXPECT_GT(d.lit, fresh.rgb.size() / 10);
   }
 }
 

@@ -19,6 +19,15 @@ int png_level(float linear) {
   return static_cast<int>(std::lround(255 * srgb_encode(linear)));
 }
 
+ValueDifference compare_values(const Image& a, const Image& b, float relative) {
+  ValueDifference d;
+  for (std::size_t i = 0; i < b.rgb.size(); ++i) {
+    d.differing += std::abs(a.rgb[i] - b.rgb[i]) > relative * (1 + std::abs(b.rgb[i]));
+    d.lit += b.rgb[i] > 0;
+  }
+  return d;
+}
+
 double share_within_4_off_outlines(const Image& a, const Image& b, const std::vector<float>& object,
                                    std::size_t& compared) {
   const int w = a.width, h = a.height;

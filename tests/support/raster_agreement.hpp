@@ -19,6 +19,14 @@ int png_level(float linear);
 double share_within_4_off_outlines(const Image& a, const Image& b, const std::vector<float>& object,
                                    std::size_t& compared);
 
+// Two pictures of one size drawn by the raster renderer two ways that must agree (kept tables
+// against fresh ones, a specialised program against the full one): how many values differ by
+// more than `relative` (1 + |b|), and how many of b's are above zero (that it is not black).
+struct ValueDifference {
+  std::size_t differing = 0, lit = 0;
+};
+ValueDifference compare_values(const Image& a, const Image& b, float relative);
+
 struct Agreement {
   double within = 0;         // fraction of the compared pixels within 4/255 in every channel
   std::size_t compared = 0;  // pixels off the silhouette band

@@ -267,6 +267,8 @@ ResolvedScene resolve_scene(const Scene& true_scene) {
       const double radius = origin_radius(object.shape, object.scale);
       spin.radius = radius * (1 + 1e-9);
       spin.rim_speed = std::abs(spin.rate) * radius;
+      const Vec3& k = object.scale;
+      spin.round = std::holds_alternative<Sphere>(object.shape) && k.x == k.y && k.y == k.z;
       const RayEvent origin_seen = meet_world_line(r.ray_time, trace_world_line(trace_to_body, {}));
       const double seen_time =
           trace_to_body(Vec4{r.ray_time * origin_seen.s, origin_seen.position}).t +

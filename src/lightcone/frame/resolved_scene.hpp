@@ -53,6 +53,9 @@ struct ResolvedSpin {
   double rate = 0;          // radians per unit of proper time
   double frozen_angle = 0;  // rate times the proper time at which the camera sees the origin
   double radius = 0;        // of the ball about the origin that holds the shape (padded)
+  // A sphere scaled alike on every axis: the same ball at every angle, so a ray meets it where
+  // the straight ray does.
+  bool round = false;
   // |rate| times the shape's own radius about the origin (not padded): the fastest point's
   // speed relative to the centre, below 1.
   double rim_speed = 0;

@@ -12,12 +12,11 @@ namespace lightcone {
 
 std::vector<std::string> raster_differences(const Scene& scene) {
   std::vector<std::string> differences;
-  bool lit = false, textured = false, lit_textured = false;
+  bool lit = false, lit_textured = false, unlit_textured = false;
   for (const Object& o : scene.objects) {
     const bool texture = std::holds_alternative<Texture>(o.material.pattern);
     lit = lit || !o.material.unlit;
-    textured = textured || texture;
-    lit_textured = lit_textured || (texture && !o.material.unlit);
+    (o.material.unlit ? unlit_textured : lit_textured) |= texture;
   }
 
   if (lit_textured && scene.render.doppler == DopplerModel::kSpectral &&
@@ -28,7 +27,7 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     differences.push_back("no shadows are cast near a black hole");
   if (scene.black_hole && lit_textured)
     differences.push_back("lit textures near a black hole are drawn black");
-  if (scene.black_hole && textured && !lit_textured)
+  if (scene.black_hole && unlit_textured)
     differences.push_back(
         "textures near a black hole are read at points interpolated between exact vertices, so "
         "that the edges between a box's faces and fine detail differ by up to half a pixel");

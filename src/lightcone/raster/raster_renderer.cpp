@@ -295,9 +295,7 @@ void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDr
   glUniform1i(uniform(body_program, "spinning"), body.spin >= 0 ? 1 : 0);
   if (body.spin >= 0) {
     const ResolvedSpin& spin = resolved.spins[body.spin];
-    const Vec3& k = body.object->scale;
-    glUniform1i(uniform(body_program, "spin_round"),
-                std::holds_alternative<Sphere>(shape) && k.x == k.y && k.y == k.z ? 1 : 0);
+    glUniform1i(uniform(body_program, "spin_round"), spin.round ? 1 : 0);
     set_vec3(body_program, "spin_axis", spin.axis);
     glUniform1f(uniform(body_program, "spin_rate"), static_cast<float>(spin.rate));
     set_mat3(body_program, "rest_from_shape", spin.rest_from_shape);

@@ -133,14 +133,14 @@ std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t l
       c.rows[static_cast<std::size_t>(r)] = {
           map.time_column[r], {map.spatial.m[r][0], map.spatial.m[r][1], map.spatial.m[r][2]}};
     c.offset = map.shape_point(scene.observation_event);
-    const Vec3& k = o.scale;
-    const bool round =
-        c.kind == 3 && std::abs(k.x) == std::abs(k.y) && std::abs(k.y) == std::abs(k.z);
-    if (scene.bodies[b].spin >= 0 && !round) {
-      c.spin = &scene.spins[static_cast<std::size_t>(scene.bodies[b].spin)];
-      c.tau_row = c.spin->shadow_proper_time_row;
-      c.tau_origin = c.spin->shadow_proper_time_origin + c.tau_row.t * scene.observation_event.t +
-                     dot(c.tau_row.x, scene.observation_event.x);
+    if (scene.bodies[b].spin >= 0) {
+      const ResolvedSpin& spin = scene.spins[static_cast<std::size_t>(scene.bodies[b].spin)];
+      if (!spin.round) {
+        c.spin = &spin;
+        const Vec4& row = spin.shadow_proper_time_row;
+        c.tau_origin = spin.shadow_proper_time_origin + row.t * scene.observation_event.t +
+                       dot(row.x, scene.observation_event.x);
+      }
     }
     out.push_back(std::move(c));
   }
@@ -214,7 +214,7 @@ void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
     for (const Mat3* m : {&c.spin->rest_from_shape, &c.spin->shape_of_rest})
       for (const auto& row : m->m) push(table_, {row[0], row[1], row[2]}, 0);
     push(table_, c.spin->axis, c.spin->rate);
-    push(table_, c.tau_row.x, c.tau_row.t);
+    push(table_, c.spin->shadow_proper_time_row.x, c.spin->shadow_proper_time_row.t);
     push(table_, {c.spin->radius, c.tau_origin, 0}, 0);
   }
   upload_rows(table_texture_, kCasterTableUnit, table_, "shadow casters");

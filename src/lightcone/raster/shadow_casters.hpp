@@ -21,7 +21,7 @@ namespace lightcone {
 // shows, for a spinning body), rows[r] . (t, x, y, z) + offset[r], its size (box sides; plane
 // sides in x and z; sphere radius in x) and, for a mesh, its mesh. A spinning body (other than a
 // round sphere, which is the same at every angle) also has its spin (ResolvedSpin) and its clock
-// at W events relative to the observation event, tau_origin + tau_row . (t, x, y, z).
+// at W events relative to the observation event, tau_origin + shadow_proper_time_row . (t, x).
 struct ExactCaster {
   int kind = 0;
   std::array<Vec4, 3> rows;
@@ -29,7 +29,6 @@ struct ExactCaster {
   std::shared_ptr<const Mesh> mesh;
   const ResolvedSpin* spin = nullptr;
   double tau_origin = 0;
-  Vec4 tau_row;
 };
 
 // Of the scene's bodies, those cast exactly for any of its first `lights` lights

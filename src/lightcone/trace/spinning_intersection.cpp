@@ -34,14 +34,13 @@ ShapeHit intersect_spinning_body(const ResolvedSpin& spin, const Object& object,
     return spin.shape_of_rest * rotated(spin.axis, -spin.rate * (tau0 + s * tau1), o + d * s);
   };
   const Shape& shape = object.shape;
-  const auto* ball = std::get_if<Sphere>(&shape);
   const Vec3& k = object.scale;
-  if (ball && k.x == k.y && k.y == k.z) {
+  if (spin.round) {
     // A round ball turning about its centre is the same ball at every angle: the straight
     // ray meets it where the curve does.
     double s;
-    if (!intersect_sphere(Sphere{ball->radius * std::abs(k.x)}, ShapeRay{o, d}, tnear, tfar, s))
-      return hit;
+    const double radius = std::get<Sphere>(shape).radius * std::abs(k.x);
+    if (!intersect_sphere(Sphere{radius}, ShapeRay{o, d}, tnear, tfar, s)) return hit;
     hit.s = s;
     hit.rest_point = o + d * s;
     hit.proper_time = tau0 + s * tau1;

@@ -173,6 +173,49 @@ vec4 caster_texel(int i) {
   return texelFetch(caster_table, ivec2(i % kCasterTexelsPerRow, i / kCasterTexelsPerRow), 0);
 }
 
+// trace/shape_intersection.hpp: first_in's range, [near, far).
+bool in_range(float t, float near, float far) {
+  return t >= near && t < far;
+}
+
+// trace/shape_intersection.hpp's sphere_span: where the line a + t d lies within `radius` of
+// the origin (the root without cancellation, as there).
+bool sphere_span(float radius, vec3 a, vec3 d, out float enter, out float leave) {
+  float qa = dot(d, d), qb = dot(a, d), qc = dot(a, a) - radius * radius;
+  float disc = qb * qb - qa * qc;
+  enter = leave = 0.0;
+  if (disc < 0.0 || qa == 0.0) return false;
+  float q = -(qb + (qb < 0.0 ? -1.0 : 1.0) * sqrt(disc));
+  enter = min(q / qa, qc / q);
+  leave = max(q / qa, qc / q);
+  return true;
+}
+
+// Its box_span, for the box from `lower` to `upper` (the line's direction given inverted; a
+// zero component as 1e-30, so that no slab makes 0 times infinity).
+vec3 inverse_direction(vec3 d) {
+  return 1.0 / mix(d, vec3(1e-30), equal(d, vec3(0.0)));
+}
+bool box_span(vec3 lower, vec3 upper, vec3 a, vec3 inverse, out float enter, out float leave) {
+  vec3 t0 = (lower - a) * inverse, t1 = (upper - a) * inverse;
+  vec3 near = min(t0, t1), far = max(t0, t1);
+  enter = max(near.x, max(near.y, near.z));
+  leave = min(far.x, min(far.y, far.z));
+  return enter <= leave;
+}
+
+// Where the line a + t d runs through a box (kind 1, sides `size`), a plane (kind 2, sides in x
+// and z: entered and left at once) or a sphere (kind 3, radius size.x), as the tracer finds it.
+bool shape_span(int kind, vec3 size, vec3 a, vec3 d, out float enter, out float leave) {
+  if (kind == 3) return sphere_span(size.x, a, d, enter, leave);
+  if (kind == 2) {
+    enter = leave = d.y == 0.0 ? -1.0 : -a.y / d.y;
+    vec3 p = a + enter * d;
+    return d.y != 0.0 && abs(p.x) <= 0.5 * size.x && abs(p.z) <= 0.5 * size.z;
+  }
+  return box_span(-0.5 * size, 0.5 * size, a, inverse_direction(d), enter, leave);
+}
+
 #ifdef LIGHTCONE_MESH_SHADOWS
 // The meshes' hierarchies (shadow_casters.hpp's CasterBvh): a node is two texels, (lower, leaf
 // count) and (upper, its second child's texel or its first triangle's), its first child the
@@ -184,22 +227,18 @@ vec4 mesh_texel(int i) {
   return texelFetch(caster_meshes, ivec2(i % kCasterTexelsPerRow, i / kCasterTexelsPerRow), 0);
 }
 
-// Whether the segment a + t d, t in (t_near, t_far), meets a triangle of the mesh whose root
+// Whether the segment a + t d, t in [t_near, t_far), meets a triangle of the mesh whose root
 // node is texel `root`: trace/tracer.cpp's mesh hits (Moller and Trumbore's test).
 bool mesh_meets(int root, vec3 a, vec3 d, float t_near, float t_far) {
-  // A zero component would make 0 * inf in the slabs.
-  vec3 safe = mix(d, vec3(1e-30), equal(d, vec3(0.0)));
-  vec3 inv = 1.0 / safe;
+  vec3 inverse = inverse_direction(d);
   int stack[kCasterBvhMaxDepth];
   int top = 0;
   int node = root;
   while (true) {
     vec4 lower = mesh_texel(node), upper = mesh_texel(node + 1);
-    vec3 t0 = (lower.xyz - a) * inv, t1 = (upper.xyz - a) * inv;
-    vec3 enter = min(t0, t1), leave = max(t0, t1);
-    float near = max(t_near, max(enter.x, max(enter.y, enter.z)));
-    float far = min(t_far, min(leave.x, min(leave.y, leave.z)));
-    if (near <= far) {
+    float enter, leave;
+    if (box_span(lower.xyz, upper.xyz, a, inverse, enter, leave) &&
+        max(enter, t_near) <= min(leave, t_far)) {
       int count = int(lower.w);
       if (count == 0) {
         stack[top++] = int(upper.w);
@@ -219,8 +258,8 @@ bool mesh_meets(int root, vec3 a, vec3 d, float t_near, float t_far) {
         float u = dot(s, p) * inv_det;
         vec3 q = cross(s, e1);
         float v = dot(d, q) * inv_det;
-        float t = dot(e2, q) * inv_det;
-        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > t_near && t < t_far) return true;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && in_range(dot(e2, q) * inv_det, t_near, t_far))
+          return true;
       }
     }
     if (top == 0) return false;
@@ -231,33 +270,15 @@ bool mesh_meets(int root, vec3 a, vec3 d, float t_near, float t_far) {
 #endif
 
 // Whether a caster of kind `kind` (1 box, 2 plane, 3 sphere, 4 mesh) and size `size` (a mesh's
-// root node `root`) meets the segment a + t d, t in (t_near, t_far), of shape coordinates.
+// root node `root`) meets the segment a + t d, t in [t_near, t_far), of shape coordinates: the
+// tracer's intersect_sphere, intersect_box and intersect_plane (either end of the span).
 bool caster_meets(int kind, vec3 size, int root, vec3 a, vec3 d, float t_near, float t_far) {
-  if (kind == 3) {
-    float qa = dot(d, d), qb = dot(a, d), qc = dot(a, a) - size.x * size.x;
-    float disc = qb * qb - qa * qc;
-    if (disc < 0.0) return false;
-    float root_of = sqrt(disc);
-    float t0 = (-qb - root_of) / qa, t1 = (-qb + root_of) / qa;
-    return (t0 > t_near && t0 < t_far) || (t1 > t_near && t1 < t_far);
-  }
-  if (kind == 2) {
-    if (d.y == 0.0) return false;
-    float t = -a.y / d.y;
-    vec3 p = a + t * d;
-    return t > t_near && t < t_far && abs(p.x) <= 0.5 * size.x && abs(p.z) <= 0.5 * size.z;
-  }
 #ifdef LIGHTCONE_MESH_SHADOWS
   if (kind == 4) return mesh_meets(root, a, d, t_near, t_far);
 #endif
-  // A box: the slabs' overlap, the nearer of its ends within the segment.
-  vec3 h = 0.5 * size;
-  vec3 inv = 1.0 / d;
-  vec3 lo = (-h - a) * inv, hi = (h - a) * inv;
-  vec3 enter = min(lo, hi), leave = max(lo, hi);
-  float t0 = max(enter.x, max(enter.y, enter.z)), t1 = min(leave.x, min(leave.y, leave.z));
-  if (t0 > t1) return false;
-  return (t0 > t_near && t0 < t_far) || (t1 > t_near && t1 < t_far);
+  float enter, leave;
+  return shape_span(kind, size, a, d, enter, leave) &&
+         (in_range(enter, t_near, t_far) || in_range(leave, t_near, t_far));
 }
 
 #ifdef LIGHTCONE_SPIN_SHADOWS
@@ -269,32 +290,15 @@ const float kSpinChordAngle = 0.03;
 const float kMaxSpinChords = 4096.0;
 
 bool chord_meets(int kind, vec3 size, int root, vec3 p, vec3 d) {
-  if (kind == 3) {
-    float qa = dot(d, d), qb = dot(p, d), qc = dot(p, p) - size.x * size.x;
-    float disc = qb * qb - qa * qc;
-    if (disc < 0.0) return false;
-    float entry = (-qb - sqrt(disc)) / qa;
-    return entry >= 0.0 && entry < 1.0;
-  }
-  if (kind == 2) {
-    if (d.y == 0.0) return false;
-    float t = -p.y / d.y;
-    vec3 at = p + t * d;
-    return t >= 0.0 && t <= 1.0 && abs(at.x) <= 0.5 * size.x && abs(at.z) <= 0.5 * size.z;
-  }
 #ifdef LIGHTCONE_MESH_SHADOWS
   if (kind == 4) return mesh_meets(root, p, d, 0.0, 1.0);
 #endif
-  vec3 h = 0.5 * size;
-  vec3 inv = 1.0 / mix(d, vec3(1e-30), equal(d, vec3(0.0)));
-  vec3 lo = (-h - p) * inv, hi = (h - p) * inv;
-  vec3 enter = min(lo, hi), leave = max(lo, hi);
-  float t0 = max(enter.x, max(enter.y, enter.z)), t1 = min(leave.x, min(leave.y, leave.z));
-  return t0 <= t1 && t0 >= 0.0 && t0 < 1.0;
+  float enter, leave;
+  return shape_span(kind, size, p, d, enter, leave) && in_range(enter, 0.0, 1.0);
 }
 
 // Whether the spinning caster at texel `base` meets the frozen shadow ray a + s d, s in
-// (t_near, t_far), from the surface event along `direction` (W).
+// [t_near, t_far), from the surface event along `direction` (W).
 bool spinning_caster_meets(int base, int kind, vec3 size, int root, vec3 a, vec3 d,
                            vec4 surface, vec4 direction, float t_near, float t_far) {
   mat3 rest_from_shape = transpose(mat3(caster_texel(base + 5).xyz, caster_texel(base + 6).xyz,
@@ -303,15 +307,13 @@ bool spinning_caster_meets(int base, int kind, vec3 size, int root, vec3 a, vec3
                                       caster_texel(base + 10).xyz));
   vec4 axis_rate = caster_texel(base + 11), row = caster_texel(base + 12);
   vec4 ball = caster_texel(base + 13);
-  float tau0 = ball.y + dot(row.xyz, surface.yzw) + row.w * surface.x;
-  float tau1 = dot(row.xyz, direction.yzw) + row.w * direction.x;
+  float tau0 = ball.y + dot(row, vec4(surface.yzw, surface.x));
+  float tau1 = dot(row, vec4(direction.yzw, direction.x));
   vec3 o = rest_from_shape * a, r = rest_from_shape * d;
   // The part of the ray inside the ball that holds the shape at every angle.
-  float qa = dot(r, r), qb = dot(o, r), qc = dot(o, o) - ball.x * ball.x;
-  float disc = qb * qb - qa * qc;
-  if (disc < 0.0) return false;
-  float root_of = sqrt(disc);
-  float lo = max((-qb - root_of) / qa, t_near), hi = min((-qb + root_of) / qa, t_far);
+  float in_ball, out_ball;
+  if (!sphere_span(ball.x, o, r, in_ball, out_ball)) return false;
+  float lo = max(in_ball, t_near), hi = min(out_ball, t_far);
   if (!(lo < hi)) return false;
   float rate = axis_rate.w;
   float sweep = abs(rate * tau1) * (hi - lo);
@@ -337,12 +339,10 @@ bool exactly_shadowed(vec4 surface, vec4 end, bool to_infinity) {
     vec4 head = caster_texel(base);
     vec4 r0 = caster_texel(base + 1), r1 = caster_texel(base + 2), r2 = caster_texel(base + 3);
     vec4 tail = caster_texel(base + 4);
-    vec3 a = vec3(dot(r0.xyz, surface.yzw) + r0.w * surface.x,
-                  dot(r1.xyz, surface.yzw) + r1.w * surface.x,
-                  dot(r2.xyz, surface.yzw) + r2.w * surface.x) + tail.xyz;
-    vec3 d = vec3(dot(r0.xyz, direction.yzw) + r0.w * direction.x,
-                  dot(r1.xyz, direction.yzw) + r1.w * direction.x,
-                  dot(r2.xyz, direction.yzw) + r2.w * direction.x);
+    // The map's rows on events (t, x) as (x, t), its offset on the point alone.
+    mat3x4 rows = mat3x4(r0, r1, r2);
+    vec3 a = vec4(surface.yzw, surface.x) * rows + tail.xyz;
+    vec3 d = vec4(direction.yzw, direction.x) * rows;
     int kind = int(head.w);
 #ifdef LIGHTCONE_SPIN_SHADOWS
     if (kind >= 8) {
