@@ -616,9 +616,10 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
 // A frame's body programs hold only the features its bodies use (raster/shader_build.hpp,
 // body_variant_defines); each such frame is drawn exactly as by the programs with every feature:
 // street.json (none), the spinning wheel, the twin paradox's clocks, street-lit.json (lit; and
-// with its towers moving, their shadows met exactly), the wheel lit by a lamp (a spinning mesh's
-// shadow met along its curve), and the cubes with several samples a pixel (per-pixel shading
-// offsets).
+// with its towers moving, their shadows met exactly; and glossy under a sphere lamp and the sun),
+// the wheel lit by a lamp (a spinning mesh's shadow met along its curve), the cubes with several
+// samples a pixel (per-pixel shading offsets), a spot light (headlight.json) and a light moving
+// relative to what it lights (interceptor.json).
 TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
   const auto draw = [](const Scene& scene, bool specialise, bool offsets) {
     const HeadlessGlContext context;
@@ -644,21 +645,36 @@ TEST(RasterVariants, EachDrawsItsSceneAsTheFullProgramsDo) {
     const char* scene;
     bool offsets;
     bool hue = false;
-    bool lit_textures = false;   // its textures lit by a lamp (the spectral fit per sample)
-    bool moving_meshes = false;  // its meshes moving relative to the lamps (met exactly)
+    bool lit_textures = false;       // its textures lit by a lamp (the spectral fit per sample)
+    bool moving_meshes = false;      // its meshes moving relative to the lamps (met exactly)
+    bool glossy_more_lamps = false;  // its lit bodies glossy, and a sphere lamp and the sun
   };
   for (const Case c :
        {Case{"street.json", false}, Case{"wheel.json", false}, Case{"twin-paradox.json", false},
         Case{"street-lit.json", false}, Case{"cubes.json", true},
         Case{"street-lit.json", false, true}, Case{"texture-mapping.json", false, false, true},
-        Case{"street-lit.json", false, false, false, true},
-        Case{"wheel.json", false, false, true}}) {
+        Case{"street-lit.json", false, false, false, true}, Case{"wheel.json", false, false, true},
+        Case{"headlight.json", false}, Case{"interceptor.json", false},
+        Case{"street-lit.json", false, false, false, false, true}}) {
     SCOPED_TRACE(c.scene);
     Scene scene = test::load_repository_scene(c.scene);
     if (c.hue) scene.render.doppler = DopplerModel::kHue;
     if (c.moving_meshes)
       for (Object& o : scene.objects)
         if (std::holds_alternative<MeshShape>(o.shape)) o.world_line.velocity = {0, 0, 0.3};
+    if (c.glossy_more_lamps) {
+      for (Object& o : scene.objects) o.material.glossy = Glossy{0.4, 0.1};
+      Light lamp;
+      lamp.name = "sphere lamp";
+      lamp.kind = SphereLight{0.5};
+      lamp.world_line.position = scene.camera.world_line.position + Vec3{-2, 3, -6};
+      lamp.intensity = 40;
+      scene.lights.push_back(lamp);
+      Light sun;
+      sun.name = "sun";
+      sun.kind = DirectionalLight{{0.3, -1, -0.4}, 0.5};
+      scene.lights.push_back(sun);
+    }
     if (c.lit_textures) {
       for (Object& o : scene.objects) o.material.unlit = false;
       Light lamp;
@@ -691,10 +707,11 @@ TEST(RasterShaders, CompileAsGlslEs300) {
     const char* defines = "";  // which variant of the stage
   };
   const std::string patterns = shader_sources::patterns_glsl;
-  const std::string patterns_and_lighting = patterns + shader_sources::lighting_glsl;
+  const std::string lighting = shader_sources::lighting_glsl;
   const std::string stripped = body_variant_defines(0);
   const std::string stripped_textured = "#define LIGHTCONE_TEXTURED 1\n" + stripped;
   const std::string stripped_lit = "#define LIGHTCONE_LIT 1\n" + stripped;
+  const std::string every_light = lighting_variant_defines(kAllLightingFeatures);
   const Stage stages[] = {
       {"body.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl},
       {"body-textured.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl,
@@ -702,32 +719,35 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"body.frag", shader_sources::body_frag, true, patterns.c_str()},
       {"body-textured.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_TEXTURED 1\n"},
-      {"body-lit.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+      {"body-lit.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_LIT 1\n"},
-      {"body-depth.frag", shader_sources::body_frag, true, patterns.c_str(),
-       "#define LIGHTCONE_DEPTH_ONLY 1\n"},
-      {"body-lit-textured.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+      {"body-lit-textured.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_LIT_TEXTURES 1\n"},
       {"body-lit-textured.vert", shader_sources::body_vert, false,
        shader_sources::body_projection_glsl, "#define LIGHTCONE_LIT_TEXTURES 1\n"},
-      {"body-lit-textured-spectral.frag", shader_sources::body_frag, true,
-       patterns_and_lighting.c_str(),
+      {"body-lit-textured-spectral.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_LIT_TEXTURES 1\n"
        "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n"},
       {"body-mesh-clocks.frag", shader_sources::body_frag, true, patterns.c_str(),
        "#define LIGHTCONE_MESH_CLOCKS 1\n"},
-      {"body-lit-mesh-shadows.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
-       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"},
-      {"body-lit-spin-shadows.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
-       "#define LIGHTCONE_LIT 1\n#define LIGHTCONE_MESH_SHADOWS 1\n#define LIGHTCONE_SPIN_SHADOWS "
-       "1\n"},
+      {"lit_surfaces.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str()},
+      {"lit_surfaces-spectral-textures.frag", shader_sources::lit_surfaces_frag, true,
+       lighting.c_str(), "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n"},
+      {"lit_surfaces-mesh-shadows.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str(),
+       "#define LIGHTCONE_MESH_SHADOWS 1\n"},
+      {"lit_surfaces-spin-shadows.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str(),
+       "#define LIGHTCONE_MESH_SHADOWS 1\n#define LIGHTCONE_SPIN_SHADOWS 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},
       {"body-textured-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped_textured.c_str()},
-      {"body-lit-specialised.frag", shader_sources::body_frag, true, patterns_and_lighting.c_str(),
+      {"body-lit-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped_lit.c_str()},
+      {"lit_surfaces-specialised.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str(),
+       stripped.c_str()},
+      {"lit_surfaces-every-light.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str(),
+       every_light.c_str()},
       {"hole_body.vert", shader_sources::hole_body_vert, false,
        shader_sources::body_projection_glsl},
       {"hole_body.frag", shader_sources::hole_body_frag, true, patterns.c_str()},

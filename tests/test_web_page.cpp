@@ -96,6 +96,11 @@ TEST(WebPage, DrawsStreetAsTheNativeRasterRenderer) {
   expect_page_agrees(kScenes / "street.json", "street.png");
 }
 
+// Lit by its lamps, with their shadows: the lit bodies' surfaces, then the lighting pass.
+TEST(WebPage, DrawsStreetLitAsTheNativeRasterRenderer) {
+  expect_page_agrees(kScenes / "street-lit.json", "street-lit.png");
+}
+
 // A scene of the user's own, chosen in the file dialog with the image it names.
 TEST(WebPage, DrawsAUsersSceneAndItsImageAsTheNativeRasterRenderer) {
   const auto r = results();

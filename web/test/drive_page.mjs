@@ -1,6 +1,7 @@
 // Drives the web page (build-web/) in Debian's Chromium, headless on SwiftShader, as a user
 // would, and writes what it saw into OUT for tests/test_web_page.cpp to judge:
-//   terrell.png, street.png    each scene at 640x360 (exposure 0, paused at the scene's time)
+//   terrell.png, street.png, street-lit.png   each scene at 640x360 (exposure 0, paused at the
+//                              scene's time; street-lit's lamps and shadows by the lighting pass)
 //   key-before.png, key-after.png   street before and after the W key
 //   dragged.png                street after a drag on the picture
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
@@ -49,7 +50,7 @@ const text = (page, id) => page.evaluate((i) => document.getElementById(i).textC
 const still = "exposure=0&paused=on";
 
 try {
-  for (const scene of ["terrell", "street"]) {
+  for (const scene of ["terrell", "street", "street-lit"]) {
     step(`${scene} at 640x360`);
     const page = await open(`scene=${scene}&${still}`);
     results.load_ms[scene] = await page.evaluate(() => Number(document.body.dataset.firstFrame));

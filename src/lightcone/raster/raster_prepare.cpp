@@ -192,6 +192,12 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   std::vector<float> reflection_index;
   const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1);
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
+  lighting_features = 0;
+  for (const LightDraw& d : lights)
+    lighting_features |= d.kind == 1   ? kLightingSpot
+                         : d.kind == 2 ? kLightingSun
+                         : d.kind == 3 ? kLightingSphere
+                                       : 0;
   hole_body_list.clear();
   for (auto& [key, kept] : rest_meshes) kept.used = false;
   for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
@@ -295,6 +301,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     else
       draws.push_back(draw);
   }
+  if (!reflection_tables.empty()) lighting_features |= kLightingMovingReflections;
   if (frame_features & kBodySpectralTextures) {
     if (!spectral_albedo) spectral_albedo = std::make_unique<SpectralAlbedo>();
     // Every product of the factors the reflection tables span; the lights' spectra are kept
@@ -317,10 +324,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
 
   // Shadows of the lights on the lit bodies (not near a black hole: its bodies are lit per
   // vertex, raster/hole_bodies.hpp).
-  const bool any_lit =
-      std::any_of(draws.begin(), draws.end(), [](const BodyDraw& d) { return d.lit; });
-  // Lit fragments are dear: a pass finds the visible depth first, so that hidden ones skip it.
-  if (any_lit) frame_features |= kBodyVisibleDepth;
+  any_lit = std::any_of(draws.begin(), draws.end(), [](const BodyDraw& d) { return d.lit; });
+  if (std::any_of(draws.begin(), draws.end(), [&](const BodyDraw& d) {
+        return d.lit && resolved.bodies[d.body].object->material.glossy;
+      }))
+    lighting_features |= kLightingGlossy;
   if (settings.shadows && any_lit && !resolved.hole && !lights.empty()) {
     if (!shadow_maps) shadow_maps = std::make_unique<ShadowMaps>();
     shadow_maps->prepare(resolved, lights.size());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 
@@ -18,10 +19,11 @@
 namespace lightcone {
 namespace {
 
-// What a body program puts between the shared code and body.frag.
-std::string body_fragment_extra(bool lit) {
-  return std::string(shader_sources::patterns_glsl) + (lit ? shader_sources::lighting_glsl : "");
-}
+// The surface textures' units in the lighting pass: 4 (the sky's image in its own pass) and
+// units no other program of the frame uses.
+constexpr std::array<int, 4> kSurfaceUnits{4, 6, 14, 15};
+constexpr const char* kSurfaceSamplers[4] = {"lit_surface", "lit_motion", "lit_albedo",
+                                             "lit_material"};
 
 // The Doppler factor's velocity and gamma for an emitter moving with `velocity` in F.
 void set_doppler(GLuint program, const ResolvedScene& scene, const Vec3& velocity) {
@@ -45,15 +47,15 @@ GLuint RasterRenderer::Impl::sky_program_for(int variant, bool hue) {
 
 // The body program of a kind of material, path and features (body_variant_defines).
 GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int features) {
-  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 256 + features];
+  static_assert(kAllBodyFeatures < 1024);
+  GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 1024 + features];
   if (program) return program;
   const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
                                           : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
-                                          : variant == kDepth ? "#define LIGHTCONE_DEPTH_ONLY 1\n"
-                                                              : "") +
+                                                                 : "") +
                               body_variant_defines(features);
-  const std::string fragment = fragment_shader(
-      shader_sources::body_frag, body_fragment_extra(variant == kLit), defines.c_str(), gpu);
+  const std::string fragment = fragment_shader(shader_sources::body_frag,
+                                               shader_sources::patterns_glsl, defines.c_str(), gpu);
   if (!gpu)
     return program =
                link_program(vertex_shader(shader_sources::body_vert, false, defines), fragment);
@@ -62,6 +64,20 @@ GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int feature
   return program =
              link_program(common + shader_sources::patch_vert, fragment,
                           common + shader_sources::body_tesc, common + shader_sources::body_tese);
+}
+
+// The lighting pass's program of a set of body and lighting features (body_variant_defines,
+// lighting_variant_defines).
+GLuint RasterRenderer::Impl::lighting_program_for(int features, int lighting) {
+  GLuint& program = lighting_program_cache[{features, lighting}];
+  if (program) return program;
+  const std::string defines = body_variant_defines(features) + lighting_variant_defines(lighting);
+  program = link_program(vertex_shader(shader_sources::fullscreen_vert),
+                         fragment_shader(shader_sources::lit_surfaces_frag,
+                                         shader_sources::lighting_glsl, defines.c_str()));
+  glUseProgram(program);
+  for (int i = 0; i < 4; ++i) glUniform1i(uniform(program, kSurfaceSamplers[i]), kSurfaceUnits[i]);
+  return program;
 }
 
 RasterRenderer::Impl::Impl() {
@@ -101,9 +117,10 @@ RasterRenderer::Impl::~Impl() {
   for (const auto& [key, program] : body_program_cache) glDeleteProgram(program);
   glDeleteBuffers(1, &patch_buffer);
   glDeleteBuffers(1, &face_uv_buffer);
-  if (depth_framebuffer) {
-    glDeleteFramebuffers(1, &depth_framebuffer);
-    glDeleteTextures(1, &depth_texture);
+  for (const auto& [key, program] : lighting_program_cache) glDeleteProgram(program);
+  if (surfaces_framebuffer) {
+    glDeleteFramebuffers(1, &surfaces_framebuffer);
+    glDeleteTextures(4, surface_textures.data());
   }
   for (const auto& programs : sky_programs)
     for (GLuint program : programs)
@@ -163,9 +180,9 @@ GLuint RasterRenderer::Impl::upload(const Image& image) {
   return it->second;
 }
 
-// The lights and what lit bodies share (lighting.glsl's uniforms).
-void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
-  const GLuint p = body_program;
+// The lights and what lit surfaces share, on the lighting pass's program p (lighting.glsl's
+// uniforms).
+void RasterRenderer::Impl::set_lights(GLuint p, const ResolvedScene& resolved) {
   const RenderSettings& settings = resolved.scene->render;
   // The light table: a row of kLightTexels RGBA texels a light (lighting.glsl's lamp()).
   constexpr int kLightTexels = 7;
@@ -211,7 +228,6 @@ void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
   glUniform1i(uniform(p, "shadow_maps"), 5);
   glUniform1f(uniform(p, "shadow_texel"),
               maps ? 2.0f / static_cast<float>(shadow_maps->face_size()) : 0.0f);
-  glUniform1i(uniform(p, "visible_depth"), 6);
   if (frame_features & kBodyShadows) shadow_maps->bind(5);
   // The spectral fit's samplers on units of their own in every program that has them, bound or
   // not: samplers of two types on one unit make a draw fail.
@@ -241,7 +257,7 @@ void RasterRenderer::Impl::set_lights(const ResolvedScene& resolved) {
   glActiveTexture(GL_TEXTURE0);
 }
 
-// A body's own lighting uniforms.
+// A lit body's own uniforms: what its surfaces write for the lighting pass.
 void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw) {
   const GLuint p = body_program;
   const Object& object = *resolved.bodies[draw.body].object;
@@ -256,13 +272,9 @@ void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const Bod
   glUniform1i(uniform(p, "relativity"), resolved.scene->render.relativity ? 1 : 0);
   set_vec3(p, "surface_velocity_of_body",
            resolved.scene->render.relativity ? object.world_line.velocity : Vec3{});
-  glUniform1f(uniform(p, "diffuse"), m.glossy ? static_cast<float>(1 - m.glossy->specular) : 1.0f);
-  glUniform1i(uniform(p, "glossy"), m.glossy ? 1 : 0);
-  glUniform1f(uniform(p, "glossy_roughness"),
-              m.glossy ? static_cast<float>(m.glossy->roughness) : 1.0f);
-  glUniform1f(uniform(p, "glossy_specular"),
-              m.glossy ? static_cast<float>(m.glossy->specular) : 0.0f);
-  glUniform1i(uniform(p, "reflection_body"), draw.reflection_body);
+  glUniform4f(uniform(p, "finish"), static_cast<float>(draw.reflection_body),
+              m.glossy ? static_cast<float>(m.glossy->roughness) : -1.0f,
+              m.glossy ? static_cast<float>(m.glossy->specular) : 0.0f, 0.0f);
 }
 
 // One body of the prepared frame with the program in use: its world-line, pattern, clock, spin
@@ -331,45 +343,76 @@ void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDr
     if (draw.face_uvs) glDisableVertexAttribArray(row);
 }
 
-// The depth of the nearest surface at each pixel (the visible-depth pass): the bodies drawn with
-// a program that finds their exact depth and nothing else, into a depth texture the lit program
-// reads, so that lit fragments behind it skip their lighting.
-void RasterRenderer::Impl::draw_visible_depth(double ox, double oy, int features) {
+// The lit bodies into the surface textures: their exact depths on the frame's own depth buffer
+// (the bodies drawn before them included) decide which surface is nearest at each pixel, and
+// that one's normal, motion, albedo and finish are kept there for the lighting pass.
+void RasterRenderer::Impl::draw_lit_surfaces(double ox, double oy, int features) {
   const ResolvedScene& resolved = *scene;
   const int width = resolved.camera.width, height = resolved.camera.height;
-  if (!depth_framebuffer) {
-    glGenFramebuffers(1, &depth_framebuffer);
-    glGenTextures(1, &depth_texture);
-  }
   GLint target = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-  glActiveTexture(GL_TEXTURE6);
-  glBindTexture(GL_TEXTURE_2D, depth_texture);
-  if (width != depth_size[0] || height != depth_size[1]) {
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT,
-                 GL_FLOAT, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    depth_size = {width, height};
+  GLint depth_type = GL_NONE, depth = 0;
+  glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+                                        GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &depth_type);
+  glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+                                        GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
+  if (!surfaces_framebuffer) {
+    glGenFramebuffers(1, &surfaces_framebuffer);
+    glGenTextures(4, surface_textures.data());
   }
-  glBindTexture(GL_TEXTURE_2D, 0);  // not sampled while it is drawn into
-  glActiveTexture(GL_TEXTURE0);
-  glBindFramebuffer(GL_FRAMEBUFFER, depth_framebuffer);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_texture, 0);
-  const GLenum none = GL_NONE;
-  glDrawBuffers(1, &none);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  body_program = body_program_for(kDepth, gpu_tessellation, features);
+  glBindFramebuffer(GL_FRAMEBUFFER, surfaces_framebuffer);
+  if (width != surfaces_size[0] || height != surfaces_size[1]) {
+    for (int i = 0; i < 4; ++i) {
+      glBindTexture(GL_TEXTURE_2D, surface_textures[i]);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D,
+                             surface_textures[i], 0);
+    }
+    glBindTexture(GL_TEXTURE_2D, rows_texture);
+    surfaces_size = {width, height};
+  }
+  if (depth_type == GL_RENDERBUFFER)
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                              static_cast<GLuint>(depth));
+  else
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
+                           static_cast<GLuint>(depth), 0);
+  const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3};
+  glDrawBuffers(4, buffers);
+  const GLfloat empty[4] = {0, 0, 0, 0};
+  glClearBufferfv(GL_COLOR, 3, empty);  // no lit surface anywhere yet (lit_material's alpha 0)
+  body_program = body_program_for(kLit, gpu_tessellation, features);
   glUseProgram(body_program);
   set_common(body_program, resolved, first_log_doppler, ox, oy);
   glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
-  for (const BodyDraw& draw : draws) draw_body(resolved, draw, false);
+  set_mat4(body_program, "trace_to_world", resolved.trace_to_world.linear);
+  for (const BodyDraw& draw : draws)
+    if (draw.lit) draw_body(resolved, draw, true);
   skip_faces(HiddenFaces::kNone);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
-  glActiveTexture(GL_TEXTURE6);
-  glBindTexture(GL_TEXTURE_2D, depth_texture);
+}
+
+// The lighting pass: every pixel whose nearest surface is lit, lit once into the frame's target
+// (lit_surfaces.frag); the depth buffer already holds those surfaces.
+void RasterRenderer::Impl::light_surfaces(double ox, double oy, int features) {
+  const ResolvedScene& resolved = *scene;
+  const GLuint program =
+      lighting_program_for(features, specialise ? lighting_features : kAllLightingFeatures);
+  glUseProgram(program);
+  set_common(program, resolved, first_log_doppler, ox, oy);
+  set_lights(program, resolved);
+  for (int i = 0; i < 4; ++i) {
+    glActiveTexture(GL_TEXTURE0 + kSurfaceUnits[i]);
+    glBindTexture(GL_TEXTURE_2D, surface_textures[i]);
+  }
   glActiveTexture(GL_TEXTURE0);
+  glDisable(GL_DEPTH_TEST);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  check_gl("lighting the lit surfaces");
 }
 
 // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
@@ -408,20 +451,21 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
                           reinterpret_cast<const void*>(4 * row * sizeof(float)));
   const int features =
       specialise ? frame_features | (offsets ? kBodySampleOffsets : 0) : kAllBodyFeatures;
-  if (frame_features & kBodyVisibleDepth) draw_visible_depth(ox, oy, features);
-  for (const Variant variant : {kEmitter, kTextured, kLit}) {
+  for (const Variant variant : {kEmitter, kTextured}) {
     body_program = body_program_for(variant, gpu_tessellation, features);
     glUseProgram(body_program);
     set_common(body_program, resolved, first_log_doppler, ox, oy);
     // Depth: the light travel distance on a log scale between these.
     glUniform2f(uniform(body_program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
-    if (variant == kLit) set_lights(resolved);
     for (const BodyDraw& draw : draws)
-      if (draw.lit ? variant == kLit
-                   : (draw.pattern == 2) == (variant == kTextured) && variant != kLit)
-        draw_body(resolved, draw, variant == kLit);
+      if (!draw.lit && (draw.pattern == 2) == (variant == kTextured))
+        draw_body(resolved, draw, false);
   }
   skip_faces(HiddenFaces::kNone);
+  if (any_lit) {
+    draw_lit_surfaces(ox, oy, features);
+    light_surfaces(ox, oy, features);
+  }
   if (resolved.hole && !hole_body_list.empty()) {
     glUseProgram(hole_bodies->program());
     set_common(hole_bodies->program(), resolved, first_log_doppler, ox, oy);

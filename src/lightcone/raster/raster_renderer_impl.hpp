@@ -46,13 +46,17 @@ inline int colour_kind(const RenderSettings& settings) {
 struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
   // image): small programs run faster than one with every branch.
-  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2, kDepth = 3 };
+  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
   // And one per path (CPU or GPU tessellation) and set of features its frame uses: a frame runs
   // only the code its bodies need, since a branch on a uniform still costs a software
   // rasteriser every fragment it masks (twice the time of street.json's frame). Each is built
   // the first time a frame asks for it.
   std::map<int, GLuint> body_program_cache;
-  int frame_features = 0;  // of the prepared frame (kBodySpin, kBodyTimedPattern, kBodyHueModel)
+  int frame_features = 0;     // of the prepared frame (kBodySpin, kBodyTimedPattern, kBodyHueModel)
+  bool any_lit = false;       // whether the prepared frame has lit bodies (a lighting pass)
+  int lighting_features = 0;  // and what its lighting pass needs (LightingFeature)
+  // The lighting pass's programs, by body and lighting features (lit_surfaces.frag).
+  std::map<std::pair<int, int>, GLuint> lighting_program_cache;
   bool specialise = true;  // false: every body program has every feature (the tests' reference)
   // The sky (plain or grid, and image; the hue model or another), and near a black hole (the
   // same; the colour model another, spectral or hue: colour_kind): each built with the first
@@ -105,6 +109,7 @@ struct RasterRenderer::Impl {
 
   // The body program of a kind of material, path and features (body_variant_defines).
   GLuint body_program_for(int variant, bool gpu, int features);
+  GLuint lighting_program_for(int features, int lighting);
   GLuint sky_program_for(int variant, bool hue);
 
   Impl();
@@ -154,19 +159,25 @@ struct RasterRenderer::Impl {
   const std::vector<float>* shading_offsets = nullptr;
   TessellationLimits tessellation_limits;
 
-  // The lights and what lit bodies share (lighting.glsl's uniforms).
-  void set_lights(const ResolvedScene& resolved);
+  // The lights and what lit surfaces share, on the lighting pass's program p (lighting.glsl's
+  // uniforms).
+  void set_lights(GLuint p, const ResolvedScene& resolved);
 
-  // A body's own lighting uniforms.
+  // A lit body's own uniforms: what its surfaces write for the lighting pass.
   void set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw);
 
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
   void pass(double ox, double oy, const std::vector<float>* offsets);
   void draw_body(const ResolvedScene& resolved, const BodyDraw& draw, bool lit);
-  void draw_visible_depth(double ox, double oy, int features);
-  // The visible-depth pass's target (draw_visible_depth), made with the first lit frame.
-  GLuint depth_framebuffer = 0, depth_texture = 0;
-  std::array<int, 2> depth_size{0, 0};
+  // The lit bodies' nearest surfaces into the surface textures, then the lighting pass over
+  // them into the frame's target (deferred shading).
+  void draw_lit_surfaces(double ox, double oy, int features);
+  void light_surfaces(double ox, double oy, int features);
+  // The surface textures (lit_surfaces.frag's), on the frame's own depth buffer: made with the
+  // first lit frame, anew when the size changes.
+  GLuint surfaces_framebuffer = 0;
+  std::array<GLuint, 4> surface_textures{};
+  std::array<int, 2> surfaces_size{0, 0};
 };
 
 }  // namespace lightcone

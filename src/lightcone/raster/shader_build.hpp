@@ -48,26 +48,24 @@ inline void set_camera_uniforms(GLuint program, const CameraBasis& c, double off
               static_cast<float>(offset_y));
 }
 
-// What a body program may leave out when no body of the frame uses it (shaders/body.frag,
-// patterns.glsl, common.glsl): spinning bodies, blinks and clocks, shading at per-pixel sample
-// offsets (several samples a pixel), the hue model's law (received_rgb), shadows
-// (lighting.glsl), the lit program's test against the visible-depth pass (a frame with lit
-// bodies draws one), lit textures (and their spectral fit), clocks on meshes (their faces'
-// texture maps), and the shadows of meshes and of spinning bodies met exactly. The defines take
-// out those a frame does not use.
+// What a body program and the lighting pass may leave out when no body of the frame uses it
+// (shaders/body.frag, lit_surfaces.frag, patterns.glsl, common.glsl): spinning bodies, blinks
+// and clocks, shading at per-pixel sample offsets (several samples a pixel), the hue model's law
+// (received_rgb), shadows (lighting.glsl), lit textures (and their spectral fit), clocks on
+// meshes (their faces' texture maps), and the shadows of meshes and of spinning bodies met
+// exactly. The defines take out those a frame does not use.
 enum BodyFeature {
   kBodySpin = 1,
   kBodyTimedPattern = 2,
   kBodySampleOffsets = 4,
   kBodyHueModel = 8,
   kBodyShadows = 16,
-  kBodyVisibleDepth = 32,
-  kBodyLitTextures = 64,
-  kBodyMeshClocks = 128,
-  kBodySpectralTextures = 256,
-  kBodyMeshShadows = 512,
-  kBodySpinShadows = 1024,
-  kAllBodyFeatures = 2047,
+  kBodyLitTextures = 32,
+  kBodyMeshClocks = 64,
+  kBodySpectralTextures = 128,
+  kBodyMeshShadows = 256,
+  kBodySpinShadows = 512,
+  kAllBodyFeatures = 1023,
 };
 inline std::string body_variant_defines(int features) {
   std::string defines;
@@ -76,12 +74,33 @@ inline std::string body_variant_defines(int features) {
   if (!(features & kBodySampleOffsets)) defines += "#define LIGHTCONE_NO_SAMPLE_OFFSETS 1\n";
   if (!(features & kBodyHueModel)) defines += "#define LIGHTCONE_NO_HUE 1\n";
   if (!(features & kBodyShadows)) defines += "#define LIGHTCONE_NO_SHADOWS 1\n";
-  if (!(features & kBodyVisibleDepth)) defines += "#define LIGHTCONE_NO_VISIBLE_DEPTH 1\n";
   if (features & kBodyLitTextures) defines += "#define LIGHTCONE_LIT_TEXTURES 1\n";
   if (features & kBodyMeshClocks) defines += "#define LIGHTCONE_MESH_CLOCKS 1\n";
   if (features & kBodySpectralTextures) defines += "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n";
   if (features & kBodyMeshShadows) defines += "#define LIGHTCONE_MESH_SHADOWS 1\n";
   if (features & kBodySpinShadows) defines += "#define LIGHTCONE_SPIN_SHADOWS 1\n";
+  return defines;
+}
+
+// What the lighting pass may also leave out (lighting.glsl): each kind of light but the point
+// light where the frame has none, the glossy lobe where no lit body is glossy, and, under the
+// spectral model, the tables of lights moving relative to the bodies they light.
+enum LightingFeature {
+  kLightingSpot = 1,
+  kLightingSun = 2,
+  kLightingSphere = 4,
+  kLightingGlossy = 8,
+  kLightingMovingReflections = 16,
+  kAllLightingFeatures = 31,
+};
+inline std::string lighting_variant_defines(int features) {
+  std::string defines;
+  if (features & kLightingSpot) defines += "#define LIGHTCONE_SPOT_LIGHTS 1\n";
+  if (features & kLightingSun) defines += "#define LIGHTCONE_SUN_LIGHTS 1\n";
+  if (features & kLightingSphere) defines += "#define LIGHTCONE_SPHERE_LIGHTS 1\n";
+  if (features & kLightingGlossy) defines += "#define LIGHTCONE_GLOSSY 1\n";
+  if (features & kLightingMovingReflections)
+    defines += "#define LIGHTCONE_MOVING_LIGHT_REFLECTIONS 1\n";
   return defines;
 }
 

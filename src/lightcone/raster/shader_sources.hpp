@@ -15,6 +15,7 @@ extern const char* const patterns_glsl;
 extern const char* const hole_body_vert;
 extern const char* const hole_body_frag;
 extern const char* const lighting_glsl;
+extern const char* const lit_surfaces_frag;
 extern const char* const fullscreen_vert;
 extern const char* const display_frag;
 extern const char* const sky_frag;

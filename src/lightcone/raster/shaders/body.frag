@@ -45,7 +45,17 @@ uniform mat3 shape_of_rest;
 uniform mat4 trace_from_rest;  // the linear part: 4-velocities from the rest frame to F
 uniform float sphere_radius;
 
+#if defined(LIGHTCONE_LIT)
+// A lit body writes what the lighting pass (lit_surfaces.frag) needs of its nearest surface at
+// each pixel, its exact depth deciding which is nearest; that pass lights each pixel once.
+layout(location = 0) out vec4 lit_surface;   // the normal in the body's rest frame, s
+layout(location = 1) out vec4 lit_motion;    // the surface's velocity in W, D_camera
+layout(location = 2) out vec4 lit_albedo;    // the albedo, k (-1: a texel's, to be fitted)
+layout(location = 3) out vec4 lit_material;  // reflection_body, roughness (-1: matte),
+                                             // specular, the colour's alpha
+#else
 layout(location = 0) out vec4 colour;
+#endif
 
 // The ray parameter where the sample's ray meets the surface: trace/tracer.cpp's sphere and
 // plane intersections (the nearer root; where the tessellated outline covers a sample just
@@ -124,13 +134,12 @@ vec3 shape_normal(vec3 p, vec3 direction) {
   return dot(n, direction) > 0.0 ? -n : n;
 }
 
-
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
-#if !defined(LIGHTCONE_NO_VISIBLE_DEPTH)
-uniform highp sampler2D visible_depth;  // the nearest surface's depth at each pixel
-#endif
+uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
+uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
 uniform int relativity;
+uniform vec4 finish;  // reflection_body, roughness (-1: matte), specular, 0
 #endif
 
 void main() {
@@ -162,15 +171,6 @@ void main() {
   float depth =
       clamp((log(max(s, 1e-30)) - depth_range.x) / (depth_range.y - depth_range.x), 0.0, 1.0);
   gl_FragDepth = depth;
-#if defined(LIGHTCONE_DEPTH_ONLY)
-  colour = vec4(0.0);
-  return;
-#endif
-#if defined(LIGHTCONE_LIT) && !defined(LIGHTCONE_NO_VISIBLE_DEPTH)
-  // Behind the nearest surface the visible-depth pass found (by more than the rounding between
-  // the two programs): hidden, so none of the lighting below.
-  if (depth > texelFetch(visible_depth, ivec2(gl_FragCoord.xy), 0).r + 1e-6) discard;
-#endif
   float d = doppler_factor(u, velocity, gamma);
   float proper_time = proper_time_origin + s * tau1;
   int k = pattern_index(p, proper_time);
@@ -192,18 +192,18 @@ void main() {
   vec3 surface_albedo = albedo[k];
 #if defined(LIGHTCONE_LIT_TEXTURES)
   // A lit texture: each sample's texel is its albedo (the colour models other than spectral are
-  // linear in it; under the spectral model it is fitted to a reflectance).
+  // linear in it; under the spectral model the lighting pass fits it to a reflectance).
   if (pattern == 2) {
     surface_albedo = sample_bilinear(texture_image, body_uv(p), true);
 #if defined(LIGHTCONE_SPECTRAL_TEXTURES)
-    texel_reflectance = rgb_to_sigmoid(surface_albedo);
     k = -1;
 #endif
   }
 #endif
-  vec3 c =
-      lit_colour(surface_albedo, k, u, s, d, surface_velocity, normal, fragment_light_sample());
-  colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, subject_alpha);
+  lit_surface = vec4(normal, s);
+  lit_motion = vec4(surface_velocity, d);
+  lit_albedo = vec4(surface_albedo, float(k));
+  lit_material = vec4(finish.xyz, subject_alpha);
 #elif defined(LIGHTCONE_TEXTURED)
   colour = vec4(received_rgb(sample_bilinear(texture_image, body_uv(p), true), d), subject_alpha);
 #else

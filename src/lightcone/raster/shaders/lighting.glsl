@@ -37,19 +37,20 @@ Lamp lamp(int l) {
 }
 
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
-uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
 uniform vec3 camera_velocity;   // in W (0 for the classical picture)
 uniform int searchlight_model;  // 0 physical, 1 chang1996, 2 off
-uniform float diffuse;  // 1 - glossy specular, or 1
-uniform int glossy;
-uniform float glossy_roughness;
-uniform float glossy_specular;
+// A lit surface's finish (frame/lighting.cpp's material terms): glossy or not, its GGX
+// roughness and specular weight, and its body's row of reflection_index.
+struct Finish {
+  bool glossy;
+  float roughness, specular;
+  int reflection_body;
+};
 // Spectral: the reflected colour of (fixed colour k, light l) of the body: texel (k light_count
 // + l, reflection_body) of reflection_index holds its row and whether the light moves relative
 // to the body; a row against ln D_camera (a light co-moving with the surface) or, for a moving
 // one, the first of a block of rows of reflection_tables, one per node of ln D_light.
 uniform highp sampler2D reflection_index;
-uniform int reflection_body;
 uniform sampler2D reflection_tables;
 uniform vec4 reflection_grid;  // (first ln D_camera, step, first ln D_light, step)
 uniform int reflection_light_nodes;
@@ -101,17 +102,17 @@ vec3 sphere_point(vec2 u) {
 }
 
 // frame/lighting.cpp, glossy_reflectance (GGX, Smith, Schlick).
-float glossy_reflectance(vec3 n, vec3 to_light, vec3 to_camera) {
+float glossy_reflectance(Finish finish, vec3 n, vec3 to_light, vec3 to_camera) {
   float cos_i = dot(n, to_light), cos_o = dot(n, to_camera);
   if (cos_i <= 0.0 || cos_o <= 0.0) return 0.0;
   vec3 h = normalize(to_light + to_camera);
-  float a2 = pow(glossy_roughness, 4.0);
+  float a2 = pow(finish.roughness, 4.0);
   float cos_h = dot(n, h);
   float denom = cos_h * cos_h * (a2 - 1.0) + 1.0;
   float distribution = a2 / (kPi * denom * denom);
   float g1i = 2.0 * cos_i / (cos_i + sqrt(a2 + (1.0 - a2) * cos_i * cos_i));
   float g1o = 2.0 * cos_o / (cos_o + sqrt(a2 + (1.0 - a2) * cos_o * cos_o));
-  float fresnel = glossy_specular + (1.0 - glossy_specular) * pow(1.0 - dot(h, to_camera), 5.0);
+  float fresnel = finish.specular + (1.0 - finish.specular) * pow(1.0 - dot(h, to_camera), 5.0);
   return distribution * g1i * g1o * fresnel / (4.0 * cos_i * cos_o);
 }
 
@@ -386,6 +387,7 @@ bool incoming(Lamp light, vec4 surface, vec3 surface_velocity, vec3 normal, vec2
               out Incoming result) {
   result = Incoming(vec3(0.0), 1.0, 0.0, 0.0, vec4(0.0), false);
   vec3 beta_l = light.velocity;
+#if defined(LIGHTCONE_SUN_LIGHTS)
   if (light.kind == 2) {
     // A plane wave: physics/light_path.cpp's plane-wave laws.
     vec4 k_world = boost(-beta_l, vec4(1.0, normalize(light.axis)));
@@ -401,9 +403,12 @@ bool incoming(Lamp light, vec4 surface, vec3 surface_velocity, vec3 normal, vec2
     result.to_infinity = true;
     return true;
   }
+#endif
   vec3 rest_offset = vec3(0.0);
   float intensity = light.intensity;
+#if defined(LIGHTCONE_SPHERE_LIGHTS)
   if (light.kind == 3) rest_offset = sphere_point(light_sample) * light.radius;
+#endif
   vec3 offset_world = contracted(rest_offset, beta_l);
   vec4 emission;
   if (light.fixed_event) {
@@ -418,15 +423,19 @@ bool incoming(Lamp light, vec4 surface, vec3 surface_velocity, vec3 normal, vec2
   result.doppler = leg.doppler;
   float cos_i = dot(normal, result.direction_to_light);
   if (!(cos_i > 0.0) || !(leg.distance > 0.0)) return false;
+#if defined(LIGHTCONE_SPOT_LIGHTS)
   if (light.kind == 1) {
     float angle = degrees(acos(clamp(dot(leg.emitted_direction, normalize(light.axis)), -1.0,
                                      1.0)));
     float half_cone = light.cone.x, falloff = light.cone.y;
     intensity *= 1.0 - (falloff <= 0.0 ? (angle >= half_cone ? 1.0 : 0.0)
                                        : smoothstep(half_cone - falloff, half_cone, angle));
-  } else if (light.kind == 3) {
-    intensity *= 4.0 * max(0.0, dot(normalize(rest_offset), leg.emitted_direction));
   }
+#endif
+#if defined(LIGHTCONE_SPHERE_LIGHTS)
+  if (light.kind == 3)
+    intensity *= 4.0 * max(0.0, dot(normalize(rest_offset), leg.emitted_direction));
+#endif
   if (intensity <= 0.0) return false;
   float d2 = leg.doppler * leg.doppler, r2 = leg.distance * leg.distance;
   set_irradiance(result, intensity * cos_i / r2, d2 * d2 * intensity * cos_i / r2,
@@ -544,11 +553,13 @@ vec3 texel_reflected(int l, float d_camera, float d_light) {
 #endif
 
 // frame/lighting.cpp, Lighting::received: the light a lit surface point of albedo `albedo`
-// (fixed colour `k`, or -1 for a texel under the spectral model: texel_reflectance) sends to the camera, seen along u with factor d_camera; s is the ray
-// parameter of the surface point, surface_velocity its velocity in W (0 for the classical
-// picture) and normal its normal in its body's rest frame.
-vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surface_velocity,
-                vec3 normal, vec2 light_sample) {
+// (fixed colour `k`, or -1 for a texel under the spectral model: texel_reflectance) and finish
+// sends to the camera, seen along u with factor d_camera; s is the ray parameter of the surface
+// point, surface_velocity its velocity in W (0 for the classical picture) and normal its normal
+// in its body's rest frame.
+vec3 lit_colour(vec3 albedo, int k, Finish finish, vec3 u, float s, float d_camera,
+                vec3 surface_velocity, vec3 normal, vec2 light_sample) {
+  float diffuse = finish.glossy ? 1.0 - finish.specular : 1.0;
   vec4 surface = trace_to_world * vec4(ray_time * s, u * s);
   Leg view = receive_leg(surface, surface_velocity, vec4(0.0), camera_velocity);
   vec3 to_camera = view.emitted_direction;
@@ -562,8 +573,13 @@ vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surfac
         exactly_shadowed(surface, in_light.shadow_end, in_light.to_infinity))
       continue;
 #endif
-    float gloss =
-        glossy == 1 ? glossy_reflectance(normal, in_light.direction_to_light, to_camera) : 0.0;
+#if defined(LIGHTCONE_GLOSSY)
+    float gloss = finish.glossy ? glossy_reflectance(finish, normal, in_light.direction_to_light,
+                                                     to_camera)
+                                : 0.0;
+#else
+    const float gloss = 0.0;
+#endif
     if (spectral == 1) {
       vec3 reflected;
 #if defined(LIGHTCONE_SPECTRAL_TEXTURES)
@@ -573,10 +589,14 @@ vec3 lit_colour(vec3 albedo, int k, vec3 u, float s, float d_camera, vec3 surfac
 #endif
       {
         vec2 index =
-            texelFetch(reflection_index, ivec2(k * light_count + l, reflection_body), 0).xy;
+            texelFetch(reflection_index, ivec2(k * light_count + l, finish.reflection_body), 0).xy;
+#if defined(LIGHTCONE_MOVING_LIGHT_REFLECTIONS)
         reflected = index.y > 0.5
                         ? reflection_table(int(index.x), log(d_camera), log(in_light.doppler))
                         : received_colour(int(index.x), d_camera);
+#else
+        reflected = received_colour(int(index.x), d_camera);
+#endif
       }
       seen += diffuse / kPi * in_light.spectral_factor * reflected;
       if (gloss > 0.0)
