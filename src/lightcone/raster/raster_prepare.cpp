@@ -194,10 +194,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
   lighting_features = 0;
   for (const LightDraw& d : lights)
-    lighting_features |= d.kind == 1   ? kLightingSpot
-                         : d.kind == 2 ? kLightingSun
-                         : d.kind == 3 ? kLightingSphere
-                                       : 0;
+    lighting_features |= (d.kind == 1   ? kLightingSpot
+                          : d.kind == 2 ? kLightingSun
+                          : d.kind == 3 ? kLightingSphere
+                                        : 0) |
+                         (d.velocity != Vec3{} ? kLightingMovingLights : 0);
   hole_body_list.clear();
   for (auto& [key, kept] : rest_meshes) kept.used = false;
   for (std::size_t i = 0; i < resolved.bodies.size(); ++i) {
@@ -325,10 +326,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   // Shadows of the lights on the lit bodies (not near a black hole: its bodies are lit per
   // vertex, raster/hole_bodies.hpp).
   any_lit = std::any_of(draws.begin(), draws.end(), [](const BodyDraw& d) { return d.lit; });
-  if (std::any_of(draws.begin(), draws.end(), [&](const BodyDraw& d) {
-        return d.lit && resolved.bodies[d.body].object->material.glossy;
-      }))
-    lighting_features |= kLightingGlossy;
+  for (const BodyDraw& d : draws) {
+    if (!d.lit) continue;
+    const ResolvedBody& body = resolved.bodies[d.body];
+    if (body.object->material.glossy) lighting_features |= kLightingGlossy;
+    if (body.spin >= 0 || (settings.relativity && body.object->world_line.velocity != Vec3{}))
+      lighting_features |= kLightingMovingSurfaces;
+  }
   if (settings.shadows && any_lit && !resolved.hole && !lights.empty()) {
     if (!shadow_maps) shadow_maps = std::make_unique<ShadowMaps>();
     shadow_maps->prepare(resolved, lights.size());

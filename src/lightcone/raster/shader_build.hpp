@@ -83,15 +83,19 @@ inline std::string body_variant_defines(int features) {
 }
 
 // What the lighting pass may also leave out (lighting.glsl): each kind of light but the point
-// light where the frame has none, the glossy lobe where no lit body is glossy, and, under the
-// spectral model, the tables of lights moving relative to the bodies they light.
+// light where the frame has none, the glossy lobe where no lit body is glossy, under the
+// spectral model the tables of lights moving relative to the bodies they light, and the
+// velocities of lights and of lit surfaces where all are at rest in W (the laws then fold to
+// their forms for beta = 0, which give the same values).
 enum LightingFeature {
   kLightingSpot = 1,
   kLightingSun = 2,
   kLightingSphere = 4,
   kLightingGlossy = 8,
   kLightingMovingReflections = 16,
-  kAllLightingFeatures = 31,
+  kLightingMovingLights = 32,
+  kLightingMovingSurfaces = 64,
+  kAllLightingFeatures = 127,
 };
 inline std::string lighting_variant_defines(int features) {
   std::string defines;
@@ -101,6 +105,8 @@ inline std::string lighting_variant_defines(int features) {
   if (features & kLightingGlossy) defines += "#define LIGHTCONE_GLOSSY 1\n";
   if (features & kLightingMovingReflections)
     defines += "#define LIGHTCONE_MOVING_LIGHT_REFLECTIONS 1\n";
+  if (features & kLightingMovingLights) defines += "#define LIGHTCONE_MOVING_LIGHTS 1\n";
+  if (features & kLightingMovingSurfaces) defines += "#define LIGHTCONE_MOVING_SURFACES 1\n";
   return defines;
 }
 

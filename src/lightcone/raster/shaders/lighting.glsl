@@ -31,8 +31,16 @@ Lamp lamp(int l) {
   vec4 t3 = texelFetch(light_table, ivec2(3, l), 0);
   vec4 t4 = texelFetch(light_table, ivec2(4, l), 0);
   vec4 t5 = texelFetch(light_table, ivec2(5, l), 0);
+#if defined(LIGHTCONE_MOVING_LIGHTS)
+  vec3 velocity = t3.xyz;
+  float one_minus_beta2 = t3.w;
+#else
+  // Every light at rest in W: the laws below fold to their forms for beta = 0.
+  const vec3 velocity = vec3(0.0);
+  const float one_minus_beta2 = 1.0;
+#endif
   return Lamp(int(t0.x), t0.y > 0.5, int(t0.z), int(t0.w), texelFetch(light_table, ivec2(1, l), 0),
-              t2.xyz, t2.w, t3.xyz, t3.w, t4.xyz, t4.w, t5.xy, t5.z, t5.w,
+              t2.xyz, t2.w, velocity, one_minus_beta2, t4.xyz, t4.w, t5.xy, t5.z, t5.w,
               texelFetch(light_table, ivec2(6, l), 0));
 }
 

@@ -23,7 +23,12 @@ void main() {
 #endif
   Finish finish = Finish(material.y >= 0.0, material.y, material.z, int(material.x));
   float d = motion.w;
-  vec3 c = lit_colour(albedo.rgb, k, finish, fragment_look_direction(), surface.w, d, motion.xyz,
-                      surface.xyz, fragment_light_sample());
+#if defined(LIGHTCONE_MOVING_SURFACES)
+  vec3 surface_velocity = motion.xyz;
+#else
+  const vec3 surface_velocity = vec3(0.0);  // every lit surface at rest in W
+#endif
+  vec3 c = lit_colour(albedo.rgb, k, finish, fragment_look_direction(), surface.w, d,
+                      surface_velocity, surface.xyz, fragment_light_sample());
   colour = vec4(spectral == 1 ? c * spectral_searchlight(d, searchlight_model) : c, material.w);
 }
