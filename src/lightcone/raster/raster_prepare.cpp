@@ -192,7 +192,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   std::vector<float> reflection_index;
   const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1);
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
-  lighting_features = 0;
+  lighting_features = lights.size() > kUniformLamps ? kLightingManyLights : 0;
   for (const LightDraw& d : lights)
     lighting_features |= (d.kind == 1   ? kLightingSpot
                           : d.kind == 2 ? kLightingSun

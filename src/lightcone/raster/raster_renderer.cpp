@@ -182,7 +182,7 @@ GLuint RasterRenderer::Impl::upload(const Image& image) {
 
 // The lights and what lit surfaces share, on the lighting pass's program p (lighting.glsl's
 // uniforms).
-void RasterRenderer::Impl::set_lights(GLuint p, const ResolvedScene& resolved) {
+void RasterRenderer::Impl::set_lights(GLuint p, const ResolvedScene& resolved, int lighting) {
   const RenderSettings& settings = resolved.scene->render;
   // The light table: a row of kLightTexels RGBA texels a light (lighting.glsl's lamp()).
   constexpr int kLightTexels = 7;
@@ -213,12 +213,16 @@ void RasterRenderer::Impl::set_lights(GLuint p, const ResolvedScene& resolved) {
                    table.begin() + 4 * kLightTexels * static_cast<std::ptrdiff_t>(l),
                    [](double x) { return static_cast<float>(x); });
   }
-  glActiveTexture(GL_TEXTURE7);
-  glBindTexture(GL_TEXTURE_2D, light_table_texture);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kLightTexels, std::max(n, 1), 0, GL_RGBA, GL_FLOAT,
-               table.data());
+  if (lighting & kLightingManyLights) {
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_2D, light_table_texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kLightTexels, std::max(n, 1), 0, GL_RGBA, GL_FLOAT,
+                 table.data());
+  } else {
+    glUniform4fv(uniform(p, "lamp_texels"), kLightTexels * n, table.data());
+  }
   glActiveTexture(GL_TEXTURE8);
   glBindTexture(GL_TEXTURE_2D, reflection_index_texture);
   glActiveTexture(GL_TEXTURE0);
@@ -399,11 +403,11 @@ void RasterRenderer::Impl::draw_lit_surfaces(double ox, double oy, int features)
 // (lit_surfaces.frag); the depth buffer already holds those surfaces.
 void RasterRenderer::Impl::light_surfaces(double ox, double oy, int features) {
   const ResolvedScene& resolved = *scene;
-  const GLuint program =
-      lighting_program_for(features, specialise ? lighting_features : kAllLightingFeatures);
+  const int lighting = specialise ? lighting_features : kAllLightingFeatures;
+  const GLuint program = lighting_program_for(features, lighting);
   glUseProgram(program);
   set_common(program, resolved, first_log_doppler, ox, oy);
-  set_lights(program, resolved);
+  set_lights(program, resolved, lighting);
   for (int i = 0; i < 4; ++i) {
     glActiveTexture(GL_TEXTURE0 + kSurfaceUnits[i]);
     glBindTexture(GL_TEXTURE_2D, surface_textures[i]);

@@ -159,9 +159,9 @@ struct RasterRenderer::Impl {
   const std::vector<float>* shading_offsets = nullptr;
   TessellationLimits tessellation_limits;
 
-  // The lights and what lit surfaces share, on the lighting pass's program p (lighting.glsl's
-  // uniforms).
-  void set_lights(GLuint p, const ResolvedScene& resolved);
+  // The lights and what lit surfaces share, on the lighting pass's program p of lighting
+  // features `lighting` (lighting.glsl's uniforms).
+  void set_lights(GLuint p, const ResolvedScene& resolved, int lighting);
 
   // A lit body's own uniforms: what its surfaces write for the lighting pass.
   void set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw);

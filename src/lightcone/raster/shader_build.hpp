@@ -86,7 +86,9 @@ inline std::string body_variant_defines(int features) {
 // light where the frame has none, the glossy lobe where no lit body is glossy, under the
 // spectral model the tables of lights moving relative to the bodies they light, and the
 // velocities of lights and of lit surfaces where all are at rest in W (the laws then fold to
-// their forms for beta = 0, which give the same values).
+// their forms for beta = 0, which give the same values); and the table of lights in a texture,
+// which only frames with more lights than kUniformLamps need.
+inline constexpr int kUniformLamps = 16;  // lighting.glsl's lamp_texels
 enum LightingFeature {
   kLightingSpot = 1,
   kLightingSun = 2,
@@ -95,7 +97,8 @@ enum LightingFeature {
   kLightingMovingReflections = 16,
   kLightingMovingLights = 32,
   kLightingMovingSurfaces = 64,
-  kAllLightingFeatures = 127,
+  kLightingManyLights = 128,
+  kAllLightingFeatures = 255,
 };
 inline std::string lighting_variant_defines(int features) {
   std::string defines;
@@ -107,6 +110,7 @@ inline std::string lighting_variant_defines(int features) {
     defines += "#define LIGHTCONE_MOVING_LIGHT_REFLECTIONS 1\n";
   if (features & kLightingMovingLights) defines += "#define LIGHTCONE_MOVING_LIGHTS 1\n";
   if (features & kLightingMovingSurfaces) defines += "#define LIGHTCONE_MOVING_SURFACES 1\n";
+  if (features & kLightingManyLights) defines += "#define LIGHTCONE_MANY_LIGHTS 1\n";
   return defines;
 }
 

@@ -5,9 +5,21 @@
 
 const float kPi = 3.141592653589793;
 
-// The lights, any number of them: a row of light_table each (raster_renderer.cpp, set_lights).
-uniform highp sampler2D light_table;
+// The lights, any number of them: seven texels each (raster_renderer.cpp, set_lights), as
+// uniforms for up to 16 lights (a software rasteriser reads a uniform once for a block of
+// fragments, a texture per fragment), else a row of light_table each.
 uniform int light_count;
+#if defined(LIGHTCONE_MANY_LIGHTS)
+uniform highp sampler2D light_table;
+vec4 lamp_texel(int l, int i) {
+  return texelFetch(light_table, ivec2(i, l), 0);
+}
+#else
+uniform vec4 lamp_texels[7 * 16];  // raster_renderer_impl.hpp's kUniformLamps
+vec4 lamp_texel(int l, int i) {
+  return lamp_texels[7 * l + i];
+}
+#endif
 struct Lamp {
   int kind;           // 0 point, 1 spot, 2 directional, 3 sphere
   bool fixed_event;   // emission at `event` (delay camera or none)
@@ -26,11 +38,8 @@ struct Lamp {
   vec4 shadow_origin; // its position at the camera's time (relative to the observation event)
 };
 Lamp lamp(int l) {
-  vec4 t0 = texelFetch(light_table, ivec2(0, l), 0);
-  vec4 t2 = texelFetch(light_table, ivec2(2, l), 0);
-  vec4 t3 = texelFetch(light_table, ivec2(3, l), 0);
-  vec4 t4 = texelFetch(light_table, ivec2(4, l), 0);
-  vec4 t5 = texelFetch(light_table, ivec2(5, l), 0);
+  vec4 t0 = lamp_texel(l, 0), t2 = lamp_texel(l, 2), t3 = lamp_texel(l, 3),
+       t4 = lamp_texel(l, 4), t5 = lamp_texel(l, 5);
 #if defined(LIGHTCONE_MOVING_LIGHTS)
   vec3 velocity = t3.xyz;
   float one_minus_beta2 = t3.w;
@@ -39,9 +48,9 @@ Lamp lamp(int l) {
   const vec3 velocity = vec3(0.0);
   const float one_minus_beta2 = 1.0;
 #endif
-  return Lamp(int(t0.x), t0.y > 0.5, int(t0.z), int(t0.w), texelFetch(light_table, ivec2(1, l), 0),
+  return Lamp(int(t0.x), t0.y > 0.5, int(t0.z), int(t0.w), lamp_texel(l, 1),
               t2.xyz, t2.w, velocity, one_minus_beta2, t4.xyz, t4.w, t5.xy, t5.z, t5.w,
-              texelFetch(light_table, ivec2(6, l), 0));
+              lamp_texel(l, 6));
 }
 
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
