@@ -11,7 +11,6 @@
 namespace lightcone {
 namespace {
 
-constexpr double kEmissionMargin = 0.25;
 constexpr int kMeteringStep = 4;
 constexpr double kMeteringTime = 0.5;  // s
 
@@ -22,7 +21,7 @@ FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTa
   const ResolvedScene resolved = resolve_scene(scene);
   if (!emission || !emission->serves(resolved)) {
     emission.reset();  // (the old tables go before the new are built)
-    emission = std::make_unique<EmissionTable>(resolved, kEmissionMargin);
+    emission = std::make_unique<EmissionTable>(resolved, EmissionTable::kKeptMargin);
   }
   target.bind();
   FrameDraw draw;

@@ -69,6 +69,9 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit);
 class EmissionTable {
  public:
   static constexpr std::size_t kMaxColourTables = 1024;
+  // The margin of tables kept from frame to frame (the viewer's, and the lights' in the raster
+  // renderer): a camera speeding up reuses them for a while.
+  static constexpr double kKeptMargin = 0.25;
 
   // `margin`: the tables cover the factors the scene is seen with widened by this much of ln D
   // on each side, so that a renderer can keep them for the next frames (serves()).

@@ -77,7 +77,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   if (lighting_kept)
     kept_lighting->follow(resolved);
   else
-    kept_lighting = std::make_unique<Lighting>(resolved, nullptr, nullptr, 0.25);
+    kept_lighting =
+        std::make_unique<Lighting>(resolved, nullptr, nullptr, EmissionTable::kKeptMargin);
   const Lighting& lighting = *kept_lighting;
   const bool spectral = settings.doppler == DopplerModel::kSpectral;
   // Rows: each a colour against D, tabulated over the frame's range of ln D.
