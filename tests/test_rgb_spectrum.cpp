@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
@@ -261,6 +263,62 @@ TEST(ReferenceIlluminant, IsPlancksLawItself) {
       BlackbodySpectrum::with_luminance(kReferenceIlluminantTemperature, 1.0);
   for (double lambda = 10; lambda < 2e6; lambda *= 1.07)
     EXPECT_EQ(reference_illuminant(lambda), exact(lambda)) << lambda;
+}
+
+// The cells rgb_to_sigmoid reads for a blend of colours (the table l whose channel is largest,
+// ties to the earlier; row and column the cells of the other two channels over it, in order)
+// lie in the rectangles rgb_to_spectrum_cells_of_blends gives for those colours: random blends
+// of four random colours, with black, saturated, grey and tied colours among them.
+TEST(RgbToSpectrumCells, HoldEveryCellABlendReads) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto channel = [&]() {
+    const double u = unit(random);
+    return u < 0.15 ? 0.0 : u < 0.25 ? 1.0 : u < 0.3 ? 1.5 : unit(random);
+  };
+  const auto cell = [](double t) {
+    return std::min(static_cast<int>(t * (kRgbToSpectrumRes - 1)), kRgbToSpectrumRes - 2);
+  };
+  int tested = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::array<LinearRgb, 4> colours;
+    for (LinearRgb& c : colours) {
+      c = {channel(), channel(), channel()};
+      if (unit(random) < 0.1) c.g = c.b = c.r;  // grey: every channel tied
+    }
+    std::array<RgbToSpectrumCells, 3> cells;
+    const int n = rgb_to_spectrum_cells_of_blends(colours, cells);
+    for (int blend = 0; blend < 50; ++blend) {
+      double w[4], total = 0;
+      for (double& x : w) total += x = unit(random) < 0.2 ? 0.0 : unit(random);
+      if (total == 0) continue;
+      double c[3] = {0, 0, 0};
+      for (int k = 0; k < 4; ++k) {
+        const LinearRgb& v = colours[static_cast<std::size_t>(k)];
+        c[0] += w[k] * std::clamp(v.r, 0.0, 1.0);
+        c[1] += w[k] * std::clamp(v.g, 0.0, 1.0);
+        c[2] += w[k] * std::clamp(v.b, 0.0, 1.0);
+      }
+      int l = 0;
+      if (c[1] > c[l]) l = 1;
+      if (c[2] > c[l]) l = 2;
+      if (c[l] <= 0) continue;  // black reads no cell
+      const int i = cell(c[(l + 1) % 3] / c[l]), j = cell(c[(l + 2) % 3] / c[l]);
+      const bool held = std::any_of(cells.begin(), cells.begin() + n, [&](const auto& r) {
+        return r.l == l && r.j0 <= j && j <= r.j1 && r.i0 <= i && i <= r.i1;
+      });
+      ASSERT_TRUE(held) << "table " << l << " cell (" << j << ", " << i << ") of trial " << trial;
+      ++tested;
+    }
+  }
+  EXPECT_GT(tested, 100000);
+  // A smooth texture's four texels need a few cells, not the table.
+  std::array<RgbToSpectrumCells, 3> cells;
+  const LinearRgb near[4] = {{0.5, 0.3, 0.2}, {0.51, 0.3, 0.2}, {0.5, 0.31, 0.2}, {0.5, 0.3, 0.21}};
+  ASSERT_EQ(rgb_to_spectrum_cells_of_blends(near, cells), 1);
+  EXPECT_EQ(cells[0].l, 0);
+  EXPECT_LE(cells[0].j1 - cells[0].j0, 4);
+  EXPECT_LE(cells[0].i1 - cells[0].i0, 4);
 }
 
 }  // namespace

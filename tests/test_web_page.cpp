@@ -109,6 +109,15 @@ TEST(WebPage, DrawsAUsersSceneAndItsImageAsTheNativeRasterRenderer) {
   expect_page_agrees(kScenes / "texture-mapping.json", "texture-mapping.png");
 }
 
+// The same textures lit by a lamp under the spectral model: each sample fits its texel to a
+// reflectance, from the columns of the coefficient table the page fitted for the texture.
+TEST(WebPage, DrawsALitTextureUnderTheSpectralModelAsTheNativeRasterRenderer) {
+  expect_page_agrees(kSeen / "lit-texture-mapping.json", "lit-texture-mapping.png");
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.value("lit_texture_message", "?"), "");  // no difference to warn of
+}
+
 // The screenshot button downloads the canvas as a PNG named after the scene.
 TEST(WebPage, TheScreenshotButtonDownloadsThePicture) {
   const auto r = results();

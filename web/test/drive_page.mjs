@@ -7,11 +7,13 @@
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
 //   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
 //   texture-mapping.png        a user's scene and its image, chosen in the file dialog
+//   lit-texture-mapping.png    the same lit by a lamp under the spectral model (the scene
+//                              beside it, lit-texture-mapping.json, with uv-grid.png)
 //   screenshot-button.png      what the screenshot button downloads (and the canvas then)
 //   results.json               the numbers: speeds, messages, load times, frame rate, console
 //
 //   node web/test/drive_page.mjs SITE OUT [CHROMIUM]
-import { writeFile, mkdir } from "node:fs/promises";
+import { writeFile, mkdir, readFile, copyFile } from "node:fs/promises";
 import { join } from "node:path";
 import { serve, launch } from "./site.mjs";
 
@@ -162,6 +164,29 @@ try {
     results.user_message = await text(page, "message");
     await settle(page);
     await shot(page, "texture-mapping.png");
+    await page.close();
+  }
+
+  step("a lit texture under the spectral model, from the file dialog");
+  {
+    // texture-mapping.json with its materials lit by a lamp, the camera flying at 0.5c: the page
+    // fits the coefficient table's columns the texture needs before it draws it.
+    const json = await readFile(join(site, "..", "scenes/texture-mapping.json"), "utf8");
+    const scene = JSON.parse(json.split("\n").filter((l) => !l.startsWith("//")).join("\n"));
+    for (const o of scene.objects) o.material.unlit = false;
+    scene.camera.velocity = [-0.25, -0.14, -0.28];
+    scene.lights = [{ name: "lamp", type: "point", position: [3, 5, 4], intensity: 60 }];
+    scene.render = { doppler: "spectral" };
+    await writeFile(join(out, "lit-texture-mapping.json"), JSON.stringify(scene, null, 1));
+    await copyFile(join(site, "..", "scenes/uv-grid.png"), join(out, "uv-grid.png"));
+    const page = await open(`scene=street&${still}`);
+    const loads = await count(page, "loads");
+    await page.setInputFiles("#files", ["lit-texture-mapping.json", "uv-grid.png"]
+      .map((f) => join(out, f)));
+    await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads, { timeout: 60000 });
+    results.lit_texture_message = await text(page, "message");
+    await settle(page);
+    await shot(page, "lit-texture-mapping.png");
     await page.close();
   }
 

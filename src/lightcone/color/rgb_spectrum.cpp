@@ -74,6 +74,46 @@ SigmoidPolynomial rgb_to_sigmoid(const LinearRgb& rgb) {
   return {out[0], out[1], out[2]};
 }
 
+int rgb_to_spectrum_cells_of_blends(std::span<const LinearRgb> colours,
+                                    std::array<RgbToSpectrumCells, 3>& out) {
+  // A blend's ratio c_m / c_l is a weighted mediant of the colours' own ratios (weights w c_l),
+  // so it lies between their least and greatest, but for colours with c_l = 0 < c_m, which only
+  // raise it; where l holds the blend (c_l largest) it is at most 1.
+  const auto cell = [](double t) {
+    int index;
+    double fraction;
+    uniform_cell(std::min(t, 1.0), index, fraction);
+    return index;
+  };
+  int filled = 0;
+  for (int l = 0; l < 3; ++l) {
+    const int m[2] = {(l + 1) % 3, (l + 2) % 3};
+    double lo[2] = {1, 1}, hi[2] = {0, 0};
+    bool any = false;
+    bool exceeded[2] = {true, true};  // c_m above c_l in every colour, and so in every blend
+    for (const LinearRgb& rgb : colours) {
+      const double c[3] = {clamp01(rgb.r), clamp01(rgb.g), clamp01(rgb.b)};
+      for (int k = 0; k < 2; ++k) {
+        if (c[l] >= c[m[k]]) exceeded[k] = false;
+        if (c[l] > 0) {
+          const double r = c[m[k]] / c[l];
+          lo[k] = std::min(lo[k], r);
+          hi[k] = std::max(hi[k], r);
+        } else if (c[m[k]] > 0) {
+          hi[k] = 1;
+        }
+      }
+      any = any || c[l] > 0;
+    }
+    // No blend has c_l > 0, or some channel exceeds c_l in every colour (and so in every blend).
+    if (!any || exceeded[0] || exceeded[1]) continue;
+    const auto widened = [](int index, int step) { return std::clamp(index + step, 0, kRes - 2); };
+    out[static_cast<std::size_t>(filled++)] = {l, widened(cell(lo[1]), -1), widened(cell(hi[1]), 1),
+                                               widened(cell(lo[0]), -1), widened(cell(hi[0]), 1)};
+  }
+  return filled;
+}
+
 namespace {
 
 constexpr double kWhiteBandCentres[3] = {450, 540, 610};  // nm

@@ -10,7 +10,9 @@
 // reference illuminant there (RgbEmitterSpectrum).
 #pragma once
 
+#include <array>
 #include <limits>
+#include <span>
 
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/sigmoid_polynomial.hpp"
@@ -68,6 +70,18 @@ struct RgbEmitterSpectrum {
 // Jakob-Hanika reflectance); N_i(lambda) = rgb_emitter_node(case, i)(lambda) *
 // reference_illuminant(lambda).
 SigmoidPolynomial rgb_emitter_node(int node_case, int i);
+
+// The cells of the coefficient table rgb_to_sigmoid may read for a blend of some colours: table
+// l, rows j0..j1 and columns i0..i1 (each cell (j, i) reads columns j..j + 1, i..i + 1).
+struct RgbToSpectrumCells {
+  int l = 0, j0 = 0, j1 = 0, i0 = 0, i1 = 0;
+};
+// Every cell rgb_to_sigmoid reads for any blend of `colours` with weights >= 0, not all zero (a
+// bilinear texture lookup blends four texels), one rectangle for each table that may hold such
+// a blend, widened by a cell each way for a lookup in single precision; returns how many of
+// `out` it filled. The web page fits those columns before it draws a lit texture.
+int rgb_to_spectrum_cells_of_blends(std::span<const LinearRgb> colours,
+                                    std::array<RgbToSpectrumCells, 3>& out);
 
 namespace detail {
 // The coefficient table (kRgbToSpectrumTableFloats floats, layout in sigmoid_polynomial.hpp)

@@ -6,7 +6,6 @@
 
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
-#include "lightcone/raster/spectral_albedo.hpp"
 
 namespace lightcone {
 
@@ -19,10 +18,6 @@ std::vector<std::string> raster_differences(const Scene& scene) {
     (o.material.unlit ? unlit_textured : lit_textured) |= texture;
   }
 
-  if (lit_textured && scene.render.doppler == DopplerModel::kSpectral &&
-      !spectral_albedo_available())
-    differences.push_back(
-        "lit textured materials under the spectral model are drawn black in the browser");
   if (lit && scene.render.shadows && !scene.lights.empty() && scene.black_hole)
     differences.push_back("no shadows are cast near a black hole");
   if (scene.black_hole && lit_textured)

@@ -227,9 +227,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     const bool mesh = std::holds_alternative<MeshShape>(body.object->shape);
     // Lit textures: under the colour models linear in the albedo each texel is the albedo;
     // under the spectral model it is fitted to a reflectance per sample, as the tracer does
-    // (spectral_albedo.hpp), where the build has the whole coefficient table.
-    const bool lit_texture =
-        textured && !m.unlit && !resolved.hole && (!spectral || spectral_albedo_available());
+    // (spectral_albedo.hpp; the browser first fits the columns of the table its texels need).
+    const bool lit_texture = textured && !m.unlit && !resolved.hole;
     if (lit_texture) {
       draw.pattern = 2;
       draw.face_uvs = mesh;
@@ -313,6 +312,10 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
         table_camera_last + table_light_first + (table_light_nodes - 1) * kTableLightStep;
     if (!lighting_kept || !spectral_albedo->covers(lowest, highest))
       spectral_albedo->prepare(lighting, lights.size(), lowest, highest);
+    for (const BodyDraw& d : draws)
+      if (d.lit && d.pattern == 2)
+        spectral_albedo->cover(
+            *std::get<Texture>(resolved.bodies[d.body].object->material.pattern).image);
   }
   glActiveTexture(GL_TEXTURE8);
   glBindTexture(GL_TEXTURE_2D, reflection_index_texture);

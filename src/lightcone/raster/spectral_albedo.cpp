@@ -1,6 +1,7 @@
 #include "lightcone/raster/spectral_albedo.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -27,14 +28,6 @@ GLuint nearest_texture(GLenum target) {
 
 }  // namespace
 
-bool spectral_albedo_available() {
-#ifdef __EMSCRIPTEN__
-  return false;
-#else
-  return true;
-#endif
-}
-
 SpectralAlbedo::SpectralAlbedo() {
   constexpr int res = kRgbToSpectrumRes;
   coefficients_ = nearest_texture(GL_TEXTURE_3D);
@@ -58,6 +51,33 @@ SpectralAlbedo::SpectralAlbedo() {
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kCieTableSize, 1, 0, GL_RGBA, GL_FLOAT, rows.data());
   spectra_ = nearest_texture(GL_TEXTURE_2D);
   check_gl("uploading the spectral albedo tables");
+}
+
+void SpectralAlbedo::cover(const Image& image) {
+#ifdef __EMSCRIPTEN__
+  if (!covered_.insert(&image).second) return;
+  const auto rgb = [](const Rgb& t) { return LinearRgb{t.r, t.g, t.b}; };  // linear already
+  const float* table = nullptr;
+  std::array<RgbToSpectrumCells, 3> cells;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const int x1 = (x + 1) % image.width, y1 = (y + 1) % image.height;
+      const LinearRgb block[4] = {rgb(image.texel(x, y)), rgb(image.texel(x1, y)),
+                                  rgb(image.texel(x, y1)), rgb(image.texel(x1, y1))};
+      const int n = rgb_to_spectrum_cells_of_blends(block, cells);
+      for (int c = 0; c < n; ++c)
+        for (int j = cells[c].j0; j <= cells[c].j1; ++j)
+          for (int i = cells[c].i0; i <= cells[c].i1; ++i)
+            table = detail::rgb_to_spectrum_table(cells[c].l, j, i);
+    }
+  if (!table) return;
+  constexpr int res = kRgbToSpectrumRes;
+  glBindTexture(GL_TEXTURE_3D, coefficients_);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, res, res, 3 * res, 0, GL_RGB, GL_FLOAT, table);
+  check_gl("uploading the fitted coefficients");
+#else
+  (void)image;
+#endif
 }
 
 SpectralAlbedo::~SpectralAlbedo() {

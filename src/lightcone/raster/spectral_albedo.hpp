@@ -6,14 +6,12 @@
 // reach (docs/design/raster.md, "Differences from the ray tracer").
 #pragma once
 
+#include <set>
+
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/raster/gl.hpp"
 
 namespace lightcone {
-
-// Whether this build holds the whole coefficient table (the browser's page fits only the
-// columns it needs, so it draws these textures black).
-bool spectral_albedo_available();
 
 // The first of the three texture units the tables take.
 inline constexpr int kSpectralAlbedoUnit = 9;
@@ -36,6 +34,11 @@ class SpectralAlbedo {
     return prepared_ && lowest_log_total >= lowest_ && highest_log_total <= highest_;
   }
   static constexpr double kLogMargin = 0.25;
+  // Where the coefficient table is fitted column by column as it is needed (the browser's
+  // page: rgb_spectrum.hpp's detail::rgb_to_spectrum_table), fits every column a lit texture's
+  // lookups may read (each 2 x 2 block of texels blended) and uploads the table again; once per
+  // image. Elsewhere the whole table is there and this does nothing.
+  void cover(const Image& image);
   // Binds the tables to texture units first_unit .. first_unit + 2 for `program` (in use).
   void bind(GLuint program, int first_unit) const;
   // Points `program`'s samplers of the tables at those units, without the tables.
@@ -46,6 +49,7 @@ class SpectralAlbedo {
   float grid_[4] = {0, 1, 1, 1};  // lighting.glsl's light_spectra_grid
   bool prepared_ = false;
   double lowest_ = 0, highest_ = 0;  // the products of factors the spectra cover
+  std::set<const Image*> covered_;   // the images cover() has fitted the columns of
 };
 
 }  // namespace lightcone
