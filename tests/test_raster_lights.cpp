@@ -95,6 +95,47 @@ TEST(RasterAgreement, TwentyLightsMatchTheRayTracer) {
   fs::remove_all(dir);
 }
 
+// Lit and unlit bodies hide each other both ways (the lit ones are drawn after the others into
+// the surface textures, on the frame's depth buffer, and lit by a pass of their own): an unlit
+// ball in front of a lit box, a lit ball in front of an unlit box, a lit box and an unlit ball
+// at 0.6c, an unlit checkered floor under all, and a lit crate half sunk into an unlit block
+// (the two surfaces cross).
+TEST(RasterAgreement, LitAndUnlitBodiesHideEachOther) {
+  const fs::path dir = test::fresh_temp_dir("lit-and-unlit");
+  test::write_text(dir / "scene.json", R"({
+  "camera": {"position": [0, 4, 10], "forward": [0, -0.35, -1], "fov": 60},
+  "objects": [
+    {"name": "floor", "shape": {"plane": {"size": [30, 30]}}, "position": [0, 0, -3],
+     "material": {"checker": {"size": 1.5, "colors": [[0.6, 0.6, 0.6], [0.3, 0.3, 0.35]]}}},
+    {"name": "lit-box", "shape": {"box": {"size": [3, 3, 1]}}, "position": [-3, 1.5, -4],
+     "material": {"color": [0.8, 0.5, 0.3], "unlit": false}},
+    {"name": "unlit-ball", "shape": {"sphere": {"radius": 1}}, "position": [-2.5, 1.2, -2],
+     "material": {"color": [0.2, 0.6, 0.9]}},
+    {"name": "unlit-box", "shape": {"box": {"size": [3, 3, 1]}}, "position": [3, 1.5, -4],
+     "material": {"color": [0.9, 0.8, 0.2]}},
+    {"name": "lit-ball", "shape": {"sphere": {"radius": 1}}, "position": [2.5, 1.2, -2],
+     "material": {"color": [0.4, 0.8, 0.5], "unlit": false}},
+    {"name": "lit-runner", "shape": {"box": {"size": [1.5, 1, 1]}}, "position": [-4, 0.6, 1],
+     "time": -10, "velocity": [0.6, 0, 0],
+     "material": {"color": [0.9, 0.3, 0.5], "unlit": false}},
+    {"name": "unlit-runner", "shape": {"sphere": {"radius": 0.6}}, "position": [4, 0.7, 0.8],
+     "time": -10, "velocity": [-0.6, 0, 0], "material": {"color": [0.5, 0.3, 0.9]}},
+    {"name": "block", "shape": {"box": {"size": [2, 1, 2]}}, "position": [0, 0.5, -6],
+     "material": {"color": [0.3, 0.8, 0.8]}},
+    {"name": "sunk-crate", "shape": {"box": {"size": [1.2, 1.2, 1.2]}},
+     "position": [0.4, 1.1, -5.6], "rotation": {"axis": [0, 1, 0], "degrees": 30},
+     "material": {"color": [0.8, 0.8, 0.7], "unlit": false}}
+  ],
+  "lights": [
+    {"name": "lamp", "type": "point", "position": [0, 6, 2], "intensity": 150}
+  ],
+  "sky": {"color": [0.02, 0.02, 0.03]},
+  "render": {"exposure": 0}
+})");
+  expect_agreement((dir / "scene.json").string(), "", 4);
+  fs::remove_all(dir);
+}
+
 // The raster renderer's shadows of `scene` agree with the tracer's at 16 samples, and they show:
 // drawn without them, more than 2 % of the pixels differ.
 void expect_shadows_that_show(const std::string& scene, const char* label) {
