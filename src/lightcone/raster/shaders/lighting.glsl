@@ -15,7 +15,7 @@ vec4 lamp_texel(int l, int i) {
   return texelFetch(light_table, ivec2(i, l), 0);
 }
 #else
-uniform vec4 lamp_texels[7 * 16];  // raster_renderer_impl.hpp's kUniformLamps
+uniform vec4 lamp_texels[7 * 16];  // shader_build.hpp's kUniformLamps
 vec4 lamp_texel(int l, int i) {
   return lamp_texels[7 * l + i];
 }
