@@ -3,7 +3,7 @@
 // lightcone's frame time over it"):
 //   RasterFrame/<scene>     one frame as the viewer draws it, after a first one: resolve the
 //                           scene, its emission tables (kept from the frame before while they
-//                           serve, as the viewer keeps them: viewer/frame_loop.cpp), prepare
+//                           serve, as the viewer keeps them: EmissionTable::keep), prepare
 //                           (tessellation, colour rows, lights), one pass, glFinish; headless
 //                           through EGL (llvmpipe here). prepare_ms and pass_ms split it;
 //                           tables_ms is the part of prepare_ms that resolves the scene and
@@ -65,14 +65,9 @@ void RasterFrame(benchmark::State& state, const std::string& name, int width, in
   RasterSetup setup(name, width, height);
   std::size_t triangles = 0;
   double prepare_s = 0, pass_s = 0, tables_s = 0;
-  std::unique_ptr<EmissionTable> emission;
-  // The viewer's tables: kept while they serve (viewer/frame_loop.cpp, draw_scene).
+  std::unique_ptr<EmissionTable> emission;  // kept as the viewer keeps it
   const auto tables = [&emission](const ResolvedScene& resolved) -> const EmissionTable& {
-    if (!emission || !emission->serves(resolved)) {
-      emission.reset();
-      emission = std::make_unique<EmissionTable>(resolved, EmissionTable::kKeptMargin);
-    }
-    return *emission;
+    return EmissionTable::keep(emission, resolved);
   };
   {
     // A first frame, untimed: what the viewer keeps from frame to frame (the tables, the lights'

@@ -19,13 +19,10 @@ constexpr double kMeteringTime = 0.5;  // s
 FrameDraw draw_scene(RasterRenderer& renderer, const Scene& scene, const FloatTarget& target,
                      bool on_gpu, std::unique_ptr<EmissionTable>& emission) {
   const ResolvedScene resolved = resolve_scene(scene);
-  if (!emission || !emission->serves(resolved)) {
-    emission.reset();  // (the old tables go before the new are built)
-    emission = std::make_unique<EmissionTable>(resolved, EmissionTable::kKeptMargin);
-  }
+  const EmissionTable& tables = EmissionTable::keep(emission, resolved);
   target.bind();
   FrameDraw draw;
-  draw.triangles = renderer.prepare(resolved, *emission, {}, on_gpu).triangles;
+  draw.triangles = renderer.prepare(resolved, tables, {}, on_gpu).triangles;
   renderer.pass();
   const LogDopplerRange seen = visible_log_doppler(resolved, false);
   draw.doppler_min = std::exp(seen.lo);

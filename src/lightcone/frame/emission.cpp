@@ -77,6 +77,15 @@ struct ParallelNodes {
 
 }  // namespace
 
+const EmissionTable& EmissionTable::keep(std::unique_ptr<EmissionTable>& kept,
+                                         const ResolvedScene& scene) {
+  if (!kept || !kept->serves(scene)) {
+    kept.reset();  // (the old tables go before the new are built)
+    kept = std::make_unique<EmissionTable>(scene, kKeptMargin);
+  }
+  return *kept;
+}
+
 EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
     : scene_(*resolved.scene),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),

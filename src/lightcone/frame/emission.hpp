@@ -6,6 +6,7 @@
 #include <array>
 #include <deque>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
@@ -84,6 +85,10 @@ class EmissionTable {
   // render settings), the same colour model, no black hole (its disk's table follows the
   // camera), and every factor `next` is seen with inside the tables' range.
   bool serves(const ResolvedScene& next) const;
+  // The tables a renderer keeps from frame to frame (the viewer's): `kept` while it serves
+  // `scene`, else built anew over kKeptMargin (the old freed first).
+  static const EmissionTable& keep(std::unique_ptr<EmissionTable>& kept,
+                                   const ResolvedScene& scene);
 
   PointEmission surface(std::size_t object_index, const Hit& hit) const;
   PointEmission sky(const Vec3& pattern_direction) const;

@@ -27,18 +27,7 @@ Vec3 time_column(const Mat4& m) {
   return {m.m[1][0], m.m[2][0], m.m[3][0]};
 }
 
-void expand(Bounds3& b, const Vec3& p, double r) {
-  for (int i = 0; i < 3; ++i) {
-    b.lower[i] = std::min(b.lower[i], p[i] - r);
-    b.upper[i] = std::max(b.upper[i], p[i] + r);
-  }
-}
-
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-Bounds3 empty_bounds() {
-  return {{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
-}
 
 // Conservative bounds in F of the events where a ray can meet a body that lies within the ball
 // (rest_centre, radius) of its rest frame. In F the body lies within the ball of that radius

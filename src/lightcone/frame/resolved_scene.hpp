@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,19 @@ namespace lightcone {
 struct Bounds3 {
   Vec3 lower, upper;
 };
+
+// Bounds that hold nothing: any point extends them.
+inline Bounds3 empty_bounds() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return {{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+// Extends b to hold the ball of radius r about p (the point itself for r = 0).
+inline void expand(Bounds3& b, const Vec3& p, double r = 0) {
+  for (int i = 0; i < 3; ++i) {
+    b.lower[i] = std::min(b.lower[i], p[i] - r);
+    b.upper[i] = std::max(b.upper[i], p[i] + r);
+  }
+}
 
 // Corner i (bit 0: x, bit 1: y, bit 2: z upper) of a box.
 inline Vec3 corner(const Bounds3& b, int i) {

@@ -312,10 +312,12 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
         table_camera_last + table_light_first + (table_light_nodes - 1) * kTableLightStep;
     if (!lighting_kept || !spectral_albedo->covers(lowest, highest))
       spectral_albedo->prepare(lighting, lights.size(), lowest, highest);
+    std::vector<const Image*> lit_images;
     for (const BodyDraw& d : draws)
       if (d.lit && d.pattern == 2)
-        spectral_albedo->cover(
-            *std::get<Texture>(resolved.bodies[d.body].object->material.pattern).image);
+        lit_images.push_back(
+            std::get<Texture>(resolved.bodies[d.body].object->material.pattern).image.get());
+    spectral_albedo->cover(lit_images);
   }
   glActiveTexture(GL_TEXTURE8);
   glBindTexture(GL_TEXTURE_2D, reflection_index_texture);
@@ -334,7 +336,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     if (!d.lit) continue;
     const ResolvedBody& body = resolved.bodies[d.body];
     if (body.object->material.glossy) lighting_features |= kLightingGlossy;
-    if (body.spin >= 0 || (settings.relativity && body.object->world_line.velocity != Vec3{}))
+    if (body.spin >= 0 || lit_body_velocity(resolved, *body.object) != Vec3{})
       lighting_features |= kLightingMovingSurfaces;
   }
   if (settings.shadows && any_lit && !resolved.hole && !lights.empty()) {

@@ -274,8 +274,7 @@ void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const Bod
   const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
   set_mat3(p, "normal_to_rest", object.rotation * Mat3::diagonal(inverse_scale));
   glUniform1i(uniform(p, "relativity"), resolved.scene->render.relativity ? 1 : 0);
-  set_vec3(p, "surface_velocity_of_body",
-           resolved.scene->render.relativity ? object.world_line.velocity : Vec3{});
+  set_vec3(p, "surface_velocity_of_body", lit_body_velocity(resolved, object));
   glUniform4f(uniform(p, "finish"), static_cast<float>(draw.reflection_body),
               m.glossy ? static_cast<float>(m.glossy->roughness) : -1.0f,
               m.glossy ? static_cast<float>(m.glossy->specular) : 0.0f, 0.0f);

@@ -43,6 +43,12 @@ inline int colour_kind(const RenderSettings& settings) {
                                                      : 0;
 }
 
+// A lit body's velocity in W, as its surfaces give it to the lighting pass (0 for the classical
+// picture; a spinning body's points add their own).
+inline Vec3 lit_body_velocity(const ResolvedScene& scene, const Object& object) {
+  return scene.scene->render.relativity ? object.world_line.velocity : Vec3{};
+}
+
 struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
   // image): small programs run faster than one with every branch.

@@ -3,6 +3,7 @@
 // then the stage's own source.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "lightcone/frame/camera_model.hpp"
@@ -67,19 +68,35 @@ enum BodyFeature {
   kBodySpinShadows = 512,
   kAllBodyFeatures = 1023,
 };
-inline std::string body_variant_defines(int features) {
+// A feature's define in a program's source: `name` where the frame has the feature (or, for
+// `absent`, where it has not).
+struct FeatureDefine {
+  int feature;
+  const char* name;
+  bool absent = false;
+};
+template <std::size_t N>
+std::string variant_defines(int features, const FeatureDefine (&table)[N]) {
   std::string defines;
-  if (!(features & kBodySpin)) defines += "#define LIGHTCONE_NO_SPIN 1\n";
-  if (!(features & kBodyTimedPattern)) defines += "#define LIGHTCONE_NO_TIMED_PATTERNS 1\n";
-  if (!(features & kBodySampleOffsets)) defines += "#define LIGHTCONE_NO_SAMPLE_OFFSETS 1\n";
-  if (!(features & kBodyHueModel)) defines += "#define LIGHTCONE_NO_HUE 1\n";
-  if (!(features & kBodyShadows)) defines += "#define LIGHTCONE_NO_SHADOWS 1\n";
-  if (features & kBodyLitTextures) defines += "#define LIGHTCONE_LIT_TEXTURES 1\n";
-  if (features & kBodyMeshClocks) defines += "#define LIGHTCONE_MESH_CLOCKS 1\n";
-  if (features & kBodySpectralTextures) defines += "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n";
-  if (features & kBodyMeshShadows) defines += "#define LIGHTCONE_MESH_SHADOWS 1\n";
-  if (features & kBodySpinShadows) defines += "#define LIGHTCONE_SPIN_SHADOWS 1\n";
+  for (const FeatureDefine& d : table)
+    if (((features & d.feature) != 0) != d.absent)
+      defines += std::string("#define ") + d.name + " 1\n";
   return defines;
+}
+
+inline std::string body_variant_defines(int features) {
+  static constexpr FeatureDefine kDefines[] = {
+      {kBodySpin, "LIGHTCONE_NO_SPIN", true},
+      {kBodyTimedPattern, "LIGHTCONE_NO_TIMED_PATTERNS", true},
+      {kBodySampleOffsets, "LIGHTCONE_NO_SAMPLE_OFFSETS", true},
+      {kBodyHueModel, "LIGHTCONE_NO_HUE", true},
+      {kBodyShadows, "LIGHTCONE_NO_SHADOWS", true},
+      {kBodyLitTextures, "LIGHTCONE_LIT_TEXTURES"},
+      {kBodyMeshClocks, "LIGHTCONE_MESH_CLOCKS"},
+      {kBodySpectralTextures, "LIGHTCONE_SPECTRAL_TEXTURES"},
+      {kBodyMeshShadows, "LIGHTCONE_MESH_SHADOWS"},
+      {kBodySpinShadows, "LIGHTCONE_SPIN_SHADOWS"}};
+  return variant_defines(features, kDefines);
 }
 
 // What the lighting pass may also leave out (lighting.glsl): each kind of light but the point
@@ -101,17 +118,16 @@ enum LightingFeature {
   kAllLightingFeatures = 255,
 };
 inline std::string lighting_variant_defines(int features) {
-  std::string defines;
-  if (features & kLightingSpot) defines += "#define LIGHTCONE_SPOT_LIGHTS 1\n";
-  if (features & kLightingSun) defines += "#define LIGHTCONE_SUN_LIGHTS 1\n";
-  if (features & kLightingSphere) defines += "#define LIGHTCONE_SPHERE_LIGHTS 1\n";
-  if (features & kLightingGlossy) defines += "#define LIGHTCONE_GLOSSY 1\n";
-  if (features & kLightingMovingReflections)
-    defines += "#define LIGHTCONE_MOVING_LIGHT_REFLECTIONS 1\n";
-  if (features & kLightingMovingLights) defines += "#define LIGHTCONE_MOVING_LIGHTS 1\n";
-  if (features & kLightingMovingSurfaces) defines += "#define LIGHTCONE_MOVING_SURFACES 1\n";
-  if (features & kLightingManyLights) defines += "#define LIGHTCONE_MANY_LIGHTS 1\n";
-  return defines;
+  static constexpr FeatureDefine kDefines[] = {
+      {kLightingSpot, "LIGHTCONE_SPOT_LIGHTS"},
+      {kLightingSun, "LIGHTCONE_SUN_LIGHTS"},
+      {kLightingSphere, "LIGHTCONE_SPHERE_LIGHTS"},
+      {kLightingGlossy, "LIGHTCONE_GLOSSY"},
+      {kLightingMovingReflections, "LIGHTCONE_MOVING_LIGHT_REFLECTIONS"},
+      {kLightingMovingLights, "LIGHTCONE_MOVING_LIGHTS"},
+      {kLightingMovingSurfaces, "LIGHTCONE_MOVING_SURFACES"},
+      {kLightingManyLights, "LIGHTCONE_MANY_LIGHTS"}};
+  return variant_defines(features, kDefines);
 }
 
 }  // namespace lightcone

@@ -1,7 +1,6 @@
 #include "lightcone/raster/shadow_casters.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <numeric>
 #include <string>
 
@@ -46,27 +45,15 @@ void push(std::vector<float>& out, const Vec3& v, double w) {
                          static_cast<float>(w)});
 }
 
-Bounds3 nothing() {
-  const double inf = std::numeric_limits<double>::infinity();
-  return {{inf, inf, inf}, {-inf, -inf, -inf}};
-}
-
-void extend(Bounds3& b, const Vec3& p) {
-  for (int i = 0; i < 3; ++i) {
-    b.lower[i] = std::min(b.lower[i], p[i]);
-    b.upper[i] = std::max(b.upper[i], p[i]);
-  }
-}
-
 struct BvhBuilder {
   const Mesh& mesh;
   std::vector<Vec3> centres;
   CasterBvh bvh;
 
   Bounds3 bounds_of(std::size_t begin, std::size_t end) const {
-    Bounds3 b = nothing();
+    Bounds3 b = empty_bounds();
     for (std::size_t i = begin; i < end; ++i)
-      for (const std::uint32_t v : mesh.triangles[bvh.order[i]]) extend(b, mesh.positions[v]);
+      for (const std::uint32_t v : mesh.triangles[bvh.order[i]]) expand(b, mesh.positions[v]);
     return b;
   }
 
@@ -84,8 +71,8 @@ struct BvhBuilder {
       bvh.nodes[index].first = static_cast<int>(begin);
       return;
     }
-    Bounds3 spread = nothing();
-    for (std::size_t i = begin; i < end; ++i) extend(spread, centres[bvh.order[i]]);
+    Bounds3 spread = empty_bounds();
+    for (std::size_t i = begin; i < end; ++i) expand(spread, centres[bvh.order[i]]);
     const Vec3 size = spread.upper - spread.lower;
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
     const std::size_t middle = begin + (end - begin) / 2;

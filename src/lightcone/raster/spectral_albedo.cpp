@@ -53,30 +53,32 @@ SpectralAlbedo::SpectralAlbedo() {
   check_gl("uploading the spectral albedo tables");
 }
 
-void SpectralAlbedo::cover(const Image& image) {
+void SpectralAlbedo::cover(const std::vector<const Image*>& images) {
 #ifdef __EMSCRIPTEN__
-  if (!covered_.insert(&image).second) return;
   const auto rgb = [](const Rgb& t) { return LinearRgb{t.r, t.g, t.b}; };  // linear already
   const float* table = nullptr;
   std::array<RgbToSpectrumCells, 3> cells;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const int x1 = (x + 1) % image.width, y1 = (y + 1) % image.height;
-      const LinearRgb block[4] = {rgb(image.texel(x, y)), rgb(image.texel(x1, y)),
-                                  rgb(image.texel(x, y1)), rgb(image.texel(x1, y1))};
-      const int n = rgb_to_spectrum_cells_of_blends(block, cells);
-      for (int c = 0; c < n; ++c)
-        for (int j = cells[c].j0; j <= cells[c].j1; ++j)
-          for (int i = cells[c].i0; i <= cells[c].i1; ++i)
-            table = detail::rgb_to_spectrum_table(cells[c].l, j, i);
-    }
+  for (const Image* image : images) {
+    if (!covered_.insert(image).second) continue;
+    for (int y = 0; y < image->height; ++y)
+      for (int x = 0; x < image->width; ++x) {
+        const int x1 = (x + 1) % image->width, y1 = (y + 1) % image->height;
+        const LinearRgb block[4] = {rgb(image->texel(x, y)), rgb(image->texel(x1, y)),
+                                    rgb(image->texel(x, y1)), rgb(image->texel(x1, y1))};
+        const int n = rgb_to_spectrum_cells_of_blends(block, cells);
+        for (int c = 0; c < n; ++c)
+          for (int j = cells[c].j0; j <= cells[c].j1; ++j)
+            for (int i = cells[c].i0; i <= cells[c].i1; ++i)
+              table = detail::rgb_to_spectrum_table(cells[c].l, j, i);
+      }
+  }
   if (!table) return;
   constexpr int res = kRgbToSpectrumRes;
   glBindTexture(GL_TEXTURE_3D, coefficients_);
   glTexImage3D(GL_TEXTURE_3D, 0, GL_RGB32F, res, res, 3 * res, 0, GL_RGB, GL_FLOAT, table);
   check_gl("uploading the fitted coefficients");
 #else
-  (void)image;
+  (void)images;
 #endif
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <set>
+#include <vector>
 
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/raster/gl.hpp"
@@ -35,10 +36,11 @@ class SpectralAlbedo {
   }
   static constexpr double kLogMargin = 0.25;
   // Where the coefficient table is fitted column by column as it is needed (the browser's
-  // page: rgb_spectrum.hpp's detail::rgb_to_spectrum_table), fits every column a lit texture's
-  // lookups may read (each 2 x 2 block of texels blended) and uploads the table again; once per
-  // image. Elsewhere the whole table is there and this does nothing.
-  void cover(const Image& image);
+  // page: rgb_spectrum.hpp's detail::rgb_to_spectrum_table), fits every column the lit
+  // textures' lookups may read (each 2 x 2 block of texels blended), once per image, and
+  // uploads the table again if any image was new. Elsewhere the whole table is there and this
+  // does nothing.
+  void cover(const std::vector<const Image*>& images);
   // Binds the tables to texture units first_unit .. first_unit + 2 for `program` (in use).
   void bind(GLuint program, int first_unit) const;
   // Points `program`'s samplers of the tables at those units, without the tables.
