@@ -23,6 +23,7 @@
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/animation.hpp"
+#include "lightcone/trace/curved_shadows.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "progress_bar.hpp"
 #include "video.hpp"
@@ -246,7 +247,7 @@ int run_animate(const AnimateArgs& a) {
   if (a.video)
     check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf, a.gif_width);
   if (raster)
-    for (const std::string& difference : raster_differences(scene))
+    for (const std::string& difference : raster_differences(scene, true))
       std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                    a.scene.c_str(), difference.c_str());
 
@@ -373,7 +374,8 @@ int run_animate(const AnimateArgs& a) {
     in_frame(i, [&] {
       if (raster) {
         try {
-          *image = render_raster(s, nullptr, {}, a.seed, tessellation_mode(a.tessellation));
+          *image = render_raster(s, nullptr, {}, a.seed, tessellation_mode(a.tessellation),
+                                 curved_body_shadows);
         } catch (const GlUnavailable& e) {
           throw InputError(fmt::format(
               "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) "

@@ -26,6 +26,7 @@
 #include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/spelling.hpp"
+#include "lightcone/trace/curved_shadows.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "render_command.hpp"
@@ -241,7 +242,7 @@ int run_view(const ViewArgs& a) {
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   const Scene scene = load(a.scene, overrides, a.scene_options);
   require_drawable_near_black_hole(scene, a.scene, true);
-  for (const std::string& difference : raster_differences(scene))
+  for (const std::string& difference : raster_differences(scene, true))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());
   if (!(a.time_scale >= 0 && a.time_scale <= 1e6))
@@ -250,13 +251,15 @@ int run_view(const ViewArgs& a) {
     if (a.benchmark) {
       if (*a.benchmark < 1)
         throw InputError("--benchmark: the number of frames must be at least 1");
-      return run_viewer_benchmark(scene, *a.benchmark, tessellation_mode(a.tessellation));
+      return run_viewer_benchmark(scene, *a.benchmark, tessellation_mode(a.tessellation),
+                                  curved_body_shadows);
     }
     ViewerOptions options;
     options.scene_path = a.scene;
     options.split = a.split;
     options.time_scale = a.time_scale;
     options.tessellation = tessellation_mode(a.tessellation);
+    options.curved_shadows = curved_body_shadows;
     return run_viewer(scene, options);
   } catch (const GlUnavailable& e) {
     throw InputError(fmt::format(

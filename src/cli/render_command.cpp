@@ -18,6 +18,7 @@
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/trace/curved_shadows.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "progress_bar.hpp"
 
@@ -179,13 +180,13 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
       bar.update(done, total);
     };
     if (out.raster) {
-      for (const std::string& difference : raster_differences(scene))
+      for (const std::string& difference : raster_differences(scene, true))
         std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                      a.scene.c_str(), difference.c_str());
       RasterStats raster_stats;
       try {
-        r.image =
-            render_raster(scene, &raster_stats, {}, a.seed, tessellation_mode(a.tessellation));
+        r.image = render_raster(scene, &raster_stats, {}, a.seed, tessellation_mode(a.tessellation),
+                                curved_body_shadows);
       } catch (const GlUnavailable& e) {
         throw InputError(fmt::format(
             "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) through "

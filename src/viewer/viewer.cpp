@@ -110,6 +110,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
 
   {
     RasterRenderer renderer;
+    renderer.set_curved_shadows(options.curved_shadows);
     const bool on_gpu = tessellate_on_gpu(options.tessellation, renderer.driver());
     const DisplayPass display_pass;
     std::unique_ptr<FloatTarget> relativistic, classical;
@@ -349,9 +350,11 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
   return 0;
 }
 
-int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellation) {
+int run_viewer_benchmark(Scene scene, int frames, RasterTessellation tessellation,
+                         const CurvedShadowSource& curved_shadows) {
   const HeadlessGlContext context;
   RasterRenderer renderer;
+  renderer.set_curved_shadows(curved_shadows);
   const bool on_gpu = tessellate_on_gpu(tessellation, renderer.driver());
   const FloatTarget target(scene.camera.width, scene.camera.height);
   const FlightBenchmark run = benchmark_flight(renderer, scene, target, frames, on_gpu);

@@ -15,6 +15,7 @@ struct ViewerOptions {
   bool hud = true;
   double time_scale = 1;  // units of camera proper time per second of wall-clock time
   RasterTessellation tessellation = RasterTessellation::kAuto;
+  CurvedShadowSource curved_shadows;  // near a black hole (RasterRenderer::set_curved_shadows)
 };
 
 // Opens the window and runs until it is closed (Esc). Throws InputError when there is no
@@ -26,6 +27,7 @@ int run_viewer(Scene scene, const ViewerOptions& options);
 // (triangles: the average a frame after tessellation on the CPU, before it on the GPU), and
 // which tessellation path drew them.
 int run_viewer_benchmark(Scene scene, int frames,
-                         RasterTessellation tessellation = RasterTessellation::kAuto);
+                         RasterTessellation tessellation = RasterTessellation::kAuto,
+                         const CurvedShadowSource& curved_shadows = {});
 
 }  // namespace lightcone

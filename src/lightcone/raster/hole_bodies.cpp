@@ -277,6 +277,14 @@ std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vecto
   const std::vector<std::vector<float>> parts =
       hole_body_vertices(scene, bodies, emission, lighting, limits);
   draws_.clear();
+  log_shift_range_.reset();
+  for (const std::vector<float>& part : parts)
+    for (std::size_t v = 6; v < part.size(); v += kHoleVertexFloats) {
+      const double ln_g = part[v];
+      log_shift_range_ = log_shift_range_ ? LogShiftRange{std::min(log_shift_range_->lo, ln_g),
+                                                          std::max(log_shift_range_->hi, ln_g)}
+                                          : LogShiftRange{ln_g, ln_g};
+    }
   std::size_t total = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {
     Draw d;

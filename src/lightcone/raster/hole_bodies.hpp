@@ -8,9 +8,11 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/hole_world_line.hpp"
@@ -72,6 +74,8 @@ class HoleBodiesPass {
   std::size_t prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
                       const EmissionTable& emission, const Lighting& lighting,
                       const TessellationLimits& limits);
+  // The least and greatest ln g of the prepared vertices (none without vertices).
+  std::optional<LogShiftRange> log_shift_range() const { return log_shift_range_; }
   // Draws them with the program in use, its camera and colour uniforms set.
   void draw(const ResolvedScene& scene) const;
 
@@ -83,6 +87,7 @@ class HoleBodiesPass {
   };
   GLuint program_ = 0, vertex_array_ = 0, vertex_buffer_ = 0;
   std::vector<Draw> draws_;
+  std::optional<LogShiftRange> log_shift_range_;
 };
 
 // The CPU's part of HoleBodiesPass::prepare: each body's vertices of orders 0 and 1, in that

@@ -41,12 +41,14 @@ void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int
 }  // namespace
 
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
-                    std::uint64_t seed, RasterTessellation mode) {
+                    std::uint64_t seed, RasterTessellation mode,
+                    const CurvedShadowSource& curved_shadows) {
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;
   const ResolvedScene resolved = resolve_scene(scene);
   const EmissionTable emission(resolved);
   RasterRenderer renderer;
+  renderer.set_curved_shadows(curved_shadows);
   const int width = scene.camera.width, height = scene.camera.height;
   const FloatTarget target(width, height);
   // camera.samples passes: each covers the pixels at one point of a multi-jittered pattern and

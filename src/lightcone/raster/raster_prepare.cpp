@@ -73,12 +73,18 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   const RenderSettings& settings = s.render;
   // The lights' tables, kept from frame to frame while they serve (a viewer's frames differ in
   // the camera alone); built 0.25 of ln D wider than a frame needs, as the emission tables are.
+  // (Near a black hole they are made anew for each frame, with their shadows' query.)
   const bool lighting_kept = kept_lighting && kept_lighting->serves(resolved);
-  if (lighting_kept)
+  if (lighting_kept) {
     kept_lighting->follow(resolved);
-  else
-    kept_lighting =
-        std::make_unique<Lighting>(resolved, nullptr, nullptr, EmissionTable::kKeptMargin);
+  } else {
+    std::unique_ptr<CurvedShadowQuery> frame_shadows;
+    if (resolved.hole && settings.shadows && !s.lights.empty() && curved_shadow_source)
+      frame_shadows = curved_shadow_source(resolved);
+    kept_lighting = std::make_unique<Lighting>(resolved, nullptr, frame_shadows.get(),
+                                               EmissionTable::kKeptMargin);
+    curved_shadows = std::move(frame_shadows);
+  }
   const Lighting& lighting = *kept_lighting;
   const bool spectral = settings.doppler == DopplerModel::kSpectral;
   // Rows: each a colour against D, tabulated over the frame's range of ln D.
@@ -166,9 +172,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   }
 
   // Lit bodies' reflection rows (co-moving lights) and tables (moving lights).
-  const LogDopplerRange unlit = visible_log_doppler(resolved, false);
-  const LogDopplerRange lit_range = visible_log_doppler(resolved, true);
-  const double reach = lighting.light_rapidity();
+  // Near a black hole lit bodies are coloured per vertex on the CPU (raster/hole_bodies.hpp): no
+  // row or table is read at their factors or their lights'.
+  const LogDopplerRange lit_range =
+      resolved.hole ? LogDopplerRange{} : visible_log_doppler(resolved, true);
+  const double reach = resolved.hole ? 0.0 : lighting.light_rapidity();
   table_camera_first = (lit_range.empty ? 0.0 : lit_range.lo) - 2 * kTableCameraStep;
   const double table_camera_last = (lit_range.empty ? 0.0 : lit_range.hi) + 2 * kTableCameraStep;
   const int table_camera_nodes = std::max(
@@ -461,6 +469,20 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
 
   // The rows' nodes cover every factor a fragment can ask for: the camera's of emitters, the
   // sky and lit bodies, the lights' on their legs, and the glossy lobe's product of both.
+  // Near a black hole the bodies' shifts are their vertices' (a fragment's ln g lies between its
+  // triangle's): tighter than their world-lines' bounds, which on a fall reach the horizon, where
+  // the shift has no bound.
+  LogDopplerRange unlit;
+  if (resolved.hole) {
+    const LogShiftRange sky = sky_log_shift_range(*resolved.hole);
+    unlit = {sky.lo, sky.hi, false};
+    if (hole_bodies && !hole_body_list.empty()) {
+      const std::optional<LogShiftRange> bodies = hole_bodies->log_shift_range();
+      if (bodies) unlit = {std::min(unlit.lo, bodies->lo), std::max(unlit.hi, bodies->hi), false};
+    }
+  } else {
+    unlit = visible_log_doppler(resolved, false);
+  }
   double lo = std::min(unlit.lo, lit_range.empty ? unlit.lo : lit_range.lo);
   double hi = std::max(unlit.hi, lit_range.empty ? unlit.hi : lit_range.hi);
   if (!lights.empty()) {

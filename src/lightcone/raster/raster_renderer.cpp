@@ -522,6 +522,10 @@ RasterFrameStats RasterRenderer::prepare(const ResolvedScene& scene, const Emiss
   return impl_->prepare(scene, emission, limits, on_gpu);
 }
 
+void RasterRenderer::set_curved_shadows(CurvedShadowSource source) {
+  impl_->curved_shadow_source = std::move(source);
+}
+
 void RasterRenderer::set_specialised_programs(bool specialise) {
   impl_->specialise = specialise;
 }

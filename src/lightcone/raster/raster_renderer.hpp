@@ -6,22 +6,30 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/tessellation.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
 
+// Near a black hole, what casts the lit bodies' shadows in a frame: a query over the frame's
+// bodies (the ray tracer's curved shadow paths, trace/curved_shadows.hpp, where the program
+// links the tracer; the browser's does not), made for each frame and kept while it is drawn.
+using CurvedShadowSource =
+    std::function<std::unique_ptr<CurvedShadowQuery>(const ResolvedScene& scene)>;
+
 // What the raster renderer cannot show as the ray tracer does, one line each (empty when it
-// shows the scene exactly): lit materials, textures and sky images, shadows, the accretion disk
-// under the hue model and in front of objects.
-std::vector<std::string> raster_differences(const Scene& scene);
+// shows the scene exactly): near a black hole, shadows (without `curved_shadows`), lit
+// textures, textures' fine detail and objects behind the accretion disk.
+std::vector<std::string> raster_differences(const Scene& scene, bool curved_shadows = false);
 
 struct RasterFrameStats {
   std::size_t triangles = 0;  // after tessellation on the CPU; before, on the GPU
@@ -67,6 +75,8 @@ class RasterRenderer {
   // Whether each frame's body programs hold only the features its bodies use (the default) or
   // every feature (the reference the tests hold the specialised ones against).
   void set_specialised_programs(bool specialise);
+  // Near a black hole: what casts shadows on the lit bodies (none without a source).
+  void set_curved_shadows(CurvedShadowSource source);
   // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
   // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The
   // viewport must be the camera's image size.
@@ -104,10 +114,11 @@ struct RasterStats {
 // The whole image, headless (EGL): camera.samples passes, averaged, and the scene's exposure
 // applied, as render_image does. Pass k covers the pixels at point k of a multi-jittered
 // pattern and shades each pixel at the ray tracer's sample k for it (pixel_sample with `seed`),
-// so that away from outlines both renderers average the same directions. Throws GlUnavailable
-// without OpenGL 3.3.
+// so that away from outlines both renderers average the same directions. Near a black hole
+// `curved_shadows` casts the shadows. Throws GlUnavailable without OpenGL 3.3.
 Image render_raster(const Scene& scene, RasterStats* stats = nullptr,
                     const TessellationLimits& limits = {}, std::uint64_t seed = 0,
-                    RasterTessellation mode = RasterTessellation::kAuto);
+                    RasterTessellation mode = RasterTessellation::kAuto,
+                    const CurvedShadowSource& curved_shadows = {});
 
 }  // namespace lightcone

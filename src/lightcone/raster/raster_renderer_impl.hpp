@@ -81,6 +81,10 @@ struct RasterRenderer::Impl {
   std::unique_ptr<SpectralAlbedo> spectral_albedo;
   // The bodies whose shadows are met exactly: made with the first frame that casts shadows.
   std::unique_ptr<ShadowCasters> shadow_casters;
+  // Near a black hole: what casts the lit bodies' shadows, and its query for the prepared frame
+  // (which kept_lighting asks, and so outlives).
+  CurvedShadowSource curved_shadow_source;
+  std::unique_ptr<CurvedShadowQuery> curved_shadows;
   std::unique_ptr<Lighting> kept_lighting;  // the lights' tables (prepare())
   // The shapes' rest meshes with their edges indexed, kept from frame to frame while some body
   // has the shape: keyed by the shape's values (a mesh's by its address, held so that it
