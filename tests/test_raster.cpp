@@ -712,6 +712,7 @@ TEST(RasterShaders, CompileAsGlslEs300) {
   const std::string stripped_textured = "#define LIGHTCONE_TEXTURED 1\n" + stripped;
   const std::string stripped_lit = "#define LIGHTCONE_LIT 1\n" + stripped;
   const std::string every_light = lighting_variant_defines(kAllLightingFeatures);
+  const std::string patterns_and_hole = patterns + shader_sources::black_hole_glsl;
   const Stage stages[] = {
       {"body.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl},
       {"body-textured.vert", shader_sources::body_vert, false, shader_sources::body_projection_glsl,
@@ -751,6 +752,8 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"hole_body.vert", shader_sources::hole_body_vert, false,
        shader_sources::body_projection_glsl},
       {"hole_body.frag", shader_sources::hole_body_frag, true, patterns.c_str()},
+      {"hole_body-disk.frag", shader_sources::hole_body_frag, true, patterns_and_hole.c_str(),
+       "#define LIGHTCONE_DISK_HIDES_BODIES 1\n"},
       {"fullscreen.vert", shader_sources::fullscreen_vert, false},
       {"display.frag", shader_sources::display_frag, true, shader_sources::tone_map_glsl},
       {"sky.frag", shader_sources::sky_frag, true},

@@ -12,12 +12,15 @@
 #include "lightcone/portable.hpp"
 #include "lightcone/raster/adaptive_split.hpp"
 #include "lightcone/raster/body_patterns.hpp"
+#include "lightcone/raster/shader_build.hpp"
+#include "lightcone/raster/shader_sources.hpp"
 
 namespace lightcone {
 
 namespace {
 
 constexpr float kLitColourTolerance = 1.0f / 128;
+constexpr double kTwoPi = 6.283185307179586;
 
 struct HoleSeeing {
   struct Corner {
@@ -33,6 +36,7 @@ struct HoleSeeing {
     double shift = 1;
     float proper_time = 0;
     Vec3 to_camera, local_velocity;
+    double swept = 0;  // hole_swept_angle
   };
   const ResolvedScene& scene;
   const HoleView& hole;
@@ -74,6 +78,7 @@ struct HoleSeeing {
     c.to_camera = image->to_camera;
     c.local_velocity = image->local_velocity;
     c.shift = image->shift;
+    c.swept = hole_swept_angle(from_hole, hole.outward, order);
     return c;
   }
 
@@ -175,12 +180,19 @@ struct HoleSeeing {
       const std::array<double, 8>& m = face_uv;
       out.insert(out.end(),
                  {static_cast<float>(m[0] * k->p.x + m[1] * k->p.y + m[2] * k->p.z + m[3]),
-                  static_cast<float>(m[4] * k->p.x + m[5] * k->p.y + m[6] * k->p.z + m[7])});
+                  static_cast<float>(m[4] * k->p.x + m[5] * k->p.y + m[6] * k->p.z + m[7]),
+                  static_cast<float>(k->swept)});
     }
   }
 };
 
 }  // namespace
+
+double hole_swept_angle(const Vec3& from_hole, const Vec3& outward, int order) {
+  // (atan2 of the sine and cosine: well conditioned at 0 and pi, where acos is not.)
+  const double theta = std::atan2(length(cross(from_hole, outward)), dot(from_hole, outward));
+  return order == 0 ? theta : kTwoPi - theta;
+}
 
 void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
                            const HoleWorldLine& line, const RestMesh& mesh, int order,
@@ -225,14 +237,19 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
   }
 }
 
-HoleBodiesPass::HoleBodiesPass(GLuint program) : program_(program) {
+HoleBodiesPass::HoleBodiesPass() {
   glGenVertexArrays(1, &vertex_array_);
   glGenBuffers(1, &vertex_buffer_);
   glBindVertexArray(vertex_array_);
   glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer_);
   constexpr GLsizei stride = kHoleVertexFloats * sizeof(float);
-  for (const auto& [location, size, first] :
-       {std::array<int, 3>{0, 3, 0}, {1, 3, 3}, {2, 2, 6}, {3, 3, 8}, {4, 3, 11}, {5, 2, 14}}) {
+  for (const auto& [location, size, first] : {std::array<int, 3>{0, 3, 0},
+                                              {1, 3, 3},
+                                              {2, 2, 6},
+                                              {3, 3, 8},
+                                              {4, 3, 11},
+                                              {5, 2, 14},
+                                              {6, 1, 16}}) {
     glEnableVertexAttribArray(static_cast<GLuint>(location));
     glVertexAttribPointer(static_cast<GLuint>(location), size, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(first * sizeof(float)));
@@ -244,7 +261,19 @@ HoleBodiesPass::HoleBodiesPass(GLuint program) : program_(program) {
 HoleBodiesPass::~HoleBodiesPass() {
   glDeleteBuffers(1, &vertex_buffer_);
   glDeleteVertexArrays(1, &vertex_array_);
-  glDeleteProgram(program_);
+  for (GLuint p : programs_)
+    if (p) glDeleteProgram(p);
+}
+
+GLuint HoleBodiesPass::program(bool disk) {
+  GLuint& p = programs_[disk ? 1 : 0];
+  if (!p)
+    p = link_program(vertex_shader(shader_sources::hole_body_vert),
+                     fragment_shader(shader_sources::hole_body_frag,
+                                     std::string(shader_sources::patterns_glsl) +
+                                         (disk ? shader_sources::black_hole_glsl : ""),
+                                     disk ? "#define LIGHTCONE_DISK_HIDES_BODIES 1\n" : ""));
+  return p;
 }
 
 std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
@@ -308,8 +337,7 @@ std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vecto
   return total / kHoleVertexFloats / 3;
 }
 
-void HoleBodiesPass::draw(const ResolvedScene& scene) const {
-  const GLuint p = program_;
+void HoleBodiesPass::draw(const ResolvedScene& scene, GLuint p) const {
   glBindVertexArray(vertex_array_);
   // Depth: the light's coordinate time of flight, on the flat bodies' log scale.
   glUniform2f(uniform(p, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));

@@ -28,9 +28,18 @@ constexpr int kRasterHoleOrders = 2;
 // Per vertex: its apparent position in F (the look direction times the coordinate time the
 // light took, which orders the images met along one ray), its shape point, ln g and the body's
 // clock at its emission; for a lit body the linear RGB it sends the camera in each of its
-// material's two fixed colours (zero for an emitter, whose colour comes from its rows); and on
-// a mesh with texture coordinates, the face's coordinates at the point (triangle_uv_map).
-constexpr int kHoleVertexFloats = 16;
+// material's two fixed colours (zero for an emitter, whose colour comes from its rows); on a
+// mesh with texture coordinates, the face's coordinates at the point (triangle_uv_map); and the
+// angle its light swept about the hole from the camera (hole_swept_angle), which an accretion
+// disk crossed at a smaller angle on the same ray hides.
+constexpr int kHoleVertexFloats = 17;
+
+// The angle swept about the hole by the light of image `order` (0 or 1) from a point, relative
+// to the hole, to a camera in direction `outward` from it: the angle between them for the
+// direct image, the rest of the turn for the one round the far side. trace/curved_ray.cpp's
+// follow_curved_ray measures a disk's crossings, and the bodies met, by this angle from the
+// camera along a ray.
+double hole_swept_angle(const Vec3& from_hole, const Vec3& outward, int order);
 
 // A lit body: its colours per vertex are the ray tracer's Lighting at the vertex's surface
 // point, and a lit edge longer than a pixel is also split until the colours interpolated along
@@ -54,6 +63,8 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
 // (shaders/hole_body.vert and .frag); needs a current OpenGL 3.3 context.
 class HoleBodiesPass {
  public:
+  // Its programs: with `disk`, each fragment also follows its pixel's ray to the accretion disk
+  // (shaders/black_hole.glsl) and is left out where the disk is crossed first.
   // A body to draw: its colour rows and pattern (as the flat bodies' draws).
   struct Body {
     std::size_t index = 0;  // in the resolved scene's bodies
@@ -63,12 +74,13 @@ class HoleBodiesPass {
     GLuint texture = 0;  // an unlit texture's image (pattern 2)
   };
 
-  explicit HoleBodiesPass(GLuint program);
+  HoleBodiesPass();
   ~HoleBodiesPass();
   HoleBodiesPass(const HoleBodiesPass&) = delete;
   HoleBodiesPass& operator=(const HoleBodiesPass&) = delete;
 
-  GLuint program() const { return program_; }
+  // Built with the first frame that needs it.
+  GLuint program(bool disk);
   // Tessellates each body's images of orders 0 and 1 (in parallel) and uploads them; returns
   // the number of triangles. The meshes, `emission` and `lighting` need only last the call.
   std::size_t prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
@@ -76,8 +88,9 @@ class HoleBodiesPass {
                       const TessellationLimits& limits);
   // The least and greatest ln g of the prepared vertices (none without vertices).
   std::optional<LogShiftRange> log_shift_range() const { return log_shift_range_; }
-  // Draws them with the program in use, its camera and colour uniforms set.
-  void draw(const ResolvedScene& scene) const;
+  // Draws them with `program` (program(disk)) in use, its camera, colour and (with a disk) black
+  // hole uniforms set.
+  void draw(const ResolvedScene& scene, GLuint program) const;
 
  private:
   struct Draw {
@@ -85,7 +98,8 @@ class HoleBodiesPass {
     GLint first_vertex = 0;
     GLsizei vertex_count = 0;
   };
-  GLuint program_ = 0, vertex_array_ = 0, vertex_buffer_ = 0;
+  GLuint programs_[2] = {0, 0};
+  GLuint vertex_array_ = 0, vertex_buffer_ = 0;
   std::vector<Draw> draws_;
   std::optional<LogShiftRange> log_shift_range_;
 };

@@ -26,8 +26,6 @@ std::vector<std::string> raster_differences(const Scene& scene, bool curved_shad
     differences.push_back(
         "textures near a black hole are read at points interpolated between exact vertices, so "
         "that the edges between a box's faces and fine detail differ by up to half a pixel");
-  if (scene.black_hole && scene.black_hole->disk && !scene.objects.empty())
-    differences.push_back("objects are drawn in front of the accretion disk where it hides them");
   return differences;
 }
 

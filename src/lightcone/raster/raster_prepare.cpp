@@ -357,10 +357,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   }
   RasterFrameStats stats;
   if (resolved.hole && !hole_body_list.empty()) {
-    if (!hole_bodies)
-      hole_bodies = std::make_unique<HoleBodiesPass>(link_program(
-          vertex_shader(shader_sources::hole_body_vert),
-          fragment_shader(shader_sources::hole_body_frag, shader_sources::patterns_glsl)));
+    if (!hole_bodies) hole_bodies = std::make_unique<HoleBodiesPass>();
     stats.triangles += hole_bodies->prepare(resolved, hole_body_list, emission, lighting, limits);
   }
   // Textured meshes' vertices come first, so that their texture coordinates' maps (a buffer of

@@ -470,9 +470,12 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
     light_surfaces(ox, oy, features);
   }
   if (resolved.hole && !hole_body_list.empty()) {
-    glUseProgram(hole_bodies->program());
-    set_common(hole_bodies->program(), resolved, first_log_doppler, ox, oy);
-    hole_bodies->draw(resolved);
+    const bool disk = resolved.hole->disk.has_value();
+    const GLuint program = hole_bodies->program(disk);
+    glUseProgram(program);
+    set_common(program, resolved, first_log_doppler, ox, oy);
+    if (disk) black_hole->set_uniforms(program, *resolved.hole, disk_floor, disk_row, s.render);
+    hole_bodies->draw(resolved, program);
   }
   check_gl("drawing the bodies");
 

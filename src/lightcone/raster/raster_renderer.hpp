@@ -28,7 +28,7 @@ using CurvedShadowSource =
 
 // What the raster renderer cannot show as the ray tracer does, one line each (empty when it
 // shows the scene exactly): near a black hole, shadows (without `curved_shadows`), lit
-// textures, textures' fine detail and objects behind the accretion disk.
+// textures and textures' fine detail.
 std::vector<std::string> raster_differences(const Scene& scene, bool curved_shadows = false);
 
 struct RasterFrameStats {

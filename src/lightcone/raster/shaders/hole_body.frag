@@ -11,6 +11,7 @@ in float proper_time;
 in vec3 received_0;
 in vec3 received_1;
 in vec2 face_uv;
+in float swept;
 
 uniform int colour_row;  // an emitter's row of the pattern's first colour
 uniform int lit;
@@ -19,6 +20,12 @@ uniform sampler2D texture_image;
 layout(location = 0) out vec4 colour;
 
 void main() {
+#if defined(LIGHTCONE_DISK_HIDES_BODIES)
+  // The accretion disk hides what its pixel's ray meets past the disk's first crossing, as
+  // follow_curved_ray sees a body only before it.
+  HoleRay ray = follow_hole_ray(fragment_look_direction());
+  if (ray.end == kHoleDisk && ray.phi < swept) discard;
+#endif
   if (pattern == 2) {  // an unlit texture
     vec2 uv = shape_kind == 0 ? face_uv : surface_uv(shape_point);
     colour = vec4(received_rgb(sample_bilinear(texture_image, uv, true), exp(log_shift)), 1.0);

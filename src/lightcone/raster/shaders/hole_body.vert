@@ -10,6 +10,9 @@ layout(location = 3) in vec3 lit_colour_0;
 layout(location = 4) in vec3 lit_colour_1;
 // A mesh face's texture coordinates at the vertex (zero for other shapes).
 layout(location = 5) in vec2 face_texture_uv;
+// The angle its light swept about the hole from the camera (raster/hole_bodies.hpp,
+// hole_swept_angle).
+layout(location = 6) in float swept_angle;
 
 out vec3 shape_point;
 out float log_shift;
@@ -17,6 +20,7 @@ out float proper_time;
 out vec3 received_0;
 out vec3 received_1;
 out vec2 face_uv;
+out float swept;
 
 void main() {
   gl_Position = clip_of(vec4(apparent_position, length(apparent_position)));
@@ -26,4 +30,5 @@ void main() {
   received_0 = lit_colour_0;
   received_1 = lit_colour_1;
   face_uv = face_texture_uv;
+  swept = swept_angle;
 }
