@@ -274,14 +274,6 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
     return test::quoted(p);
   };
   const std::string plain = scene_file("plain.json", "");
-  Image texture;
-  texture.width = texture.height = 2;
-  texture.rgb.assign(12, 0.5f);
-  write_images(texture, texture, {{dir / "texture.exr", ImageFormat::kExr}});
-  const std::string with_body =
-      scene_file("body.json", R"(, "objects": [{"name": "moon", "shape": {"sphere": {"radius": 1}},
-                                      "position": [10, 0, 0],
-                                      "material": {"texture": "texture.exr", "unlit": false}}])");
   const std::string with_light = scene_file(
       "light.json", R"(, "lights": [{"name": "lamp", "type": "point", "position": [10, 0, 0]}],
                      "render": {"light_source_delay": "camera"})");
@@ -294,8 +286,6 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   for (const Case& c : {
            Case{"render " + with_light + " -o " + test::quoted(out), "light_source_delay"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
-           Case{"render " + with_body + " --renderer raster -o " + test::quoted(out),
-                "\"moon\" is a lit texture"},
            Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
                 "output variable distance"},
        }) {

@@ -242,7 +242,7 @@ int run_animate(const AnimateArgs& a) {
     if (a.scale) scale_image_size(s.camera, *a.scale);
     return s;
   }();
-  require_drawable_near_black_hole(scene, a.scene, raster);
+  require_drawable_near_black_hole(scene, a.scene);
   const Camera& camera = scene.camera;
   if (a.video)
     check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf, a.gif_width);

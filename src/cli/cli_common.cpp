@@ -72,7 +72,7 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides,
   return scene;
 }
 
-void require_drawable_near_black_hole(const Scene& scene, const std::string& file, bool raster,
+void require_drawable_near_black_hole(const Scene& scene, const std::string& file,
                                       const char* what) {
   if (!scene.black_hole) return;
   const auto refuse = [&](const std::string& why) {
@@ -86,13 +86,6 @@ void require_drawable_near_black_hole(const Scene& scene, const std::string& fil
     refuse(
         "render.light_source_delay must stay \"surface\" near a black hole: each light is met "
         "where its light left for the surface, along the curved ray");
-  if (raster)
-    for (const Object& o : scene.objects)
-      if (std::holds_alternative<Texture>(o.material.pattern) && !o.material.unlit)
-        refuse(fmt::format(
-            "the raster renderer and the viewer do not light textures near a black hole yet, "
-            "and \"{}\" is a lit texture; render with the ray tracer (the default)",
-            o.name));
   if (what) refuse(std::string(what) + " is not available near a black hole yet");
 }
 

@@ -206,7 +206,7 @@ int run_locate(const LocateArgs& a) {
       throw InputError("--direction: must not be zero");
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene, false);
+  require_drawable_near_black_hole(scene, a.scene);
   if (camera_inside_horizon(scene.camera.motion))
     throw InputError(a.scene +
                      ": camera: locate does not answer for a camera inside the black hole's "
@@ -241,7 +241,7 @@ int run_view(const ViewArgs& a) {
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   const Scene scene = load(a.scene, overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene, true);
+  require_drawable_near_black_hole(scene, a.scene);
   for (const std::string& difference : raster_differences(scene, true))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());

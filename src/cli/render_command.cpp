@@ -135,9 +135,9 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
   }();
   for (const Aov aov : out.aovs)
     if (!aov_near_black_hole(aov))
-      require_drawable_near_black_hole(scene, a.scene, false,
+      require_drawable_near_black_hole(scene, a.scene,
                                        ("the output variable " + aov_name(aov)).c_str());
-  require_drawable_near_black_hole(scene, a.scene, out.raster);
+  require_drawable_near_black_hole(scene, a.scene);
   if (a.width || a.height) {
     const std::string kept = resize_keeping_field(scene.camera, a.width, a.height);
     if (!kept.empty() && !a.quiet) std::fprintf(stderr, "lightcone: %s\n", kept.c_str());

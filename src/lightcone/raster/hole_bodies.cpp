@@ -9,6 +9,7 @@
 
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/shading.hpp"
+#include "lightcone/frame/surface_coordinates.hpp"
 #include "lightcone/portable.hpp"
 #include "lightcone/raster/adaptive_split.hpp"
 #include "lightcone/raster/body_patterns.hpp"
@@ -52,9 +53,10 @@ struct HoleSeeing {
   Vec3 face_normal;                 // of the untessellated triangle being split (shape coordinates)
   std::array<double, 8> face_uv{};  // and its texture coordinates' map (triangle_uv_map)
 
-  // A lit corner's two colours, per corner and normal (a box's edge joins two faces).
+  // A lit corner's two colours, per corner, normal (a box's edge joins two faces) and texture
+  // coordinates (a mesh's faces may meet at a seam of its texture).
   using Colours = std::array<float, 6>;
-  mutable std::map<std::array<double, 6>, Colours> colours;
+  mutable std::map<std::array<double, 8>, Colours> colours;
 
   // Each edge's midpoint, solved once for both triangles that share the edge.
   mutable std::map<std::array<double, 6>, Corner> middles;
@@ -94,17 +96,24 @@ struct HoleSeeing {
   // draws everywhere), the normal facing the camera as the tracer's faces the ray.
   const Colours& colours_at(const Corner& c) const {
     const Vec3 n = normal_at(c);
-    const auto [it, added] = colours.try_emplace({c.p.x, c.p.y, c.p.z, n.x, n.y, n.z});
+    const std::array<double, 2> uv = lit->texture_albedo ? uv_at(c) : std::array<double, 2>{};
+    const auto [it, added] =
+        colours.try_emplace({c.p.x, c.p.y, c.p.z, n.x, n.y, n.z, uv[0], uv[1]});
     if (!added) return it->second;
     Hit hit;
     hit.body = static_cast<int>(lit->body);
     hit.shape_point = c.p;
+    hit.uv = uv;
     // A closed shape is seen from outside (the tracer's normal faces the ray, outward but for
     // grazing rays); a plane or a mesh from either side.
     hit.shape_normal = closed || faces_camera(c) ? n : n * -1.0;
     const Lighting::HoleSurface at{c.event, c.to_camera, c.local_velocity};
     std::array<Lighting::LitPoint, 2> points;
-    for (int k = 0; k < 2; ++k) points[k] = {&hit, {}, c.shift, *lit->albedo[k], {0.5, 0.5}, &at};
+    const PointEmission texel =
+        lit->texture_albedo ? lit->texture_albedo->surface(lit->object, hit) : PointEmission{};
+    for (int k = 0; k < 2; ++k)
+      points[k] = {&hit,       {}, c.shift, lit->texture_albedo ? texel : *lit->albedo[k],
+                   {0.5, 0.5}, &at};
     std::array<LinearRgb, 2> received;
     lit->lighting->received(points, received);
     for (int k = 0; k < 2; ++k) {
@@ -113,6 +122,23 @@ struct HoleSeeing {
       it->second[3 * k + 2] = static_cast<float>(received[k].b);
     }
     return it->second;
+  }
+
+  // The texture coordinates at corner c, as the tracer gives a point met there (on a box, of
+  // the face being split; on a mesh, its face's map).
+  std::array<double, 2> uv_at(const Corner& c) const {
+    if (const auto* box = std::get_if<Box>(&object.shape)) {
+      int axis = 0;
+      for (int i = 1; i < 3; ++i)
+        if (std::abs(face_normal[i]) > std::abs(face_normal[axis])) axis = i;
+      return box_uv(*box, c.p, axis);
+    }
+    if (round) return sphere_uv(c.p);
+    if (const auto* plane = std::get_if<Plane>(&object.shape))
+      return {0.5 + c.p.x / plane->size_x, 0.5 + c.p.z / plane->size_z};
+    const std::array<double, 8>& m = face_uv;
+    return {m[0] * c.p.x + m[1] * c.p.y + m[2] * c.p.z + m[3],
+            m[4] * c.p.x + m[5] * c.p.y + m[6] * c.p.z + m[7]};
   }
 
   Corner middle(const Corner& a, const Corner& b, const Vec3& p) const {
@@ -293,6 +319,10 @@ std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
     Rgb colours[2];
     if (pattern_colours(object.material, colours) == 2)
       lit.albedo[1] = &emission.object_colour(body.index, 1);
+    if (std::holds_alternative<Texture>(object.material.pattern)) {
+      lit.texture_albedo = &emission;
+      lit.object = static_cast<std::size_t>(&object - scene.scene->objects.data());
+    }
     tessellate_hole_image(scene, object, hole_world_line(object, hole), *body.mesh,
                           static_cast<int>(k % kRasterHoleOrders), limits, parts[k],
                           body.lit ? &lit : nullptr);

@@ -42,12 +42,17 @@ constexpr int kHoleVertexFloats = 17;
 double hole_swept_angle(const Vec3& from_hole, const Vec3& outward, int order);
 
 // A lit body: its colours per vertex are the ray tracer's Lighting at the vertex's surface
-// point, and a lit edge longer than a pixel is also split until the colours interpolated along
-// it lie within 1/128 of the brightest of them.
+// point (a lit texture's albedo the texel there, read as the tracer reads it), and a lit edge
+// longer than a pixel is also split until the colours interpolated along it lie within 1/128
+// of the brightest of them.
 struct HoleLitBody {
   const Lighting* lighting = nullptr;
   std::size_t body = 0;                          // in the resolved scene's bodies
   std::array<const PointEmission*, 2> albedo{};  // its fixed colours (the same twice for one)
+  // A lit texture's albedo at a point: the emission table's (EmissionTable::surface) for
+  // object `object` (in the scene's objects); null for fixed colours.
+  const EmissionTable* texture_albedo = nullptr;
+  std::size_t object = 0;
 };
 
 // Appends the triangles of image `order` of the body drawn with `mesh` on `line`. A triangle is

@@ -244,11 +244,13 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       frame_features |= kBodyLitTextures | (spectral ? kBodySpectralTextures : 0);
     }
     if (textured && !lit_texture) {
+      // An unlit texture, or near a black hole a lit one: its colours are then its vertices'
+      // (raster/hole_bodies.hpp).
       draw.first_row = emission_row(kBlack);
-      const bool drawable = m.unlit;  // (a lit texture not drawn as one is black)
-      draw.pattern = drawable ? 2 : 0;
-      draw.face_uvs = drawable && mesh;
-      if (drawable) upload(*std::get<Texture>(m.pattern).image);
+      draw.pattern = 2;
+      draw.face_uvs = m.unlit && mesh;
+      draw.lit = !m.unlit;
+      if (m.unlit) upload(*std::get<Texture>(m.pattern).image);
     } else if (m.unlit) {
       if (two_colours) {
         // A checker's (blink's, clock's) two colours take consecutive rows of their own.
@@ -306,7 +308,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     if (resolved.hole)
       hole_body_list.push_back(
           {i, draw.mesh, draw.first_row, draw.pattern, draw.lit,
-           draw.pattern == 2 ? images.at(std::get<Texture>(m.pattern).image.get()) : 0});
+           draw.pattern == 2 && m.unlit ? images.at(std::get<Texture>(m.pattern).image.get()) : 0});
     else
       draws.push_back(draw);
   }

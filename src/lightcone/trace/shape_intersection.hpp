@@ -1,7 +1,7 @@
 // A ray through an analytic shape in its own coordinates (sphere, box, plane): where it enters
-// and leaves, where it first meets the surface within a parameter range, and the texture
-// coordinates and normal of the point met. Inline: the tracer calls them for every ray a body's
-// bounds let through.
+// and leaves, and where it first meets the surface within a parameter range (the texture
+// coordinates and normal of the point met: frame/surface_coordinates.hpp). Inline: the tracer calls
+// them for every ray a body's bounds let through.
 #pragma once
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 #include <utility>
 #include <variant>
 
+#include "lightcone/frame/surface_coordinates.hpp"
 #include "lightcone/frame/surface_hit.hpp"
 #include "lightcone/physics/vec.hpp"
 #include "lightcone/scene/scene.hpp"
@@ -81,51 +82,6 @@ inline bool intersect_plane(const Plane& plane, const ShapeRay& ray, double tnea
   if (std::abs(p.x) > plane.size_x * 0.5 || std::abs(p.z) > plane.size_z * 0.5) return false;
   s = t;
   return true;
-}
-
-inline std::array<double, 2> sphere_uv(const Vec3& p) {
-  const Vec3 n = normalize(p);
-  return {0.5 + std::atan2(n.x, n.z) / (2 * std::numbers::pi),
-          std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi};
-}
-
-// The face of the box a surface point lies on: the axis where it is relatively farthest out.
-inline int box_face_axis(const Box& box, const Vec3& p) {
-  const Vec3 rel = component_div(p, box.size);
-  int axis = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(rel[i]) > std::abs(rel[axis])) axis = i;
-  return axis;
-}
-
-// Each face shows the whole image, read from outside the box the right way round (not
-// mirrored): the side faces upright, the top with its image's top toward -z, the bottom toward
-// +z (docs/scene-format.md, "Texture coordinates").
-inline std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
-  const Vec3 rel = component_div(p, box.size);
-  const double outward = p[axis] < 0 ? -1.0 : 1.0;
-  if (axis == 0) return {0.5 - outward * rel.z, 0.5 - rel.y};
-  if (axis == 1) return {0.5 + rel.x, 0.5 + outward * rel.z};
-  return {0.5 + outward * rel.x, 0.5 - rel.y};
-}
-
-// The texture coordinates and normal of an analytic shape's surface point. Points on flat faces
-// are put exactly on the face, so that procedural patterns (a checker boundary at the face) do
-// not flip with rounding.
-inline void analytic_surface(const Shape& shape, Hit& hit) {
-  if (std::holds_alternative<Sphere>(shape)) {
-    hit.uv = sphere_uv(hit.shape_point);
-    hit.shape_normal = hit.shape_point;
-  } else if (const auto* box = std::get_if<Box>(&shape)) {
-    const int axis = box_face_axis(*box, hit.shape_point);
-    hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);
-    hit.uv = box_uv(*box, hit.shape_point, axis);
-    hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
-  } else if (const auto* plane = std::get_if<Plane>(&shape)) {
-    hit.shape_point.y = 0;
-    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
-    hit.shape_normal = {0, 1, 0};
-  }
 }
 
 }  // namespace lightcone

@@ -4,7 +4,8 @@
 // replaces the Doppler factor in the colour and searchlight laws (a texture's texel as the flat
 // bodies' is, at the surface point's texture coordinates: a mesh face's interpolated between its
 // vertices, where they are an affine map of the point); a lit body's colour is interpolated
-// between its vertices' (each the ray tracer's lighting there).
+// between its vertices' (each the ray tracer's lighting there; a lit texture's, at the texel
+// there).
 in vec3 shape_point;
 in float log_shift;
 in float proper_time;
@@ -26,7 +27,7 @@ void main() {
   HoleRay ray = follow_hole_ray(fragment_look_direction());
   if (ray.end == kHoleDisk && ray.phi < swept) discard;
 #endif
-  if (pattern == 2) {  // an unlit texture
+  if (pattern == 2 && lit == 0) {  // an unlit texture
     vec2 uv = shape_kind == 0 ? face_uv : surface_uv(shape_point);
     colour = vec4(received_rgb(sample_bilinear(texture_image, uv, true), exp(log_shift)), 1.0);
     return;
