@@ -555,18 +555,29 @@ void Lighting::received(std::span<const LitPoint> points, std::span<LinearRgb> o
       ShadowRay rays[kBatchSize];
       bool blocked[kBatchSize];
       std::size_t ray_point[kBatchSize], ray_count = 0;
+      // Near a hole: each leg's light at the last point, which the next reuses where it is the
+      // same surface point (a raster vertex asks once per fixed colour of its material).
+      Incoming legs[2];
+      bool leg_arrives[2] = {false, false};
       for (std::size_t p = 0; p < count; ++p) {
         if (shading[p].near_hole) {
+          const LitPoint &point = points[first + p],
+                         *last = p > 0 ? &points[first + p - 1] : nullptr;
+          const bool same_surface = last && last->near_hole == point.near_hole &&
+                                    last->hit == point.hit &&
+                                    last->light_sample == point.light_sample;
           // Directly and round the far side (the higher orders bring a few thousandths of it).
           arrives[p] = false;
           for (const int order : {0, 1}) {
-            Incoming leg;
-            std::optional<CurvedShadowRay> curved;
-            if (incoming_near_hole(lights_[l], shading[p].surface_world,
-                                   shading[p].surface_velocity, shading[p].normal,
-                                   points[first + p].light_sample, order, leg, curved) &&
-                !(curved && curved_shadows_->occluded(*curved)))
-              add_light(l, leg, shading[p]);
+            if (!same_surface) {
+              std::optional<CurvedShadowRay> curved;
+              leg_arrives[order] =
+                  incoming_near_hole(lights_[l], shading[p].surface_world,
+                                     shading[p].surface_velocity, shading[p].normal,
+                                     point.light_sample, order, legs[order], curved) &&
+                  !(curved && curved_shadows_->occluded(*curved));
+            }
+            if (leg_arrives[order]) add_light(l, legs[order], shading[p]);
           }
           continue;
         }

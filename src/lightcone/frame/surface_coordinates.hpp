@@ -41,6 +41,10 @@ inline std::array<double, 2> box_uv(const Box& box, const Vec3& p, int axis) {
   return {0.5 + outward * rel.x, 0.5 - rel.y};
 }
 
+inline std::array<double, 2> plane_uv(const Plane& plane, const Vec3& p) {
+  return {0.5 + p.x / plane.size_x, 0.5 + p.z / plane.size_z};
+}
+
 // The texture coordinates and normal of an analytic shape's surface point. Points on flat faces
 // are put exactly on the face, so that procedural patterns (a checker boundary at the face) do
 // not flip with rounding.
@@ -55,7 +59,7 @@ inline void analytic_surface(const Shape& shape, Hit& hit) {
     hit.shape_normal[axis] = std::copysign(1.0, hit.shape_point[axis]);
   } else if (const auto* plane = std::get_if<Plane>(&shape)) {
     hit.shape_point.y = 0;
-    hit.uv = {0.5 + hit.shape_point.x / plane->size_x, 0.5 + hit.shape_point.z / plane->size_z};
+    hit.uv = plane_uv(*plane, hit.shape_point);
     hit.shape_normal = {0, 1, 0};
   }
 }

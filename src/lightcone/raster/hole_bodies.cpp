@@ -134,11 +134,14 @@ struct HoleSeeing {
       return box_uv(*box, c.p, axis);
     }
     if (round) return sphere_uv(c.p);
-    if (const auto* plane = std::get_if<Plane>(&object.shape))
-      return {0.5 + c.p.x / plane->size_x, 0.5 + c.p.z / plane->size_z};
+    if (const auto* plane = std::get_if<Plane>(&object.shape)) return plane_uv(*plane, c.p);
+    return face_uv_at(c.p);
+  }
+  // The face's texture coordinates at shape point p (zero but on a mesh with them).
+  std::array<double, 2> face_uv_at(const Vec3& p) const {
     const std::array<double, 8>& m = face_uv;
-    return {m[0] * c.p.x + m[1] * c.p.y + m[2] * c.p.z + m[3],
-            m[4] * c.p.x + m[5] * c.p.y + m[6] * c.p.z + m[7]};
+    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
+            m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7]};
   }
 
   Corner middle(const Corner& a, const Corner& b, const Vec3& p) const {
@@ -203,11 +206,9 @@ struct HoleSeeing {
       static const Colours kNone{};
       const Colours& lit_colours = lit ? colours_at(*k) : kNone;
       out.insert(out.end(), lit_colours.begin(), lit_colours.end());
-      const std::array<double, 8>& m = face_uv;
-      out.insert(out.end(),
-                 {static_cast<float>(m[0] * k->p.x + m[1] * k->p.y + m[2] * k->p.z + m[3]),
-                  static_cast<float>(m[4] * k->p.x + m[5] * k->p.y + m[6] * k->p.z + m[7]),
-                  static_cast<float>(k->swept)});
+      const std::array<double, 2> uv = face_uv_at(k->p);
+      out.insert(out.end(), {static_cast<float>(uv[0]), static_cast<float>(uv[1]),
+                             static_cast<float>(k->swept)});
     }
   }
 };
