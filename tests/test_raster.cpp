@@ -8,12 +8,15 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "lightcone/color/colour_models.hpp"
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/star_field.hpp"
@@ -611,6 +614,70 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
   std::size_t covered = 0;
   for (std::size_t p = 0; p < drawn.rgb.size() / 3; ++p) covered += drawn.rgb[3 * p] == 1.0f;
   EXPECT_GT(covered, 160u * 90 / 10);  // the street's houses fill much of the view
+}
+
+// The colour rows are kept from frame to frame while they are the same rows over a range that
+// covers the next frame's, as in the viewer, whose frames differ in the camera alone: each frame
+// is drawn as a renderer drawing it first draws it (up to the nodes' interpolation), and the
+// rows are tabulated anew where the camera's speed leaves their range or a setting changes.
+// (The emission tables are kept over a wide range, so that the rows' own range decides.)
+TEST(RasterKeptRows, EachFrameIsDrawnAsAFirstFrameIs) {
+  for (const char* name : {"street.json", "street-lit.json"}) {
+    SCOPED_TRACE(name);
+    Scene scene = test::load_repository_scene(name);
+    scene.camera.width = 160, scene.camera.height = 90, scene.camera.samples = 1;
+    const HeadlessGlContext context;
+    const FloatTarget target(160, 90);
+    target.bind();
+    RasterRenderer kept_renderer;
+    std::unique_ptr<EmissionTable> kept_emission;
+    const auto draw_kept = [&](bool& tabulated) {
+      const ResolvedScene resolved = resolve_scene(scene);
+      if (!kept_emission || !kept_emission->serves(resolved))
+        kept_emission = std::make_unique<EmissionTable>(resolved, 2.0);
+      tabulated =
+          kept_renderer.prepare(resolved, *kept_emission, {}, /*on_gpu=*/false).rows_tabulated;
+      kept_renderer.pass();
+      return target.read();
+    };
+    const auto draw_first = [&] {
+      RasterRenderer renderer;
+      const ResolvedScene resolved = resolve_scene(scene);
+      const EmissionTable emission(resolved);
+      renderer.prepare(resolved, emission, {}, /*on_gpu=*/false);
+      renderer.pass();
+      return target.read();
+    };
+    struct Step {
+      const char* change;
+      std::function<void()> apply;
+      bool tabulated;
+    };
+    const Vec3 velocity = scene.camera.world_line.velocity;
+    for (const Step& step : {
+             Step{"the first frame", [] {}, true},
+             Step{"the camera a little ahead", [&] { scene.camera.world_line.position.z -= 0.5; },
+                  false},
+             Step{"the camera a little faster",
+                  [&] { scene.camera.world_line.velocity = velocity * 1.01; }, false},
+             Step{"the camera far faster",
+                  [&] { scene.camera.world_line.velocity = velocity * (0.97 / length(velocity)); },
+                  true},
+             Step{"the searchlight off", [&] { scene.render.searchlight = SearchlightModel::kOff; },
+                  true},
+             Step{"the hue model", [&] { scene.render.doppler = DopplerModel::kHue; }, true},
+         }) {
+      SCOPED_TRACE(step.change);
+      step.apply();
+      bool tabulated = false;
+      const Image kept = draw_kept(tabulated);
+      EXPECT_EQ(tabulated, step.tabulated);
+      const Image first = draw_first();
+      const test::ValueDifference d = test::compare_values(kept, first, 1e-4f);
+      EXPECT_EQ(d.differing, 0u);
+      EXPECT_GT(d.lit, first.rgb.size() / 4);
+    }
+  }
 }
 
 // A frame's body programs hold only the features its bodies use (raster/shader_build.hpp,

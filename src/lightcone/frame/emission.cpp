@@ -1,6 +1,7 @@
 #include "lightcone/frame/emission.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "lightcone/color/spectrum.hpp"
@@ -88,6 +89,10 @@ const EmissionTable& EmissionTable::keep(std::unique_ptr<EmissionTable>& kept,
 
 EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
     : scene_(*resolved.scene),
+      serial_([] {
+        static std::atomic<std::uint64_t> made{0};
+        return ++made;
+      }()),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
       grid_([&] {
         const LogDopplerRange r = visible_log_doppler(resolved, false);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <memory>
@@ -89,6 +90,9 @@ class EmissionTable {
   // `scene`, else built anew over kKeptMargin (the old freed first).
   static const EmissionTable& keep(std::unique_ptr<EmissionTable>& kept,
                                    const ResolvedScene& scene);
+  // Unique to these tables within the process (a new set may take a freed one's address), so
+  // that a renderer which tabulated colours from a set can tell whether it is handed that one.
+  std::uint64_t serial() const { return serial_; }
 
   PointEmission surface(std::size_t object_index, const Hit& hit) const;
   PointEmission sky(const Vec3& pattern_direction) const;
@@ -125,6 +129,7 @@ class EmissionTable {
   const DopplerXyzTable& node_table(int node_case, int node);
 
   const Scene& scene_;
+  std::uint64_t serial_;
   bool spectral_;
   DopplerGrid grid_;
   std::vector<double> illuminant_;  // the reference illuminant on the grid (illuminant_samples)

@@ -87,16 +87,23 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   }
   const Lighting& lighting = *kept_lighting;
   const bool spectral = settings.doppler == DopplerModel::kSpectral;
-  // Rows: each a colour against D, tabulated over the frame's range of ln D.
+  // Rows: each a colour against D, tabulated over the frame's range of ln D (unless the rows
+  // kept from the frame before serve), and what each is tabulated from.
   std::vector<std::function<LinearRgb(double)>> rows;
-  const auto add_row = [&](std::function<LinearRgb(double)> f) {
+  std::vector<RowSource> row_sources;
+  const auto add_row = [&](RowSource source, std::function<LinearRgb(double)> f) {
     rows.push_back(std::move(f));
+    row_sources.push_back(source);
     return static_cast<int>(rows.size() - 1);
+  };
+  const auto received_row = [&](const PointEmission& e) {
+    return add_row({RowSource::kEmission, &e},
+                   [&e, &settings](double d) { return received_colour(e, d, settings); });
   };
   std::map<EmissionKey, int> row_of;
   const auto emission_row = [&](const PointEmission& e) {
     const auto [it, added] = row_of.emplace(key_of(e), static_cast<int>(rows.size()));
-    if (added) add_row([&e, &settings](double d) { return received_colour(e, d, settings); });
+    if (added) received_row(e);
     return it->second;
   };
   static const PointEmission kBlack{};
@@ -132,11 +139,12 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       d.event = *fixed - observation;
     }
     if (spectral) {
-      d.row = add_row(
-          [&lighting, l](double x) { return linear_srgb_from_xyz(lighting.light_seen(l, x)); });
+      d.row = add_row({RowSource::kLightSeen, nullptr, 0, l}, [&lighting, l](double x) {
+        return linear_srgb_from_xyz(lighting.light_seen(l, x));
+      });
     } else {
       const LinearRgb rgb = lighting.light_rgb(l);
-      d.row = add_row([rgb, &unshifted](double x) {
+      d.row = add_row({RowSource::kLightRgb, nullptr, 0, l}, [rgb, &unshifted](double x) {
         return received_colour(PointEmission{rgb}, x, unshifted);
       });
     }
@@ -145,8 +153,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   // The colour models other than spectral: the received colour of outgoing radiance.
   for (int c = 0; c < 3; ++c) {
     const LinearRgb unit{c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
-    final_rows[c] = add_row(
-        [unit, &settings](double x) { return received_colour(PointEmission{unit}, x, settings); });
+    final_rows[c] = add_row({RowSource::kPrimary, nullptr, 0, 0, c}, [unit, &settings](double x) {
+      return received_colour(PointEmission{unit}, x, settings);
+    });
   }
 
   // Textures and sky images, spectral model: the RGB white's and the emitter nodes' rows,
@@ -164,7 +173,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       e.tables[0] = &table;
       e.weights[0] = 1;
       e.table_count = 1;
-      return add_row([e, &settings](double d) { return received_colour(e, d, settings); });
+      return add_row({RowSource::kBasis, &table},
+                     [e, &settings](double d) { return received_colour(e, d, settings); });
     };
     basis_first_row = basis_row(emission.white_table());
     for (int c = 0; c < kRgbEmitterCases; ++c)
@@ -256,9 +266,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
         // A checker's (blink's, clock's) two colours take consecutive rows of their own.
         const PointEmission& a = emission.object_colour(i, 0);
         const PointEmission& b = emission.object_colour(i, 1);
-        draw.first_row =
-            add_row([&a, &settings](double d) { return received_colour(a, d, settings); });
-        add_row([&b, &settings](double d) { return received_colour(b, d, settings); });
+        draw.first_row = received_row(a);
+        received_row(b);
       } else {
         draw.first_row = emission_row(emission.object_colour(i, 0));
       }
@@ -280,9 +289,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
           if (lighting.co_moving(object, l)) {
             auto [it, added] = reflection_rows.emplace(key, 0);
             if (added)
-              it->second = add_row([&lighting, object, k, l](double d) {
-                return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
-              });
+              it->second =
+                  add_row({RowSource::kReflection, nullptr, object, l, k},
+                          [&lighting, object, k, l](double d) {
+                            return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
+                          });
             slot[0] = static_cast<float>(it->second);
           } else {
             auto [it, added] = reflection_tables.emplace(key, table_rows);
@@ -438,9 +449,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   if (sky_image) upload(*std::get<SkyImage>(s.sky.pattern).image);
   const PointEmission& sky0 = sky_image ? kBlack : emission.sky_colour(0);
   const PointEmission& sky1 = grid ? emission.sky_colour(1) : sky0;
-  sky_first_row =
-      add_row([&sky0, &settings](double d) { return received_colour(sky0, d, settings); });
-  add_row([&sky1, &settings](double d) { return received_colour(sky1, d, settings); });
+  sky_first_row = received_row(sky0);
+  received_row(sky1);
 
   // Near a black hole: the frame's rays, and the disk's row against ln s.
   std::optional<LogRange> disk_range;
@@ -460,7 +470,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     black_hole->prepare(*resolved.hole);
     if (resolved.hole->disk) {
       const ThermalEmission& disk = emission.disk();
-      disk_row = add_row([&disk](double s) { return disk_row_colour(disk, s); });
+      disk_row = add_row({RowSource::kDisk, &disk},
+                         [&disk](double s) { return disk_row_colour(disk, s); });
       disk_range = disk_row_range(*resolved.hole, disk);
       disk_floor = disk.floor;
     }
@@ -494,23 +505,49 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   }
   lo -= 2 * kLogDopplerStep;
   hi += 2 * kLogDopplerStep;
-  first_log_doppler = lo;
-  const int nodes = std::max(2, static_cast<int>(std::ceil((hi - lo) / kLogDopplerStep)) + 1);
-  std::vector<float> texels(static_cast<std::size_t>(nodes) * rows.size() * 3);
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    for (int k = 0; k < nodes; ++k) {
-      const LinearRgb c = rows[r](std::exp(lo + k * kLogDopplerStep));
-      float* t = &texels[3 * (r * nodes + k)];
-      t[0] = static_cast<float>(c.r);
-      t[1] = static_cast<float>(c.g);
-      t[2] = static_cast<float>(c.b);
+  // The rows kept from the frame before serve when they are the same rows, read from the same
+  // tables and lights, over a range that covers this frame's. Else they are tabulated anew,
+  // away from a black hole kKeptMargin wider on each side where a texture that wide may be
+  // made (near one the tables change with every frame).
+  const bool rows_kept =
+      lighting_kept && !resolved.hole && kept_rows.emission_serial == emission.serial() &&
+      kept_rows.doppler == settings.doppler && kept_rows.searchlight == settings.searchlight &&
+      kept_rows.hue_loop == settings.hue_loop && kept_rows.sources == row_sources &&
+      kept_rows.first <= lo && hi <= kept_rows.last;
+  stats.rows_tabulated = !rows_kept;
+  if (!rows_kept) {
+    GLint widest = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &widest);
+    const double margin = EmissionTable::kKeptMargin;
+    if (!resolved.hole && (hi - lo + 2 * margin) / kLogDopplerStep + 2 <= widest) {
+      lo -= margin;
+      hi += margin;
     }
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, rows_texture);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, nodes, static_cast<GLsizei>(rows.size()), 0, GL_RGB,
-               GL_FLOAT, texels.data());
+    const int nodes = std::max(2, static_cast<int>(std::ceil((hi - lo) / kLogDopplerStep)) + 1);
+    std::vector<float> texels(static_cast<std::size_t>(nodes) * rows.size() * 3);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int k = 0; k < nodes; ++k) {
+        const LinearRgb c = rows[r](std::exp(lo + k * kLogDopplerStep));
+        float* t = &texels[3 * (r * nodes + k)];
+        t[0] = static_cast<float>(c.r);
+        t[1] = static_cast<float>(c.g);
+        t[2] = static_cast<float>(c.b);
+      }
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, rows_texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, nodes, static_cast<GLsizei>(rows.size()), 0, GL_RGB,
+                 GL_FLOAT, texels.data());
+    kept_rows = {resolved.hole ? 0 : emission.serial(),
+                 settings.doppler,
+                 settings.searchlight,
+                 settings.hue_loop,
+                 std::move(row_sources),
+                 lo,
+                 lo + (nodes - 1) * kLogDopplerStep};
+  }
+  first_log_doppler = kept_rows.first;
   glActiveTexture(GL_TEXTURE2);
   glBindTexture(GL_TEXTURE_2D, tables_texture);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);

@@ -32,7 +32,8 @@ using CurvedShadowSource =
 std::vector<std::string> raster_differences(const Scene& scene, bool curved_shadows = false);
 
 struct RasterFrameStats {
-  std::size_t triangles = 0;  // after tessellation on the CPU; before, on the GPU
+  std::size_t triangles = 0;   // after tessellation on the CPU; before, on the GPU
+  bool rows_tabulated = true;  // false: the colour rows were kept from the frame before
 };
 
 // Where edges are cut: on the CPU (any OpenGL 3.3), by tessellation shaders on the GPU

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -146,6 +147,26 @@ struct RasterRenderer::Impl {
     Vec3 position, velocity, axis;
     double time = 0, intensity = 0, radius = 0, half_cone = 0, falloff = 0;
   };
+  // What a colour row is tabulated from (raster_prepare.cpp): an emission, table or disk of
+  // the frame's EmissionTable, or a light, primary or lit colour of the kept Lighting.
+  struct RowSource {
+    enum Kind { kEmission, kLightSeen, kLightRgb, kPrimary, kBasis, kReflection, kDisk };
+    Kind kind = kEmission;
+    const void* source = nullptr;
+    std::size_t object = 0, light = 0;
+    int colour = 0;
+    bool operator==(const RowSource&) const = default;
+  };
+  // The rows on rows_texture, kept while the next frame's are the same rows over a range of
+  // ln D inside theirs (a viewer's frames differ in the camera alone).
+  struct KeptRows {
+    std::uint64_t emission_serial = 0;  // 0: none kept
+    DopplerModel doppler = DopplerModel::kSpectral;
+    SearchlightModel searchlight = SearchlightModel::kPhysical;
+    bool hue_loop = false;
+    std::vector<RowSource> sources;
+    double first = 0, last = 0;  // ln D of the first and last node
+  } kept_rows;
   const ResolvedScene* scene = nullptr;
   std::vector<BodyDraw> draws;
   std::vector<HoleBodiesPass::Body> hole_body_list;
