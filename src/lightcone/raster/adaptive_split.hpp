@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <vector>
 
 #include "lightcone/physics/vec.hpp"
 
@@ -18,73 +19,120 @@ namespace lightcone {
 //   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const;
 //   void emit(const Corner& a, const Corner& b, const Corner& c) const;
 // and a midpoint rule `mesh.midpoint(a, b)` comes from the RestMesh.
+//
+// Every edge is decided once, with all its halves down to the last level (an edge that splits
+// is always cut into its two halves, whichever way its triangles are cut): the mesh's edges
+// before their triangles (decide(), once for both triangles that share each), and each edge a
+// cut makes inside a triangle before the two triangles that share it. Deciding each half in
+// each triangle that has it instead took twice the midpoints.
 template <class Seeing, class Mesh>
 class AdaptiveSplit {
  public:
   using Corner = typename Seeing::Corner;
-  AdaptiveSplit(const Seeing& seeing, const Mesh& mesh, int max_level)
-      : seeing_(seeing), mesh_(mesh), max_level_(max_level) {}
 
-  // Triangle (a, b, c) whose edges ab, bc, ca are at the given levels.
-  void triangle(const Corner& a, const Corner& b, const Corner& c, int lab = 0, int lbc = 0,
-                int lca = 0) const {
-    Corner mab, mbc, mca;
-    const bool sab = split(a, b, lab, mab), sbc = split(b, c, lbc, mbc),
-               sca = split(c, a, lca, mca);
-    cut(a, b, c, mab, mbc, mca, lab, lbc, lca, sab, sbc, sca);
+  // An edge's decisions, as seen from one of its ends (`reversed`: from the other end than the
+  // one it was decided from); node < 0: not split.
+  struct Edge {
+    int node = -1;
+    bool reversed = false;
+    Edge flipped() const { return {node, !reversed}; }
+  };
+
+  // `nodes`: where the decisions are kept, cleared here (a caller keeps it, so that a frame like
+  // the last allocates nothing).
+  struct Node {
+    Corner middle;
+    Edge halves[2];  // from the end it was decided from, and to the other
+  };
+  AdaptiveSplit(const Seeing& seeing, const Mesh& mesh, int max_level, std::vector<Node>& nodes)
+      : seeing_(seeing), mesh_(mesh), max_level_(max_level), nodes_(nodes) {
+    nodes_.clear();
   }
 
-  // Whether edge ab (at `level`) is split; its midpoint is set when it is.
-  bool split(const Corner& a, const Corner& b, int level, Corner& middle) const {
-    if (level >= max_level_) return false;
-    middle = seeing_.middle(a, b, mesh_.midpoint(a.p, b.p));
-    return seeing_.needs_split(a, b, middle);
+  // Edge ab at `level` and all its halves. (a and b are not the nodes' own: deciding moves
+  // them.)
+  Edge decide(const Corner& a, const Corner& b, int level) const {
+    if (level >= max_level_) return {};
+    const Corner middle = seeing_.middle(a, b, mesh_.midpoint(a.p, b.p));
+    if (!seeing_.needs_split(a, b, middle)) return {};
+    const int node = static_cast<int>(nodes_.size());
+    nodes_.push_back({middle, {}});
+    const Edge first = decide(a, middle, level + 1);
+    const Edge second = decide(middle, b, level + 1);
+    nodes_[node].halves[0] = first;
+    nodes_[node].halves[1] = second;
+    return {node, false};
   }
 
-  // An untessellated triangle whose edges' decisions (split) were made beforehand, once for
-  // both triangles that share each.
-  void triangle(const Corner& a, const Corner& b, const Corner& c, const Corner& mab,
-                const Corner& mbc, const Corner& mca, bool sab, bool sbc, bool sca) const {
-    cut(a, b, c, mab, mbc, mca, 0, 0, 0, sab, sbc, sca);
+  // Triangle (a, b, c) at level 0, its edges decided here.
+  void triangle(const Corner& a, const Corner& b, const Corner& c) const {
+    triangle(a, b, c, decide(a, b, 0), decide(b, c, 0), decide(c, a, 0));
+  }
+
+  // Triangle (a, b, c) at level 0 whose edges ab, bc, ca were decided beforehand.
+  void triangle(const Corner& a, const Corner& b, const Corner& c, Edge ab, Edge bc,
+                Edge ca) const {
+    cut(a, b, c, ab, bc, ca, 0, 0, 0);
   }
 
  private:
-  // The same, with each edge's decision (and midpoint) made, so that rotating the triangle
-  // decides nothing twice.
-  void cut(const Corner& a, const Corner& b, const Corner& c, const Corner& mab, const Corner& mbc,
-           const Corner& mca, int lab, int lbc, int lca, bool sab, bool sbc, bool sca) const {
+  const Corner& middle(Edge e) const { return nodes_[e.node].middle; }
+  // The half of split edge e from its start, and the half to its end (seen as e is).
+  Edge first_half(Edge e) const {
+    const Node& n = nodes_[e.node];
+    return e.reversed ? n.halves[1].flipped() : n.halves[0];
+  }
+  Edge second_half(Edge e) const {
+    const Node& n = nodes_[e.node];
+    return e.reversed ? n.halves[0].flipped() : n.halves[1];
+  }
+
+  // Triangle (a, b, c) with its edges' decisions and levels.
+  void cut(const Corner& a, const Corner& b, const Corner& c, Edge ab, Edge bc, Edge ca, int lab,
+           int lbc, int lca) const {
+    const bool sab = ab.node >= 0, sbc = bc.node >= 0, sca = ca.node >= 0;
     const int count = int(sab) + int(sbc) + int(sca);
     if (count == 0) return seeing_.emit(a, b, c);
     if (count == 3) {
       const int l = std::max({lab, lbc, lca}) + 1;
-      triangle(a, mab, mca, lab + 1, l, lca + 1);
-      triangle(mab, b, mbc, lab + 1, lbc + 1, l);
-      triangle(mca, mbc, c, l, lbc + 1, lca + 1);
-      triangle(mab, mbc, mca, l, l, l);
+      // (Copies: deciding the inner edges may move the nodes.)
+      const Corner mab = middle(ab), mbc = middle(bc), mca = middle(ca);
+      const Edge inner_ab_ca = decide(mab, mca, l), inner_bc_ab = decide(mbc, mab, l),
+                 inner_ca_bc = decide(mca, mbc, l);
+      cut(a, mab, mca, first_half(ab), inner_ab_ca, second_half(ca), lab + 1, l, lca + 1);
+      cut(mab, b, mbc, second_half(ab), first_half(bc), inner_bc_ab, lab + 1, lbc + 1, l);
+      cut(mca, mbc, c, inner_ca_bc, second_half(bc), first_half(ca), l, lbc + 1, lca + 1);
+      cut(mab, mbc, mca, inner_bc_ab.flipped(), inner_ca_bc.flipped(), inner_ab_ca.flipped(), l, l,
+          l);
       return;
     }
     // One or two edges split: rotate so that ab is split (and, for two, bc as well).
     if (!sab) {
-      if (sbc) return cut(b, c, a, mbc, mca, mab, lbc, lca, lab, sbc, sca, sab);
-      return cut(c, a, b, mca, mab, mbc, lca, lab, lbc, sca, sab, sbc);
+      if (sbc) return cut(b, c, a, bc, ca, ab, lbc, lca, lab);
+      return cut(c, a, b, ca, ab, bc, lca, lab, lbc);
     }
-    if (count == 2 && !sbc) return cut(c, a, b, mca, mab, mbc, lca, lab, lbc, sca, sab, sbc);
+    if (count == 2 && !sbc) return cut(c, a, b, ca, ab, bc, lca, lab, lbc);
+    const Corner mab = middle(ab);
     if (count == 1) {
       // The new edge from the midpoint to c lies inside: its level follows the split edge's.
-      triangle(a, mab, c, lab + 1, lab + 1, lca);
-      triangle(mab, b, c, lab + 1, lbc, lab + 1);
+      const Edge inner = decide(mab, c, lab + 1);
+      cut(a, mab, c, first_half(ab), inner, ca, lab + 1, lab + 1, lca);
+      cut(mab, b, c, second_half(ab), bc, inner.flipped(), lab + 1, lbc, lab + 1);
       return;
     }
     // ab and bc split (ca not).
     const int l = std::max(lab, lbc) + 1;
-    triangle(mab, b, mbc, lab + 1, lbc + 1, l);
-    triangle(a, mab, mbc, lab + 1, l, l);
-    triangle(a, mbc, c, l, lbc + 1, lca);
+    const Corner mbc = middle(bc);
+    const Edge inner_ab_bc = decide(mab, mbc, l), inner_a_bc = decide(a, mbc, l);
+    cut(mab, b, mbc, second_half(ab), first_half(bc), inner_ab_bc.flipped(), lab + 1, lbc + 1, l);
+    cut(a, mab, mbc, first_half(ab), inner_ab_bc, inner_a_bc.flipped(), lab + 1, l, l);
+    cut(a, mbc, c, inner_a_bc, second_half(bc), ca, l, lbc + 1, lca);
   }
 
   const Seeing& seeing_;
   const Mesh& mesh_;
   int max_level_;
+  std::vector<Node>& nodes_;
 };
 
 }  // namespace lightcone

@@ -245,7 +245,8 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
                     {},
                     {},
                     {}};
-  const AdaptiveSplit split(seeing, mesh, limits.max_level);
+  std::vector<AdaptiveSplit<HoleSeeing, RestMesh>::Node> nodes;
+  const AdaptiveSplit split(seeing, mesh, limits.max_level, nodes);
   std::vector<HoleSeeing::Corner> corners;
   corners.reserve(mesh.positions.size());
   // The body's points are seen at nearly one time: each starts from the last one's.

@@ -315,18 +315,24 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
                 const TessellationLimits& limits, std::vector<float>& out,
                 std::vector<float>* uv_maps, HiddenFaces hidden) {
   FlatSeeing seeing{scene, view, limits, out, uv_maps, hidden};
-  const AdaptiveSplit split(seeing, mesh, limits.max_level);
+  using Split = AdaptiveSplit<FlatSeeing, RestMesh>;
+  // Kept per thread, so that a frame like the last allocates nothing.
+  thread_local std::vector<Split::Node> nodes;
+  thread_local std::vector<FlatSeeing::Corner> corners;
+  thread_local std::vector<Split::Edge> edges;
+  const Split split(seeing, mesh, limits.max_level, nodes);
   // Each of the mesh's own vertices is seen once, whatever the number of its triangles, and each
   // of its edges decided once, whatever the number of its triangles.
-  std::vector<FlatSeeing::Corner> corners;
-  corners.reserve(mesh.positions.size());
+  corners.clear();
   for (const Vec3& p : mesh.positions) corners.push_back(seeing.corner(p));
-  std::vector<FlatSeeing::Corner> middles(mesh.edges.size());
-  std::vector<char> splits(mesh.edges.size());
-  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
-    const auto [i, j] = mesh.edges[e];
-    splits[e] = split.split(corners[i], corners[j], 0, middles[e]);
-  }
+  edges.clear();
+  for (const auto& [i, j] : mesh.edges) edges.push_back(split.decide(corners[i], corners[j], 0));
+  // A triangle's side from vertex i runs along its edge, or against it (the edge's first vertex
+  // is another point than i).
+  const auto side = [&](std::uint32_t edge, std::uint32_t i) {
+    const Split::Edge e = edges[edge];
+    return mesh.positions[mesh.edges[edge][0]] == mesh.positions[i] ? e : e.flipped();
+  };
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto [i, j, k] = mesh.triangles[t];
     const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
@@ -342,8 +348,7 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
                      [](double x) { return static_cast<float>(x); });
     }
     const auto [ij, jk, ki] = mesh.triangle_edges[t];
-    split.triangle(corners[i], corners[j], corners[k], middles[ij], middles[jk], middles[ki],
-                   splits[ij], splits[jk], splits[ki]);
+    split.triangle(corners[i], corners[j], corners[k], side(ij, i), side(jk, j), side(ki, k));
   }
 }
 
