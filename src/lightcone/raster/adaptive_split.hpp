@@ -18,6 +18,9 @@ namespace lightcone {
 //       for the midpoint of edge ab (which may start from where a and b are seen)
 //   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const;
 //   void emit(const Corner& a, const Corner& b, const Corner& c) const;
+// and optionally
+//   bool surely_whole(const Corner& a, const Corner& b) const;  // true only where needs_split
+//       would say no whatever the midpoint: the edge is then left whole without it
 // and a midpoint rule `mesh.midpoint(a, b)` comes from the RestMesh.
 //
 // Every edge is decided once, with all its halves down to the last level (an edge that splits
@@ -53,6 +56,8 @@ class AdaptiveSplit {
   // them.)
   Edge decide(const Corner& a, const Corner& b, int level) const {
     if (level >= max_level_) return {};
+    if constexpr (requires { seeing_.surely_whole(a, b); })
+      if (seeing_.surely_whole(a, b)) return {};
     const Corner middle = seeing_.middle(a, b, mesh_.midpoint(a.p, b.p));
     if (!seeing_.needs_split(a, b, middle)) return {};
     const int node = static_cast<int>(nodes_.size());

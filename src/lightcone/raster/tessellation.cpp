@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <optional>
 #include <tuple>
 
 #include "lightcone/physics/lorentz.hpp"
@@ -243,6 +245,55 @@ double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& pa,
   return std::abs(dot(normal, pm.position)) / (n * m) * pixels_per_radian;
 }
 
+EdgeErrorBound::EdgeErrorBound(const ResolvedScene& scene, const BodyView& view)
+    : camera_(scene.camera), shape_to_trace_(view.shape_to_trace), beta_(view.velocity) {
+  speed_ = length(beta_);
+  direction_ = speed_ > 0 ? beta_ * (1 / speed_) : Vec3{};
+  one_minus_beta2_ = 1 - dot(beta_, beta_);
+  focal_ = 0.5 * camera_.height / camera_.tan_half_fov;
+  delayed_ = scene.ray_time != 0 && speed_ > 0;
+}
+
+double EdgeErrorBound::pixels(const Vec3& shape_a, const ApparentPoint& a, double distance_a,
+                              const Vec3& shape_b, const ApparentPoint& b,
+                              double distance_b) const {
+  // The points y = shape_to_trace (p - shape_origin) are seen at y - beta tau(y), where tau =
+  // (N(y) - beta.y) / (1 - beta^2) with N(y) = sqrt((beta.y)^2 + (1 - beta^2) |y|^2), a norm
+  // (at the apparent position P, N = |P| + beta.P). y is linear along the edge, so the apparent
+  // midpoint lies `drift` = |beta| (mean tau - tau(m)) from the chord's, against beta. For a
+  // norm, with s = N(a) + N(b) and t = N(a + b) >= s - N(a - b): s - t = 2 (N(a) N(b) - a.b) /
+  // (s + t) <= N(a - b)^2 / (2 s - N(a - b)), twice mean N - N(m). A point drift along -beta
+  // from the chord's midpoint C, at least z - drift ahead, is drawn at most focal drift
+  // |beta_side - tan beta_ahead| / (z - drift) from C, tan being C's offset from the axis over z.
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const Vec3 &pa = a.position, &pb = b.position;
+  const Vec3 chord_middle = (pa + pb) * 0.5;
+  const double z = dot(chord_middle, camera_.forward);
+  const double distance = 0.5 * (distance_a + distance_b);  // at least |C|
+  const double rounding = 1e-9 * distance;                  // of the positions, in any direction
+  if (!(z > 1e-3 * distance)) return kNone;
+  const double over_z = 1 / z;
+  const double tan_x = dot(chord_middle, camera_.right) * over_z,
+               tan_y = dot(chord_middle, camera_.up) * over_z;
+  double drift = 0, across = 0;  // across: the image's shift per unit of drift, times z
+  if (delayed_) {
+    const double ends = distance_a + dot(beta_, pa) + distance_b + dot(beta_, pb);
+    const Vec3 d = shape_to_trace_ * (shape_a - shape_b);
+    const double bd = dot(beta_, d);
+    const double along = std::sqrt(bd * bd + one_minus_beta2_ * dot(d, d));  // N(a - b)
+    if (!(2 * ends - along > 0)) return kNone;
+    drift = speed_ * along * along / (2 * one_minus_beta2_ * (2 * ends - along));
+    const double ahead = dot(direction_, camera_.forward);
+    const double side_x = dot(direction_, camera_.right) - tan_x * ahead,
+                 side_y = dot(direction_, camera_.up) - tan_y * ahead;
+    across = std::sqrt(side_x * side_x + side_y * side_y);
+  }
+  const double nearest = z - drift - rounding;
+  // (Well in front, where edge_error_pixels measures in the image.)
+  if (!(nearest >= 1e-3 * (distance + drift + rounding))) return kNone;
+  return focal_ * (drift * across + rounding * (1 + std::abs(tan_x) + std::abs(tan_y))) / nearest;
+}
+
 namespace {
 
 // Straight rays: a corner is its shape point and where it is seen (each computed once).
@@ -250,6 +301,7 @@ struct FlatSeeing {
   struct Corner {
     Vec3 p;
     ApparentPoint seen;
+    double distance = 0;  // |seen.position|, for the edge bound
   };
   const ResolvedScene& scene;
   const BodyView& view;
@@ -260,10 +312,21 @@ struct FlatSeeing {
   std::array<float, 4> plane{};   // of the untessellated triangle being split
   std::array<float, 8> uv_map{};  // and its texture coordinates' map, where asked for
 
-  Corner corner(const Vec3& p) const { return {p, apparent_point(scene, view, p)}; }
+  Corner corner(const Vec3& p) const {
+    Corner c{p, apparent_point(scene, view, p)};
+    if (bound) c.distance = length(c.seen.position);
+    return c;
+  }
   Corner middle(const Corner&, const Corner&, const Vec3& p) const { return corner(p); }
   bool needs_split(const Corner& a, const Corner& b, const Corner& middle) const {
     return edge_error_pixels(scene.camera, a.seen, b.seen, middle.seen) > limits.max_error_pixels;
+  }
+  // The flat faces of a body without spin: edges shown to be drawn within the bound by their
+  // ends alone are left whole without their midpoints.
+  std::optional<EdgeErrorBound> bound;
+  bool surely_whole(const Corner& a, const Corner& b) const {
+    return bound && bound->pixels(a.p, a.seen, a.distance, b.p, b.seen, b.distance) <
+                        limits.max_error_pixels * (1 - 1e-9);
   }
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
     if (culled(a.seen.position, b.seen.position, c.seen.position)) return;
@@ -315,6 +378,7 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
                 const TessellationLimits& limits, std::vector<float>& out,
                 std::vector<float>* uv_maps, HiddenFaces hidden) {
   FlatSeeing seeing{scene, view, limits, out, uv_maps, hidden};
+  if (!view.spin && mesh.sphere_radius <= 0) seeing.bound.emplace(scene, view);
   using Split = AdaptiveSplit<FlatSeeing, RestMesh>;
   // Kept per thread, so that a frame like the last allocates nothing.
   thread_local std::vector<Split::Node> nodes;

@@ -90,6 +90,26 @@ ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
 double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& a, const ApparentPoint& b,
                          const ApparentPoint& midpoint);
 
+// An upper bound on edge_error_pixels for the straight edges of one body without spin, seen on
+// the scene's ray family, from an edge's ends alone (where it is well in front of the camera;
+// infinity elsewhere): edges it shows to be within the error bound are left whole without their
+// midpoints. The per-body parts are worked out once.
+class EdgeErrorBound {
+ public:
+  EdgeErrorBound(const ResolvedScene& scene, const BodyView& view);
+  // Between shape points shape_a and shape_b, seen at a and b (`distance_*`: the length of
+  // their apparent positions, worked out once per point).
+  double pixels(const Vec3& shape_a, const ApparentPoint& a, double distance_a, const Vec3& shape_b,
+                const ApparentPoint& b, double distance_b) const;
+
+ private:
+  const CameraBasis& camera_;
+  const Mat3& shape_to_trace_;
+  Vec3 beta_, direction_;  // the body's velocity in F, and its direction (0 at rest)
+  double speed_ = 0, one_minus_beta2_ = 1, focal_ = 1;
+  bool delayed_ = false;  // light delay on: the ray family is backward light rays
+};
+
 // Whether any point of `bounds` (in F, relative to the camera) can lie in the camera's view:
 // false when all of it lies beyond one side of the view or behind the camera. A body whose
 // trace bounds (every event where a camera ray can meet it) fail this is not drawn.
