@@ -99,6 +99,15 @@ void parallel_for(Index first, Index last, const Body& body) {
 #endif
 }
 
+// The colour tables' nodes (color/doppler_table.hpp's ForEachNode) on the TBB pool: a frame of
+// the viewer builds its tables while it waits.
+struct ParallelNodes {
+  template <class F>
+  void operator()(int n, const F& f) const {
+    parallel_for(0, n, [&](int k) { f(k); });
+  }
+};
+
 // body(begin, end) over pieces of [first, last) of about `grain` items each.
 template <class Index, class Body>
 void parallel_for_pieces(Index first, Index last, Index grain, const Body& body) {

@@ -226,9 +226,10 @@ class ReflectionXyzTable {
   // Every node is xyz_of_reflection_seen_with_doppler; since the grids share one step, the
   // light is read at the factors d_camera d_light = e^(k h) of one combined grid, so each
   // spectrum is evaluated once per node and wavelength, not once per pair of nodes.
-  template <class Reflectance, class Spectrum>
+  template <class Reflectance, class Spectrum, class ForEachNode = SerialNodes>
   static ReflectionXyzTable of(const Reflectance& rho, const Spectrum& light,
-                               const DopplerGrid& camera, const DopplerGrid& light_grid) {
+                               const DopplerGrid& camera, const DopplerGrid& light_grid,
+                               const ForEachNode& for_each_node = {}) {
     const int nc = camera.size(), nl = light_grid.size();
     DopplerGrid total;
     total.first = camera.first + light_grid.first;
@@ -242,10 +243,11 @@ class ReflectionXyzTable {
       for (int i = 0; i < kCieTableSize; ++i)
         source[t * kCieTableSize + i] = light(total.d(t) * (kCieMinWavelength + i));
     std::vector<Xyz> nodes(static_cast<std::size_t>(nc) * nl);
-    for (int c = 0; c < nc; ++c)
+    for_each_node(nc, [&](int c) {
       for (int l = 0; l < nl; ++l)
         nodes[static_cast<std::size_t>(c) * nl + l] =
             reflected_sum(&reflectance[c * kCieTableSize], &source[(c + l) * kCieTableSize]);
+    });
     return ReflectionXyzTable(camera, light_grid, std::move(nodes));
   }
   ReflectionXyzTable(const DopplerGrid& camera, const DopplerGrid& light, std::vector<Xyz> nodes);

@@ -66,18 +66,6 @@ LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
   return range;
 }
 
-namespace {
-
-// A table's nodes on the TBB pool: a frame of the viewer builds its tables while it waits.
-struct ParallelNodes {
-  template <class F>
-  void operator()(int n, const F& f) const {
-    parallel_for(0, n, [&](int k) { f(k); });
-  }
-};
-
-}  // namespace
-
 const EmissionTable& EmissionTable::keep(std::unique_ptr<EmissionTable>& kept,
                                          const ResolvedScene& scene) {
   if (!kept || !kept->serves(scene)) {

@@ -14,6 +14,7 @@
 #include "lightcone/physics/light_path.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/retarded_time.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -181,7 +182,7 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
     else
       t.moving = &reflections_.emplace_back(ReflectionXyzTable::of(
           rho, [&light](double lambda) { return light.spectral(lambda); }, camera_grid_,
-          light_grid_));
+          light_grid_, ParallelNodes{}));
     made.push_back({{albedo.r, albedo.g, albedo.b, l, co_moving}, t});
     return t;
   };
