@@ -1060,6 +1060,28 @@ TEST_F(SceneFileTest, CameraLimits) {
   expect_error(camera("\"forward\": [0, -1, 0]"), 2, "camera.up", "defaults to");
 }
 
+// A texture or a clock's dial on a mesh is read at the mesh's texture coordinates: a mesh
+// without them is refused at the pattern, naming the mesh (it would show one texel everywhere).
+TEST_F(SceneFileTest, TexturesAndClocksOnAMeshNeedItsTextureCoordinates) {
+  write("bare.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("mapped.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+  fs::copy_file(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes" / "uv-grid.png", dir_ / "uv-grid.png");
+  const auto object = [](const std::string& shape, const std::string& material) {
+    return "{\"name\": \"m\", \"shape\": " + shape + ",\n \"material\": " + material + "}";
+  };
+  const std::string bare = R"({"mesh": {"file": "bare.obj"}})";
+  const std::string mapped = R"({"mesh": {"file": "mapped.obj"}})";
+  const std::string texture = R"({"texture": "uv-grid.png"})";
+  const std::string clock = R"({"clock": {"period": 2}})";
+  const std::string bare_file = "\"" + (dir_ / "bare.obj").string() + "\" has none";
+  expect_error(with_object(object(bare, texture)), 4, "objects[0].material.texture", bare_file);
+  expect_error(with_object(object(bare, clock)), 4, "objects[0].material.clock", bare_file);
+  EXPECT_EQ(error(with_object(object(mapped, texture))), "");
+  EXPECT_EQ(error(with_object(object(mapped, clock))), "");
+  EXPECT_EQ(error(with_object(object(bare, R"({"color": [1, 0, 0]})"))), "");
+  EXPECT_EQ(error(with_object(object(R"({"box": {"size": [1, 1, 1]}})", texture))), "");
+}
+
 TEST_F(SceneFileTest, ObjectNamesAndShapes) {
   expect_error(with_object(R"({"name": "a", "shape": {"sphere": {"radius": 1}}},
     {"name": "a", "shape": {"sphere": {"radius": 1}}})"),

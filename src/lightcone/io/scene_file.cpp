@@ -69,6 +69,7 @@ Scene SceneReader::read(const json& document) {
   scene.render = render_node.value ? render(render_node) : file_render_defaults();
   load_assets(scene);
   check_spins(scene);
+  check_texture_coordinates(scene);
   return scene;
 }
 
@@ -461,6 +462,20 @@ void SceneReader::load_assets(Scene& scene) {
     } else {
       std::get<SkyImage>(scene.sky.pattern).image = image;
     }
+  }
+}
+
+void SceneReader::check_texture_coordinates(const Scene& scene) const {
+  for (const auto& [index, path] : uv_patterns_) {
+    const auto* mesh = std::get_if<MeshShape>(&scene.objects[index].shape);
+    if (!mesh || !mesh->mesh->uvs.empty()) continue;
+    const auto file = std::find_if(assets_.begin(), assets_.end(), [&](const Asset& a) {
+      return a.kind == Asset::kMesh && a.object == index;
+    });
+    fail_at(path, lines_.value_line(path),
+            fmt::format("needs the texture coordinates of the mesh, and {} has none",
+                        file == assets_.end() ? std::string("the mesh")
+                                              : "\"" + file->file.string() + "\""));
   }
 }
 

@@ -67,6 +67,7 @@ Material SceneReader::material(const Node& n, std::size_t index) {
       c.period = p;
       if (colors_node.value) std::copy(colors, colors + 2, c.colors);
       m.pattern = c;
+      uv_patterns_.emplace_back(index, body.path());
     }
   } else if (kind == "blackbody") {
     object(body, {"temperature", "luminance"});
@@ -78,6 +79,7 @@ Material SceneReader::material(const Node& n, std::size_t index) {
     m.pattern = emission_spectrum(body);
   } else {
     assets_.push_back({Asset::kTexture, index, file_path(body), body.path()});
+    uv_patterns_.emplace_back(index, body.path());
     m.pattern = Texture{};
   }
   return m;

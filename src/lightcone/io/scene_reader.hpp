@@ -137,6 +137,10 @@ class SceneReader : public SceneValueReader {
   // added (relativistic velocity addition), within the one limit in W and relative to the camera.
   void check_spins(const Scene& scene) const;
 
+  // A texture or a clock's dial on a mesh is read at the mesh's texture coordinates: a mesh
+  // without them would show one texel everywhere (which needs the meshes loaded).
+  void check_texture_coordinates(const Scene& scene) const;
+
   // A lit material's texture is an albedo: every value in [0, 1] (PNG and JPEG always are; an
   // EXR need not be).
   void check_albedo(const Asset& a, const Image& image) const;
@@ -144,6 +148,8 @@ class SceneReader : public SceneValueReader {
   std::optional<BlackHole> hole_;  // read before the camera, objects and lights
   WorldLine observation_;          // the camera's, read before the objects (for "seen_at")
   std::vector<std::pair<std::size_t, std::string>> spins_;  // spinning objects, path of rate
+  // Objects whose material reads texture coordinates (a texture, a clock), path of the pattern.
+  std::vector<std::pair<std::size_t, std::string>> uv_patterns_;
   SceneLoadReport& report_;
   const SceneLoadOptions options_;
   std::vector<Asset> assets_;
