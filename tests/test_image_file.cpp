@@ -1,6 +1,7 @@
 // Image files: the sRGB curves, PNG and EXR round trips, all-or-nothing writing and the error
 // messages for unreadable inputs.
 #include <gtest/gtest.h>
+#include <spng.h>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
@@ -106,6 +107,28 @@ TEST(Srgb, EightBitCodesAreTheRoundedEncodingExactly) {
   const std::vector<unsigned char> codes = display_rgb8(image);
   for (std::size_t i = 0; i < values.size(); ++i)
     ASSERT_EQ(codes[3 * i], expected(values[i])) << values[i];
+}
+
+// The PNG says its codes are sRGB's (display_rgb8's), and gives the gamma and primaries that go
+// with it for decoders that do not read the sRGB chunk: libspng reads them back.
+TEST_F(ImageFileTest, PngIsTaggedAsSrgb) {
+  const std::vector<unsigned char> png = encode_png(make_image(4, 3, std::vector<float>(36, 0.5f)));
+  spng_ctx* ctx = spng_ctx_new(0);
+  ASSERT_NE(ctx, nullptr);
+  ASSERT_EQ(spng_set_png_buffer(ctx, png.data(), png.size()), 0);
+  std::uint8_t intent = 99;
+  EXPECT_EQ(spng_get_srgb(ctx, &intent), 0);
+  EXPECT_EQ(intent, 0);  // perceptual
+  std::uint32_t gamma = 0;
+  EXPECT_EQ(spng_get_gama_int(ctx, &gamma), 0);
+  EXPECT_EQ(gamma, 45455u);
+  spng_chrm_int primaries{};
+  EXPECT_EQ(spng_get_chrm_int(ctx, &primaries), 0);
+  EXPECT_EQ(primaries.white_point_x, 31270u);
+  EXPECT_EQ(primaries.red_x, 64000u);
+  EXPECT_EQ(primaries.green_y, 60000u);
+  EXPECT_EQ(primaries.blue_y, 6000u);
+  spng_ctx_free(ctx);
 }
 
 // The parallel encoder's file, read back by libspng, holds exactly display_rgb8's codes, and its

@@ -3,7 +3,7 @@
 // and compressed in strips on all threads, each strip a run of deflate blocks that starts from
 // the end of the strip above as its dictionary and ends on a byte boundary (a sync flush), so
 // that the strips joined are one zlib stream, as pigz writes gzip; the PNG container around it
-// is three chunks. The strips depend on the picture's width alone, so the bytes are
+// is a few chunks. The strips depend on the picture's width alone, so the bytes are
 // the same on any number of threads (tests/test_image_file.cpp reads them back with libspng).
 #include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -156,6 +156,17 @@ std::vector<unsigned char> encode_png(const Image& display) {
   // 8 bits a channel, RGB, deflate, adaptive filtering, no interlace.
   header.insert(header.end(), {8, 2, 0, 0, 0});
   put_chunk(png, "IHDR", header.data(), header.size());
+  // The codes are sRGB's (display_rgb8): said so, with the gamma and primaries the PNG
+  // specification asks to go with it for decoders that do not read sRGB chunks.
+  const unsigned char perceptual = 0;
+  put_chunk(png, "sRGB", &perceptual, 1);
+  std::vector<unsigned char> gamma;
+  put_u32(gamma, 45455);  // 1 / 2.2, in units of 1e-5
+  put_chunk(png, "gAMA", gamma.data(), gamma.size());
+  std::vector<unsigned char> primaries;
+  for (const std::uint32_t v : {31270u, 32900u, 64000u, 33000u, 30000u, 60000u, 15000u, 6000u})
+    put_u32(primaries, v);  // white, red, green, blue (x, y) in units of 1e-5
+  put_chunk(png, "cHRM", primaries.data(), primaries.size());
   for (std::size_t at = 0; at < stream.size(); at += kChunkBytes)
     put_chunk(png, "IDAT", stream.data() + at, std::min(kChunkBytes, stream.size() - at));
   put_chunk(png, "IEND", nullptr, 0);
