@@ -466,7 +466,10 @@ void SceneReader::load_assets(Scene& scene) {
 }
 
 void SceneReader::check_texture_coordinates(const Scene& scene) const {
-  for (const auto& [index, path] : uv_patterns_) {
+  for (const auto& pattern : uv_patterns_) {
+    // (Named: the browser build's clang 14 cannot capture a structured binding.)
+    const std::size_t index = pattern.first;
+    const std::string& path = pattern.second;
     const auto* mesh = std::get_if<MeshShape>(&scene.objects[index].shape);
     if (!mesh || !mesh->mesh->uvs.empty()) continue;
     const auto file = std::find_if(assets_.begin(), assets_.end(), [&](const Asset& a) {
