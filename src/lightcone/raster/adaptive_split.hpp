@@ -41,12 +41,13 @@ class AdaptiveSplit {
     Edge flipped() const { return {node, !reversed}; }
   };
 
-  // `nodes`: where the decisions are kept, cleared here (a caller keeps it, so that a frame like
-  // the last allocates nothing).
+  // A split edge's midpoint and its halves' decisions.
   struct Node {
     Corner middle;
     Edge halves[2];  // from the end it was decided from, and to the other
   };
+  // `nodes`: where the decisions are kept, cleared here (a caller keeps it, so that a frame like
+  // the last allocates nothing).
   AdaptiveSplit(const Seeing& seeing, const Mesh& mesh, int max_level, std::vector<Node>& nodes)
       : seeing_(seeing), mesh_(mesh), max_level_(max_level), nodes_(nodes) {
     nodes_.clear();

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <tuple>
 #include <variant>
@@ -21,7 +22,9 @@ namespace lightcone {
 namespace {
 
 constexpr float kLitColourTolerance = 1.0f / 128;
-constexpr double kTwoPi = 6.283185307179586;
+// Where a vertex holds its ln g (kHoleVertexFloats: after its apparent position and shape
+// point; attribute 2's first float).
+constexpr int kLogShiftFloat = 6;
 
 struct HoleSeeing {
   struct Corner {
@@ -218,7 +221,7 @@ struct HoleSeeing {
 double hole_swept_angle(const Vec3& from_hole, const Vec3& outward, int order) {
   // (atan2 of the sine and cosine: well conditioned at 0 and pi, where acos is not.)
   const double theta = std::atan2(length(cross(from_hole, outward)), dot(from_hole, outward));
-  return order == 0 ? theta : kTwoPi - theta;
+  return order == 0 ? theta : 2 * std::numbers::pi - theta;
 }
 
 void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
@@ -273,7 +276,7 @@ HoleBodiesPass::HoleBodiesPass() {
   constexpr GLsizei stride = kHoleVertexFloats * sizeof(float);
   for (const auto& [location, size, first] : {std::array<int, 3>{0, 3, 0},
                                               {1, 3, 3},
-                                              {2, 2, 6},
+                                              {2, 2, kLogShiftFloat},
                                               {3, 3, 8},
                                               {4, 3, 11},
                                               {5, 2, 14},
@@ -340,7 +343,7 @@ std::size_t HoleBodiesPass::prepare(const ResolvedScene& scene, const std::vecto
   draws_.clear();
   log_shift_range_.reset();
   for (const std::vector<float>& part : parts)
-    for (std::size_t v = 6; v < part.size(); v += kHoleVertexFloats) {
+    for (std::size_t v = kLogShiftFloat; v < part.size(); v += kHoleVertexFloats) {
       const double ln_g = part[v];
       log_shift_range_ = log_shift_range_ ? LogShiftRange{std::min(log_shift_range_->lo, ln_g),
                                                           std::max(log_shift_range_->hi, ln_g)}

@@ -68,8 +68,6 @@ void tessellate_hole_image(const ResolvedScene& scene, const Object& object,
 // (shaders/hole_body.vert and .frag); needs a current OpenGL 3.3 context.
 class HoleBodiesPass {
  public:
-  // Its programs: with `disk`, each fragment also follows its pixel's ray to the accretion disk
-  // (shaders/black_hole.glsl) and is left out where the disk is crossed first.
   // A body to draw: its colour rows and pattern (as the flat bodies' draws).
   struct Body {
     std::size_t index = 0;  // in the resolved scene's bodies
@@ -84,7 +82,9 @@ class HoleBodiesPass {
   HoleBodiesPass(const HoleBodiesPass&) = delete;
   HoleBodiesPass& operator=(const HoleBodiesPass&) = delete;
 
-  // Built with the first frame that needs it.
+  // Its program, built with the first frame that needs it: with `disk`, each fragment also
+  // follows its pixel's ray to the accretion disk (shaders/black_hole.glsl) and is left out
+  // where the disk is crossed first.
   GLuint program(bool disk);
   // Tessellates each body's images of orders 0 and 1 (in parallel) and uploads them; returns
   // the number of triangles. The meshes, `emission` and `lighting` need only last the call.
