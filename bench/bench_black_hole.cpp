@@ -18,22 +18,33 @@
 //                          25 fps" for scenes with bodies): resolving the scene, its emission
 //                          and lighting tables (tables_ms) and the images of orders 0 and 1 of
 //                          every body, lit ones coloured per vertex (images_ms), on one thread.
+//   HoleShadowFrame/<segments>
+//                          the same for LitBodies' scene with the hole, two of its boxes
+//                          replaced by the bundled wheel (a mesh of 1,056 triangles), shadows
+//                          cast: the chords of the shadow paths met through the ray tracer's
+//                          Embree scenes (embree), or directly, as the browser's page meets
+//                          them (direct, frame/body_segments.hpp).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/body_segments.hpp"
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/curved_bodies.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
-#include "lightcone/trace/curved_ray.hpp"
+#include "lightcone/trace/curved_shadows.hpp"
 #include "lightcone/trace/renderer.hpp"
 
 using namespace lightcone;
@@ -150,10 +161,11 @@ BENCHMARK(BM_LitBodies)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 
-void HoleBodyFrame(benchmark::State& state, const char* name) {
-  SceneLoadReport report;
-  const Scene scene = load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/" + name,
-                                      {"camera.width=640", "camera.height=360"}, report);
+// The CPU's share of a raster frame near the hole: the tables (lights shadowed by `shadows`, if
+// any), then the images of the bodies.
+void hole_frame(
+    benchmark::State& state, const Scene& scene,
+    const std::function<std::unique_ptr<CurvedShadowQuery>(const ResolvedScene&)>& shadows) {
   const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   double tables_s = 0, images_s = 0;
   std::size_t floats = 0;
@@ -161,7 +173,8 @@ void HoleBodyFrame(benchmark::State& state, const char* name) {
     const auto t0 = std::chrono::steady_clock::now();
     const ResolvedScene resolved = resolve_scene(scene);
     const EmissionTable emission(resolved);
-    const Lighting lighting(resolved, nullptr);
+    const auto query = shadows ? shadows(resolved) : nullptr;
+    const Lighting lighting(resolved, nullptr, query.get());
     const auto t1 = std::chrono::steady_clock::now();
     std::vector<RestMesh> meshes;
     meshes.reserve(resolved.bodies.size());
@@ -183,6 +196,13 @@ void HoleBodyFrame(benchmark::State& state, const char* name) {
   state.counters["images_ms"] = 1e3 * images_s / n;
   state.counters["triangles"] = static_cast<double>(floats / kHoleVertexFloats / 3);
 }
+
+void HoleBodyFrame(benchmark::State& state, const char* name) {
+  SceneLoadReport report;
+  const Scene scene = load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/" + name,
+                                      {"camera.width=640", "camera.height=360"}, report);
+  hole_frame(state, scene, nullptr);
+}
 BENCHMARK_CAPTURE(HoleBodyFrame, infall, "infall.json")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
@@ -190,5 +210,20 @@ BENCHMARK_CAPTURE(HoleBodyFrame, lensed_clock, "lensed-clock.json")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 BENCHMARK_CAPTURE(HoleBodyFrame, orbit, "orbit.json")->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void HoleShadowFrame(benchmark::State& state, bool direct) {
+  Scene scene = lit_bodies(true);
+  SceneLoadReport report;
+  const Scene wheel =
+      load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/wheel.json", {}, report);
+  for (const int i : {1, 5}) scene.objects[i].shape = wheel.objects[0].shape;
+  hole_frame(state, scene, [direct](const ResolvedScene& resolved) {
+    return direct ? curved_body_shadows_met_by(resolved,
+                                               std::make_unique<DirectBodySegments>(resolved))
+                  : curved_body_shadows(resolved);
+  });
+}
+BENCHMARK_CAPTURE(HoleShadowFrame, embree, false)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(HoleShadowFrame, direct, true)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace

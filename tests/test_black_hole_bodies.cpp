@@ -1,4 +1,4 @@
-// Bodies seen along curved rays near a Schwarzschild black hole (trace/curved_bodies.hpp),
+// Bodies seen along curved rays near a Schwarzschild black hole (frame/curved_bodies.hpp),
 // against derivations made independently of the chords: the flat renderer's picture of the same
 // scene as M -> 0 (light delay, aberration, Doppler and Lorentz contraction of moving bodies),
 // the static emitter's shift sqrt(f_e / f_o), the lens solve of `locate` (an independent root
@@ -8,8 +8,8 @@
 
 #include <cmath>
 
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/locate.hpp"
-#include "lightcone/trace/curved_bodies.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 

@@ -1,5 +1,5 @@
 // Bodies on geodesics near a Schwarzschild black hole (physics/hole_world_line.hpp and
-// trace/curved_bodies.hpp), against derivations made independently of the code under test: the
+// frame/curved_bodies.hpp), against derivations made independently of the code under test: the
 // radial fall's closed forms (MTW 31.10) and the static observer's speed of a body falling from
 // rest, sqrt((2M/r - 2M/r0) / (1 - 2M/r0)); the circular orbit's clock sqrt(1 - 3M/r); and the
 // photon energy a moving emitter measures written with 4-vectors, -p.u, for the radial fall
@@ -10,10 +10,10 @@
 #include <cmath>
 #include <limits>
 
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
-#include "lightcone/trace/curved_bodies.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 

@@ -1,5 +1,5 @@
 // Lit bodies near a Schwarzschild black hole (frame/lighting.hpp's near-hole legs, with the
-// curved shadow paths of trace/curved_bodies.hpp), against derivations made here: the flat
+// curved shadow paths of frame/curved_bodies.hpp), against derivations made here: the flat
 // renderer's lit picture as M -> 0 (moving lights and bodies, every kind of light, shadows), the
 // irradiance of a lamp straight above a surface in closed form, E = g^2 I f_lamp / (r_l - r_s)^2
 // with g^2 = f_lamp / f_surface (times the Doppler factor's square for a moving surface), the
@@ -11,12 +11,12 @@
 #include <numbers>
 #include <utility>
 
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/physics/hole_light_leg.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
 #include "lightcone/physics/schwarzschild_lens.hpp"
-#include "lightcone/trace/curved_bodies.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 

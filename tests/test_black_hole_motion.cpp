@@ -21,12 +21,12 @@
 #include <string>
 #include <vector>
 
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/schwarzschild_geodesics.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "support/test_support.hpp"
 

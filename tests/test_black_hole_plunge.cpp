@@ -1,5 +1,5 @@
 // A camera falling into a Schwarzschild black hole, through its horizon (frame/hole_view.hpp's
-// falling camera, trace/curved_ray.hpp): the tracer against derivations made independently of
+// falling camera, frame/curved_ray.hpp): the tracer against derivations made independently of
 // it. Outside, the falling camera's rays are those of the static camera boosted to its velocity
 // (the route every other camera takes); its shadow's edge is where radial_observer's closed form
 // puts it, inside the horizon too (42.10 degrees at r = 2M falling from infinity: PHYSICS.md);
@@ -9,9 +9,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/radial_observer.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 
 namespace lightcone {
 namespace {

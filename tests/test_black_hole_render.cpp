@@ -1,4 +1,4 @@
-// Curved camera rays near a Schwarzschild black hole (trace/curved_ray.hpp) and the pictures
+// Curved camera rays near a Schwarzschild black hole (frame/curved_ray.hpp) and the pictures
 // made from them, against derivations made here: Synge's (1966) shadow and its aberration, the
 // published 42.10 degrees of a camera falling through the horizon, the static blueshift
 // 1/sqrt(f), Cunningham's (1975) shift of disk gas from the photon's angular momentum taken at
@@ -12,12 +12,12 @@
 #include <numbers>
 #include <string>
 
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/doppler.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "support/test_support.hpp"

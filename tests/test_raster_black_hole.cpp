@@ -1,6 +1,6 @@
 // The raster renderer near a black hole: its per-frame tables of camera rays
 // (raster/hole_tables.hpp) and its shader (black_hole.glsl) against the exact kernel the ray
-// tracer follows (trace/curved_ray.hpp), measured where it matters, as the displacement of the
+// tracer follows (frame/curved_ray.hpp), measured where it matters, as the displacement of the
 // picture in pixels; its pictures against the ray tracer's and its shadow against Synge's
 // formula. Units: G = c = 1, M = 1.
 #include <gtest/gtest.h>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/image_file.hpp"
@@ -27,7 +28,6 @@
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/hole_tables.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "support/glsl_eval.hpp"
 #include "support/test_support.hpp"
 
@@ -48,7 +48,7 @@ struct TabulatedRay {
   double disk_radius = 0;
 };
 
-// The C++ mirror of black_hole.glsl's follow_hole_ray (trace/curved_ray.cpp's walk, on the
+// The C++ mirror of black_hole.glsl's follow_hole_ray (frame/curved_ray.cpp's walk, on the
 // tables).
 TabulatedRay follow_tabulated(const HoleView& hole, const HoleRayTables& tables, const Vec3& u) {
   Vec3 e1 = hole.outward, e2;

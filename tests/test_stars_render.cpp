@@ -13,13 +13,13 @@
 #include <random>
 
 #include "lightcone/color/spectrum.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/star_field.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/celestial.hpp"
 #include "lightcone/physics/stars.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 

@@ -53,8 +53,9 @@ int largest_difference(const Image& a, const Image& b) {
 
 // The page's picture of `scene` against the native raster renderer's, at 640x360, exposure 0:
 // the share of pixels within 4/255 off a one-pixel band along the bodies' outlines (the ray
-// tracer's object ids mark them).
-void expect_page_agrees(const fs::path& scene, const std::string& page_png) {
+// tracer's object ids mark them); with `bodies_alone`, also on the bodies' pixels alone.
+void expect_page_agrees(const fs::path& scene, const std::string& page_png,
+                        bool bodies_alone = false) {
   const auto page = seen(page_png);
   ASSERT_NE(page, nullptr) << page_png << ": the page's picture is missing (see the fixture)";
   const fs::path dir = test::fresh_temp_dir("web-agreement");
@@ -83,6 +84,13 @@ void expect_page_agrees(const fs::path& scene, const std::string& page_png) {
               page_png.c_str(), share, compared);
   EXPECT_GE(share, 0.99) << page_png;
   EXPECT_GT(compared, 640u * 360u / 2) << page_png;
+  if (bodies_alone) {
+    const double bodies =
+        test::share_within_4_off_outlines(*page, *native, *object, compared, true);
+    std::printf("%s: on the bodies, %.4f of %zu pixels\n", page_png.c_str(), bodies, compared);
+    EXPECT_GE(bodies, 0.99) << page_png;
+    EXPECT_GT(compared, 5000u) << page_png;
+  }
   fs::remove_all(dir);
 }
 
@@ -116,6 +124,15 @@ TEST(WebPage, DrawsALitTextureUnderTheSpectralModelAsTheNativeRasterRenderer) {
   const auto r = results();
   ASSERT_TRUE(r.is_object());
   EXPECT_EQ(r.value("lit_texture_message", "?"), "");  // no difference to warn of
+}
+
+// Shadows near a black hole: the page has no ray tracer, and meets the bodies along the curved
+// shadow paths directly (DirectBodySegments), as the native program does through Embree.
+TEST(WebPage, CastsShadowsNearABlackHoleAsTheNativeRasterRenderer) {
+  expect_page_agrees(kSeen / "hole-shadows.json", "hole-shadows.png", true);
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  EXPECT_EQ(r.value("hole_shadows_message", "?"), "");  // no difference to warn of
 }
 
 // The screenshot button downloads the canvas as a PNG named after the scene.

@@ -247,7 +247,7 @@ int run_animate(const AnimateArgs& a) {
   if (a.video)
     check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf, a.gif_width);
   if (raster)
-    for (const std::string& difference : raster_differences(scene, true))
+    for (const std::string& difference : raster_differences(scene))
       std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                    a.scene.c_str(), difference.c_str());
 

@@ -242,7 +242,7 @@ int run_view(const ViewArgs& a) {
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   const Scene scene = load(a.scene, overrides, a.scene_options);
   require_drawable_near_black_hole(scene, a.scene);
-  for (const std::string& difference : raster_differences(scene, true))
+  for (const std::string& difference : raster_differences(scene))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());
   if (!(a.time_scale >= 0 && a.time_scale <= 1e6))

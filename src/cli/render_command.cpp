@@ -180,7 +180,7 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
       bar.update(done, total);
     };
     if (out.raster) {
-      for (const std::string& difference : raster_differences(scene, true))
+      for (const std::string& difference : raster_differences(scene))
         std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                      a.scene.c_str(), difference.c_str());
       RasterStats raster_stats;

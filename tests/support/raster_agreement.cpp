@@ -29,13 +29,14 @@ ValueDifference compare_values(const Image& a, const Image& b, float relative) {
 }
 
 double share_within_4_off_outlines(const Image& a, const Image& b, const std::vector<float>& object,
-                                   std::size_t& compared) {
+                                   std::size_t& compared, bool bodies_only) {
   const int w = a.width, h = a.height;
   std::size_t within = 0;
   compared = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float id = object[static_cast<std::size_t>(y) * w + x];
+      if (bodies_only && id < 0) continue;
       bool edge = false;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {

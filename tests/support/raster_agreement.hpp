@@ -15,9 +15,10 @@ int png_level(float linear);
 
 // The share of the pixels of a and b (PNGs of one size, read back) within 4/255 in every
 // channel, off a one-pixel band along the outlines that the object ids (per pixel) mark;
-// `compared` is set to the number of pixels compared.
+// `compared` is set to the number of pixels compared. With `bodies_only`, the sky's pixels (id
+// -1) are left out too.
 double share_within_4_off_outlines(const Image& a, const Image& b, const std::vector<float>& object,
-                                   std::size_t& compared);
+                                   std::size_t& compared, bool bodies_only = false);
 
 // Two pictures of one size drawn by the raster renderer two ways that must agree (kept tables
 // against fresh ones, a specialised program against the full one): how many values differ by

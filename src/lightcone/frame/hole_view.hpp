@@ -1,5 +1,5 @@
 // A scene's black hole seen from one observation event (docs/design/black-hole.md): what the
-// curved-ray walker (trace/curved_ray.hpp) and the colour tables need, once per frame.
+// curved-ray walker (frame/curved_ray.hpp) and the colour tables need, once per frame.
 //
 // The camera's rest frame F is the boost, by the camera's velocity, of the orthonormal frame of
 // the static observer at its event, whose axes are W's (its radial axis is the unit vector from

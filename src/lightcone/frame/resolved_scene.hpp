@@ -242,7 +242,7 @@ struct ResolvedScene {
   double shadow_time_min = 0, shadow_time_max = 0;
   std::vector<ShadowLight> shadow_lights;  // one per light of the scene
   // The scene's black hole seen from the observation event: camera rays are then curved
-  // (trace/curved_ray.hpp) and the sky's fields above are not used.
+  // (frame/curved_ray.hpp) and the sky's fields above are not used.
   std::optional<HoleView> hole;
 
   // Doppler factor nu_camera / nu_emitter for light arriving along look direction u from an

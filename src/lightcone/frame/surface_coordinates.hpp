@@ -1,5 +1,5 @@
 // The texture coordinates and normal of a point on an analytic shape's surface (sphere, box,
-// plane), in its own coordinates: where the tracer's rays meet them (trace/shape_intersection.hpp)
+// plane), in its own coordinates: where the tracer's rays meet them (frame/shape_intersection.hpp)
 // and where the raster renderer's vertices near a black hole lie (raster/hole_bodies.hpp).
 #pragma once
 

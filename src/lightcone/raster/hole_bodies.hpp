@@ -36,7 +36,7 @@ constexpr int kHoleVertexFloats = 17;
 
 // The angle swept about the hole by the light of image `order` (0 or 1) from a point, relative
 // to the hole, to a camera in direction `outward` from it: the angle between them for the
-// direct image, the rest of the turn for the one round the far side. trace/curved_ray.cpp's
+// direct image, the rest of the turn for the one round the far side. frame/curved_ray.cpp's
 // follow_curved_ray measures a disk's crossings, and the bodies met, by this angle from the
 // camera along a ray.
 double hole_swept_angle(const Vec3& from_hole, const Vec3& outward, int order);

@@ -3,7 +3,7 @@
 // ray's path depends only on the angle alpha between its direction and the outward radial
 // direction (its plane is fixed by the pixel), so a few hundred rays, each followed by the exact
 // kernel (physics/schwarzschild.hpp: photon_orbit, prepare_sweep, radius_after_angle, the very
-// functions trace/curved_ray.cpp calls), stand for the whole image. The shader
+// functions frame/curved_ray.cpp calls), stand for the whole image. The shader
 // (shaders/black_hole.glsl) interpolates between them; the lookups below are its C++ mirror, on
 // the same single-precision nodes, for the tests that bound its error against the kernel.
 //

@@ -9,6 +9,8 @@
 #include <tuple>
 
 #include "lightcone/color/sigmoid_polynomial.hpp"
+#include "lightcone/frame/body_segments.hpp"
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/shading.hpp"
@@ -79,8 +81,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     kept_lighting->follow(resolved);
   } else {
     std::unique_ptr<CurvedShadowQuery> frame_shadows;
-    if (resolved.hole && settings.shadows && !s.lights.empty() && curved_shadow_source)
-      frame_shadows = curved_shadow_source(resolved);
+    if (resolved.hole && settings.shadows && !s.lights.empty())
+      frame_shadows = curved_shadow_source
+                          ? curved_shadow_source(resolved)
+                          : curved_body_shadows_met_by(
+                                resolved, std::make_unique<DirectBodySegments>(resolved));
     kept_lighting = std::make_unique<Lighting>(resolved, nullptr, frame_shadows.get(),
                                                EmissionTable::kKeptMargin);
     curved_shadows = std::move(frame_shadows);

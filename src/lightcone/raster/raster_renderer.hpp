@@ -21,15 +21,15 @@
 namespace lightcone {
 
 // Near a black hole, what casts the lit bodies' shadows in a frame: a query over the frame's
-// bodies (the ray tracer's curved shadow paths, trace/curved_shadows.hpp, where the program
-// links the tracer; the browser's does not), made for each frame and kept while it is drawn.
+// bodies, made for each frame and kept while it is drawn. Without one the renderer meets the
+// bodies directly (frame/body_segments.hpp); where the program links the ray tracer, its Embree
+// scenes are faster on meshes (trace/curved_shadows.hpp).
 using CurvedShadowSource =
     std::function<std::unique_ptr<CurvedShadowQuery>(const ResolvedScene& scene)>;
 
 // What the raster renderer cannot show as the ray tracer does, one line each (empty when it
-// shows the scene exactly): near a black hole, shadows (without `curved_shadows`), lit
-// textures and textures' fine detail.
-std::vector<std::string> raster_differences(const Scene& scene, bool curved_shadows = false);
+// shows the scene exactly): near a black hole, textures' fine detail.
+std::vector<std::string> raster_differences(const Scene& scene);
 
 struct RasterFrameStats {
   std::size_t triangles = 0;   // after tessellation on the CPU; before, on the GPU
@@ -76,7 +76,8 @@ class RasterRenderer {
   // Whether each frame's body programs hold only the features its bodies use (the default) or
   // every feature (the reference the tests hold the specialised ones against).
   void set_specialised_programs(bool specialise);
-  // Near a black hole: what casts shadows on the lit bodies (none without a source).
+  // Near a black hole: what casts shadows on the lit bodies (without a source, the bodies met
+  // directly).
   void set_curved_shadows(CurvedShadowSource source);
   // Draws one pass of the prepared frame into the bound framebuffer (linear radiance, before
   // exposure), its samples at the offset within each pixel ((0.5, 0.5): the centres). The

@@ -27,8 +27,9 @@ namespace lightcone {
 // - kExact: by meeting its shape exactly along each shadow ray, carried into its rest frame as
 //   the tracer does (raster/shadow_casters.hpp; a spinning body along the curve the ray traces
 //   through its turning shape): every other body, lit by any light;
-// - kNone: bodies on geodesics near a black hole (where no shadows are cast), and bodies or
-//   lights not on their tangent world-lines (not of a resolved scene).
+// - kNone: bodies on geodesics near a black hole (shadowed per vertex along the curved shadow
+//   paths instead: raster/hole_bodies.hpp), and bodies or lights not on their tangent
+//   world-lines (not of a resolved scene).
 enum class RasterShadowCast { kMap, kExact, kNone };
 RasterShadowCast raster_shadow_cast(const Object& object, const Light& light,
                                     const RenderSettings& settings);

@@ -377,7 +377,7 @@ std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out,
                 std::vector<float>* uv_maps, HiddenFaces hidden) {
-  FlatSeeing seeing{scene, view, limits, out, uv_maps, hidden};
+  FlatSeeing seeing{scene, view, limits, out, uv_maps, hidden, {}, {}, std::nullopt};
   if (!view.spin && mesh.sphere_radius <= 0) seeing.bound.emplace(scene, view);
   using Split = AdaptiveSplit<FlatSeeing, RestMesh>;
   // Kept per thread, so that a frame like the last allocates nothing.

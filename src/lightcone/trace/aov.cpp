@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "lightcone/trace/curved_ray.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 
 namespace lightcone {
 namespace {

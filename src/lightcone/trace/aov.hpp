@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {

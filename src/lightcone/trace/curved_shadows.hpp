@@ -1,6 +1,6 @@
-// Shadows near a black hole for another renderer: the ray tracer's own curved shadow paths
-// (CurvedBodies::occluded) over the frame's bodies, for the raster renderer's lit bodies, which
-// are lit per vertex by Lighting (raster/hole_bodies.hpp).
+// Shadows near a black hole for the raster renderer's lit bodies (lit per vertex by Lighting,
+// raster/hole_bodies.hpp), the chords of their paths met through the ray tracer's Embree scenes:
+// faster on meshes than the raster renderer's own DirectBodySegments (frame/body_segments.hpp).
 #pragma once
 
 #include <memory>

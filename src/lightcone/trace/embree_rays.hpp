@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
+#include "lightcone/frame/shape_intersection.hpp"
 #include "lightcone/physics/vec.hpp"
-#include "lightcone/trace/shape_intersection.hpp"
 
 namespace lightcone {
 

@@ -9,12 +9,12 @@
 #include <cmath>
 #include <memory>
 
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/star_field.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
-#include "lightcone/trace/curved_bodies.hpp"
 
 namespace lightcone {
 namespace {

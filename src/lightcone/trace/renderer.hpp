@@ -8,12 +8,12 @@
 #include <optional>
 #include <vector>
 
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/scene/scene.hpp"
 #include "lightcone/trace/aov.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {

@@ -7,13 +7,13 @@
 #include <set>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
-#include "lightcone/trace/curved_ray.hpp"
 #include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {

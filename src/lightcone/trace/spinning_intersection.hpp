@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "lightcone/frame/resolved_scene.hpp"
-#include "lightcone/trace/shape_intersection.hpp"
+#include "lightcone/frame/shape_intersection.hpp"
 
 namespace lightcone {
 

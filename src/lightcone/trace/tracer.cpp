@@ -14,9 +14,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "lightcone/frame/shape_intersection.hpp"
 #include "lightcone/trace/embree_rays.hpp"
 #include "lightcone/trace/image_bins.hpp"
-#include "lightcone/trace/shape_intersection.hpp"
 #include "lightcone/trace/spinning_intersection.hpp"
 
 namespace lightcone {
@@ -213,16 +213,8 @@ struct Tracer::Impl {
     rtcCommitScene(s);
     check("building a mesh");
     mesh_scenes.emplace(&mesh, s);
-    Vec3 lower = mesh.positions.empty() ? Vec3{} : mesh.positions[0], upper = lower;
-    for (const Vec3& p : mesh.positions)
-      for (int k = 0; k < 3; ++k) {
-        lower[k] = std::min(lower[k], p[k]);
-        upper[k] = std::max(upper[k], p[k]);
-      }
-    Ball ball{(lower + upper) * 0.5, 0};
-    for (const Vec3& p : mesh.positions)
-      ball.radius = std::max(ball.radius, length(p - ball.centre));
-    ball.radius = ball.radius * (1 + 1e-6) + 1e-9;
+    const MeshBall bounds = mesh_ball(mesh);
+    Ball ball{bounds.centre, bounds.radius};
     double area = 0;
     for (const auto& t : mesh.triangles)
       area += 0.5 * length(cross(mesh.positions[t[1]] - mesh.positions[t[0]],
@@ -604,41 +596,8 @@ void Tracer::trace(std::span<const Vec3> directions, std::span<std::optional<Hit
   }
 }
 
-void Tracer::surface_at(const Vec3& incoming, Hit& hit, unsigned prim) const {
-  const Object& object = *impl_->scene.bodies[hit.body].object;
-  if (const auto* m = std::get_if<MeshShape>(&object.shape)) {
-    // The point's barycentric coordinates in its triangle, for the texture coordinates.
-    const Mesh& mesh = *m->mesh;
-    const auto& tri = mesh.triangles[prim];
-    const Vec3 a = mesh.positions[tri[0]], e1 = mesh.positions[tri[1]] - a,
-               e2 = mesh.positions[tri[2]] - a, p = hit.shape_point - a;
-    const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
-    const double p1 = dot(p, e1), p2 = dot(p, e2), det = d11 * d22 - d12 * d12;
-    const double bu = (d22 * p1 - d12 * p2) / det, bv = (d11 * p2 - d12 * p1) / det;
-    const double bw = 1 - bu - bv;
-    if (!mesh.uvs.empty())
-      for (int k = 0; k < 2; ++k)
-        hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
-    hit.shape_normal = cross(e1, e2);
-  } else {
-    analytic_surface(object.shape, hit);
-  }
-  hit.shape_normal = normalize(hit.shape_normal);
-  if (dot(hit.shape_normal, incoming) > 0) hit.shape_normal = -hit.shape_normal;
-}
-
-std::optional<Tracer::SegmentHit> Tracer::body_on_world_segment(int body, const Vec4& from,
-                                                                const Vec4& to) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  const ShapeHit hit =
-      impl_->intersect(static_cast<unsigned>(body), true, from, to - from, 0, 1, &context);
-  if (!(hit.s <= 1)) return std::nullopt;
-  return SegmentHit{hit.s, hit.prim, hit.bary_u, hit.bary_v};
-}
-
-std::optional<Tracer::SegmentHit> Tracer::body_on_shape_segment(int body, const Vec3& from,
-                                                                const Vec3& to) const {
+std::optional<SegmentHit> Tracer::body_on_shape_segment(int body, const Vec3& from,
+                                                        const Vec3& to) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   const ShapeHit hit = impl_->intersect_shape(static_cast<unsigned>(body),

@@ -20,6 +20,7 @@
 #include <optional>
 #include <span>
 
+#include "lightcone/frame/body_segments.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/frame/surface_hit.hpp"
@@ -37,7 +38,7 @@ enum class ShadowBounds { kLabelled, kSwept };
 // test the first against).
 enum class CameraRays { kImageBins, kBvh };
 
-class Tracer : public ShadowQuery {
+class Tracer : public ShadowQuery, public BodySegments {
  public:
   explicit Tracer(const ResolvedScene& scene, ShadowBounds shadow_bounds = ShadowBounds::kLabelled,
                   CameraRays camera_rays = CameraRays::kImageBins);
@@ -53,21 +54,10 @@ class Tracer : public ShadowQuery {
   static constexpr std::size_t kPacketSize = 8;
   void trace(std::span<const Vec3> directions, std::span<std::optional<Hit>> hits) const;
 
-  // Where body `body` is first met by the straight segment of W events from + s (to - from),
-  // s in [0, 1] (a chord of a curved ray near a black hole): s, and the mesh triangle met.
-  struct SegmentHit {
-    double s = 0;
-    unsigned prim = 0;
-    float bary_u = 0, bary_v = 0;
-  };
-  std::optional<SegmentHit> body_on_world_segment(int body, const Vec4& from, const Vec4& to) const;
-  // The same for the straight segment from `from` to `to` in the shape coordinates of body
-  // `body` (which does not spin).
-  std::optional<SegmentHit> body_on_shape_segment(int body, const Vec3& from, const Vec3& to) const;
-  // Completes `hit` (its body and shape_point set; `prim` the mesh triangle) with the texture
-  // coordinates and the normal facing `incoming` (a direction in shape coordinates), as the
-  // camera rays' hits have them; a point on a flat face is put exactly on it.
-  void surface_at(const Vec3& incoming, Hit& hit, unsigned prim) const;
+  // Where a chord of a curved ray near a black hole meets a body (frame/body_segments.hpp): a
+  // mesh through its Embree BVH.
+  std::optional<SegmentHit> body_on_shape_segment(int body, const Vec3& from,
+                                                  const Vec3& to) const override;
 
   using ShadowQuery::occluded;
   void occluded(std::span<const ShadowRay> rays, std::span<bool> blocked) const override;

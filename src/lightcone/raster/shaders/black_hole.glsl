@@ -1,4 +1,4 @@
-// Camera rays near a black hole: trace/curved_ray.cpp's follow_curved_ray, step for step, with
+// Camera rays near a black hole: frame/curved_ray.cpp's follow_curved_ray, step for step, with
 // the exact kernel's answers read from the frame's tables (raster/hole_tables.cpp, whose C++
 // lookups these mirror; docs/design/black-hole.md, "The raster renderer").
 
@@ -158,7 +158,7 @@ float circular_orbit_frequency_shift(float mass, float r, float lambda) {
   return sqrt(1.0 - 3.0 * mass / r) / (1.0 - omega * lambda);
 }
 
-// trace/curved_ray.cpp, any_perpendicular.
+// frame/curved_ray.cpp, any_perpendicular.
 vec3 hole_any_perpendicular(vec3 n) {
   vec3 other = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
   return normalize(cross(n, other));
@@ -174,7 +174,7 @@ float hole_inner_angle(float impact) {
   return mix(a, b, p - float(j));
 }
 
-// trace/curved_ray.hpp, CurvedRay: the sky direction and the shift are set for every end (the
+// frame/curved_ray.hpp, CurvedRay: the sky direction and the shift are set for every end (the
 // sky's where the ray does not reach it), so that a pass can read the sky everywhere.
 struct HoleRay {
   int end;
@@ -185,7 +185,7 @@ struct HoleRay {
   float disk_radius;
 };
 
-// trace/curved_ray.cpp, follow_curved_ray.
+// frame/curved_ray.cpp, follow_curved_ray.
 HoleRay follow_hole_ray(vec3 u) {
   HoleRay ray;
   ray.disk_radius = 0.0;

@@ -191,12 +191,12 @@ vec4 caster_texel(int i) {
   return texelFetch(caster_table, ivec2(i % kCasterTexelsPerRow, i / kCasterTexelsPerRow), 0);
 }
 
-// trace/shape_intersection.hpp: first_in's range, [near, far).
+// frame/shape_intersection.hpp: first_in's range, [near, far).
 bool in_range(float t, float near, float far) {
   return t >= near && t < far;
 }
 
-// trace/shape_intersection.hpp's sphere_span: where the line a + t d lies within `radius` of
+// frame/shape_intersection.hpp's sphere_span: where the line a + t d lies within `radius` of
 // the origin (the root without cancellation, as there).
 bool sphere_span(float radius, vec3 a, vec3 d, out float enter, out float leave) {
   float qa = dot(d, d), qb = dot(a, d), qc = dot(a, a) - radius * radius;

@@ -4,7 +4,7 @@
 // that plane it sweeps the angle phi about the hole while its radius follows the orbit equation.
 // It ends on the accretion disk (the first crossing of the disk's plane inside its annulus), at
 // the horizon, or far away in the sky. This is the walker beside the straight rays of
-// tracer.hpp: scenes without a hole never come here.
+// trace/tracer.hpp: scenes without a hole never come here.
 #pragma once
 
 #include <cmath>

@@ -16,13 +16,14 @@
 // path, so its time includes the Shapiro delay.
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include "lightcone/frame/body_segments.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/physics/hole_world_line.hpp"
-#include "lightcone/trace/curved_ray.hpp"
-#include "lightcone/trace/tracer.hpp"
 
 namespace lightcone {
 
@@ -37,7 +38,9 @@ class CurvedBodies : public CurvedShadowQuery {
     double mass = 0, radius = 0, time = 0;
   };
 
-  CurvedBodies(const ResolvedScene& scene, const Tracer& tracer);
+  // The chords meet the bodies through `segments` (the ray tracer's, or DirectBodySegments); both
+  // must outlive this.
+  CurvedBodies(const ResolvedScene& scene, const BodySegments& segments);
 
   // Whether the ray meets a body before sweeping the angle `limit`; if so, `ray` gets the end
   // kBody, the angle phi, the hit, its event and its shift g.
@@ -85,8 +88,14 @@ class CurvedBodies : public CurvedShadowQuery {
                      const HoleWorldLineState* state = nullptr) const;
   };
   const ResolvedScene& scene_;
-  const Tracer& tracer_;
+  const BodySegments& segments_;
   std::vector<Body> bodies_;
 };
+
+// Shadows near a black hole over the scene's bodies (null where it has no hole or no bodies): the
+// paths from lit surfaces met as camera rays meet them, their chords through `segments`, which
+// the query owns. The scene must outlive it.
+std::unique_ptr<CurvedShadowQuery> curved_body_shadows_met_by(
+    const ResolvedScene& scene, std::unique_ptr<const BodySegments> segments);
 
 }  // namespace lightcone

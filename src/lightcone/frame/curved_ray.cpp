@@ -1,12 +1,12 @@
-#include "lightcone/trace/curved_ray.hpp"
+#include "lightcone/frame/curved_ray.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
-#include "lightcone/trace/curved_bodies.hpp"
 
 namespace lightcone {
 namespace {

@@ -1,4 +1,4 @@
-#include "lightcone/trace/curved_bodies.hpp"
+#include "lightcone/frame/curved_bodies.hpp"
 
 #include <algorithm>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -210,8 +210,8 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
 
 }  // namespace
 
-CurvedBodies::CurvedBodies(const ResolvedScene& scene, const Tracer& tracer)
-    : scene_(scene), tracer_(tracer) {
+CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segments)
+    : scene_(scene), segments_(segments) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Object& o = *scene.bodies[i].object;
     bodies_.push_back({static_cast<int>(i), hole_world_line(o, *scene.scene->black_hole),
@@ -402,7 +402,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
           if (!shape_known) shape_a = shape_of(a, straight ? nullptr : &state_a);
           const Vec3 shape_b = shape_of(b, straight ? nullptr : &state_b);
           shape_known = true;
-          if (const auto chord = tracer_.body_on_shape_segment(body.index, shape_a, shape_b)) {
+          if (const auto chord = segments_.body_on_shape_segment(body.index, shape_a, shape_b)) {
             const Vec3 chord_point = shape_a + (shape_b - shape_a) * chord->s;
             const MetSurface surface = surface_met(*resolved.object, chord_point, chord->prim);
             // The surface met, on the true path: its side at phi, solved between the chord's
@@ -464,7 +464,7 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   ray.hit.body = best.body;
   ray.hit.s = best.phi;
   ray.hit.shape_point = best.shape_point;
-  tracer_.surface_at(best.incoming, ray.hit, best.prim);
+  complete_surface_hit(scene_, best.incoming, ray.hit, best.prim);
   // The body's clock (its origin's) and velocity when it emitted.
   const HoleWorldLineState state = body.line.at(best.event.t);
   ray.hit.velocity = state.velocity;
@@ -503,6 +503,28 @@ bool CurvedBodies::occluded(const CurvedShadowRay& shadow) const {
   path.sweep = prepare_sweep(path.orbit, start.radius, shadow.outward);
   Found found;
   return nearest(start, path, shadow.sweep_near, shadow.sweep_far, found);
+}
+
+namespace {
+
+// The query and the segments it meets bodies through, owned together.
+class OwningCurvedShadows final : public CurvedShadowQuery {
+ public:
+  OwningCurvedShadows(const ResolvedScene& scene, std::unique_ptr<const BodySegments> segments)
+      : segments_(std::move(segments)), bodies_(scene, *segments_) {}
+  bool occluded(const CurvedShadowRay& ray) const override { return bodies_.occluded(ray); }
+
+ private:
+  std::unique_ptr<const BodySegments> segments_;
+  CurvedBodies bodies_;
+};
+
+}  // namespace
+
+std::unique_ptr<CurvedShadowQuery> curved_body_shadows_met_by(
+    const ResolvedScene& scene, std::unique_ptr<const BodySegments> segments) {
+  if (!scene.hole || scene.bodies.empty()) return nullptr;
+  return std::make_unique<OwningCurvedShadows>(scene, std::move(segments));
 }
 
 }  // namespace lightcone
