@@ -30,6 +30,7 @@
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/animation.hpp"
 #include "lightcone/trace/aov.hpp"
+#include "lightcone/trace/curved_shadows.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "physics_kernels.hpp"
@@ -111,7 +112,8 @@ py::dict render(const Scene& scene, const std::string& renderer,
                                                               : RasterTessellation::kAuto;
       py::gil_scoped_release unlocked;
       try {
-        image = render_raster(scene, &stats, {}, seed, mode);
+        // Shadows near a black hole through the tracer's Embree scenes, as the CLI casts them.
+        image = render_raster(scene, &stats, {}, seed, mode, curved_body_shadows);
       } catch (const GlUnavailable& e) {
         throw std::runtime_error(std::string("renderer='raster': ") + e.what() +
                                  ": the raster renderer needs OpenGL 3.3 (core profile) through "
