@@ -126,7 +126,7 @@ struct TessellationLimits {
 
 // A triangle's texture coordinates over its plane as an affine map of the shape point p: rows
 // (a, b) with uv = (a.xyz . p + a.w, b.xyz . p + b.w), the barycentric interpolation of its
-// corners' coordinates that the ray tracer does at a hit (Tracer::surface_at). Zero for a
+// corners' coordinates that the ray tracer does at a hit (complete_surface_hit). Zero for a
 // degenerate triangle.
 std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
                                       const std::array<std::array<float, 2>, 3>& uvs);
