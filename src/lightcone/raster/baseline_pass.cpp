@@ -34,9 +34,6 @@ std::size_t BaselinePass::draw(const ResolvedScene& scene, const RasterRenderer&
                         static_cast<GLsizei>(bodies.floats_per_vertex * sizeof(float)), nullptr);
   std::size_t triangles = 0;
   for (const RasterRenderer::TessellatedBodies::Draw& d : bodies.draws) {
-    const BodyView view = body_view(scene, scene.bodies[d.body]);
-    set_mat3(program_, "shape_to_trace", view.shape_to_trace);
-    set_vec3(program_, "shape_origin", view.shape_origin);
     skip_faces(d.hidden);  // the frame's own culling, so that both rasterise the same faces
     glDrawArrays(GL_TRIANGLES, static_cast<GLint>(d.first_vertex),
                  static_cast<GLsizei>(d.vertex_count));

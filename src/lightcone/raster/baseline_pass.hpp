@@ -1,7 +1,7 @@
 // The limit a frame's geometry sets on a GL driver (bench/bench_raster.cpp, the raster twin of
 // the tracer's raw-Embree baseline): the same tessellated triangles as the renderer's prepared
-// frame, drawn by a pass-through program: each vertex where its body's world-line is at F's
-// time 0, projected by the camera's pinhole; one colour; the rasterised depth, so that early
+// frame, drawn by a pass-through program: each vertex at its apparent position, where the frame
+// draws it, projected by the camera's pinhole; one colour; the rasterised depth, so that early
 // depth tests apply.
 #pragma once
 

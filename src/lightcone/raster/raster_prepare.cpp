@@ -395,10 +395,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
                                         std::pair<std::size_t, std::size_t>{});
       if (added) {
         const std::size_t first = patches.size() / kFloatsPerVertex;
-        TessellationLimits none;
-        none.max_level = 0;
-        tessellate(resolved, body_view(resolved, resolved.bodies[draw.body]), *draw.mesh, none,
-                   patches, draw.face_uvs ? &uv_maps : nullptr);
+        rest_patches(*draw.mesh, patches, draw.face_uvs ? &uv_maps : nullptr);
         it->second = {first, patches.size() / kFloatsPerVertex - first};
       }
       draw.first_vertex = it->second.first;

@@ -286,11 +286,15 @@ void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDr
                                      bool lit) {
   const ResolvedBody& body = resolved.bodies[draw.body];
   const BodyView view = body_view(resolved, body);
-  set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
   set_vec3(body_program, "shape_origin", view.shape_origin);
-  set_vec3(body_program, "world_line_velocity", view.velocity);
-  glUniform1f(uniform(body_program, "one_minus_beta2"),
-              static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
+  if (gpu_tessellation) {
+    // The shape points' world-lines, which the tessellation shaders meet (vertices tessellated
+    // on the CPU arrive at their events).
+    set_mat3(body_program, "shape_to_trace", view.shape_to_trace);
+    set_vec3(body_program, "world_line_velocity", view.velocity);
+    glUniform1f(uniform(body_program, "one_minus_beta2"),
+                static_cast<float>(1.0 - dot(view.velocity, view.velocity)));
+  }
   set_vec3(body_program, "ray_offset", body.ray_offset);
   set_mat3(body_program, "shape_spatial", body.spatial);
   set_doppler(body_program, resolved, body.velocity);

@@ -27,7 +27,7 @@ namespace lightcone {
 // each end; linear interpolation between nodes 1/512 of a unit of ln D apart is far below
 // what 8 bits show.
 constexpr double kLogDopplerStep = 1.0 / 512;
-constexpr int kFloatsPerVertex = 7;  // shape point, face plane (tessellate())
+constexpr int kFloatsPerVertex = 7;  // apparent position, face plane (tessellate())
 constexpr int kFloatsPerUvMap = 8;   // two rows of an affine map (triangle_uv_map)
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;

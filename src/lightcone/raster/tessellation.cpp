@@ -332,8 +332,8 @@ struct FlatSeeing {
     if (culled(a.seen.position, b.seen.position, c.seen.position)) return;
     for (const Corner* k : {&a, &b, &c})
       out.insert(out.end(),
-                 {static_cast<float>(k->seen.drawn.x), static_cast<float>(k->seen.drawn.y),
-                  static_cast<float>(k->seen.drawn.z), plane[0], plane[1], plane[2], plane[3]});
+                 {static_cast<float>(k->seen.position.x), static_cast<float>(k->seen.position.y),
+                  static_cast<float>(k->seen.position.z), plane[0], plane[1], plane[2], plane[3]});
     if (uv_maps)
       for (int corner = 0; corner < 3; ++corner)
         uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
@@ -350,6 +350,25 @@ struct FlatSeeing {
     return hidden == HiddenFaces::kBack ? det > margin : det < -margin;
   }
 };
+
+// Triangle t's plane (unit normal, offset; in shape coordinates) and, where asked for, the map of
+// its texture coordinates (triangle_uv_map; zero for a mesh without them).
+void face_of(const RestMesh& mesh, std::size_t t, bool with_uv_map, std::array<float, 4>& plane,
+             std::array<float, 8>& uv_map) {
+  const auto [i, j, k] = mesh.triangles[t];
+  const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
+  const Vec3 n = cross(b - a, c - a);
+  const double l = length(n);
+  const Vec3 unit = l > 0 ? n * (1 / l) : Vec3{0, 1, 0};
+  plane = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
+           static_cast<float>(dot(unit, a))};
+  if (with_uv_map && !mesh.uvs.empty()) {
+    const std::array<double, 8> map =
+        triangle_uv_map({a, b, c}, {mesh.uvs[i], mesh.uvs[j], mesh.uvs[k]});
+    std::transform(map.begin(), map.end(), uv_map.begin(),
+                   [](double x) { return static_cast<float>(x); });
+  }
+}
 
 }  // namespace
 
@@ -372,6 +391,20 @@ std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
     map[4 * k + 3] = at_a - dot(row, a);
   }
   return map;
+}
+
+void rest_patches(const RestMesh& mesh, std::vector<float>& out, std::vector<float>* uv_maps) {
+  std::array<float, 4> plane{};
+  std::array<float, 8> uv_map{};
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    face_of(mesh, t, uv_maps != nullptr, plane, uv_map);
+    for (const std::uint32_t corner : mesh.triangles[t]) {
+      const Vec3& p = mesh.positions[corner];
+      out.insert(out.end(), {static_cast<float>(p.x), static_cast<float>(p.y),
+                             static_cast<float>(p.z), plane[0], plane[1], plane[2], plane[3]});
+      if (uv_maps) uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
+    }
+  }
 }
 
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
@@ -399,18 +432,7 @@ void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh
   };
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto [i, j, k] = mesh.triangles[t];
-    const Vec3 &a = mesh.positions[i], &b = mesh.positions[j], &c = mesh.positions[k];
-    const Vec3 n = cross(b - a, c - a);
-    const double l = length(n);
-    const Vec3 unit = l > 0 ? n * (1 / l) : Vec3{0, 1, 0};
-    seeing.plane = {static_cast<float>(unit.x), static_cast<float>(unit.y),
-                    static_cast<float>(unit.z), static_cast<float>(dot(unit, a))};
-    if (uv_maps && !mesh.uvs.empty()) {
-      const std::array<double, 8> map =
-          triangle_uv_map({a, b, c}, {mesh.uvs[i], mesh.uvs[j], mesh.uvs[k]});
-      std::transform(map.begin(), map.end(), seeing.uv_map.begin(),
-                     [](double x) { return static_cast<float>(x); });
-    }
+    face_of(mesh, t, uv_maps != nullptr, seeing.plane, seeing.uv_map);
     const auto [ij, jk, ki] = mesh.triangle_edges[t];
     split.triangle(corners[i], corners[j], corners[k], side(ij, i), side(jk, j), side(ki, k));
   }

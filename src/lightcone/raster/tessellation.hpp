@@ -131,8 +131,9 @@ struct TessellationLimits {
 std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
                                       const std::array<std::array<float, 2>, 3>& uvs);
 
-// Appends the tessellated triangles to `out`: per vertex its shape point and the plane of the
-// untessellated triangle it lies in (unit normal, offset), seven floats; and where `uv_maps` is
+// Appends the tessellated triangles to `out`: per vertex its apparent position (in F, relative
+// to the camera: apparent_point) and the plane of the untessellated triangle it lies in, in
+// shape coordinates (unit normal, offset), seven floats; and where `uv_maps` is
 // given, to it the texture coordinates' map of that triangle (triangle_uv_map, zero for a mesh
 // without them), eight floats a vertex. Each edge's split depends only on its own ends and
 // level, so neighbouring triangles agree (no cracks). Triangles that the rasteriser would cull as
@@ -140,5 +141,10 @@ std::array<double, 8> triangle_uv_map(const std::array<Vec3, 3>& corners,
 void tessellate(const ResolvedScene& scene, const BodyView& view, const RestMesh& mesh,
                 const TessellationLimits& limits, std::vector<float>& out,
                 std::vector<float>* uv_maps = nullptr, HiddenFaces hidden = HiddenFaces::kNone);
+
+// A shape's untessellated triangles for the tessellation shaders (on the GPU), laid out as
+// tessellate() lays out its own but with each vertex's shape point, not its apparent position.
+void rest_patches(const RestMesh& mesh, std::vector<float>& out,
+                  std::vector<float>* uv_maps = nullptr);
 
 }  // namespace lightcone

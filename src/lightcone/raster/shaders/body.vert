@@ -1,8 +1,9 @@
-// Each vertex of a body, given in its shape coordinates, is carried to the event where the ray
-// family of the camera meets its world-line (the exact retarded event for light delay on) and
-// projected from there: aberration, light delay and Lorentz contraction all follow from the
-// body's world-line in the camera's rest frame F, computed per frame in double precision.
-layout(location = 0) in vec3 shape_position;
+// Each vertex of a body tessellated on the CPU arrives seen: its position in the camera's rest
+// frame F at the event where the camera's ray family meets the shape point's world-line (the
+// exact retarded event for light delay on), which the tessellation computed in double precision
+// to decide its splits (raster/tessellation.hpp, apparent_point). It is projected from there:
+// aberration, light delay and Lorentz contraction all follow from the body's world-line in F.
+layout(location = 0) in vec3 apparent_position;
 // The plane of the (untessellated) face the vertex belongs to, in shape coordinates: normal and
 // offset (n.p = offset), for the fragments' exact surface points.
 layout(location = 1) in vec4 face_plane;
@@ -19,7 +20,8 @@ flat out vec4 uv_v;
 #endif
 
 void main() {
-  vec4 event = apparent_event(shape_position);
+  // Its light travel distance: the event lies on the camera's past light cone.
+  vec4 event = vec4(apparent_position, length(apparent_position));
   gl_Position = clip_of(event);
   vertex_distance = event.w;
   plane = face_plane;

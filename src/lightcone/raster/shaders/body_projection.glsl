@@ -1,5 +1,6 @@
-// Where a body's shape points are seen: shared by the vertex shader (vertices tessellated on
-// the CPU) and the tessellation shaders (on the GPU).
+// Where a body's shape points are seen and drawn: the tessellation shaders (on the GPU) carry
+// shape points to their events; every vertex shader projects events (vertices tessellated on
+// the CPU arrive as events: body.vert).
 // The body's map from shape coordinates to its world-line in F:
 // position_at_zero = shape_to_trace * (shape - shape_origin), velocity as given.
 uniform mat3 shape_to_trace;
