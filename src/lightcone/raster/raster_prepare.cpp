@@ -214,7 +214,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   draws.clear();
   // Two floats (row, moving) per fixed colour and light, a row per lit body.
   std::vector<float> reflection_index;
-  const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1);
+  // Per lit body: (row, moving) for each fixed colour and light, then its finish (roughness, -1
+  // for matte; specular), which the lighting pass reads there (lit_surfaces.frag).
+  const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1) + 2;
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
   lighting_features = lights.size() > kUniformLamps ? kLightingManyLights : 0;
   for (const LightDraw& d : lights)
@@ -283,6 +285,11 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       const std::size_t index_row = reflection_index.size();
       draw.reflection_body = static_cast<int>(index_row / reflection_row_floats);
       reflection_index.resize(index_row + reflection_row_floats, 0.0f);
+      const auto& glossy = body.object->material.glossy;
+      reflection_index[index_row + reflection_row_floats - 2] =
+          glossy ? static_cast<float>(glossy->roughness) : -1.0f;
+      reflection_index[index_row + reflection_row_floats - 1] =
+          glossy ? static_cast<float>(glossy->specular) : 0.0f;
       // (Near a black hole lit bodies are coloured per vertex: raster/hole_bodies.hpp. A lit
       // texture's colours are summed per sample: spectral_albedo.hpp.)
       for (int k = 0; k < (two_colours ? 2 : 1) && spectral && !resolved.hole && !textured; ++k) {

@@ -136,7 +136,7 @@ struct RasterRenderer::Impl {
     int first_row = 0, pattern = 0;
     bool lit = false;
     bool face_uvs = false;     // a textured mesh: its faces' texture coordinates' maps are drawn
-    int reflection_body = -1;  // a lit body's row of reflection_index_texture
+    int reflection_body = -1;  // a lit body's row of reflection_index_texture (its finish too)
     const RestMesh* mesh = nullptr;  // during prepare()
     HiddenFaces hidden = HiddenFaces::kNone;
     double sphere_radius = 0;  // the GPU path's: its mesh's
@@ -207,7 +207,7 @@ struct RasterRenderer::Impl {
   // The surface textures (lit_surfaces.frag's), on the frame's own depth buffer: made with the
   // first lit frame, anew when the size changes.
   GLuint surfaces_framebuffer = 0;
-  std::array<GLuint, 4> surface_textures{};
+  std::array<GLuint, 3> surface_textures{};
   std::array<int, 2> surfaces_size{0, 0};
 };
 

@@ -48,11 +48,17 @@ uniform float sphere_radius;
 #if defined(LIGHTCONE_LIT)
 // A lit body writes what the lighting pass (lit_surfaces.frag) needs of its nearest surface at
 // each pixel, its exact depth deciding which is nearest; that pass lights each pixel once.
-layout(location = 0) out vec4 lit_surface;   // the normal in the body's rest frame, s
-layout(location = 1) out vec4 lit_motion;    // the surface's velocity in W, D_camera
-layout(location = 2) out vec4 lit_albedo;    // the albedo, k (-1: a texel's, to be fitted)
-layout(location = 3) out vec4 lit_material;  // reflection_body, roughness (-1: matte),
-                                             // specular, the colour's alpha
+layout(location = 0) out vec4 lit_surface;  // the normal in the body's rest frame, s
+layout(location = 1) out vec4 lit_motion;   // the surface's velocity in W, D_camera
+layout(location = 2) out vec4 lit_albedo;   // the albedo, lit_code
+
+// What the lighting pass needs of the surface besides: its body's row of reflection_index
+// (where its finish is too), the fixed colour k (-1: a texel's, to be fitted) and the colour's
+// alpha (1 or 2), in one float, exact as an integer; 0 is left for "no lit surface".
+// lit_surfaces.frag takes it apart.
+float lit_code(int body, int k, float alpha) {
+  return float((body * 4 + k + 1) * 2 + (alpha > 1.5 ? 1 : 0) + 1);
+}
 #else
 layout(location = 0) out vec4 colour;
 #endif
@@ -139,7 +145,7 @@ uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
 uniform int relativity;
-uniform vec4 finish;  // reflection_body, roughness (-1: matte), specular, 0
+uniform int reflection_body;  // the body's row of reflection_index
 #endif
 
 void main() {
@@ -202,8 +208,7 @@ void main() {
 #endif
   lit_surface = vec4(normal, s);
   lit_motion = vec4(surface_velocity, d);
-  lit_albedo = vec4(surface_albedo, float(k));
-  lit_material = vec4(finish.xyz, subject_alpha);
+  lit_albedo = vec4(surface_albedo, lit_code(reflection_body, k, subject_alpha));
 #elif defined(LIGHTCONE_TEXTURED)
   colour = vec4(received_rgb(sample_bilinear(texture_image, body_uv(p), true), d), subject_alpha);
 #else

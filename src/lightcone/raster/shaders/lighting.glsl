@@ -66,7 +66,8 @@ struct Finish {
 // Spectral: the reflected colour of (fixed colour k, light l) of the body: texel (k light_count
 // + l, reflection_body) of reflection_index holds its row and whether the light moves relative
 // to the body; a row against ln D_camera (a light co-moving with the surface) or, for a moving
-// one, the first of a block of rows of reflection_tables, one per node of ln D_light.
+// one, the first of a block of rows of reflection_tables, one per node of ln D_light. The row's
+// last texel holds the body's finish (roughness, -1 for matte; specular).
 uniform highp sampler2D reflection_index;
 uniform sampler2D reflection_tables;
 uniform vec4 reflection_grid;  // (first ln D_camera, step, first ln D_light, step)
