@@ -818,6 +818,21 @@ TEST_F(SceneFileTest, MalformedOverrides) {
   expect_set_error(kOverrideScene, {"render.relativity.x=1"}, "render.relativity.x",
                    "render.relativity is a boolean, not an object or array");
   expect_set_error(kOverrideScene, {"camera..width=1"}, "camera..width", "empty component");
+  // `"stars": false` stands for no table to open, unlike `true`.
+  expect_set_error(R"({"camera": {"position": [0, 0, 0]}, "sky": {"stars": false}})",
+                   {"sky.stars.exposure=1"}, "sky.stars.exposure",
+                   "sky.stars is a boolean, not an object or array");
+}
+
+// `"stars": true` stands for the stars' defaults: a path through it opens them.
+TEST_F(SceneFileTest, OverridesOpenTheStarsDefaults) {
+  const Scene s = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"stars": true}})",
+                       {"sky.stars.magnitude_limit=3"});
+  const Scene all = load(R"({"camera": {"position": [0, 0, 0]}, "sky": {"stars": true}})");
+  ASSERT_TRUE(s.sky.stars && all.sky.stars && s.sky.stars->stars && all.sky.stars->stars);
+  EXPECT_EQ(s.sky.stars->magnitude_limit, 3);
+  EXPECT_GT(s.sky.stars->stars->size(), 0u);
+  EXPECT_LT(s.sky.stars->stars->size(), all.sky.stars->stars->size() / 10);
 }
 
 TEST_F(SceneFileTest, ColourRenderSettingsFromOverrides) {

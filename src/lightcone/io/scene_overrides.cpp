@@ -3,12 +3,22 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
+#include <string_view>
 #include <vector>
 
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/json_locator.hpp"
 
 namespace lightcone {
+
+namespace {
+
+// Values where `true` stands for a table of defaults (docs/scene-format.md): a path through one
+// opens it as that table.
+constexpr std::string_view kTrueForDefaults[] = {"sky.stars"};
+
+}  // namespace
 
 std::string apply_scene_override(SceneJson& document, const std::string& override_text) {
   const std::size_t equals = override_text.find('=');
@@ -46,7 +56,10 @@ std::string apply_scene_override(SceneJson& document, const std::string& overrid
   std::string path;
   auto where = [&] { return path.empty() ? std::string("the scene") : path; };
   for (const std::string& part : parts) {
-    if (node->is_null()) *node = SceneJson::object();
+    const bool defaults = node->is_boolean() && node->get<bool>() &&
+                          std::find(std::begin(kTrueForDefaults), std::end(kTrueForDefaults),
+                                    path) != std::end(kTrueForDefaults);
+    if (node->is_null() || defaults) *node = SceneJson::object();
     if (node->is_object()) {
       path = json_member_path(path, part);
       node = &(*node)[part];
