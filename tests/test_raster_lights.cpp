@@ -56,6 +56,23 @@ TEST(RasterAgreement, RetardedShadowsMatchTheRayTracer) {
   }
 }
 
+// Glossy finishes: the wall under the moving headlight, shiny and then rough, its finish carried
+// from its surface to the lighting pass (lit_surfaces.frag) and applied as the tracer applies
+// it. The lobe is seen: the raster picture of a rougher finish than the tracer's differs.
+TEST(RasterAgreement, GlossyFinishesMatchTheRayTracer) {
+  const std::string shiny =
+      "--set objects.0.material.glossy.roughness=0.25 "
+      "--set objects.0.material.glossy.specular=0.3";
+  const std::string rough =
+      "--set objects.0.material.glossy.roughness=0.8 "
+      "--set objects.0.material.glossy.specular=0.3";
+  expect_agreement("headlight.json", shiny, 4);
+  expect_agreement("headlight.json", rough, 4);
+  const Agreement other = agreement("headlight.json", 4, shiny, rough);
+  std::printf("headlight.json, raster rougher than traced: %.4f within 4/255\n", other.within);
+  EXPECT_LT(other.within, 0.95);
+}
+
 // Any number of lights: twenty lamps of five colours round a yard, the last four the brightest,
 // without and with their shadows of two crates and a ball (the maps at 256 texels a face past
 // eight lights; the ball met exactly in them, so its shadows are round).
