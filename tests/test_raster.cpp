@@ -649,10 +649,12 @@ TEST(RasterRelativity, TheSameSceneFromAnotherFrameRendersTheSameImage) {
 }
 
 // The pass-through baseline of bench/bench_raster.cpp draws the triangles the frame it mirrors
-// drew (its own picture: the bodies' silhouettes where they are at F's time 0).
+// drew, where the frame draws them: the pixels it covers are those where the frame (under a
+// black sky) shows a body.
 TEST(RasterBaseline, DrawsTheFramesTriangles) {
   Scene scene = test::load_repository_scene("street.json");
   scene.camera.width = 160, scene.camera.height = 90, scene.camera.samples = 1;
+  scene.sky.pattern = SolidColor{{0, 0, 0}};
   const HeadlessGlContext context;
   RasterRenderer renderer;
   const FloatTarget target(160, 90);
@@ -665,9 +667,17 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
   const BaselinePass baseline;
   EXPECT_EQ(baseline.draw(resolved, renderer), triangles);
   const Image drawn = target.read();
-  std::size_t covered = 0;
-  for (std::size_t p = 0; p < drawn.rgb.size() / 3; ++p) covered += drawn.rgb[3 * p] == 1.0f;
+  renderer.pass();
+  const Image frame = target.read();
+  std::size_t covered = 0, differ = 0;
+  for (std::size_t p = 0; p < drawn.rgb.size() / 3; ++p) {
+    const bool base = drawn.rgb[3 * p] == 1.0f;
+    const bool body = frame.rgb[3 * p] + frame.rgb[3 * p + 1] + frame.rgb[3 * p + 2] > 0;
+    covered += base;
+    differ += base != body;
+  }
   EXPECT_GT(covered, 160u * 90 / 10);  // the street's houses fill much of the view
+  EXPECT_EQ(differ, 0u);
 }
 
 // The colour rows are kept from frame to frame while they are the same rows over a range that
