@@ -464,15 +464,22 @@ int main(int argc, char** argv) {
   encode_cmd->add_flag("--quiet", encode.quiet, "No progress bar and no summary line");
 
   if (argc > 1 && argv[1][0] != '-') {
-    static constexpr std::string_view kCommands[] = {"render", "animate", "encode", "view",
-                                                     "locate", "check",   "info"};
+    // The commands as CLI11 holds them, in the order they were added.
+    std::vector<std::string_view> commands;
+    for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+      commands.push_back(command->get_name());
     const std::string_view command = argv[1];
-    if (std::find(std::begin(kCommands), std::end(kCommands), command) == std::end(kCommands)) {
-      const auto near = nearest_name(command, kCommands);
-      std::fprintf(stderr,
-                   "lightcone: unknown command '%s' (%suse render, animate, encode, view, locate, "
-                   "check or info; see --help)\n",
-                   argv[1], near ? fmt::format("did you mean '{}'? ", *near).c_str() : "");
+    if (std::find(commands.begin(), commands.end(), command) == commands.end()) {
+      const auto near = nearest_name(command, commands);
+      std::string listed;
+      for (std::size_t i = 0; i < commands.size(); ++i)
+        listed += fmt::format("{}{}",
+                              i == 0                     ? ""
+                              : i + 1 == commands.size() ? " or "
+                                                         : ", ",
+                              commands[i]);
+      std::fprintf(stderr, "lightcone: unknown command '%s' (%suse %s; see --help)\n", argv[1],
+                   near ? fmt::format("did you mean '{}'? ", *near).c_str() : "", listed.c_str());
       return kBadInput;
     }
   }
