@@ -14,6 +14,7 @@
 #include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/io/scene_file.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/trace/aov.hpp"
@@ -177,32 +178,17 @@ TEST(RasterHoleBodies, TexturesAndMeshClocksMatchTheRayTracer) {
   }
 }
 
-// Shadows near the hole: a slab held at r = 8 beside it, a ball held above the slab and a pebble
-// on its orbit at 0.33c above both, lit by a sun whose light the hole bends: the ball and the
-// pebble shadow the slab, the pebble the ball. The raster renderer lights each
-// vertex with the tracer's Lighting, whose curved shadow paths meet the bodies as the tracer's do
-// (trace/curved_shadows.hpp); lit edges are split until the colours along them lie within 1/128,
-// so a shadow's edge is drawn to within a pixel, as an outline is. Without shadows a fifth of the
-// bodies' pixels differ.
+// Shadows near the hole (tests/data/hole-shadows.json): a slab held at r = 8 beside it, a ball
+// held above the slab and a pebble on its orbit at 0.33c above both, lit by a sun whose light the
+// hole bends: the ball and the pebble shadow the slab, the pebble the ball. The raster renderer
+// lights each vertex with the tracer's Lighting, whose curved shadow paths meet the bodies as the
+// tracer's do (frame/curved_bodies.hpp); lit edges are split until the colours along them lie
+// within 1/128, so a shadow's edge is drawn to within a pixel, as an outline is. Without shadows
+// a fifth of the bodies' pixels differ.
 TEST(RasterHoleBodies, ShadowsMatchTheRayTracer) {
-  Scene s = test::scene_from_json(R"({
-    "camera": {"position": [0, 6, 26], "forward": [7, -6, -26], "fov": 28,
-               "width": 480, "height": 270, "samples": 1},
-    "black_hole": {"mass": 1},
-    "objects": [
-      {"name": "slab", "shape": {"box": {"size": [6, 0.5, 6]}}, "position": [8, 0, 0],
-       "material": {"color": [0.8, 0.8, 0.8], "unlit": false}},
-      {"name": "ball", "shape": {"sphere": {"radius": 1}}, "position": [8.5, 2.5, 0.5],
-       "material": {"color": [0.9, 0.5, 0.3], "unlit": false}},
-      {"name": "pebble", "shape": {"sphere": {"radius": 0.6}},
-       "motion": {"orbit": {"radius": 10.5, "normal": [4.5, -10, 0], "phase": 62}},
-       "material": {"color": [0.4, 0.7, 0.9], "unlit": false}}
-    ],
-    "lights": [{"name": "sun", "type": "directional", "direction": [-0.3, -1, -0.2],
-                "irradiance": 4}],
-    "sky": {"color": [0.02, 0.02, 0.03]},
-    "render": {"exposure": -1, "tonemap": "filmic"}
-  })");
+  SceneLoadReport report;
+  const Scene s = load_scene_file(
+      std::string(LIGHTCONE_SOURCE_DIR) + "/tests/data/hole-shadows.json", {}, report);
   EXPECT_TRUE(raster_differences(s).empty());
   // The chords of the shadow paths met through the tracer's Embree scenes, or directly (as the
   // browser's page meets them), or nothing casting shadows in the raster renderer.

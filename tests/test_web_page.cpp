@@ -129,7 +129,8 @@ TEST(WebPage, DrawsALitTextureUnderTheSpectralModelAsTheNativeRasterRenderer) {
 // Shadows near a black hole: the page has no ray tracer, and meets the bodies along the curved
 // shadow paths directly (DirectBodySegments), as the native program does through Embree.
 TEST(WebPage, CastsShadowsNearABlackHoleAsTheNativeRasterRenderer) {
-  expect_page_agrees(kSeen / "hole-shadows.json", "hole-shadows.png", true);
+  expect_page_agrees(fs::path(LIGHTCONE_SOURCE_DIR) / "tests/data/hole-shadows.json",
+                     "hole-shadows.png", true);
   const auto r = results();
   ASSERT_TRUE(r.is_object());
   EXPECT_EQ(r.value("hole_shadows_message", "?"), "");  // no difference to warn of

@@ -9,8 +9,8 @@
 //   texture-mapping.png        a user's scene and its image, chosen in the file dialog
 //   lit-texture-mapping.png    the same lit by a lamp under the spectral model (the scene
 //                              beside it, lit-texture-mapping.json, with uv-grid.png)
-//   hole-shadows.png           bodies near a black hole shadowing each other (the scene beside
-//                              it, hole-shadows.json)
+//   hole-shadows.png           bodies near a black hole shadowing each other
+//                              (tests/data/hole-shadows.json)
 //   screenshot-button.png      what the screenshot button downloads (and the canvas then)
 //   results.json               the numbers: speeds, messages, load times, frame rate, console
 //
@@ -194,29 +194,12 @@ try {
 
   step("shadows near a black hole, from the file dialog");
   {
-    // Bodies held beside the hole and one on its orbit, lit by a sun whose light the hole bends:
-    // the page casts their shadows along the curved paths itself, as the native program does.
-    const scene = {
-      camera: { position: [0, 6, 26], forward: [7, -6, -26], fov: 28 },
-      black_hole: { mass: 1 },
-      objects: [
-        { name: "slab", shape: { box: { size: [6, 0.5, 6] } }, position: [8, 0, 0],
-          material: { color: [0.8, 0.8, 0.8], unlit: false } },
-        { name: "ball", shape: { sphere: { radius: 1 } }, position: [8.5, 2.5, 0.5],
-          material: { color: [0.9, 0.5, 0.3], unlit: false } },
-        { name: "pebble", shape: { sphere: { radius: 0.6 } },
-          motion: { orbit: { radius: 10.5, normal: [4.5, -10, 0], phase: 62 } },
-          material: { color: [0.4, 0.7, 0.9], unlit: false } },
-      ],
-      lights: [{ name: "sun", type: "directional", direction: [-0.3, -1, -0.2], irradiance: 4 }],
-      sky: { color: [0.02, 0.02, 0.03] },
-      render: { tonemap: "filmic" },
-    };
-    await writeFile(join(out, "hole-shadows.json"), JSON.stringify(scene, null, 1));
+    // Bodies beside the hole shadowing each other (tests/data/hole-shadows.json): the page casts
+    // their shadows along the curved paths itself, as the native program does.
     const page = await open(`scene=street&${still}`);
     const loads = await count(page, "loads");
     const chosen = Date.now();
-    await page.setInputFiles("#files", [join(out, "hole-shadows.json")]);
+    await page.setInputFiles("#files", [join(site, "..", "tests/data/hole-shadows.json")]);
     await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads, { timeout: 60000 });
     results.hole_shadows_message = await text(page, "message");
     await settle(page, 1);
