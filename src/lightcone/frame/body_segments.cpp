@@ -82,15 +82,7 @@ std::optional<SegmentHit> DirectBodySegments::body_on_shape_segment(int body, co
     return nearest;
   }
   double s = 0;
-  struct Visitor {
-    const ShapeRay& ray;
-    double& s;
-    bool operator()(const Sphere& x) const { return intersect_sphere(x, ray, 0, 1, s); }
-    bool operator()(const Box& x) const { return intersect_box(x, ray, 0, 1, s); }
-    bool operator()(const Plane& x) const { return intersect_plane(x, ray, 0, 1, s); }
-    bool operator()(const MeshShape&) const { return false; }
-  };
-  if (!std::visit(Visitor{ray, s}, shape)) return std::nullopt;
+  if (!intersect_analytic(shape, ray, 0, 1, s)) return std::nullopt;
   return SegmentHit{s, 0, 0, 0};
 }
 

@@ -84,4 +84,19 @@ inline bool intersect_plane(const Plane& plane, const ShapeRay& ray, double tnea
   return true;
 }
 
+// The same for any analytic shape (false for a mesh, which its own hierarchy meets).
+inline bool intersect_analytic(const Shape& shape, const ShapeRay& ray, double tnear, double tfar,
+                               double& s) {
+  struct Visitor {
+    const ShapeRay& ray;
+    double tnear, tfar;
+    double& s;
+    bool operator()(const Sphere& x) const { return intersect_sphere(x, ray, tnear, tfar, s); }
+    bool operator()(const Box& x) const { return intersect_box(x, ray, tnear, tfar, s); }
+    bool operator()(const Plane& x) const { return intersect_plane(x, ray, tnear, tfar, s); }
+    bool operator()(const MeshShape&) const { return false; }
+  };
+  return std::visit(Visitor{ray, tnear, tfar, s}, shape);
+}
+
 }  // namespace lightcone

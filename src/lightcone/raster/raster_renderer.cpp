@@ -21,8 +21,9 @@ namespace {
 
 // The surface textures' units in the lighting pass: 4 (the sky's image in its own pass) and
 // units no other program of the frame uses.
-constexpr std::array<int, 3> kSurfaceUnits{4, 6, 14};
-constexpr const char* kSurfaceSamplers[3] = {"lit_surface", "lit_motion", "lit_albedo"};
+constexpr std::array<int, kSurfaceTextures> kSurfaceUnits{4, 6, 14};
+constexpr std::array<const char*, kSurfaceTextures> kSurfaceSamplers{"lit_surface", "lit_motion",
+                                                                     "lit_albedo"};
 
 // The Doppler factor's velocity and gamma for an emitter moving with `velocity` in F.
 void set_doppler(GLuint program, const ResolvedScene& scene, const Vec3& velocity) {
@@ -75,7 +76,8 @@ GLuint RasterRenderer::Impl::lighting_program_for(int features, int lighting) {
                          fragment_shader(shader_sources::lit_surfaces_frag,
                                          shader_sources::lighting_glsl, defines.c_str()));
   glUseProgram(program);
-  for (int i = 0; i < 3; ++i) glUniform1i(uniform(program, kSurfaceSamplers[i]), kSurfaceUnits[i]);
+  for (int i = 0; i < kSurfaceTextures; ++i)
+    glUniform1i(uniform(program, kSurfaceSamplers[i]), kSurfaceUnits[i]);
   return program;
 }
 
@@ -119,7 +121,7 @@ RasterRenderer::Impl::~Impl() {
   for (const auto& [key, program] : lighting_program_cache) glDeleteProgram(program);
   if (surfaces_framebuffer) {
     glDeleteFramebuffers(1, &surfaces_framebuffer);
-    glDeleteTextures(3, surface_textures.data());
+    glDeleteTextures(kSurfaceTextures, surface_textures.data());
   }
   for (const auto& programs : sky_programs)
     for (GLuint program : programs)
@@ -362,11 +364,11 @@ void RasterRenderer::Impl::draw_lit_surfaces(double ox, double oy, int features)
                                         GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth);
   if (!surfaces_framebuffer) {
     glGenFramebuffers(1, &surfaces_framebuffer);
-    glGenTextures(3, surface_textures.data());
+    glGenTextures(kSurfaceTextures, surface_textures.data());
   }
   glBindFramebuffer(GL_FRAMEBUFFER, surfaces_framebuffer);
   if (width != surfaces_size[0] || height != surfaces_size[1]) {
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < kSurfaceTextures; ++i) {
       glBindTexture(GL_TEXTURE_2D, surface_textures[i]);
       glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -383,8 +385,9 @@ void RasterRenderer::Impl::draw_lit_surfaces(double ox, double oy, int features)
   else
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
                            static_cast<GLuint>(depth), 0);
-  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  glDrawBuffers(3, buffers);
+  const GLenum buffers[kSurfaceTextures] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                                            GL_COLOR_ATTACHMENT2};
+  glDrawBuffers(kSurfaceTextures, buffers);
   const GLfloat empty[4] = {0, 0, 0, 0};
   glClearBufferfv(GL_COLOR, 2, empty);  // no lit surface anywhere yet (lit_albedo's code 0)
   body_program = body_program_for(kLit, gpu_tessellation, features);
@@ -407,7 +410,7 @@ void RasterRenderer::Impl::light_surfaces(double ox, double oy, int features) {
   glUseProgram(program);
   set_common(program, resolved, first_log_doppler, ox, oy);
   set_lights(program, resolved, lighting);
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < kSurfaceTextures; ++i) {
     glActiveTexture(GL_TEXTURE0 + kSurfaceUnits[i]);
     glBindTexture(GL_TEXTURE_2D, surface_textures[i]);
   }

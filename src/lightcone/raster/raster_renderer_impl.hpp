@@ -29,6 +29,8 @@ namespace lightcone {
 constexpr double kLogDopplerStep = 1.0 / 512;
 constexpr int kFloatsPerVertex = 7;  // apparent position, face plane (tessellate())
 constexpr int kFloatsPerUvMap = 8;   // two rows of an affine map (triangle_uv_map)
+// The lit surfaces' textures (body.frag's LIGHTCONE_LIT outputs, lit_surfaces.frag's samplers).
+constexpr int kSurfaceTextures = 3;
 // A moving light's reflection table: ln D_camera and ln D_light nodes, bilinear between them.
 constexpr double kTableCameraStep = 1.0 / 128, kTableLightStep = 1.0 / 64;
 
@@ -207,7 +209,7 @@ struct RasterRenderer::Impl {
   // The surface textures (lit_surfaces.frag's), on the frame's own depth buffer: made with the
   // first lit frame, anew when the size changes.
   GLuint surfaces_framebuffer = 0;
-  std::array<GLuint, 3> surface_textures{};
+  std::array<GLuint, kSurfaceTextures> surface_textures{};
   std::array<int, 2> surfaces_size{0, 0};
 };
 

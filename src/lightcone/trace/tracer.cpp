@@ -352,15 +352,6 @@ struct Tracer::Impl {
     const ResolvedBody& body = scene.bodies[index];
     ShapeHit hit;
     double s = 0;
-    struct Visitor {
-      const ShapeRay& ray;
-      double tnear, tfar;
-      double& s;
-      bool operator()(const Sphere& x) const { return intersect_sphere(x, ray, tnear, tfar, s); }
-      bool operator()(const Box& x) const { return intersect_box(x, ray, tnear, tfar, s); }
-      bool operator()(const Plane& x) const { return intersect_plane(x, ray, tnear, tfar, s); }
-      bool operator()(const MeshShape&) const { return false; }
-    };
     if (RTCScene mesh = body_mesh_scene[index]) {
       if (!meets_mesh_ball(index, ray, tnear, tfar)) return hit;
       RTCRayHit rh = mesh_ray(ray, tnear, tfar);
@@ -371,7 +362,7 @@ struct Tracer::Impl {
         hit.bary_u = rh.hit.u;
         hit.bary_v = rh.hit.v;
       }
-    } else if (std::visit(Visitor{ray, tnear, tfar, s}, body.object->shape)) {
+    } else if (intersect_analytic(body.object->shape, ray, tnear, tfar, s)) {
       hit.s = s;
     }
     return hit;
