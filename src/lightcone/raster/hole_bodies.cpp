@@ -73,7 +73,7 @@ struct HoleSeeing {
     if (!image) return c;
     c.seen = true;
     const double lag = scene.scene->camera.world_line.time - image->emission_time;
-    c.at = {image->direction * lag, project_direction(scene.camera, image->direction), p};
+    c.at = {image->direction * lag, project_direction(scene.camera, image->direction)};
     const Vec3 from_hole = image->emission_position - hole.centre;
     c.along = dot(from_hole, hole.outward);
     c.across_x = dot(from_hole, across_x);

@@ -210,11 +210,10 @@ ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                                     ? line.retarded(camera)
                                     : simultaneous_point(line, camera, view.trace_velocity_at_rest);
     const Vec3 position = view.trace_of_rest(seen.event).x;
-    return {position, project_direction(scene.camera, position),
-            spin.rest_from_shape.inverse() * seen.event.x};
+    return {position, project_direction(scene.camera, position)};
   }
   const RayEvent event = meet_world_line(scene.ray_time, view.world_line(shape_point));
-  return {event.position, project_direction(scene.camera, event.position), shape_point};
+  return {event.position, project_direction(scene.camera, event.position)};
 }
 
 double edge_error_pixels(const CameraBasis& camera, const ApparentPoint& pa,

@@ -74,11 +74,8 @@ HiddenFaces hidden_faces(const RestMesh& mesh, const ResolvedBody& body);
 // Where a shape point is seen: its event on the camera's ray family and that event's image
 // point (pixels), for the tessellation's decisions.
 struct ApparentPoint {
-  Vec3 position;  // in F, relative to the camera
+  Vec3 position;  // in F, relative to the camera (the vertex the GPU draws)
   ImagePoint image;
-  // The shape point whose inertial world-line (frozen shape coordinates) passes through that
-  // event: the point itself, or for a spinning body where it was when it was seen.
-  Vec3 drawn;
 };
 ApparentPoint apparent_point(const ResolvedScene& scene, const BodyView& view,
                              const Vec3& shape_point);
