@@ -865,10 +865,13 @@ TEST(RasterShaders, CompileAsGlslEs300) {
       {"lit_surfaces.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str()},
       {"lit_surfaces-spectral-textures.frag", shader_sources::lit_surfaces_frag, true,
        lighting.c_str(), "#define LIGHTCONE_SPECTRAL_TEXTURES 1\n"},
+      {"lit_surfaces-exact-shadows.frag", shader_sources::lit_surfaces_frag, true,
+       lighting.c_str(), "#define LIGHTCONE_EXACT_SHADOWS 1\n"},
       {"lit_surfaces-mesh-shadows.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str(),
-       "#define LIGHTCONE_MESH_SHADOWS 1\n"},
+       "#define LIGHTCONE_EXACT_SHADOWS 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"},
       {"lit_surfaces-spin-shadows.frag", shader_sources::lit_surfaces_frag, true, lighting.c_str(),
-       "#define LIGHTCONE_MESH_SHADOWS 1\n#define LIGHTCONE_SPIN_SHADOWS 1\n"},
+       "#define LIGHTCONE_EXACT_SHADOWS 1\n#define LIGHTCONE_MESH_SHADOWS 1\n"
+       "#define LIGHTCONE_SPIN_SHADOWS 1\n"},
       // Each with every feature a frame may leave out left out (body_variant_defines).
       {"body-specialised.frag", shader_sources::body_frag, true, patterns.c_str(),
        stripped.c_str()},

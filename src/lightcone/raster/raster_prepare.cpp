@@ -379,6 +379,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     shadow_casters->prepare(resolved, lights.size());
     frame_features |= kBodyShadows | (shadow_casters->any_mesh() ? kBodyMeshShadows : 0) |
                       (shadow_casters->any_spinning() ? kBodySpinShadows : 0);
+    if (shadow_casters->count() > 0) lighting_features |= kLightingExactShadows;
   }
   RasterFrameStats stats;
   if (resolved.hole && !hole_body_list.empty()) {

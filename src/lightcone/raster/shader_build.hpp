@@ -103,8 +103,9 @@ inline std::string body_variant_defines(int features) {
 // light where the frame has none, the glossy lobe where no lit body is glossy, under the
 // spectral model the tables of lights moving relative to the bodies they light, and the
 // velocities of lights and of lit surfaces where all are at rest in W (the laws then fold to
-// their forms for beta = 0, which give the same values); and the table of lights in a texture,
-// which only frames with more lights than kUniformLamps need.
+// their forms for beta = 0, which give the same values); the table of lights in a texture,
+// which only frames with more lights than kUniformLamps need; and the shadow rays met against
+// bodies exactly, which only frames with such casters (raster/shadow_casters.hpp) need.
 inline constexpr int kUniformLamps = 16;  // lighting.glsl's lamp_texels
 enum LightingFeature {
   kLightingSpot = 1,
@@ -115,7 +116,8 @@ enum LightingFeature {
   kLightingMovingLights = 32,
   kLightingMovingSurfaces = 64,
   kLightingManyLights = 128,
-  kAllLightingFeatures = 255,
+  kLightingExactShadows = 256,
+  kAllLightingFeatures = 511,
 };
 inline std::string lighting_variant_defines(int features) {
   static constexpr FeatureDefine kDefines[] = {
@@ -126,7 +128,8 @@ inline std::string lighting_variant_defines(int features) {
       {kLightingMovingReflections, "LIGHTCONE_MOVING_LIGHT_REFLECTIONS"},
       {kLightingMovingLights, "LIGHTCONE_MOVING_LIGHTS"},
       {kLightingMovingSurfaces, "LIGHTCONE_MOVING_SURFACES"},
-      {kLightingManyLights, "LIGHTCONE_MANY_LIGHTS"}};
+      {kLightingManyLights, "LIGHTCONE_MANY_LIGHTS"},
+      {kLightingExactShadows, "LIGHTCONE_EXACT_SHADOWS"}};
   return variant_defines(features, kDefines);
 }
 

@@ -170,14 +170,26 @@ uniform sampler2D colour_rows;
 uniform float log_doppler_first;  // ln D of the first node
 uniform float log_doppler_step;
 
-vec3 received_colour(int row, float d) {
+// Where factor d falls between the rows' nodes: the node below it and the fraction past it
+// (found once for the rows a sample reads with one factor).
+struct ColourNode {
+  int below;
+  float past;
+};
+ColourNode colour_node(float d) {
   float x = (log(d) - log_doppler_first) / log_doppler_step;
   float last = float(textureSize(colour_rows, 0).x - 1);
   x = clamp(x, 0.0, last);
   float i = min(floor(x), last - 1.0);
-  vec3 a = texelFetch(colour_rows, ivec2(int(i), row), 0).rgb;
-  vec3 b = texelFetch(colour_rows, ivec2(int(i) + 1, row), 0).rgb;
-  return mix(a, b, x - i);
+  return ColourNode(int(i), x - i);
+}
+vec3 received_colour_at(int row, ColourNode node) {
+  vec3 a = texelFetch(colour_rows, ivec2(node.below, row), 0).rgb;
+  vec3 b = texelFetch(colour_rows, ivec2(node.below + 1, row), 0).rgb;
+  return mix(a, b, node.past);
+}
+vec3 received_colour(int row, float d) {
+  return received_colour_at(row, colour_node(d));
 }
 
 // Colours looked up per sample (textures, sky images, lit surfaces' outgoing radiance),
@@ -199,11 +211,13 @@ vec3 received_rgb(vec3 rgb, float d) {
   if (hue_model > 0)
     return hue_shift(c, d, hue_model == 2) * integrated_searchlight(d, hue_searchlight);
 #endif
+  ColourNode d_node = colour_node(d);
   if (spectral == 0)
-    return c.r * received_colour(primary_rows[0], d) + c.g * received_colour(primary_rows[1], d) +
-           c.b * received_colour(primary_rows[2], d);
+    return c.r * received_colour_at(primary_rows[0], d_node) +
+           c.g * received_colour_at(primary_rows[1], d_node) +
+           c.b * received_colour_at(primary_rows[2], d_node);
   float grey = min(c.r, min(c.g, c.b));
-  vec3 result = grey > 0.0 ? grey * received_colour(basis_first_row, d) : vec3(0.0);
+  vec3 result = grey > 0.0 ? grey * received_colour_at(basis_first_row, d_node) : vec3(0.0);
   vec3 q = (c - vec3(grey)) / reference_white;
   int l = 0;
   if (q.y > q[l]) l = 1;
@@ -217,8 +231,8 @@ vec3 received_rgb(vec3 rgb, float d) {
   int node = min(int(position), 62);
   float blend = position - float(node);
   int row = basis_first_row + 1 + 64 * node_case + node;
-  return result + scale * ((1.0 - blend) * received_colour(row, d) +
-                           blend * received_colour(row + 1, d));
+  return result + scale * ((1.0 - blend) * received_colour_at(row, d_node) +
+                           blend * received_colour_at(row + 1, d_node));
 }
 
 // frame/shading.cpp, sample_bilinear: texel centres at ((i + .5)/w, (j + .5)/h); u wraps, v

@@ -175,6 +175,7 @@ bool shadowed(Lamp light, vec4 surface, float cos_incidence) {
   return stored < 1.0 && distance > stored * light.shadow_far + bias;
 }
 
+#if defined(LIGHTCONE_EXACT_SHADOWS)  // a frame with bodies cast exactly
 // raster/shadow_casters.hpp: each body's shape met along the shadow ray carried into its rest
 // frame, where it stands still (trace/tracer.cpp's shadow rays: the segment between
 // kShadowEpsilon and 1 - kShadowEpsilon of the way to the emission event). Any number of them,
@@ -375,6 +376,7 @@ bool exactly_shadowed(vec4 surface, vec4 end, bool to_infinity) {
   }
   return false;
 }
+#endif  // LIGHTCONE_EXACT_SHADOWS
 #endif
 
 struct Incoming {
@@ -582,14 +584,16 @@ vec3 lit_colour(vec3 albedo, int k, Finish finish, vec3 u, float s, float d_came
   Leg view = receive_leg(surface, surface_velocity, vec4(0.0), camera_velocity);
   vec3 to_camera = view.emitted_direction;
   vec3 seen = vec3(0.0), outgoing = vec3(0.0);
+  ColourNode camera_node = colour_node(d_camera);  // the reflected rows' node, once
   for (int l = 0; l < light_count; ++l) {
     Lamp light = lamp(l);
     Incoming in_light;
     if (!incoming(light, surface, surface_velocity, normal, light_sample, in_light)) continue;
 #if !defined(LIGHTCONE_NO_SHADOWS)
-    if (shadowed(light, surface, dot(normal, in_light.direction_to_light)) ||
-        exactly_shadowed(surface, in_light.shadow_end, in_light.to_infinity))
-      continue;
+    if (shadowed(light, surface, dot(normal, in_light.direction_to_light))) continue;
+#if defined(LIGHTCONE_EXACT_SHADOWS)
+    if (exactly_shadowed(surface, in_light.shadow_end, in_light.to_infinity)) continue;
+#endif
 #endif
 #if defined(LIGHTCONE_GLOSSY)
     float gloss = finish.glossy ? glossy_reflectance(finish, normal, in_light.direction_to_light,
@@ -611,9 +615,9 @@ vec3 lit_colour(vec3 albedo, int k, Finish finish, vec3 u, float s, float d_came
 #if defined(LIGHTCONE_MOVING_LIGHT_REFLECTIONS)
         reflected = index.y > 0.5
                         ? reflection_table(int(index.x), log(d_camera), log(in_light.doppler))
-                        : received_colour(int(index.x), d_camera);
+                        : received_colour_at(int(index.x), camera_node);
 #else
-        reflected = received_colour(int(index.x), d_camera);
+        reflected = received_colour_at(int(index.x), camera_node);
 #endif
       }
       seen += diffuse / kPi * in_light.spectral_factor * reflected;
