@@ -218,7 +218,8 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   // for matte; specular), which the lighting pass reads there (lit_surfaces.frag).
   const std::size_t reflection_row_floats = 4 * std::max<std::size_t>(lights.size(), 1) + 2;
   frame_features = settings.doppler == DopplerModel::kHue ? kBodyHueModel : 0;
-  lighting_features = lights.size() > kUniformLamps ? kLightingManyLights : 0;
+  lighting_features = (lights.size() > kUniformLamps ? kLightingManyLights : 0) |
+                      (spectral ? kLightingSpectralModel : kLightingOtherModels);
   for (const LightDraw& d : lights)
     lighting_features |= (d.kind == 1   ? kLightingSpot
                           : d.kind == 2 ? kLightingSun

@@ -104,8 +104,10 @@ inline std::string body_variant_defines(int features) {
 // spectral model the tables of lights moving relative to the bodies they light, and the
 // velocities of lights and of lit surfaces where all are at rest in W (the laws then fold to
 // their forms for beta = 0, which give the same values); the table of lights in a texture,
-// which only frames with more lights than kUniformLamps need; and the shadow rays met against
-// bodies exactly, which only frames with such casters (raster/shadow_casters.hpp) need.
+// which only frames with more lights than kUniformLamps need; the shadow rays met against
+// bodies exactly, which only frames with such casters (raster/shadow_casters.hpp) need; and the
+// code of the colour models a frame does not use (a program with both reads the uniform
+// `spectral`).
 inline constexpr int kUniformLamps = 16;  // lighting.glsl's lamp_texels
 enum LightingFeature {
   kLightingSpot = 1,
@@ -117,7 +119,9 @@ enum LightingFeature {
   kLightingMovingSurfaces = 64,
   kLightingManyLights = 128,
   kLightingExactShadows = 256,
-  kAllLightingFeatures = 511,
+  kLightingSpectralModel = 512,
+  kLightingOtherModels = 1024,
+  kAllLightingFeatures = 2047,
 };
 inline std::string lighting_variant_defines(int features) {
   static constexpr FeatureDefine kDefines[] = {
@@ -129,7 +133,9 @@ inline std::string lighting_variant_defines(int features) {
       {kLightingMovingLights, "LIGHTCONE_MOVING_LIGHTS"},
       {kLightingMovingSurfaces, "LIGHTCONE_MOVING_SURFACES"},
       {kLightingManyLights, "LIGHTCONE_MANY_LIGHTS"},
-      {kLightingExactShadows, "LIGHTCONE_EXACT_SHADOWS"}};
+      {kLightingExactShadows, "LIGHTCONE_EXACT_SHADOWS"},
+      {kLightingSpectralModel, "LIGHTCONE_SPECTRAL_MODEL"},
+      {kLightingOtherModels, "LIGHTCONE_OTHER_MODELS"}};
   return variant_defines(features, kDefines);
 }
 

@@ -198,7 +198,15 @@ vec3 received_colour(int row, float d) {
 // nodes), each part's row tabulated from its table; the hue model, not linear in the colour:
 // frame/received_colour.cpp's law itself; the others are linear in the colour, so the received
 // colour is that of the three primaries, weighted.
+// `spectral`: 1 for the spectral model, else 0; a constant in programs built for one model
+// (shader_build.hpp's lighting_variant_defines).
+#if defined(LIGHTCONE_SPECTRAL_MODEL) && !defined(LIGHTCONE_OTHER_MODELS)
+const int spectral = 1;
+#elif defined(LIGHTCONE_OTHER_MODELS) && !defined(LIGHTCONE_SPECTRAL_MODEL)
+const int spectral = 0;
+#else
 uniform int spectral;
+#endif
 uniform int hue_model;        // 1: the hue model, 2: the same with the hue wrapping (hue_loop)
 uniform int hue_searchlight;  // its searchlight model, as integrated_searchlight's
 uniform int primary_rows[3];
