@@ -5,12 +5,14 @@
 // Embree's single precision, on the same triangle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <random>
 #include <string>
 
 #include "lightcone/frame/body_segments.hpp"
+#include "lightcone/frame/mesh_bvh.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
@@ -71,6 +73,45 @@ TEST(BodySegments, DirectSegmentsMeetBodiesWhereTheTracersDo) {
     EXPECT_GT(met, 3000);
     EXPECT_LE(differ, mesh ? 10 : 0);
   }
+}
+
+// A mesh's hierarchy (exact shadows, segments met directly): every triangle in one leaf, every
+// leaf's box holding its triangles and every inner box its children's, leaves of at most four
+// triangles, and a depth the traversal stacks hold (median splits: about log2 of the leaves).
+TEST(MeshBvh, HoldsEveryTriangleOnce) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-5, 5);
+  Mesh mesh;
+  for (int i = 0; i < 3000; ++i)
+    mesh.positions.push_back({coordinate(random), coordinate(random), coordinate(random)});
+  std::uniform_int_distribution<std::uint32_t> vertex(0, 2999);
+  for (int i = 0; i < 5001; ++i)
+    mesh.triangles.push_back({vertex(random), vertex(random), vertex(random)});
+  const MeshBvh bvh = build_mesh_bvh(mesh);
+  std::vector<int> seen(mesh.triangles.size(), 0);
+  const auto holds = [](const MeshBvh::Node& n, const Vec3& p) {
+    for (int i = 0; i < 3; ++i)
+      if (p[i] < n.lower[i] || p[i] > n.upper[i]) return false;
+    return true;
+  };
+  for (std::size_t k = 0; k < bvh.nodes.size(); ++k) {
+    const MeshBvh::Node& n = bvh.nodes[k];
+    if (n.count == 0) {
+      for (const std::size_t child : {k + 1, static_cast<std::size_t>(n.second)}) {
+        ASSERT_LT(child, bvh.nodes.size());
+        EXPECT_TRUE(holds(n, bvh.nodes[child].lower) && holds(n, bvh.nodes[child].upper));
+      }
+      continue;
+    }
+    EXPECT_LE(n.count, 4);
+    for (int i = n.first; i < n.first + n.count; ++i) {
+      const std::uint32_t t = bvh.order[static_cast<std::size_t>(i)];
+      ++seen[t];
+      for (const std::uint32_t v : mesh.triangles[t]) EXPECT_TRUE(holds(n, mesh.positions[v]));
+    }
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size()));
+  EXPECT_LE(bvh.depth, 12);  // 5001 triangles: 11 halvings to leaves of four or fewer
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <random>
 #include <string>
 
 #include "lightcone/raster/raster_renderer.hpp"
@@ -304,45 +303,6 @@ TEST(RasterShadowCast, EveryBodyCasts) {
   box.material.unlit = false;
   scene.objects = {box, moving_mesh, ball, flat, spinning_box};
   EXPECT_TRUE(raster_differences(scene).empty());
-}
-
-// A mesh's hierarchy for exact shadows: every triangle in one leaf, every leaf's box holding
-// its triangles and every inner box its children's, leaves of at most four triangles, and a
-// depth the shader's stack holds (median splits: about log2 of the leaves).
-TEST(RasterShadowCast, MeshHierarchyHoldsEveryTriangleOnce) {
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> coordinate(-5, 5);
-  Mesh mesh;
-  for (int i = 0; i < 3000; ++i)
-    mesh.positions.push_back({coordinate(random), coordinate(random), coordinate(random)});
-  std::uniform_int_distribution<std::uint32_t> vertex(0, 2999);
-  for (int i = 0; i < 5001; ++i)
-    mesh.triangles.push_back({vertex(random), vertex(random), vertex(random)});
-  const CasterBvh bvh = build_caster_bvh(mesh);
-  std::vector<int> seen(mesh.triangles.size(), 0);
-  const auto holds = [](const CasterBvh::Node& n, const Vec3& p) {
-    for (int i = 0; i < 3; ++i)
-      if (p[i] < n.lower[i] || p[i] > n.upper[i]) return false;
-    return true;
-  };
-  for (std::size_t k = 0; k < bvh.nodes.size(); ++k) {
-    const CasterBvh::Node& n = bvh.nodes[k];
-    if (n.count == 0) {
-      for (const std::size_t child : {k + 1, static_cast<std::size_t>(n.second)}) {
-        ASSERT_LT(child, bvh.nodes.size());
-        EXPECT_TRUE(holds(n, bvh.nodes[child].lower) && holds(n, bvh.nodes[child].upper));
-      }
-      continue;
-    }
-    EXPECT_LE(n.count, 4);
-    for (int i = n.first; i < n.first + n.count; ++i) {
-      const std::uint32_t t = bvh.order[static_cast<std::size_t>(i)];
-      ++seen[t];
-      for (const std::uint32_t v : mesh.triangles[t]) EXPECT_TRUE(holds(n, mesh.positions[v]));
-    }
-  }
-  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(seen.size()));
-  EXPECT_LE(bvh.depth, 12);  // 5001 triangles: 11 halvings to leaves of four or fewer
 }
 
 // Each colour, searchlight and light-delay model on the lit street (shaded at the ray tracer's

@@ -1,6 +1,7 @@
 #include "lightcone/frame/body_segments.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <variant>
 
@@ -34,6 +35,58 @@ bool segment_meets_triangle(const ShapeRay& ray, const Vec3& a, const Vec3& b, c
   return true;
 }
 
+// Whether the segment origin + s direction, s in [0, far], passes through the node's box (the
+// box widened by rounding, so that a flat leaf's own triangles are never skipped).
+bool meets_box(const MeshBvh::Node& node, const ShapeRay& ray, const Vec3& inverse, double far) {
+  double enter = 0, leave = far;
+  for (int k = 0; k < 3; ++k) {
+    if (ray.direction[k] == 0) {
+      if (ray.origin[k] < node.lower[k] || ray.origin[k] > node.upper[k]) return false;
+      continue;
+    }
+    double t0 = (node.lower[k] - ray.origin[k]) * inverse[k];
+    double t1 = (node.upper[k] - ray.origin[k]) * inverse[k];
+    if (t0 > t1) std::swap(t0, t1);
+    enter = std::max(enter, t0);
+    leave = std::min(leave, t1);
+  }
+  return enter <= leave + 1e-12 * (1 + std::abs(leave));
+}
+
+// The nearest triangle of `mesh` that the segment meets, through its hierarchy.
+std::optional<SegmentHit> nearest_on_mesh(const Mesh& mesh, const MeshBvh& bvh,
+                                          const ShapeRay& ray) {
+  if (bvh.nodes.empty()) return std::nullopt;
+  const Vec3 inverse{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
+  std::optional<SegmentHit> nearest;
+  SegmentHit hit;
+  std::array<int, kMeshBvhMaxDepth> stack;
+  int top = 0;
+  int node = 0;
+  while (true) {
+    const MeshBvh::Node& n = bvh.nodes[static_cast<std::size_t>(node)];
+    if (meets_box(n, ray, inverse, nearest ? nearest->s : 1.0)) {
+      if (n.count == 0) {
+        stack[static_cast<std::size_t>(top++)] = n.second;
+        ++node;
+        continue;
+      }
+      for (int i = n.first; i < n.first + n.count; ++i) {
+        const std::uint32_t t = bvh.order[static_cast<std::size_t>(i)];
+        const auto& tri = mesh.triangles[t];
+        if (segment_meets_triangle(ray, mesh.positions[tri[0]], mesh.positions[tri[1]],
+                                   mesh.positions[tri[2]], hit) &&
+            (!nearest || hit.s < nearest->s)) {
+          hit.prim = t;
+          nearest = hit;
+        }
+      }
+    }
+    if (top == 0) return nearest;
+    node = stack[static_cast<std::size_t>(--top)];
+  }
+}
+
 }  // namespace
 
 MeshBall mesh_ball(const Mesh& mesh) {
@@ -50,37 +103,21 @@ MeshBall mesh_ball(const Mesh& mesh) {
 }
 
 DirectBodySegments::DirectBodySegments(const ResolvedScene& scene)
-    : scene_(scene), mesh_balls_(scene.bodies.size()) {
+    : scene_(scene), body_hierarchies_(scene.bodies.size(), nullptr) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape))
-      mesh_balls_[i] = mesh_ball(*m->mesh);
+    if (const auto* m = std::get_if<MeshShape>(&scene.bodies[i].object->shape)) {
+      auto [it, added] = hierarchies_.try_emplace(m->mesh.get());
+      if (added) it->second = build_mesh_bvh(*m->mesh);
+      body_hierarchies_[i] = &it->second;
+    }
 }
 
 std::optional<SegmentHit> DirectBodySegments::body_on_shape_segment(int body, const Vec3& from,
                                                                     const Vec3& to) const {
   const ShapeRay ray{from, to - from};
   const Shape& shape = scene_.bodies[body].object->shape;
-  if (const auto* m = std::get_if<MeshShape>(&shape)) {
-    const MeshBall& ball = mesh_balls_[body];
-    double in, out;
-    if (!sphere_span(Sphere{ball.radius}, ShapeRay{ray.origin - ball.centre, ray.direction}, in,
-                     out) ||
-        out < 0 || in > 1)
-      return std::nullopt;
-    const Mesh& mesh = *m->mesh;
-    std::optional<SegmentHit> nearest;
-    SegmentHit hit;
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-      const auto& tri = mesh.triangles[i];
-      if (segment_meets_triangle(ray, mesh.positions[tri[0]], mesh.positions[tri[1]],
-                                 mesh.positions[tri[2]], hit) &&
-          (!nearest || hit.s < nearest->s)) {
-        hit.prim = static_cast<unsigned>(i);
-        nearest = hit;
-      }
-    }
-    return nearest;
-  }
+  if (const auto* m = std::get_if<MeshShape>(&shape))
+    return nearest_on_mesh(*m->mesh, *body_hierarchies_[static_cast<std::size_t>(body)], ray);
   double s = 0;
   if (!intersect_analytic(shape, ray, 0, 1, s)) return std::nullopt;
   return SegmentHit{s, 0, 0, 0};

@@ -4,9 +4,11 @@
 // no Embree (the browser's page), for the raster renderer's shadows near a black hole.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <vector>
 
+#include "lightcone/frame/mesh_bvh.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/surface_hit.hpp"
 #include "lightcone/physics/vec.hpp"
@@ -30,10 +32,6 @@ class BodySegments {
                                                           const Vec3& to) const = 0;
 };
 
-// Each body met directly: an analytic shape by its closed form, as the tracer meets it
-// (shape_intersection.hpp), a mesh triangle by triangle in double precision behind the ball
-// that holds it. Without an acceleration structure a segment through a mesh's ball costs a test
-// per triangle.
 // The ball about a mesh's bounds centre that holds it, in its shape coordinates (widened by a
 // part in a million for rounding): a segment that misses it misses the mesh.
 struct MeshBall {
@@ -42,6 +40,9 @@ struct MeshBall {
 };
 MeshBall mesh_ball(const Mesh& mesh);
 
+// Each body met directly: an analytic shape by its closed form, as the tracer meets it
+// (shape_intersection.hpp), a mesh through a hierarchy of its triangles (mesh_bvh.hpp), each
+// leaf's triangles met in double precision.
 class DirectBodySegments final : public BodySegments {
  public:
   // The scene must outlive this.
@@ -51,7 +52,8 @@ class DirectBodySegments final : public BodySegments {
 
  private:
   const ResolvedScene& scene_;
-  std::vector<MeshBall> mesh_balls_;  // per body (unused for analytic shapes)
+  std::map<const Mesh*, MeshBvh> hierarchies_;    // one per mesh of the scene
+  std::vector<const MeshBvh*> body_hierarchies_;  // per body (null for analytic shapes)
 };
 
 // Completes `hit` (its body and shape_point set; `prim` the mesh triangle met) with the texture

@@ -1,7 +1,6 @@
 #include "lightcone/raster/shadow_casters.hpp"
 
 #include <algorithm>
-#include <numeric>
 #include <string>
 
 #include "lightcone/raster/gl_context.hpp"
@@ -17,7 +16,6 @@ constexpr int kTexelsPerRow = 2048;
 // rows of rest_from_shape and of shape_of_rest, its axis and rate, its clock's row, and the
 // radius of its ball and its clock's origin.
 constexpr int kCasterTexels = 14;
-constexpr int kLeafTriangles = 4;
 
 // Uploads `texels` RGBA floats as rows of kTexelsPerRow texels.
 void upload_rows(GLuint texture, int unit, std::vector<float>& texels, const char* what) {
@@ -44,48 +42,6 @@ void push(std::vector<float>& out, const Vec3& v, double w) {
   out.insert(out.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z),
                          static_cast<float>(w)});
 }
-
-struct BvhBuilder {
-  const Mesh& mesh;
-  std::vector<Vec3> centres;
-  CasterBvh bvh;
-
-  Bounds3 bounds_of(std::size_t begin, std::size_t end) const {
-    Bounds3 b = empty_bounds();
-    for (std::size_t i = begin; i < end; ++i)
-      for (const std::uint32_t v : mesh.triangles[bvh.order[i]]) expand(b, mesh.positions[v]);
-    return b;
-  }
-
-  void build(std::size_t begin, std::size_t end, int depth) {
-    bvh.depth = std::max(bvh.depth, depth);
-    const int index = static_cast<int>(bvh.nodes.size());
-    bvh.nodes.emplace_back();
-    const Bounds3 box = bounds_of(begin, end);
-    bvh.nodes[index].lower = box.lower;
-    bvh.nodes[index].upper = box.upper;
-    // Median splits halve the count, so the depth stays within the stack for any mesh that
-    // fits the texture; the guard keeps it there regardless.
-    if (end - begin <= kLeafTriangles || depth == kCasterBvhMaxDepth) {
-      bvh.nodes[index].count = static_cast<int>(end - begin);
-      bvh.nodes[index].first = static_cast<int>(begin);
-      return;
-    }
-    Bounds3 spread = empty_bounds();
-    for (std::size_t i = begin; i < end; ++i) expand(spread, centres[bvh.order[i]]);
-    const Vec3 size = spread.upper - spread.lower;
-    const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
-    const std::size_t middle = begin + (end - begin) / 2;
-    std::nth_element(
-        bvh.order.begin() + static_cast<std::ptrdiff_t>(begin),
-        bvh.order.begin() + static_cast<std::ptrdiff_t>(middle),
-        bvh.order.begin() + static_cast<std::ptrdiff_t>(end),
-        [&](std::uint32_t a, std::uint32_t b) { return centres[a][axis] < centres[b][axis]; });
-    build(begin, middle, depth + 1);
-    bvh.nodes[index].second = static_cast<int>(bvh.nodes.size());
-    build(middle, end, depth + 1);
-  }
-};
 
 }  // namespace
 
@@ -134,18 +90,6 @@ std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t l
   return out;
 }
 
-CasterBvh build_caster_bvh(const Mesh& mesh) {
-  BvhBuilder builder{mesh, {}, {}};
-  builder.centres.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles)
-    builder.centres.push_back((mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) /
-                              3.0);
-  builder.bvh.order.resize(mesh.triangles.size());
-  std::iota(builder.bvh.order.begin(), builder.bvh.order.end(), 0u);
-  builder.build(0, mesh.triangles.size(), 1);
-  return std::move(builder.bvh);
-}
-
 ShadowCasters::ShadowCasters() {
   glGenTextures(1, &table_texture_);
   glGenTextures(1, &mesh_texture_);
@@ -175,10 +119,10 @@ void ShadowCasters::prepare(const ResolvedScene& scene, std::size_t lights) {
     // first triangle), then its triangles (three texels each, a corner a texel).
     std::vector<float> texels;
     for (auto& [mesh, root] : roots) {
-      const CasterBvh bvh = build_caster_bvh(*mesh);
+      const MeshBvh bvh = build_mesh_bvh(*mesh);
       root = static_cast<int>(texels.size() / 4);
       const int triangles = root + 2 * static_cast<int>(bvh.nodes.size());
-      for (const CasterBvh::Node& n : bvh.nodes) {
+      for (const MeshBvh::Node& n : bvh.nodes) {
         push(texels, n.lower, n.count);
         push(texels, n.upper, n.count ? triangles + 3 * n.first : root + 2 * n.second);
       }

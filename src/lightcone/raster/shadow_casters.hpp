@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "lightcone/frame/mesh_bvh.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/raster/gl.hpp"
 
@@ -34,25 +35,6 @@ struct ExactCaster {
 // Of the scene's bodies, those cast exactly for any of its first `lights` lights
 // (raster_shadow_cast), in the scene's order.
 std::vector<ExactCaster> exact_casters(const ResolvedScene& scene, std::size_t lights);
-
-// A mesh's triangles for a shadow ray's traversal on the GPU: nodes depth first, each an
-// inner node (its first child the next node, `second` the other) or a leaf (`count` triangles
-// from `first` of `order`), every node's box holding its triangles.
-struct CasterBvh {
-  struct Node {
-    Vec3 lower, upper;
-    int count = 0;   // 0 for an inner node
-    int second = 0;  // inner: the index of its second child
-    int first = 0;   // leaf: its first triangle in `order`
-  };
-  std::vector<Node> nodes;
-  std::vector<std::uint32_t> order;  // the mesh's triangles, leaf by leaf
-  int depth = 0;                     // the most nodes on a path from the root
-};
-// Median splits along the widest axis of the triangles' centres, at most 4 triangles a leaf.
-CasterBvh build_caster_bvh(const Mesh& mesh);
-// The most nodes on a root-to-leaf path that lighting.glsl's traversal stack holds.
-inline constexpr int kCasterBvhMaxDepth = 32;
 
 // The texture units the body programs read the casters' tables from (units 0 to 11 hold the
 // other tables).

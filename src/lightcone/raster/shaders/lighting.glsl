@@ -237,11 +237,11 @@ bool shape_span(int kind, vec3 size, vec3 a, vec3 d, out float enter, out float 
 }
 
 #ifdef LIGHTCONE_MESH_SHADOWS
-// The meshes' hierarchies (shadow_casters.hpp's CasterBvh): a node is two texels, (lower, leaf
+// The meshes' hierarchies (frame/mesh_bvh.hpp's MeshBvh): a node is two texels, (lower, leaf
 // count) and (upper, its second child's texel or its first triangle's), its first child the
 // next node; a triangle is three texels, its corners.
 uniform highp sampler2D caster_meshes;
-const int kCasterBvhMaxDepth = 32;  // shadow_casters.hpp
+const int kCasterBvhMaxDepth = 32;  // frame/mesh_bvh.hpp's kMeshBvhMaxDepth
 
 vec4 mesh_texel(int i) {
   return texelFetch(caster_meshes, ivec2(i % kCasterTexelsPerRow, i / kCasterTexelsPerRow), 0);
