@@ -134,12 +134,7 @@ void complete_surface_hit(const ResolvedScene& scene, const Vec3& incoming, Hit&
                e2 = mesh.positions[tri[2]] - a, p = hit.shape_point - a;
     const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
     const double p1 = dot(p, e1), p2 = dot(p, e2), det = d11 * d22 - d12 * d12;
-    const double bu = (d22 * p1 - d12 * p2) / det, bv = (d11 * p2 - d12 * p1) / det;
-    const double bw = 1 - bu - bv;
-    if (!mesh.uvs.empty())
-      for (int k = 0; k < 2; ++k)
-        hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
-    hit.shape_normal = cross(e1, e2);
+    mesh_surface(mesh, prim, (d22 * p1 - d12 * p2) / det, (d11 * p2 - d12 * p1) / det, hit);
   } else {
     analytic_surface(object.shape, hit);
   }

@@ -1,6 +1,7 @@
-// The texture coordinates and normal of a point on an analytic shape's surface (sphere, box,
-// plane), in its own coordinates: where the tracer's rays meet them (frame/shape_intersection.hpp)
-// and where the raster renderer's vertices near a black hole lie (raster/hole_bodies.hpp).
+// The texture coordinates and normal of a point on a shape's surface (an analytic shape's, or a
+// mesh triangle's), in its own coordinates: where the tracer's rays meet them
+// (frame/shape_intersection.hpp) and where the raster renderer's vertices near a black hole lie
+// (raster/hole_bodies.hpp).
 #pragma once
 
 #include <algorithm>
@@ -62,6 +63,19 @@ inline void analytic_surface(const Shape& shape, Hit& hit) {
     hit.uv = plane_uv(*plane, hit.shape_point);
     hit.shape_normal = {0, 1, 0};
   }
+}
+
+// The texture coordinates (where the mesh has them) and the normal, not of unit length, of
+// mesh triangle `prim` at the point of barycentric coordinates (bu, bv) of its second and third
+// corners.
+inline void mesh_surface(const Mesh& mesh, unsigned prim, double bu, double bv, Hit& hit) {
+  const auto& tri = mesh.triangles[prim];
+  const double bw = 1 - bu - bv;
+  if (!mesh.uvs.empty())
+    for (int k = 0; k < 2; ++k)
+      hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
+  hit.shape_normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                           mesh.positions[tri[2]] - mesh.positions[tri[0]]);
 }
 
 }  // namespace lightcone

@@ -624,11 +624,7 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
                                : mesh.positions[tri[0]] * bw + mesh.positions[tri[1]] * bu +
                                      mesh.positions[tri[2]] * bv;
     hit.s = spinning ? exact.s : found.tfar;
-    if (!mesh.uvs.empty())
-      for (int k = 0; k < 2; ++k)
-        hit.uv[k] = mesh.uvs[tri[0]][k] * bw + mesh.uvs[tri[1]][k] * bu + mesh.uvs[tri[2]][k] * bv;
-    hit.shape_normal = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
-                             mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+    mesh_surface(mesh, prim, bu, bv, hit);
   } else {
     if (!spinning) exact = intersect(index, false, {}, direction, 0, kInfinity, &context.embree);
     hit.s = std::isfinite(exact.s) ? exact.s : found.tfar;
