@@ -295,6 +295,16 @@ double EdgeErrorBound::pixels(const Vec3& shape_a, const ApparentPoint& a, doubl
 
 namespace {
 
+// One vertex of the buffer (body.vert's attributes: a position and its face's plane) and, for a
+// textured mesh, its face's texture map.
+void append_vertex(const Vec3& position, const std::array<float, 4>& plane,
+                   const std::array<float, 8>& uv_map, std::vector<float>& out,
+                   std::vector<float>* uv_maps) {
+  out.insert(out.end(), {static_cast<float>(position.x), static_cast<float>(position.y),
+                         static_cast<float>(position.z), plane[0], plane[1], plane[2], plane[3]});
+  if (uv_maps) uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
+}
+
 // Straight rays: a corner is its shape point and where it is seen (each computed once).
 struct FlatSeeing {
   struct Corner {
@@ -330,12 +340,7 @@ struct FlatSeeing {
   void emit(const Corner& a, const Corner& b, const Corner& c) const {
     if (culled(a.seen.position, b.seen.position, c.seen.position)) return;
     for (const Corner* k : {&a, &b, &c})
-      out.insert(out.end(),
-                 {static_cast<float>(k->seen.position.x), static_cast<float>(k->seen.position.y),
-                  static_cast<float>(k->seen.position.z), plane[0], plane[1], plane[2], plane[3]});
-    if (uv_maps)
-      for (int corner = 0; corner < 3; ++corner)
-        uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
+      append_vertex(k->seen.position, plane, uv_map, out, uv_maps);
   }
   // Whether the rasteriser culls the triangle drawn through these apparent positions. Its
   // winding in the window is the side of its plane the camera (the origin) lies on, clipped or
@@ -397,12 +402,8 @@ void rest_patches(const RestMesh& mesh, std::vector<float>& out, std::vector<flo
   std::array<float, 8> uv_map{};
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     face_of(mesh, t, uv_maps != nullptr, plane, uv_map);
-    for (const std::uint32_t corner : mesh.triangles[t]) {
-      const Vec3& p = mesh.positions[corner];
-      out.insert(out.end(), {static_cast<float>(p.x), static_cast<float>(p.y),
-                             static_cast<float>(p.z), plane[0], plane[1], plane[2], plane[3]});
-      if (uv_maps) uv_maps->insert(uv_maps->end(), uv_map.begin(), uv_map.end());
-    }
+    for (const std::uint32_t corner : mesh.triangles[t])
+      append_vertex(mesh.positions[corner], plane, uv_map, out, uv_maps);
   }
 }
 
