@@ -478,7 +478,7 @@ void SceneReader::check_texture_coordinates(const Scene& scene) const {
     fail_at(path, lines_.value_line(path),
             fmt::format("needs the texture coordinates of the mesh, and {} has none",
                         file == assets_.end() ? std::string("the mesh")
-                                              : "\"" + file->file.string() + "\""));
+                                              : fmt::format("\"{}\"", file->file.string())));
   }
 }
 
