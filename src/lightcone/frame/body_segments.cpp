@@ -37,27 +37,17 @@ bool segment_meets_triangle(const ShapeRay& ray, const Vec3& a, const Vec3& b, c
 
 // Whether the segment origin + s direction, s in [0, far], passes through the node's box (the
 // box widened by rounding, so that a flat leaf's own triangles are never skipped).
-bool meets_box(const MeshBvh::Node& node, const ShapeRay& ray, const Vec3& inverse, double far) {
-  double enter = 0, leave = far;
-  for (int k = 0; k < 3; ++k) {
-    if (ray.direction[k] == 0) {
-      if (ray.origin[k] < node.lower[k] || ray.origin[k] > node.upper[k]) return false;
-      continue;
-    }
-    double t0 = (node.lower[k] - ray.origin[k]) * inverse[k];
-    double t1 = (node.upper[k] - ray.origin[k]) * inverse[k];
-    if (t0 > t1) std::swap(t0, t1);
-    enter = std::max(enter, t0);
-    leave = std::min(leave, t1);
-  }
-  return enter <= leave + 1e-12 * (1 + std::abs(leave));
+bool meets_box(const MeshBvh::Node& node, const ShapeRay& ray, double far) {
+  double in, out;
+  if (!bounds_span(node.lower, node.upper, ray, in, out)) return false;
+  const double leave = std::min(out, far);
+  return std::max(in, 0.0) <= leave + 1e-12 * (1 + std::abs(leave));
 }
 
 // The nearest triangle of `mesh` that the segment meets, through its hierarchy.
 std::optional<SegmentHit> nearest_on_mesh(const Mesh& mesh, const MeshBvh& bvh,
                                           const ShapeRay& ray) {
   if (bvh.nodes.empty()) return std::nullopt;
-  const Vec3 inverse{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
   std::optional<SegmentHit> nearest;
   SegmentHit hit;
   std::array<int, kMeshBvhMaxDepth> stack;
@@ -65,7 +55,7 @@ std::optional<SegmentHit> nearest_on_mesh(const Mesh& mesh, const MeshBvh& bvh,
   int node = 0;
   while (true) {
     const MeshBvh::Node& n = bvh.nodes[static_cast<std::size_t>(node)];
-    if (meets_box(n, ray, inverse, nearest ? nearest->s : 1.0)) {
+    if (meets_box(n, ray, nearest ? nearest->s : 1.0)) {
       if (n.count == 0) {
         stack[static_cast<std::size_t>(top++)] = n.second;
         ++node;
@@ -88,19 +78,6 @@ std::optional<SegmentHit> nearest_on_mesh(const Mesh& mesh, const MeshBvh& bvh,
 }
 
 }  // namespace
-
-MeshBall mesh_ball(const Mesh& mesh) {
-  Vec3 lower = mesh.positions.empty() ? Vec3{} : mesh.positions[0], upper = lower;
-  for (const Vec3& p : mesh.positions)
-    for (int k = 0; k < 3; ++k) {
-      lower[k] = std::min(lower[k], p[k]);
-      upper[k] = std::max(upper[k], p[k]);
-    }
-  MeshBall ball{(lower + upper) * 0.5, 0};
-  for (const Vec3& p : mesh.positions) ball.radius = std::max(ball.radius, length(p - ball.centre));
-  ball.radius = ball.radius * (1 + 1e-6) + 1e-9;
-  return ball;
-}
 
 DirectBodySegments::DirectBodySegments(const ResolvedScene& scene)
     : scene_(scene), body_hierarchies_(scene.bodies.size(), nullptr) {

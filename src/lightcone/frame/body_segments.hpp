@@ -32,14 +32,6 @@ class BodySegments {
                                                           const Vec3& to) const = 0;
 };
 
-// The ball about a mesh's bounds centre that holds it, in its shape coordinates (widened by a
-// part in a million for rounding): a segment that misses it misses the mesh.
-struct MeshBall {
-  Vec3 centre;
-  double radius = 0;
-};
-MeshBall mesh_ball(const Mesh& mesh);
-
 // Each body met directly: an analytic shape by its closed form, as the tracer meets it
 // (shape_intersection.hpp), a mesh through a hierarchy of its triangles (mesh_bvh.hpp), each
 // leaf's triangles met in double precision.

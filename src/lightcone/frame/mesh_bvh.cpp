@@ -1,6 +1,7 @@
 #include "lightcone/frame/mesh_bvh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "lightcone/frame/resolved_scene.hpp"
@@ -53,6 +54,19 @@ struct BvhBuilder {
 };
 
 }  // namespace
+
+MeshBall mesh_ball(const Mesh& mesh) {
+  Vec3 lower = mesh.positions.empty() ? Vec3{} : mesh.positions[0], upper = lower;
+  for (const Vec3& p : mesh.positions)
+    for (int k = 0; k < 3; ++k) {
+      lower[k] = std::min(lower[k], p[k]);
+      upper[k] = std::max(upper[k], p[k]);
+    }
+  MeshBall ball{(lower + upper) * 0.5, 0};
+  for (const Vec3& p : mesh.positions) ball.radius = std::max(ball.radius, length(p - ball.centre));
+  ball.radius = ball.radius * (1 + 1e-6) + 1e-9;
+  return ball;
+}
 
 MeshBvh build_mesh_bvh(const Mesh& mesh) {
   BvhBuilder builder{mesh, {}, {}};

@@ -1,7 +1,8 @@
-// A mesh's triangles in a bounding-volume hierarchy of its own, for the renderers that meet
-// meshes without Embree: the raster renderer's exact shadows (raster/shadow_casters.hpp, which
-// hands it to lighting.glsl's traversal) and the segments of curved rays met directly
-// (body_segments.hpp, DirectBodySegments).
+// A mesh's bounds for meeting it: the ball that holds it (the tracer's test before Embree's), and
+// its triangles in a bounding-volume hierarchy of its own, for the renderers that meet meshes
+// without Embree: the raster renderer's exact shadows (raster/shadow_casters.hpp, which hands it
+// to lighting.glsl's traversal) and the segments of curved rays met directly (body_segments.hpp,
+// DirectBodySegments).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,14 @@
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
+
+// The ball about a mesh's bounds centre that holds it, in its shape coordinates (widened by a
+// part in a million for rounding): a segment that misses it misses the mesh.
+struct MeshBall {
+  Vec3 centre;
+  double radius = 0;
+};
+MeshBall mesh_ball(const Mesh& mesh);
 
 // Nodes depth first, each an inner node (its first child the next node, `second` the other) or
 // a leaf (`count` triangles from `first` of `order`), every node's box holding its triangles.

@@ -36,22 +36,27 @@ inline bool sphere_span(const Sphere& sphere, const ShapeRay& ray, double& in, d
   return true;
 }
 
-inline bool box_span(const Box& box, const ShapeRay& ray, double& in, double& out) {
+// The entry and exit parameters of a ray through the axis-aligned box from `lower` to `upper`.
+inline bool bounds_span(const Vec3& lower, const Vec3& upper, const ShapeRay& ray, double& in,
+                        double& out) {
   in = -std::numeric_limits<double>::infinity();
   out = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {
-    const double h = box.size[i] * 0.5;
     if (ray.direction[i] == 0) {
-      if (std::abs(ray.origin[i]) > h) return false;
+      if (ray.origin[i] < lower[i] || ray.origin[i] > upper[i]) return false;
       continue;
     }
     const double inv = 1.0 / ray.direction[i];
-    double t0 = (-h - ray.origin[i]) * inv, t1 = (h - ray.origin[i]) * inv;
+    double t0 = (lower[i] - ray.origin[i]) * inv, t1 = (upper[i] - ray.origin[i]) * inv;
     if (t0 > t1) std::swap(t0, t1);
     in = std::max(in, t0);
     out = std::min(out, t1);
   }
   return in <= out;
+}
+
+inline bool box_span(const Box& box, const ShapeRay& ray, double& in, double& out) {
+  return bounds_span(box.size * -0.5, box.size * 0.5, ray, in, out);
 }
 
 // The first end of a span [in, out] that lies in [tnear, tfar).

@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "lightcone/frame/mesh_bvh.hpp"
 #include "lightcone/frame/shape_intersection.hpp"
 #include "lightcone/trace/embree_rays.hpp"
 #include "lightcone/trace/image_bins.hpp"
