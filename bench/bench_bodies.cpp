@@ -8,6 +8,7 @@
 // some kernels refuse; then the figure is the process's peak so far):
 //   lightcone_bench --benchmark_filter='Bodies/bodies:1000000'
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <fstream>
 #include <random>
@@ -33,7 +34,7 @@ Scene spheres(int count) {
   const int side = static_cast<int>(std::cbrt(static_cast<double>(count))) + 1;
   for (int i = 0; i < count; ++i) {
     Object o;
-    o.name = "s" + std::to_string(i);
+    o.name = fmt::format("s{}", i);
     o.shape = Sphere{0.3};
     o.world_line.position = {i % side - side / 2.0, (i / side) % side - side / 2.0,
                              -5.0 - i / (side * side)};

@@ -8,6 +8,7 @@
 //   Motion/spinning     the same inertial spheres, each spinning (rim speed up to 0.5).
 // The ratio to Motion/inertial in one run is the figure.
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <random>
 #include <string>
@@ -30,7 +31,7 @@ Scene bodies(Kind kind) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < 100; ++i) {
     Object o;
-    o.name = "b" + std::to_string(i);
+    o.name = fmt::format("b{}", i);
     o.shape = Sphere{0.6};
     o.world_line = {0, {2.0 * (i % 10) - 9.0 - 6, 1.4 * (i / 10 % 10) - 6.3, -2.0}, {}};
     o.world_line.velocity = {0.3 + 0.3 * std::abs(u(rng)), 0.1 * u(rng), 0.1 * u(rng)};

@@ -41,7 +41,7 @@ TEST(Aov, DopplerEmissionTimeAndDistanceAreWhatLocateSaysOfThePointSeen) {
     s.camera.world_line.velocity = c.camera_velocity;
     s.camera.world_line.time = 3;
     s.objects.push_back(make_object("ball", Sphere{1.0}, c.ball_position, c.ball_velocity,
-                                    Material{SolidColor{{1, 1, 1}}, true}));
+                                    Material{SolidColor{{1, 1, 1}}, true, {}}));
     s.camera.width = s.camera.height = 15;
     // Aim at the ball's apparent centre: the located pixel is then the centre one.
     const LocateQuery centre{LocateQuery::Kind::ObjectPoint, "ball", {0, 0, 0}};

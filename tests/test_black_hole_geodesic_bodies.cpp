@@ -152,7 +152,9 @@ TEST(BlackHoleGeodesicBodies, RadialFallIsSeenWithMinusPDotU) {
         }
       EXPECT_GT(hits, 5);
       EXPECT_GT(slowest, 0.1);  // it is falling fast: the Doppler factor is tested
-      if (std::isinf(r0)) EXPECT_GT(along_the_line, 0);
+      if (std::isinf(r0)) {
+        EXPECT_GT(along_the_line, 0);
+      }
     }
 }
 

@@ -106,7 +106,9 @@ TEST(BundledScenes, EachIsReadableAtItsDefaults) {
     std::size_t count = 0;
     for (std::size_t p = 0; p < pixels; ++p)
       if (moving[p]) brightness += png_brightness(image, p), ++count;
-    if (count > 0) EXPECT_GE(brightness / count, 0.05) << count << " pixels";
+    if (count > 0) {
+      EXPECT_GE(brightness / count, 0.05) << count << " pixels";
+    }
   }
 }
 

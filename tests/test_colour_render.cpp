@@ -35,22 +35,23 @@ double head_on_doppler(double beta) {
 using test::make_object;
 
 Material checker(double size, Rgb a, Rgb b) {
-  return {Checker{size, {a, b}}, true};
+  return {Checker{size, {a, b}}, true, {}};
 }
 Material solid(Rgb c) {
-  return {SolidColor{c}, true};
+  return {SolidColor{c}, true, {}};
 }
 Material blackbody(double temperature_k, double luminance) {
-  return {Blackbody{temperature_k, luminance}, true};
+  return {Blackbody{temperature_k, luminance}, true, {}};
 }
 // A reddish tabulated spectrum that also has ultraviolet and infrared to shift into view.
 Material tabulated() {
   return {EmissionSpectrum{{200, 400, 550, 700, 1000, 2000}, {0.05, 0.1, 0.3, 0.8, 0.6, 0.2}},
-          true};
+          true,
+          {}};
 }
 // Flat over every wavelength that can be shifted into view.
 Material flat(double value) {
-  return {EmissionSpectrum{{1, 1e7}, {value, value}}, true};
+  return {EmissionSpectrum{{1, 1e7}, {value, value}}, true, {}};
 }
 
 // A wall (a large box) filling a narrow view straight ahead of a camera at the origin looking

@@ -330,7 +330,7 @@ TEST_F(MeshReferencesTest, CommandsRefuseOutsideReferencesUnlessAllowed) {
   EXPECT_TRUE(fs::exists(dir_ / "out.png"));
 
   const std::string scene = quoted(dir_ / "scene.json");
-  for (const std::string command :
+  for (const std::string& command :
        {"check " + scene, "info " + scene, "locate " + scene + " --direction 0,0,-1",
         "animate " + scene + " --frames 0-0 -o " + quoted(dir_ / "frame-%d.png") + " --quiet"}) {
     const test::CommandResult refused = run_limited(command);

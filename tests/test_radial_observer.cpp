@@ -67,8 +67,9 @@ TEST(RadialObserver, InsideTheHorizonEveryBackwardRayMovesOut) {
   for (const double r : {0.1, 1.0, 1.9})
     for (int i = 0; i <= 24; ++i) {
       const double look = kPi * i / 24;
-      if (const auto ray = observed_ray(falling(r, 10), std::cos(look), std::sin(look)))
+      if (const auto ray = observed_ray(falling(r, 10), std::cos(look), std::sin(look))) {
         EXPECT_TRUE(ray->outward) << r << " " << look;
+      }
     }
   // Straight down from r = 1 (u^r = -sqrt(2)): E - u^r l_r = 1 - sqrt(2) < 0, nothing.
   EXPECT_FALSE(observed_ray(falling(1), -1, 0));

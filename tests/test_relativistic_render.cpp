@@ -29,10 +29,10 @@ std::shared_ptr<Mesh> tetrahedron() {
 using test::make_object;
 
 Material checker(double size, Rgb a, Rgb b) {
-  return {Checker{size, {a, b}}, true};
+  return {Checker{size, {a, b}}, true, {}};
 }
 Material solid(Rgb c) {
-  return {SolidColor{c}, true};
+  return {SolidColor{c}, true, {}};
 }
 
 // A scene with every shape kind, a grid sky and the given velocities.

@@ -53,7 +53,9 @@ TEST(SchwarzschildLens, EveryPointOutsideThePhotonSphereHasAPrimary) {
       SCOPED_TRACE(testing::Message() << r_e << " " << psi);
       const auto image = ray_between(1, 30, r_e, psi, 0);
       EXPECT_TRUE(image);
-      if (image) EXPECT_NEAR(image->sweep, psi, 1e-11);
+      if (image) {
+        EXPECT_NEAR(image->sweep, psi, 1e-11);
+      }
     }
 }
 

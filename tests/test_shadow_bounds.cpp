@@ -158,7 +158,7 @@ TEST(LabelledShadowBounds, ChordGapBoundsHowFarTheNormLiesBelowItsChord) {
   bounds.b = {0.6, -0.2, 0.9};
   for (const Vec3 a : {Vec3{3, 1, -2}, Vec3{-0.6, 0.2, -0.9}, Vec3{0.1, 5, 0}}) {
     bounds.early_a = bounds.late_a = a;
-    for (const auto [lo, hi] : {std::pair{-4.0, 3.0}, std::pair{0.5, 0.7}, std::pair{2.0, 9.0}}) {
+    for (const auto& [lo, hi] : {std::pair{-4.0, 3.0}, std::pair{0.5, 0.7}, std::pair{2.0, 9.0}}) {
       const double gap = bounds.chord_gap(lo, hi);
       const double d_lo = length(a + bounds.b * lo), d_hi = length(a + bounds.b * hi);
       double most = 0;

@@ -55,8 +55,12 @@ TEST(SpinningSphere, TheLimbTurningTowardTheCameraIsBlueshifted) {
       const double expected = 1 / (lorentz_gamma(v) * (1 + dot(v, u)));
       const double d = doppler[static_cast<std::size_t>(y) * image.width + x];
       EXPECT_NEAR(d, expected, 2e-6) << x << " " << y;
-      if (r.x < -0.5) EXPECT_GT(d, 1.0) << x << " " << y;
-      if (r.x > 0.5) EXPECT_LT(d, 1.0) << x << " " << y;
+      if (r.x < -0.5) {
+        EXPECT_GT(d, 1.0) << x << " " << y;
+      }
+      if (r.x > 0.5) {
+        EXPECT_LT(d, 1.0) << x << " " << y;
+      }
       most = std::max(most, d);
       least = std::min(least, d);
       ++checked;

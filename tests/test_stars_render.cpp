@@ -102,7 +102,7 @@ TEST(StarsRender, APixelsSolidAngleIsTheIntegralOverIt) {
   Camera cam;
   cam.width = 40, cam.height = 30, cam.fov_degrees = 100;
   const CameraBasis camera = camera_basis(cam);
-  for (const auto [i, j] : {std::pair{20, 15}, std::pair{0, 15}, std::pair{39, 0}}) {
+  for (const auto& [i, j] : {std::pair{20, 15}, std::pair{0, 15}, std::pair{39, 0}}) {
     // The pixel on the image plane at unit distance.
     const double w = 2 * camera.tan_half_fov * camera.aspect / camera.width;
     const double h = 2 * camera.tan_half_fov / camera.height;

@@ -67,8 +67,9 @@ TEST(ToneMap, FilmicKeepsHueAndSaturationAndNeverExceedsOne) {
     else
       EXPECT_NEAR(shown_top, filmic_curve(top), 1e-5);
     // Saturation (chroma over the largest channel) is kept.
-    if (shown_top > 1e-3 && top > 1e-3 && shown_top < 1.0f)
+    if (shown_top > 1e-3 && top > 1e-3 && shown_top < 1.0f) {
       EXPECT_NEAR(shown_chroma / shown_top, chroma / top, 1e-4);
+    }
   }
   // Per channel the curve would have turned a bright red toward orange (its green raised the
   // most); here the channels keep their ratios, and only a colour past where a grey would
