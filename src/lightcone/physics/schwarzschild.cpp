@@ -1,123 +1,22 @@
 #include "lightcone/physics/schwarzschild.hpp"
 
 #include <algorithm>
-#include <boost/math/special_functions/ellint_rc.hpp>
-#include <boost/math/special_functions/ellint_rd.hpp>
-#include <boost/math/special_functions/ellint_rf.hpp>
-#include <boost/math/special_functions/ellint_rj.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
 #include <cmath>
 #include <iterator>
 #include <limits>
 #include <numbers>
 
+#include "lightcone/physics/carlson_integrals.hpp"
+
 namespace lightcone {
 namespace {
+
+using namespace carlson;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kSqrt3 = std::numbers::sqrt3;
-
-// Carlson's integrals and Jacobi's functions evaluated in double: Boost's default policy promotes
-// double to long double (x87, several times slower), which the tests' tolerances do not need.
-using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-
-double rf(double x, double y, double z) {
-  return boost::math::ellint_rf(x, y, z, DoublePolicy());
-}
-double rd(double x, double y, double z) {
-  return boost::math::ellint_rd(x, y, z, DoublePolicy());
-}
-double rj(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p, DoublePolicy());
-}
-double rc(double x, double y) {
-  return boost::math::ellint_rc(x, y, DoublePolicy());
-}
-
-// Up to kMaxBatch of Carlson's R_F at once: Boost's algorithm for double (ellint_rf_imp: the
-// duplication theorem until Q / 4^n < |A_n|, then its seventh-order series), operation for
-// operation, so the values are Boost's to the bit; run side by side, the independent chains of
-// square roots overlap instead of waiting on each other. Arguments that Boost treats apart (a
-// zero, two equal, anything not positive and finite) go to Boost itself.
-struct RfArgs {
-  double x, y, z;
-};
-constexpr int kMaxBatch = 4;
-void rf_batch(const RfArgs* args, double* out, int n) {
-  static const double kTolerance = std::pow(3 * std::numeric_limits<double>::epsilon(), -1.0 / 8);
-  double x[kMaxBatch], y[kMaxBatch], z[kMaxBatch], an[kMaxBatch], q[kMaxBatch], fn[kMaxBatch];
-  bool general[kMaxBatch], active[kMaxBatch];
-  bool any = false;
-  for (int i = 0; i < n; ++i) {
-    const RfArgs& a = args[i];
-    general[i] = a.x > 0 && a.y > 0 && a.z > 0 && std::isfinite(a.x) && std::isfinite(a.y) &&
-                 std::isfinite(a.z) && a.x != a.y && a.x != a.z && a.y != a.z;
-    active[i] = general[i];
-    any |= general[i];
-    if (!general[i]) {
-      out[i] = rf(a.x, a.y, a.z);
-      continue;
-    }
-    x[i] = a.x, y[i] = a.y, z[i] = a.z;
-    an[i] = (a.x + a.y + a.z) / 3;
-    q[i] = kTolerance *
-           std::max(std::max(std::abs(an[i] - a.x), std::abs(an[i] - a.y)), std::abs(an[i] - a.z));
-    fn[i] = 1;
-  }
-  while (any) {
-    any = false;
-    for (int i = 0; i < n; ++i) {
-      if (!active[i]) continue;
-      const double rx = std::sqrt(x[i]), ry = std::sqrt(y[i]), rz = std::sqrt(z[i]);
-      const double lambda = rx * ry + rx * rz + ry * rz;
-      an[i] = (an[i] + lambda) / 4;
-      x[i] = (x[i] + lambda) / 4;
-      y[i] = (y[i] + lambda) / 4;
-      z[i] = (z[i] + lambda) / 4;
-      q[i] /= 4;
-      fn[i] *= 4;
-      active[i] = !(q[i] < std::abs(an[i]));
-      any |= active[i];
-    }
-  }
-  for (int i = 0; i < n; ++i) {
-    if (!general[i]) continue;
-    const RfArgs& a = args[i];
-    const double a0 = (a.x + a.y + a.z) / 3;
-    const double dx = (a0 - a.x) / (an[i] * fn[i]), dy = (a0 - a.y) / (an[i] * fn[i]);
-    const double dz = -dx - dy;
-    const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
-    out[i] = (1 + e3 * (1.0 / 14 + 3 * e3 / 104) +
-              e2 * (-1.0 / 10 + e2 / 24 - (3 * e3) / 44 - 5 * e2 * e2 / 208 + e2 * e3 / 16)) /
-             std::sqrt(an[i]);
-  }
-}
-
-// Carlson's reduction of int_y^x dt / sqrt(prod_i (a_i + b_i t)) for three real linear factors
-// positive between the limits (Carlson 1988; DLMF 19.29(i), the fourth factor 1): given the
-// factors' values X_i^2 at one end, Y_i^2 at the other and the distance d = |x - y|, it is
-// 2 R_F(U12^2, U13^2, U23^2) with U12 = (X1 X2 Y3 + Y1 Y2 X3) / d and so on. Every term is
-// positive, so nothing cancels, and a factor that vanishes at an end (a turning point) is fine.
-// The X_i (or Y_i): the factors' square roots at one end.
-struct Roots {
-  double s1, s2, s3;
-};
-Roots roots(double f1, double f2, double f3) {
-  return {std::sqrt(f1), std::sqrt(f2), std::sqrt(f3)};
-}
-// The arguments U12^2, U13^2, U23^2 (symmetric in the two ends); d > 0.
-RfArgs cubic_args(double d, const Roots& x, const Roots& y) {
-  const double u12 = (x.s1 * x.s2 * y.s3 + y.s1 * y.s2 * x.s3) / d;
-  const double u13 = (x.s1 * x.s3 * y.s2 + y.s1 * y.s3 * x.s2) / d;
-  const double u23 = (x.s2 * x.s3 * y.s1 + y.s2 * y.s3 * x.s1) / d;
-  return {u12 * u12, u13 * u13, u23 * u23};
-}
-double cubic_integral(double d, double x1, double x2, double x3, double y1, double y2, double y3) {
-  if (d == 0) return 0;
-  const RfArgs u = cubic_args(d, roots(x1, x2, x3), roots(y1, y2, y3));
-  return 2 * rf(u.x, u.y, u.z);
-}
 
 // w = b / r, 0 at infinity.
 double w_of(const PhotonOrbit& o, double r) {
@@ -128,12 +27,9 @@ double w_of(const PhotonOrbit& o, double r) {
 // w_2 = b / r_p, w_3 = b / r_3. The three factors at radius r, each as a ratio that stays
 // accurate near its root, and exact at the turning points themselves. In the inner region
 // (r <= r_3) the last two change sign.
-struct Factors {
-  double f1, f2, f3;
-};
-Factors turning_factors(const PhotonOrbit& o, double r, bool inner) {
+LinearFactors turning_factors(const PhotonOrbit& o, double r, bool inner) {
   const double w2 = 1 / o.v_pos;
-  Factors f{w_of(o, r) + o.w_neg, 0, 0};
+  LinearFactors f{w_of(o, r) + o.w_neg, 0, 0};
   if (!inner) {
     f.f2 = r == o.periapsis ? 0.0 : w2 * (1 - o.periapsis / r);
     f.f3 = r == o.periapsis ? o.v_gap / o.v_pos : 1 - o.inner_turning / r;
@@ -219,136 +115,6 @@ double snap_to_turning_point(const PhotonOrbit& o, double r) {
 // a second-kind integral and two of the third kind, with poles at infinity (w = 0) and at the
 // horizon (w = 1/e), where P = 1.
 
-// Carlson (1989, "A table of elliptic integrals of the third kind", cubic case) for three real
-// linear factors L_i = a_i + b_i w positive between the limits y < x: the factors' values at
-// x and y (fx, fy), d_ij = a_i b_j - a_j b_i, dx = x - y.
-struct RealCubic {
-  double x1, x2, x3, y1, y2, y3;  // sqrt(L_i) at x and y
-  double u1s, u2s, u3s;           // U_1^2 = ((X1 Y2 Y3 + Y1 X2 X3) / dx)^2 and its cyclic shifts
-  double d12, d13, b1;
-  double rf;  // R_F(U1^2, U2^2, U3^2)
-};
-RealCubic real_cubic(double dx, const Factors& fx, const Factors& fy, double d12, double d13,
-                     double b1) {
-  RealCubic c{};
-  c.x1 = std::sqrt(fx.f1), c.x2 = std::sqrt(fx.f2), c.x3 = std::sqrt(fx.f3);
-  c.y1 = std::sqrt(fy.f1), c.y2 = std::sqrt(fy.f2), c.y3 = std::sqrt(fy.f3);
-  const double u1 = (c.x1 * c.y2 * c.y3 + c.y1 * c.x2 * c.x3) / dx;
-  const double u2 = (c.x2 * c.y1 * c.y3 + c.y2 * c.x1 * c.x3) / dx;
-  const double u3 = (c.x3 * c.y1 * c.y2 + c.y3 * c.x1 * c.x2) / dx;
-  c.u1s = u1 * u1, c.u2s = u2 * u2, c.u3s = u3 * u3;
-  c.d12 = d12, c.d13 = d13, c.b1 = b1;
-  c.rf = rf(c.u1s, c.u2s, c.u3s);
-  return c;
-}
-// int_y^x dw / sqrt(L1 L2 L3) = 2 R_F.
-double first_kind(const RealCubic& c) {
-  return 2 * c.rf;
-}
-// int_y^x sqrt(L1) dw / sqrt(L2 L3) = (2/3) d12 d13 R_D(U3^2, U2^2, U1^2) + 2 X1 Y1 / U1.
-double second_kind(const RealCubic& c) {
-  return 2.0 / 3 * c.d12 * c.d13 * rd(c.u3s, c.u2s, c.u1s) + 2 * c.x1 * c.y1 / std::sqrt(c.u1s);
-}
-
-// A pole factor L4 = a4 + b4 w (positive between the limits), its values at x and y and
-// d_i4 = a_i b4 - a4 b_i.
-struct Pole {
-  double b4, l4x, l4y, d14, d24, d34;
-};
-
-// 2 R_C(P^2, Q^2), Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, or, when `regular` (Y4 = 0: the pole at the
-// lower limit), its finite part 2 R_C + ln(Y4^2) / P as Y4 -> 0, which is
-// (2/P) (ln 2P - ln |X4 W / (X1 Y1)|) with P^2 = pq (Q^2 -> 0); both signs of W^2 alike (a
-// negative Q^2 is R_C's Cauchy principal value, DLMF 19.2.20, with the same limit).
-double pole_rc(double w2, double x4s, double y4s, double x1y1s, double pq, bool regular) {
-  if (regular) {
-    const double p = std::sqrt(pq);
-    return 2 / p * (std::log(2 * p) - 0.5 * std::log(x4s * std::abs(w2) / x1y1s));
-  }
-  const double q2 = x4s * y4s / x1y1s * w2;
-  return 2 * rc(q2 + pq, q2);
-}
-
-// int_y^x dw / (L4 sqrt(L1 L2 L3)) (Carlson 1989): with W^2 = U1^2 - b4 d12
-// d13 / d14, Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, P^2 = Q^2 + b4 d24 d34 / d14,
-//   I3 = 2 R_C(P^2, Q^2) - (2 b1 d12 d13 / 3 d14) R_J(U3^2, U2^2, U1^2, W^2)
-// is int (L1 / L4) / sqrt(L1 L2 L3), and the integral is (b4 I3 - b1 I1) / d14. `regular`: the
-// pole is at y (L4(y) = 0, only used with L4 = w at w = 0, where the integrand is 1/w + O(1)), and
-// what comes back is the finite limit of the integral + ln(L4(y)) (see pole_rc: the factor
-// b4 / (d14 P) in front of the logarithm is 1 there, since P(w = 0) = 1).
-double third_kind(const RealCubic& c, const Pole& p, bool regular) {
-  const double w2 = c.u1s - p.b4 * c.d12 * c.d13 / p.d14;
-  const double x1y1s = c.x1 * c.x1 * c.y1 * c.y1;
-  const double i3 = pole_rc(w2, p.l4x, p.l4y, x1y1s, p.b4 * p.d24 * p.d34 / p.d14, regular) -
-                    2 * c.b1 * c.d12 * c.d13 / (3 * p.d14) * rj(c.u3s, c.u2s, c.u1s, w2);
-  return (p.b4 * i3 - c.b1 * first_kind(c)) / p.d14;
-}
-
-// Carlson (1991, "A table of elliptic integrals: one quadratic factor", cubic case) for L1 = z
-// (a1 = 0, b1 = 1) and the quadratic q = (z - c)^2 + n^2 (f = A^2, g = -2c, h = 1, A^2 = c^2 +
-// n^2), between 0 <= y < x.
-struct QuadraticCubic {
-  double x1, y1, xi, eta;  // sqrt(z), sqrt(q) at x and y
-  double m2, lm2, lp2;     // M^2, L_-^2, L_+^2
-  double u;                // U = (X1 eta + Y1 xi) / dx
-  double a, c;
-  double rf;  // R_F(M^2, L_-^2, L_+^2)
-};
-QuadraticCubic quadratic_cubic(double x, double y, double c, double n) {
-  QuadraticCubic k{};
-  const double dx = x - y, a = std::hypot(c, n);
-  k.x1 = std::sqrt(x), k.y1 = std::sqrt(y);
-  const double xc = x - c, yc = y - c;
-  k.xi = std::sqrt(xc * xc + n * n), k.eta = std::sqrt(yc * yc + n * n);
-  // (xi + eta)^2 - dx^2 = 2 (xi eta + (x - c)(y - c) + n^2); when c lies between x and y the
-  // first two nearly cancel (b -> b_c), and xi eta - |(x-c)(y-c)| is written as a quotient.
-  const double prod = xc * yc;
-  const double sum =
-      prod >= 0 ? k.xi * k.eta + prod : n * n * (xc * xc + yc * yc + n * n) / (k.xi * k.eta - prod);
-  const double s = 2 * (sum + n * n);
-  k.m2 = (k.x1 + k.y1) * (k.x1 + k.y1) * s / (dx * dx);
-  // L_+-^2 = M^2 - beta1 +- sqrt(2h) c11 with beta1 = -2c, c11 = sqrt(2) A; A - c = n^2/(A + c).
-  k.lp2 = k.m2 + 2 * (a + c);
-  k.lm2 = k.m2 - 2 * n * n / (a + c);
-  k.u = (k.x1 * k.eta + k.y1 * k.xi) / dx;
-  k.a = a, k.c = c;
-  k.rf = rf(k.m2, k.lm2, k.lp2);
-  return k;
-}
-// int_y^x dz / sqrt(z q) = 4 R_F(M^2, L_-^2, L_+^2).
-double first_kind(const QuadraticCubic& k) {
-  return 4 * k.rf;
-}
-// int_y^x z^(-3/2) q^(-1/2) dz = (2/3) (sqrt(2h) / c11) (4 rho R_D(M^2, L_-^2, L_+^2) - 6 R_F +
-// 3 / U) + 2 / (X1 Y1 U), rho = sqrt(2h) c11 - beta1 = 2 (A + c) (Carlson 1991).
-double second_kind(const QuadraticCubic& k) {
-  const double rho = 2 * (k.a + k.c);
-  return 2.0 / 3 / k.a * (4 * rho * rd(k.m2, k.lm2, k.lp2) - 6 * k.rf + 3 / k.u) +
-         2 / (k.x1 * k.y1 * k.u);
-}
-// int_y^x dz / (L4 sqrt(z q)), L4 = a4 + b4 z (Carlson 1991): with d14 = -a4,
-// c44^2 = 2 (f b4^2 - g a4 b4 + h a4^2), c14^2 = 2 f b4 - g a4, W_+^2 = M^2 - (c14^2 + c11 c44) /
-// d14, W^2 = U^2 - c11^2 b4 / (2 d14), Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, P^2 = Q^2 + c44^2 b4 /
-// (2 d14),
-//   I3 = (2 c11 / 3 c44) ((-4 / d14)(c14^2 + c11 c44) R_J(M^2, L_-^2, L_+^2, W_+^2) - 6 R_F
-//        + 3 R_C(U^2, W^2)) + 2 R_C(P^2, Q^2),
-// and the integral is (b4 I3 - I1) / d14. `regular` as for the real case.
-double third_kind(const QuadraticCubic& k, double a4, double b4, double l4x, double l4y,
-                  bool regular) {
-  const double a = k.a, c = k.c, d14 = -a4;
-  const double c11 = std::sqrt(2.0) * a;
-  const double c44 = std::sqrt(2 * (a * a * b4 * b4 + 2 * c * a4 * b4 + a4 * a4));
-  const double c14s = 2 * a * a * b4 + 2 * c * a4;
-  const double wp2 = k.m2 - (c14s + c11 * c44) / d14;
-  const double w2 = k.u * k.u - c11 * c11 * b4 / (2 * d14);
-  const double x1y1s = k.x1 * k.x1 * k.y1 * k.y1;
-  const double i3 = 2 * c11 / (3 * c44) *
-                        (-4 / d14 * (c14s + c11 * c44) * rj(k.m2, k.lm2, k.lp2, wp2) - 6 * k.rf +
-                         3 * rc(k.u * k.u, w2)) +
-                    pole_rc(w2, l4x, l4y, x1y1s, c44 * c44 * b4 / (2 * d14), regular);
-  return (b4 * i3 - first_kind(k)) / d14;
-}
-
 // The radial tortoise coordinate r_* = r + 2M ln(r/2M - 1).
 double tortoise(double m, double r) {
   return m == 0 ? r : r + 2 * m * std::log((r - 2 * m) / (2 * m));
@@ -362,7 +128,7 @@ double ray_time(const PhotonOrbit& o, double r_lo, double r_hi, bool inner, bool
   const double f_lo = regular ? 1.0 : 1 - 2 * m / r_lo, f_hi = 1 - 2 * m / r_hi;
   double sqrt_p_lo = 1, sqrt_p_hi, j1, j2, j3;
   if (o.turning) {
-    const Factors fx = turning_factors(o, r_hi, inner), fy = turning_factors(o, r_lo, inner);
+    const LinearFactors fx = turning_factors(o, r_hi, inner), fy = turning_factors(o, r_lo, inner);
     const double w2 = 1 / o.v_pos, inv_w3 = o.inner_turning / b, s = inner ? -1.0 : 1.0;
     // L1 = w + w_neg, L2 = s (w2 - w), L3 = s (1 - w / w3).
     const double a1 = o.w_neg, a2 = s * w2, a3 = s;
@@ -437,7 +203,9 @@ double ray_time(const PhotonOrbit& o, double r_lo, double r_hi, bool inner, bool
 // ~ 0.1, so the rebuilt k_3' loses about 1e-15 and the phase no more (these are the first steps
 // of the arithmetic-geometric mean that Boost runs anyway, only started from the exact k').
 
-// Jacobi's functions, from Boost.Math in double (no promotion to long double).
+// Jacobi's functions, from Boost.Math in double: its default policy's promotion to long double
+// (x87, several times slower) is more than the tests' tolerances need.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 struct Jacobi {
   double sn, cn, dn;
 };
@@ -534,9 +302,9 @@ double swept_angle(const PhotonOrbit& o, double r_a, double r_b) {
       return inner ? r <= o.inner_turning : r >= o.periapsis;
     };
     if (!in_region(r_a) || !in_region(r_b)) return kNaN;
-    const Factors x = turning_factors(o, r_a, inner), y = turning_factors(o, r_b, inner);
+    const LinearFactors x = turning_factors(o, r_a, inner), y = turning_factors(o, r_b, inner);
     const double d = std::abs(w_of(o, r_a) - w_of(o, r_b));
-    return cubic_integral(d, x.f1, x.f2, x.f3, y.f1, y.f2, y.f3) / std::sqrt(o.scale);
+    return cubic_integral(d, x, y) / std::sqrt(o.scale);
   }
   const double za = w_of(o, r_a) + o.w_neg, zb = w_of(o, r_b) + o.w_neg;
   return captured_integral(o, za, zb) / std::sqrt(o.scale);
@@ -552,9 +320,10 @@ RayCourse outer_course(const PhotonOrbit& o, double r0, bool outward, double* fr
   RayCourse c;
   c.fate = RayFate::kEscapes;
   const double w0 = w_of(o, r0), w_p = w_of(o, o.periapsis);
-  const Factors f0 = turning_factors(o, r0, false);
-  const Factors fp = turning_factors(o, o.periapsis, false), fi = turning_factors(o, kInf, false);
-  const Roots at_r0 = roots(f0.f1, f0.f2, f0.f3), at_inf = roots(fi.f1, fi.f2, fi.f3);
+  const LinearFactors f0 = turning_factors(o, r0, false);
+  const LinearFactors fp = turning_factors(o, o.periapsis, false),
+                      fi = turning_factors(o, kInf, false);
+  const FactorRoots at_r0 = roots(f0), at_inf = roots(fi);
   // The integrals' R_F: outward r0 -> inf; inward r0 -> r_p and r_p -> inf; then from_end.
   RfArgs args[3] = {};
   double rfs[3];
@@ -562,7 +331,7 @@ RayCourse outer_course(const PhotonOrbit& o, double r0, bool outward, double* fr
   if (outward) {
     if (w0 != 0) args[n++] = cubic_args(w0, at_r0, at_inf);
   } else {
-    const Roots at_p = roots(fp.f1, fp.f2, fp.f3);
+    const FactorRoots at_p = roots(fp);
     const double d = std::abs(w0 - w_p);
     if (r0 != o.periapsis && d != 0) args[to_turn = n++] = cubic_args(d, at_r0, at_p);
     args[n++] = cubic_args(w_p, at_p, at_inf);
@@ -570,7 +339,7 @@ RayCourse outer_course(const PhotonOrbit& o, double r0, bool outward, double* fr
   const int beyond = n - 1;
   if (from_end) {
     const double v3 = o.inner_turning / o.impact;
-    args[n++] = cubic_args(f0.f1, at_r0, roots(0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3));
+    args[n++] = cubic_args(f0.f1, at_r0, roots({0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3}));
   }
   rf_batch(args, rfs, n);
   const double root_scale = std::sqrt(o.scale);
@@ -735,7 +504,7 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
     r0 = snap_to_turning_point(o, r0);
     const bool outer = r0 >= o.periapsis;
     const double v3 = o.inner_turning / o.impact;
-    const Factors f = turning_factors(o, r0, !outer);
+    const LinearFactors f = turning_factors(o, r0, !outer);
     double from_end;
     if (outer) {
       // int_{w_1}^{w_0} dw / sqrt(P): Carlson's cubic integral with the factors at w_1 (computed

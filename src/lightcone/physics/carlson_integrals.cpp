@@ -1,0 +1,201 @@
+#include "lightcone/physics/carlson_integrals.hpp"
+
+#include <algorithm>
+#include <boost/math/special_functions/ellint_rc.hpp>
+#include <boost/math/special_functions/ellint_rd.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
+#include <cmath>
+#include <limits>
+
+namespace lightcone::carlson {
+namespace {
+
+// Boost's default policy promotes double to long double (the header says why not here).
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
+}  // namespace
+
+double rf(double x, double y, double z) {
+  return boost::math::ellint_rf(x, y, z, DoublePolicy());
+}
+double rd(double x, double y, double z) {
+  return boost::math::ellint_rd(x, y, z, DoublePolicy());
+}
+double rj(double x, double y, double z, double p) {
+  return boost::math::ellint_rj(x, y, z, p, DoublePolicy());
+}
+double rc(double x, double y) {
+  return boost::math::ellint_rc(x, y, DoublePolicy());
+}
+
+// Boost's algorithm for double (ellint_rf_imp: the duplication theorem until Q / 4^n < |A_n|,
+// then its seventh-order series), operation for operation, so that the values are Boost's to the
+// bit. Arguments that Boost treats apart (a zero, two equal, anything not positive and finite) go
+// to Boost itself.
+void rf_batch(const RfArgs* args, double* out, int n) {
+  static const double kTolerance = std::pow(3 * std::numeric_limits<double>::epsilon(), -1.0 / 8);
+  double x[kMaxBatch], y[kMaxBatch], z[kMaxBatch], an[kMaxBatch], q[kMaxBatch], fn[kMaxBatch];
+  bool general[kMaxBatch], active[kMaxBatch];
+  bool any = false;
+  for (int i = 0; i < n; ++i) {
+    const RfArgs& a = args[i];
+    general[i] = a.x > 0 && a.y > 0 && a.z > 0 && std::isfinite(a.x) && std::isfinite(a.y) &&
+                 std::isfinite(a.z) && a.x != a.y && a.x != a.z && a.y != a.z;
+    active[i] = general[i];
+    any |= general[i];
+    if (!general[i]) {
+      out[i] = rf(a.x, a.y, a.z);
+      continue;
+    }
+    x[i] = a.x, y[i] = a.y, z[i] = a.z;
+    an[i] = (a.x + a.y + a.z) / 3;
+    q[i] = kTolerance *
+           std::max(std::max(std::abs(an[i] - a.x), std::abs(an[i] - a.y)), std::abs(an[i] - a.z));
+    fn[i] = 1;
+  }
+  while (any) {
+    any = false;
+    for (int i = 0; i < n; ++i) {
+      if (!active[i]) continue;
+      const double rx = std::sqrt(x[i]), ry = std::sqrt(y[i]), rz = std::sqrt(z[i]);
+      const double lambda = rx * ry + rx * rz + ry * rz;
+      an[i] = (an[i] + lambda) / 4;
+      x[i] = (x[i] + lambda) / 4;
+      y[i] = (y[i] + lambda) / 4;
+      z[i] = (z[i] + lambda) / 4;
+      q[i] /= 4;
+      fn[i] *= 4;
+      active[i] = !(q[i] < std::abs(an[i]));
+      any |= active[i];
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!general[i]) continue;
+    const RfArgs& a = args[i];
+    const double a0 = (a.x + a.y + a.z) / 3;
+    const double dx = (a0 - a.x) / (an[i] * fn[i]), dy = (a0 - a.y) / (an[i] * fn[i]);
+    const double dz = -dx - dy;
+    const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
+    out[i] = (1 + e3 * (1.0 / 14 + 3 * e3 / 104) +
+              e2 * (-1.0 / 10 + e2 / 24 - (3 * e3) / 44 - 5 * e2 * e2 / 208 + e2 * e3 / 16)) /
+             std::sqrt(an[i]);
+  }
+}
+
+double cubic_integral(double d, const LinearFactors& x, const LinearFactors& y) {
+  if (d == 0) return 0;
+  const RfArgs u = cubic_args(d, roots(x), roots(y));
+  return 2 * rf(u.x, u.y, u.z);
+}
+
+RealCubic real_cubic(double dx, const LinearFactors& fx, const LinearFactors& fy, double d12,
+                     double d13, double b1) {
+  RealCubic c{};
+  c.x1 = std::sqrt(fx.f1), c.x2 = std::sqrt(fx.f2), c.x3 = std::sqrt(fx.f3);
+  c.y1 = std::sqrt(fy.f1), c.y2 = std::sqrt(fy.f2), c.y3 = std::sqrt(fy.f3);
+  const double u1 = (c.x1 * c.y2 * c.y3 + c.y1 * c.x2 * c.x3) / dx;
+  const double u2 = (c.x2 * c.y1 * c.y3 + c.y2 * c.x1 * c.x3) / dx;
+  const double u3 = (c.x3 * c.y1 * c.y2 + c.y3 * c.x1 * c.x2) / dx;
+  c.u1s = u1 * u1, c.u2s = u2 * u2, c.u3s = u3 * u3;
+  c.d12 = d12, c.d13 = d13, c.b1 = b1;
+  c.rf = rf(c.u1s, c.u2s, c.u3s);
+  return c;
+}
+// int_y^x dw / sqrt(L1 L2 L3) = 2 R_F.
+double first_kind(const RealCubic& c) {
+  return 2 * c.rf;
+}
+// int_y^x sqrt(L1) dw / sqrt(L2 L3) = (2/3) d12 d13 R_D(U3^2, U2^2, U1^2) + 2 X1 Y1 / U1.
+double second_kind(const RealCubic& c) {
+  return 2.0 / 3 * c.d12 * c.d13 * rd(c.u3s, c.u2s, c.u1s) + 2 * c.x1 * c.y1 / std::sqrt(c.u1s);
+}
+
+namespace {
+
+// 2 R_C(P^2, Q^2), Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, or, when `regular` (Y4 = 0: the pole at the
+// lower limit), its finite part 2 R_C + ln(Y4^2) / P as Y4 -> 0, which is
+// (2/P) (ln 2P - ln |X4 W / (X1 Y1)|) with P^2 = pq (Q^2 -> 0); both signs of W^2 alike (a
+// negative Q^2 is R_C's Cauchy principal value, DLMF 19.2.20, with the same limit).
+double pole_rc(double w2, double x4s, double y4s, double x1y1s, double pq, bool regular) {
+  if (regular) {
+    const double p = std::sqrt(pq);
+    return 2 / p * (std::log(2 * p) - 0.5 * std::log(x4s * std::abs(w2) / x1y1s));
+  }
+  const double q2 = x4s * y4s / x1y1s * w2;
+  return 2 * rc(q2 + pq, q2);
+}
+
+}  // namespace
+
+// int_y^x dw / (L4 sqrt(L1 L2 L3)) (Carlson 1989): with W^2 = U1^2 - b4 d12
+// d13 / d14, Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, P^2 = Q^2 + b4 d24 d34 / d14,
+//   I3 = 2 R_C(P^2, Q^2) - (2 b1 d12 d13 / 3 d14) R_J(U3^2, U2^2, U1^2, W^2)
+// is int (L1 / L4) / sqrt(L1 L2 L3), and the integral is (b4 I3 - b1 I1) / d14. `regular`: the
+// pole is at y (L4(y) = 0, only used with L4 = w at w = 0, where the integrand is 1/w + O(1)), and
+// what comes back is the finite limit of the integral + ln(L4(y)) (see pole_rc: the factor
+// b4 / (d14 P) in front of the logarithm is 1 there, since P(w = 0) = 1).
+double third_kind(const RealCubic& c, const Pole& p, bool regular) {
+  const double w2 = c.u1s - p.b4 * c.d12 * c.d13 / p.d14;
+  const double x1y1s = c.x1 * c.x1 * c.y1 * c.y1;
+  const double i3 = pole_rc(w2, p.l4x, p.l4y, x1y1s, p.b4 * p.d24 * p.d34 / p.d14, regular) -
+                    2 * c.b1 * c.d12 * c.d13 / (3 * p.d14) * rj(c.u3s, c.u2s, c.u1s, w2);
+  return (p.b4 * i3 - c.b1 * first_kind(c)) / p.d14;
+}
+
+QuadraticCubic quadratic_cubic(double x, double y, double c, double n) {
+  QuadraticCubic k{};
+  const double dx = x - y, a = std::hypot(c, n);
+  k.x1 = std::sqrt(x), k.y1 = std::sqrt(y);
+  const double xc = x - c, yc = y - c;
+  k.xi = std::sqrt(xc * xc + n * n), k.eta = std::sqrt(yc * yc + n * n);
+  // (xi + eta)^2 - dx^2 = 2 (xi eta + (x - c)(y - c) + n^2); when c lies between x and y the
+  // first two nearly cancel (b -> b_c), and xi eta - |(x-c)(y-c)| is written as a quotient.
+  const double prod = xc * yc;
+  const double sum =
+      prod >= 0 ? k.xi * k.eta + prod : n * n * (xc * xc + yc * yc + n * n) / (k.xi * k.eta - prod);
+  const double s = 2 * (sum + n * n);
+  k.m2 = (k.x1 + k.y1) * (k.x1 + k.y1) * s / (dx * dx);
+  // L_+-^2 = M^2 - beta1 +- sqrt(2h) c11 with beta1 = -2c, c11 = sqrt(2) A; A - c = n^2/(A + c).
+  k.lp2 = k.m2 + 2 * (a + c);
+  k.lm2 = k.m2 - 2 * n * n / (a + c);
+  k.u = (k.x1 * k.eta + k.y1 * k.xi) / dx;
+  k.a = a, k.c = c;
+  k.rf = rf(k.m2, k.lm2, k.lp2);
+  return k;
+}
+// int_y^x dz / sqrt(z q) = 4 R_F(M^2, L_-^2, L_+^2).
+double first_kind(const QuadraticCubic& k) {
+  return 4 * k.rf;
+}
+// int_y^x z^(-3/2) q^(-1/2) dz = (2/3) (sqrt(2h) / c11) (4 rho R_D(M^2, L_-^2, L_+^2) - 6 R_F +
+// 3 / U) + 2 / (X1 Y1 U), rho = sqrt(2h) c11 - beta1 = 2 (A + c) (Carlson 1991).
+double second_kind(const QuadraticCubic& k) {
+  const double rho = 2 * (k.a + k.c);
+  return 2.0 / 3 / k.a * (4 * rho * rd(k.m2, k.lm2, k.lp2) - 6 * k.rf + 3 / k.u) +
+         2 / (k.x1 * k.y1 * k.u);
+}
+// int_y^x dz / (L4 sqrt(z q)), L4 = a4 + b4 z (Carlson 1991): with d14 = -a4,
+// c44^2 = 2 (f b4^2 - g a4 b4 + h a4^2), c14^2 = 2 f b4 - g a4, W_+^2 = M^2 - (c14^2 + c11 c44) /
+// d14, W^2 = U^2 - c11^2 b4 / (2 d14), Q^2 = (X4 Y4 / (X1 Y1))^2 W^2, P^2 = Q^2 + c44^2 b4 /
+// (2 d14),
+//   I3 = (2 c11 / 3 c44) ((-4 / d14)(c14^2 + c11 c44) R_J(M^2, L_-^2, L_+^2, W_+^2) - 6 R_F
+//        + 3 R_C(U^2, W^2)) + 2 R_C(P^2, Q^2),
+// and the integral is (b4 I3 - I1) / d14. `regular` as for the real case.
+double third_kind(const QuadraticCubic& k, double a4, double b4, double l4x, double l4y,
+                  bool regular) {
+  const double a = k.a, c = k.c, d14 = -a4;
+  const double c11 = std::sqrt(2.0) * a;
+  const double c44 = std::sqrt(2 * (a * a * b4 * b4 + 2 * c * a4 * b4 + a4 * a4));
+  const double c14s = 2 * a * a * b4 + 2 * c * a4;
+  const double wp2 = k.m2 - (c14s + c11 * c44) / d14;
+  const double w2 = k.u * k.u - c11 * c11 * b4 / (2 * d14);
+  const double x1y1s = k.x1 * k.x1 * k.y1 * k.y1;
+  const double i3 = 2 * c11 / (3 * c44) *
+                        (-4 / d14 * (c14s + c11 * c44) * rj(k.m2, k.lm2, k.lp2, wp2) - 6 * k.rf +
+                         3 * rc(k.u * k.u, w2)) +
+                    pole_rc(w2, l4x, l4y, x1y1s, c44 * c44 * b4 / (2 * d14), regular);
+  return (b4 * i3 - first_kind(k)) / d14;
+}
+
+}  // namespace lightcone::carlson
