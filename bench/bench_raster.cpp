@@ -10,7 +10,11 @@
 //                           finds its emission tables.
 //   RasterBaseline/<scene>  the same prepared triangles drawn by BaselinePass (pass-through
 //                           vertices, one colour) into the same target, glFinish.
-// The ratio of the two times is the figure; `triangles` counts both. Scenes: street.json at
+//   RasterFloor/<scene>     the frame with its bodies shaded for nothing: RasterFrame's
+//                           preparation, then BaselinePass's bodies and the frame's own sky
+//                           behind them (RasterRenderer::sky_pass), glFinish. What no body
+//                           program can take the frame below; prepare_ms and pass_ms split it.
+// The ratio of the first two times is the figure; `triangles` counts both. Scenes: street.json at
 // 640x360 and 1280x720, street-lit.json (with its shadows: the maps are drawn with the first
 // frame and kept, as in the viewer) at 640x360, and the 1,000-body swarm (1.28M triangles) at
 // 1280x720.
@@ -111,12 +115,46 @@ void RasterBaseline(benchmark::State& state, const std::string& name, int width,
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 
+void RasterFloor(benchmark::State& state, const std::string& name, int width, int height) {
+  RasterSetup setup(name, width, height);
+  std::unique_ptr<EmissionTable> emission;
+  const auto tables = [&emission](const ResolvedScene& resolved) -> const EmissionTable& {
+    return EmissionTable::keep(emission, resolved);
+  };
+  const BaselinePass baseline;
+  {
+    const ResolvedScene resolved = resolve_scene(setup.scene);
+    setup.renderer.prepare(resolved, tables(resolved));
+    setup.renderer.pass();
+    glFinish();
+  }
+  double prepare_s = 0, pass_s = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ResolvedScene resolved = resolve_scene(setup.scene);
+    setup.renderer.prepare(resolved, tables(resolved));
+    glFinish();
+    const auto t1 = std::chrono::steady_clock::now();
+    baseline.draw(resolved, setup.renderer);
+    setup.renderer.sky_pass();
+    glFinish();
+    prepare_s += std::chrono::duration<double>(t1 - t0).count();
+    pass_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["prepare_ms"] = 1e3 * prepare_s / n;
+  state.counters["pass_ms"] = 1e3 * pass_s / n;
+}
+
 void register_pair(const std::string& label, const std::string& scene, int width, int height) {
   benchmark::RegisterBenchmark(("RasterFrame/" + label).c_str(), RasterFrame, scene, width, height)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
   benchmark::RegisterBenchmark(("RasterBaseline/" + label).c_str(), RasterBaseline, scene, width,
                                height)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark(("RasterFloor/" + label).c_str(), RasterFloor, scene, width, height)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
 }

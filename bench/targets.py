@@ -255,14 +255,17 @@ def measure_stars(table, build, repetitions, scratch):
 
 
 def measure_raster(table, build, repetitions, scratch):
-    runs = bench_runs(build, r"^Raster(Frame|Baseline)/", repetitions)
+    runs = bench_runs(build, r"^Raster(Frame|Baseline|Floor)/", repetitions)
     for scene, size, bound in (("street", "640x360", 1.5), ("street", "1280x720", 1.5),
                                ("street-lit", "640x360", 3.0)):
         frame = series(runs, f"RasterFrame/{scene}/{size}/real_time", seconds)
         baseline = series(runs, f"RasterBaseline/{scene}/{size}/real_time", seconds)
+        # The floor: the same frame with its bodies shaded for nothing (RasterFloor).
+        floor = series(runs, f"RasterFloor/{scene}/{size}/real_time", seconds)
         table.add("raster", f"{scene}.json {size}, frame over the pass-through baseline "
                   f"({1e3 * statistics.median(frame):.1f} / "
-                  f"{1e3 * statistics.median(baseline):.1f} ms)", ratios(frame, baseline),
+                  f"{1e3 * statistics.median(baseline):.1f} ms; bodies shaded for nothing: "
+                  f"{statistics.median(ratios(floor, baseline)):.2f})", ratios(frame, baseline),
                   bound, False)
     frame = series(runs, "RasterFrame/swarm/1280x720/real_time", seconds)
     table.add("raster", "1,000-body swarm at 1280x720, frames per second",

@@ -12,6 +12,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "lightcone/color/colour_models.hpp"
@@ -678,6 +679,35 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
   }
   EXPECT_GT(covered, 160u * 90 / 10);  // the street's houses fill much of the view
   EXPECT_EQ(differ, 0u);
+}
+
+// RasterFloor (bench/bench_raster.cpp) is the frame with its bodies shaded for nothing: the
+// baseline's bodies, and behind them the frame's own sky, drawn as the frame draws it.
+TEST(RasterBaseline, FloorDrawsTheFramesSkyBehindTheBodies) {
+  Scene scene = test::load_repository_scene("street.json");
+  scene.camera.width = 160, scene.camera.height = 90, scene.camera.samples = 1;
+  ASSERT_TRUE(std::holds_alternative<SkyGrid>(scene.sky.pattern));
+  const HeadlessGlContext context;
+  RasterRenderer renderer;
+  const FloatTarget target(160, 90);
+  target.bind();
+  const ResolvedScene resolved = resolve_scene(scene);
+  const EmissionTable emission(resolved);
+  renderer.prepare(resolved, emission, {}, /*on_gpu=*/false);
+  const BaselinePass baseline;
+  baseline.draw(resolved, renderer);
+  const Image bodies = target.read();
+  renderer.sky_pass();
+  const Image floor = target.read();
+  renderer.pass();
+  const Image frame = target.read();
+  std::size_t sky = 0;
+  for (std::size_t i = 0; i < floor.rgb.size(); ++i) {
+    const bool body = bodies.rgb[i - i % 3] == 1.0f;
+    sky += !body && i % 3 == 0;
+    ASSERT_EQ(floor.rgb[i], body ? bodies.rgb[i] : frame.rgb[i]) << i;
+  }
+  EXPECT_GT(sky, 160u * 90 / 10);
 }
 
 // The colour rows are kept from frame to frame while they are the same rows over a range that

@@ -481,7 +481,12 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
     hole_bodies->draw(resolved, program);
   }
   check_gl("drawing the bodies");
+  draw_sky(ox, oy);
+}
 
+void RasterRenderer::Impl::draw_sky(double ox, double oy) {
+  const ResolvedScene& resolved = *scene;
+  const Scene& s = *resolved.scene;
   const GLuint sky_program =
       resolved.hole ? hole_sky_programs[sky_variant(s)][colour_kind(s.render)]
                     : sky_program_for(sky_variant(s), s.render.doppler == DopplerModel::kHue);
@@ -538,6 +543,16 @@ void RasterRenderer::set_specialised_programs(bool specialise) {
 
 const GlDriver& RasterRenderer::driver() const {
   return impl_->driver;
+}
+
+void RasterRenderer::sky_pass() {
+  impl_->shading_offsets = nullptr;
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindVertexArray(impl_->vertex_array);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, impl_->rows_texture);
+  impl_->draw_sky(0.5, 0.5);
 }
 
 void RasterRenderer::pass(double pixel_offset_x, double pixel_offset_y,

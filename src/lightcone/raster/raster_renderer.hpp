@@ -86,6 +86,10 @@ class RasterRenderer {
   // the point on sphere lights) moves each pixel's shading to its own sample.
   void pass(double pixel_offset_x = 0.5, double pixel_offset_y = 0.5,
             const std::vector<float>* shading_offsets = nullptr);
+  // The sky alone (with its stars), one sample a pixel at the centres, behind what the bound
+  // framebuffer's depth buffer holds, as pass() draws it after the bodies: with BaselinePass's
+  // bodies, the frame as it would be if shading its bodies cost nothing (bench/bench_raster.cpp).
+  void sky_pass();
   // The prepared frame's bodies as tessellated on the CPU (none on the GPU path): the vertex
   // array and buffer, its vertices' size in floats (the shape point first), and each body's
   // range of vertices, for BaselinePass.

@@ -201,6 +201,8 @@ struct RasterRenderer::Impl {
 
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
   void pass(double ox, double oy, const std::vector<float>* offsets);
+  // The sky and its stars, behind what the bound target's depth buffer holds.
+  void draw_sky(double ox, double oy);
   void draw_body(const ResolvedScene& resolved, const BodyDraw& draw, bool lit);
   // The lit bodies' nearest surfaces into the surface textures, then the lighting pass over
   // them into the frame's target (deferred shading).
