@@ -32,24 +32,35 @@ namespace fs = std::filesystem;
 // The pass-through baseline of bench/bench_raster.cpp draws the triangles the frame it mirrors
 // drew, where the frame draws them: the pixels it covers are those where the frame (under a
 // black sky) shows a body.
-TEST(RasterBaseline, DrawsTheFramesTriangles) {
-  Scene scene = test::load_repository_scene("street.json");
-  scene.camera.width = 160, scene.camera.height = 90, scene.camera.samples = 1;
-  scene.sky.pattern = SolidColor{{0, 0, 0}};
+// street.json at 160 x 90, one sample a pixel, prepared on the CPU into a bound target.
+struct PreparedStreet {
+  explicit PreparedStreet(bool black_sky) : scene(street(black_sky)), target(160, 90) {
+    target.bind();
+    triangles = renderer.prepare(resolved, emission, {}, /*on_gpu=*/false).triangles;
+  }
+  static Scene street(bool black_sky) {
+    Scene s = test::load_repository_scene("street.json");
+    s.camera.width = 160, s.camera.height = 90, s.camera.samples = 1;
+    if (black_sky) s.sky.pattern = SolidColor{{0, 0, 0}};
+    return s;
+  }
+  const Scene scene;
   const HeadlessGlContext context;
   RasterRenderer renderer;
-  const FloatTarget target(160, 90);
-  target.bind();
+  const FloatTarget target;
   const ResolvedScene resolved = resolve_scene(scene);
-  const EmissionTable emission(resolved);
-  const std::size_t triangles =
-      renderer.prepare(resolved, emission, {}, /*on_gpu=*/false).triangles;
-  ASSERT_GT(triangles, 1000u);
+  const EmissionTable emission{resolved};
+  std::size_t triangles = 0;
+};
+
+TEST(RasterBaseline, DrawsTheFramesTriangles) {
+  PreparedStreet street(/*black_sky=*/true);
+  ASSERT_GT(street.triangles, 1000u);
   const BaselinePass baseline;
-  EXPECT_EQ(baseline.draw(resolved, renderer), triangles);
-  const Image drawn = target.read();
-  renderer.pass();
-  const Image frame = target.read();
+  EXPECT_EQ(baseline.draw(street.resolved, street.renderer), street.triangles);
+  const Image drawn = street.target.read();
+  street.renderer.pass();
+  const Image frame = street.target.read();
   std::size_t covered = 0, differ = 0;
   for (std::size_t p = 0; p < drawn.rgb.size() / 3; ++p) {
     const bool base = drawn.rgb[3 * p] == 1.0f;
@@ -64,23 +75,15 @@ TEST(RasterBaseline, DrawsTheFramesTriangles) {
 // RasterFloor (bench/bench_raster.cpp) is the frame with its bodies shaded for nothing: the
 // baseline's bodies, and behind them the frame's own sky, drawn as the frame draws it.
 TEST(RasterBaseline, FloorDrawsTheFramesSkyBehindTheBodies) {
-  Scene scene = test::load_repository_scene("street.json");
-  scene.camera.width = 160, scene.camera.height = 90, scene.camera.samples = 1;
-  ASSERT_TRUE(std::holds_alternative<SkyGrid>(scene.sky.pattern));
-  const HeadlessGlContext context;
-  RasterRenderer renderer;
-  const FloatTarget target(160, 90);
-  target.bind();
-  const ResolvedScene resolved = resolve_scene(scene);
-  const EmissionTable emission(resolved);
-  renderer.prepare(resolved, emission, {}, /*on_gpu=*/false);
+  PreparedStreet street(/*black_sky=*/false);
+  ASSERT_TRUE(std::holds_alternative<SkyGrid>(street.scene.sky.pattern));
   const BaselinePass baseline;
-  baseline.draw(resolved, renderer);
-  const Image bodies = target.read();
-  renderer.sky_pass();
-  const Image floor = target.read();
-  renderer.pass();
-  const Image frame = target.read();
+  baseline.draw(street.resolved, street.renderer);
+  const Image bodies = street.target.read();
+  street.renderer.sky_pass();
+  const Image floor = street.target.read();
+  street.renderer.pass();
+  const Image frame = street.target.read();
   std::size_t sky = 0;
   for (std::size_t i = 0; i < floor.rgb.size(); ++i) {
     const bool body = bodies.rgb[i - i % 3] == 1.0f;
