@@ -1,9 +1,9 @@
 // Carlson's symmetric elliptic integrals R_F, R_D, R_J and R_C in double precision (Boost.Math),
 // and Carlson's reductions of the integrals of 1 / sqrt(cubic) to them, in the forms the
 // Schwarzschild geodesics need (physics/schwarzschild.cpp): a cubic of three real linear factors
-// (Carlson 1988, "Algorithms involving arithmetic and geometric means", and Carlson 1989, "A
-// table of elliptic integrals of the third kind"), and one of a linear factor and a quadratic
-// without real roots (Carlson 1991, "A table of elliptic integrals: one quadratic factor"). Every
+// (Carlson 1989, "A table of elliptic integrals: cubic cases"), and one of a linear factor and a
+// quadratic without real roots (Carlson 1991, "A table of elliptic integrals: one quadratic
+// factor"). Every
 // term of a reduction is positive where the factors are, so nothing cancels, and a factor that
 // vanishes at a limit (a turning point) is fine.
 #pragma once
@@ -36,7 +36,7 @@ struct FactorRoots {
   double s1, s2, s3;
 };
 
-// int_y^x dt / sqrt(L1 L2 L3) = 2 R_F(U12^2, U13^2, U23^2) (Carlson 1988; DLMF 19.29(i)), with
+// int_y^x dt / sqrt(L1 L2 L3) = 2 R_F(U12^2, U13^2, U23^2) (Carlson 1989; DLMF 19.29(i)), with
 // U12 = (X1 X2 Y3 + Y1 Y2 X3) / d and so on, X_i, Y_i the factors' square roots at the limits and
 // d = |x - y| > 0. cubic_args gives R_F's arguments (symmetric in the two limits), so that several
 // integrals can share rf_batch.
