@@ -3,9 +3,8 @@
 // Schwarzschild geodesics need (physics/schwarzschild.cpp): a cubic of three real linear factors
 // (Carlson 1989, "A table of elliptic integrals: cubic cases"), and one of a linear factor and a
 // quadratic without real roots (Carlson 1991, "A table of elliptic integrals: one quadratic
-// factor"). Every
-// term of a reduction is positive where the factors are, so nothing cancels, and a factor that
-// vanishes at a limit (a turning point) is fine.
+// factor"). Every term of a reduction is positive where the factors are, so nothing cancels,
+// and a factor that vanishes at a limit (a turning point) is fine.
 #pragma once
 
 #include <cmath>
