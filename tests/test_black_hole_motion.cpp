@@ -28,6 +28,7 @@
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/schwarzschild_geodesics.hpp"
 #include "lightcone/trace/scene_info.hpp"
+#include "support/scene_file_test.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

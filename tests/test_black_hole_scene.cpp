@@ -17,6 +17,7 @@
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/schwarzschild_motion.hpp"
+#include "support/scene_file_test.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

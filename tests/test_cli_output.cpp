@@ -167,8 +167,8 @@ TEST_F(CliTest, AFullDiskLeavesThePreviousImagesAndExitsOne) {
         environment);
     EXPECT_EQ(r.status, 1) << budget << ": " << r.err;
     EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
-    EXPECT_EQ(read_text(png()), "previous PNG") << budget;
-    EXPECT_EQ(read_text(exr()), "previous EXR") << budget;
+    EXPECT_EQ(bytes_of(png()), "previous PNG") << budget;
+    EXPECT_EQ(bytes_of(exr()), "previous EXR") << budget;
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(out_))
       names.push_back(entry.path().filename().string());

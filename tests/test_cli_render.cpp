@@ -351,7 +351,7 @@ TEST_F(CliTest, AutomaticExposure) {
     // Before a brighter wall (0.2), under clamp: the ball would take the wall to 2, so the
     // wall, more than 2 % of the picture, is held at 0.9 and the ball shows at 0.225.
     const fs::path bright = write_scene(
-        edited(edited(read_text(scene), "[0.02, 0.02, 0.02]", "[0.2, 0.2, 0.2]"),
+        edited(edited(bytes_of(scene), "[0.02, 0.02, 0.02]", "[0.2, 0.2, 0.2]"),
                "\"searchlight\": \"off\"", "\"searchlight\": \"off\", \"tonemap\": \"clamp\""));
     ASSERT_EQ(render(bright).status, 0);
     const auto held = read_exr();

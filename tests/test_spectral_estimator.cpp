@@ -3,6 +3,7 @@
 // to a small relative error, however dim the received light; greys stay grey under any shift;
 // lit surfaces agree with an independent quadrature of the reflected spectrum; and the sample
 // pattern is decorrelated, so that edges converge with the number of samples.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -301,7 +302,7 @@ TEST(EmissionTable, ColoursPastTheTableLimitCombineTheSharedTablesToTheSameColou
     Material m;
     m.pattern = SolidColor{{colour(rng), colour(rng), colour(rng)}};
     s.objects.push_back(
-        test::make_object("s" + std::to_string(i), Sphere{0.1}, {0, 0, -5.0 - i}, {0.6, 0, 0}, m));
+        test::make_object(fmt::format("s{}", i), Sphere{0.1}, {0, 0, -5.0 - i}, {0.6, 0, 0}, m));
   }
   const ResolvedScene resolved = resolve_scene(s);
   const EmissionTable emission(resolved);
@@ -341,7 +342,7 @@ TEST(EmissionTable, BodiesOfOneSpectrumShareItsTableAndOthersGetTheirOwn) {
   for (std::size_t i = 0; i < patterns.size(); ++i) {
     Material m;
     m.pattern = patterns[i];
-    s.objects.push_back(test::make_object("s" + std::to_string(i), Sphere{0.1},
+    s.objects.push_back(test::make_object(fmt::format("s{}", i), Sphere{0.1},
                                           {0, 0, -5.0 - static_cast<double>(i)}, {0.5, 0, 0}, m));
   }
   const ResolvedScene resolved = resolve_scene(s);

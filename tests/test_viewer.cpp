@@ -9,8 +9,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -37,11 +35,6 @@ constexpr const char* kScene = R"({
   "sky": {"grid": {"spacing": 15}},
   "render": {"exposure": 0, "tonemap": "clamp"}
 })";
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Runs a shell command and returns its standard output.
 std::string output_of(const std::string& command) {
@@ -124,7 +117,7 @@ class ViewerTest : public test::TempDirTest {
  protected:
   void SetUp() override {
     test::TempDirTest::SetUp();
-    display_ = ":" + std::to_string(50 + getpid() % 200);
+    display_ = fmt::format(":{}", 50 + getpid() % 200);
     xvfb_ = fork();
     if (xvfb_ == 0) {
       unsetenv("LD_PRELOAD");  // the X server is not under test (scripts/sanitize.sh)
@@ -165,7 +158,7 @@ class ViewerTest : public test::TempDirTest {
     const std::string found = output_of(
         "DISPLAY=" + display_ + " timeout 30 xdotool search --sync --name 'lightcone view'");
     window_ = found.substr(0, found.find('\n'));
-    ASSERT_FALSE(window_.empty()) << "no viewer window: " << read_text(dir_ / "viewer.err");
+    ASSERT_FALSE(window_.empty()) << "no viewer window: " << test::bytes_of(dir_ / "viewer.err");
   }
 
   void key(const std::string& name) {
@@ -206,7 +199,7 @@ TEST_F(ViewerTest, ShowsTheSceneChangesSpeedOnAKeySavesPngsAndQuits) {
   // (away from the panel in the top left corner).
   key("F12");
   const fs::path png = wait_for_png(1);
-  ASSERT_TRUE(fs::exists(png)) << read_text(dir_ / "viewer.err");
+  ASSERT_TRUE(fs::exists(png)) << test::bytes_of(dir_ / "viewer.err");
   const auto saved = load_image_file(png);
   const auto rendered = test::run_lightcone("render '" + scene.string() +
                                             "' --renderer raster --tessellation cpu --quiet -o '" +
@@ -223,8 +216,8 @@ TEST_F(ViewerTest, ShowsTheSceneChangesSpeedOnAKeySavesPngsAndQuits) {
   // in the panel, and the picture changes.
   key("w");
   settle();
-  EXPECT_NE(read_text(dir_ / "viewer.err").find("speed 0.5712 c"), std::string::npos)
-      << read_text(dir_ / "viewer.err");
+  EXPECT_NE(test::bytes_of(dir_ / "viewer.err").find("speed 0.5712 c"), std::string::npos)
+      << test::bytes_of(dir_ / "viewer.err");
   const Screenshot second = screenshot();
   const auto second_at = [&](int x, int y) { return second.at(x, y); };
   EXPECT_GT(fraction_different(first_at, second_at, 0, 0, 300, 120, 2), 0.001);  // the panel
@@ -295,7 +288,7 @@ TEST_F(ViewerTest, TheSplitViewIsCaptionedAndPresentingHidesThePanel) {
   EXPECT_GT(white_in_caption(shown_at, shown.width), 40);
   key("F12");
   const fs::path png = wait_for_png(1);
-  ASSERT_TRUE(fs::exists(png)) << read_text(dir_ / "viewer.err");
+  ASSERT_TRUE(fs::exists(png)) << test::bytes_of(dir_ / "viewer.err");
   const auto saved = load_image_file(png);
   const auto saved_at = [&](int x, int y) { return png_level(*saved, x, y); };
   EXPECT_GT(white_in_caption(saved_at, saved->width), 40);

@@ -1,8 +1,6 @@
 #include "support/cli_test.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <iterator>
 
 #include "lightcone/frame/tone_map.hpp"
 
@@ -14,11 +12,6 @@ std::string edited(const std::string& text, const std::string& from, const std::
   EXPECT_EQ(text.find(from, at + 1), std::string::npos) << "'" << from << "' is not unique";
   if (at == std::string::npos) return text;
   return text.substr(0, at) + to + text.substr(at + from.size());
-}
-
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 std::size_t line_count(const std::string& text) {

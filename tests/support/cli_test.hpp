@@ -52,7 +52,6 @@ inline const std::string kScene = R"({
 // `text` with the one occurrence of `from` replaced by `to` (a test failure where there is not
 // exactly one).
 std::string edited(const std::string& text, const std::string& from, const std::string& to);
-std::string read_text(const std::filesystem::path& file);
 std::size_t line_count(const std::string& text);
 // The 8-bit value the PNG holds for a pixel read back as linear (load_image_file decodes sRGB).
 int png_byte(float linear);

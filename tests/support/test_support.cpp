@@ -1,6 +1,7 @@
 #include "support/test_support.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <poll.h>
 #include <sys/ioctl.h>
 #include <sys/wait.h>
@@ -82,6 +83,7 @@ void TempDirTest::TearDown() {
 
 fs::path TempDirTest::write(const std::string& name, const std::string& content) const {
   const fs::path path = dir_ / name;
+  fs::create_directories(path.parent_path());
   write_text(path, content);
   return path;
 }
@@ -114,30 +116,6 @@ IntegratedOrbit integrate_orbit_from(double m, double r0, double cos_alpha, doub
   const double f0 = 1 - 2 * m / r0;
   return integrate_orbit(m, r0 * sin_alpha / std::sqrt(f0), 1 / r0,
                          -std::sqrt(f0) * cos_alpha / sin_alpha / r0, phi, steps);
-}
-
-Scene SceneFileTest::load(const std::string& text, const std::vector<std::string>& overrides) {
-  SceneLoadReport report;
-  return load_scene_file(write("scene.json", text), overrides, report);
-}
-
-std::string SceneFileTest::error(const std::string& text,
-                                 const std::vector<std::string>& overrides) {
-  try {
-    load(text, overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void SceneFileTest::expect_error(const std::string& text, int line, const std::string& path,
-                                 const std::string& fragment) {
-  const std::string message = error(text);
-  const std::string prefix =
-      (dir_ / "scene.json").string() + ":" + std::to_string(line) + ": " + path + ": ";
-  EXPECT_EQ(message.substr(0, prefix.size()), prefix) << message;
-  EXPECT_NE(message.find(fragment, prefix.size()), std::string::npos) << message;
 }
 
 fs::path fresh_temp_dir(const std::string& name) {
@@ -238,7 +216,7 @@ CommandResult run_lightcone_on_terminal(const std::string& arguments, int column
 }
 
 std::string quoted(const std::filesystem::path& p) {
-  return "'" + p.string() + "'";
+  return fmt::format("'{}'", p.string());
 }
 
 std::string bytes_of(const std::filesystem::path& file) {

@@ -38,7 +38,7 @@ class TempDirTest : public testing::Test {
  protected:
   void SetUp() override;
   void TearDown() override;
-  // Writes `content` to `name` in the folder and returns its path.
+  // Writes `content` to `name` in the folder (making its folders) and returns its path.
   std::filesystem::path write(const std::string& name, const std::string& content) const;
 
   std::filesystem::path dir_;
@@ -56,17 +56,6 @@ IntegratedOrbit integrate_orbit(double m, double b, double u0, double du0, doubl
 // dr/dphi = r sqrt(f) cot(alpha) there, so du/dphi = -sqrt(f0) cot(alpha) / r0.
 IntegratedOrbit integrate_orbit_from(double m, double r0, double cos_alpha, double sin_alpha,
                                      double phi, int steps);
-
-// A fixture that loads scene text written to DIR/scene.json, for tests of the scene format.
-class SceneFileTest : public TempDirTest {
- protected:
-  Scene load(const std::string& text, const std::vector<std::string>& overrides = {});
-  // The message of the InputError that loading `text` throws, or "" when it loads.
-  std::string error(const std::string& text, const std::vector<std::string>& overrides = {});
-  // Expects "DIR/scene.json:LINE: PATH: ..." with `fragment` in the description.
-  void expect_error(const std::string& text, int line, const std::string& path,
-                    const std::string& fragment);
-};
 
 // A fresh, empty folder under the system's temporary folder.
 std::filesystem::path fresh_temp_dir(const std::string& name);
