@@ -65,22 +65,24 @@ struct RasterSetup {
   const FloatTarget target;
 };
 
-void RasterFrame(benchmark::State& state, const std::string& name, int width, int height) {
-  RasterSetup setup(name, width, height);
-  std::size_t triangles = 0;
-  double prepare_s = 0, pass_s = 0, tables_s = 0;
-  std::unique_ptr<EmissionTable> emission;  // kept as the viewer keeps it
+// Frames as the viewer draws them, after a first one, untimed (what the viewer keeps from frame
+// to frame, the tables, the lights' shadow maps, the programs, is made with it): each resolved,
+// its emission tables kept while they serve (EmissionTable::keep), prepared, then drawn by
+// `draw`; prepare_ms, pass_ms (the drawing) and tables_ms (resolving and finding the tables).
+template <class Draw>
+void time_frames(benchmark::State& state, RasterSetup& setup, const Draw& draw) {
+  std::unique_ptr<EmissionTable> emission;
   const auto tables = [&emission](const ResolvedScene& resolved) -> const EmissionTable& {
     return EmissionTable::keep(emission, resolved);
   };
   {
-    // A first frame, untimed: what the viewer keeps from frame to frame (the tables, the lights'
-    // shadow maps, the programs) is made with it.
     const ResolvedScene resolved = resolve_scene(setup.scene);
     setup.renderer.prepare(resolved, tables(resolved));
     setup.renderer.pass();
     glFinish();
   }
+  std::size_t triangles = 0;
+  double prepare_s = 0, pass_s = 0, tables_s = 0;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
     const ResolvedScene resolved = resolve_scene(setup.scene);
@@ -89,7 +91,7 @@ void RasterFrame(benchmark::State& state, const std::string& name, int width, in
     triangles = setup.renderer.prepare(resolved, frame_emission).triangles;
     glFinish();
     const auto t1 = std::chrono::steady_clock::now();
-    setup.renderer.pass();
+    draw(resolved);
     glFinish();
     prepare_s += std::chrono::duration<double>(t1 - t0).count();
     pass_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -99,6 +101,11 @@ void RasterFrame(benchmark::State& state, const std::string& name, int width, in
   state.counters["prepare_ms"] = 1e3 * prepare_s / n;
   state.counters["pass_ms"] = 1e3 * pass_s / n;
   state.counters["tables_ms"] = 1e3 * tables_s / n;
+}
+
+void RasterFrame(benchmark::State& state, const std::string& name, int width, int height) {
+  RasterSetup setup(name, width, height);
+  time_frames(state, setup, [&](const ResolvedScene&) { setup.renderer.pass(); });
 }
 
 void RasterBaseline(benchmark::State& state, const std::string& name, int width, int height) {
@@ -117,33 +124,11 @@ void RasterBaseline(benchmark::State& state, const std::string& name, int width,
 
 void RasterFloor(benchmark::State& state, const std::string& name, int width, int height) {
   RasterSetup setup(name, width, height);
-  std::unique_ptr<EmissionTable> emission;
-  const auto tables = [&emission](const ResolvedScene& resolved) -> const EmissionTable& {
-    return EmissionTable::keep(emission, resolved);
-  };
   const BaselinePass baseline;
-  {
-    const ResolvedScene resolved = resolve_scene(setup.scene);
-    setup.renderer.prepare(resolved, tables(resolved));
-    setup.renderer.pass();
-    glFinish();
-  }
-  double prepare_s = 0, pass_s = 0;
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const ResolvedScene resolved = resolve_scene(setup.scene);
-    setup.renderer.prepare(resolved, tables(resolved));
-    glFinish();
-    const auto t1 = std::chrono::steady_clock::now();
+  time_frames(state, setup, [&](const ResolvedScene& resolved) {
     baseline.draw(resolved, setup.renderer);
     setup.renderer.sky_pass();
-    glFinish();
-    prepare_s += std::chrono::duration<double>(t1 - t0).count();
-    pass_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  }
-  const double n = static_cast<double>(state.iterations());
-  state.counters["prepare_ms"] = 1e3 * prepare_s / n;
-  state.counters["pass_ms"] = 1e3 * pass_s / n;
+  });
 }
 
 void register_pair(const std::string& label, const std::string& scene, int width, int height) {

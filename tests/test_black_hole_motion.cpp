@@ -305,11 +305,7 @@ std::string camera_near(const std::string& camera, const std::string& hole = R"(
   return "{\n  \"camera\": {" + camera + "},\n  \"black_hole\": " + hole + "\n}";
 }
 
-void expect_vec(const Vec3& v, const Vec3& expected, double tolerance) {
-  EXPECT_NEAR(v.x, expected.x, tolerance) << "x";
-  EXPECT_NEAR(v.y, expected.y, tolerance) << "y";
-  EXPECT_NEAR(v.z, expected.z, tolerance) << "z";
-}
+using test::expect_vec;
 
 TEST_F(BlackHoleMotion, OrbitPlacesTheCameraOnItsCircle) {
   // Normal +y: the reference axis is +x, and counter-clockwise about +y turns +x toward -z.

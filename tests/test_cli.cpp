@@ -458,8 +458,8 @@ TEST_F(CliTest, DegenerateTrianglesAreDroppedWithAWarning) {
   ASSERT_TRUE(fs::exists(png()));
   // The remaining quad fills the frame with the mesh's green.
   const auto image = read_exr();
-  EXPECT_EQ(pixel(*image, 0, 0).g, 1.0f);
-  EXPECT_EQ(pixel(*image, 0, 0).b, 0.0f);
+  EXPECT_EQ(image->texel(0, 0).g, 1.0f);
+  EXPECT_EQ(image->texel(0, 0).b, 0.0f);
 }
 
 // ----------------------------------------------------------------------------------------------

@@ -202,7 +202,7 @@ TEST_F(CliTest, LocateObjectPointLandsOnTheRenderedBall) {
   const CommandResult r = render(scene);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto image = read_png();
-  EXPECT_EQ(png_byte(pixel(*image, 0, 0).r), 255);  // the sky
+  EXPECT_EQ(png_byte(image->texel(0, 0).r), 255);  // the sky
 
   for (const char* point : {"0,0,2", "-2,0,0", "-1.2,0,1.6", "-1.6,1.2,0"}) {
     SCOPED_TRACE(point);
@@ -212,7 +212,7 @@ TEST_F(CliTest, LocateObjectPointLandsOnTheRenderedBall) {
     const int x = static_cast<int>(std::floor(at(where, "pixel", 0)));
     const int y = static_cast<int>(std::floor(at(where, "pixel", 1)));
     ASSERT_TRUE(x >= 0 && x < 64 && y >= 0 && y < 48) << x << "," << y;
-    const Rgb c = pixel(*image, x, y);
+    const Rgb c = image->texel(x, y);
     EXPECT_EQ(png_byte(c.r), 0) << x << "," << y;
     EXPECT_EQ(png_byte(c.g), 0) << x << "," << y;
     EXPECT_EQ(png_byte(c.b), 0) << x << "," << y;

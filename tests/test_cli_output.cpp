@@ -60,7 +60,7 @@ TEST_F(CliTest, OutputFormatFollowsTheExtension) {
     // Every format decodes to the same picture (the EXR holds the linear radiance: green 1).
     const auto image = load_image_file(out);
     ASSERT_EQ(image->width, 64);
-    const Rgb centre = pixel(*image, 32, 24);
+    const Rgb centre = image->texel(32, 24);
     EXPECT_NEAR(centre.g, 1.0, 0.02) << name;
     EXPECT_NEAR(centre.r, 0.0, 0.02) << name;
   }
@@ -232,7 +232,7 @@ TEST_F(CliTest, DashWritesThePngToStandardOutput) {
   test::write_text(out_ / "stdout.png", r.out);
   const auto image = load_image_file(out_ / "stdout.png");
   EXPECT_EQ(image->width, 64);
-  EXPECT_NEAR(pixel(*image, 32, 24).g, 1.0, 1e-6);
+  EXPECT_NEAR(image->texel(32, 24).g, 1.0, 1e-6);
 }
 
 TEST_F(CliTest, VersionNamesTheVersionAndCommit) {
@@ -256,7 +256,7 @@ TEST_F(CliTest, CropIsTheSameRegionOfTheFullRenderPixelForPixel) {
   int differing = 0;
   for (int y = 0; y < 23; ++y)
     for (int x = 0; x < 32; ++x) {
-      const Rgb a = pixel(*part, x, y), b = pixel(*full, x + 13, y + 7);
+      const Rgb a = part->texel(x, y), b = full->texel(x + 13, y + 7);
       differing += a.r != b.r || a.g != b.g || a.b != b.b;
     }
   EXPECT_EQ(differing, 0);

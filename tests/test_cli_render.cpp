@@ -50,11 +50,11 @@ TEST_F(CliTest, ValidRenderWritesPngAndExrOfTheRightSizeAndOneSummaryLine) {
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"image.exr", "image.png"}));
   // The ball in the middle, the blue sky in the corner.
-  EXPECT_EQ(pixel(*exr_image, 32, 24).g, 1.0f);
-  EXPECT_EQ(pixel(*exr_image, 0, 0).b, 1.0f);
-  EXPECT_EQ(pixel(*exr_image, 0, 0).g, 0.0f);
-  EXPECT_EQ(png_byte(pixel(*png_image, 32, 24).g), 255);
-  EXPECT_EQ(png_byte(pixel(*png_image, 32, 24).r), 0);
+  EXPECT_EQ(exr_image->texel(32, 24).g, 1.0f);
+  EXPECT_EQ(exr_image->texel(0, 0).b, 1.0f);
+  EXPECT_EQ(exr_image->texel(0, 0).g, 0.0f);
+  EXPECT_EQ(png_byte(png_image->texel(32, 24).g), 255);
+  EXPECT_EQ(png_byte(png_image->texel(32, 24).r), 0);
 }
 
 TEST_F(CliTest, PngOnlyWithoutExr) {
@@ -109,17 +109,17 @@ TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysAndRate) {
 TEST_F(CliTest, SetSkyColourMakesTheBackgroundRed) {
   const fs::path scene = write_scene(kScene);
   ASSERT_EQ(render(scene).status, 0);
-  EXPECT_EQ(pixel(*read_exr(), 0, 0).r, 0.0f);
+  EXPECT_EQ(read_exr()->texel(0, 0).r, 0.0f);
   const CommandResult r = render(scene, "--set 'sky.color=[1,0,0]'");
   EXPECT_EQ(r.status, 0) << r.err;
   const auto png_image = read_png();
   for (const auto& [x, y] : {std::pair{0, 0}, std::pair{63, 47}, std::pair{63, 0}}) {
-    EXPECT_EQ(png_byte(pixel(*png_image, x, y).r), 255);
-    EXPECT_EQ(png_byte(pixel(*png_image, x, y).g), 0);
-    EXPECT_EQ(png_byte(pixel(*png_image, x, y).b), 0);
+    EXPECT_EQ(png_byte(png_image->texel(x, y).r), 255);
+    EXPECT_EQ(png_byte(png_image->texel(x, y).g), 0);
+    EXPECT_EQ(png_byte(png_image->texel(x, y).b), 0);
   }
   // The ball is still green.
-  EXPECT_EQ(png_byte(pixel(*png_image, 32, 24).g), 255);
+  EXPECT_EQ(png_byte(png_image->texel(32, 24).g), 255);
 }
 
 // Relativity and light delay change the picture of the moving ball, and so does the camera's
@@ -132,7 +132,7 @@ TEST_F(CliTest, SetSwitchesChangeTheImageOfAMovingBody) {
     const auto image = read_exr();
     std::vector<int> mask;
     for (int y = 0; y < image->height; ++y)
-      for (int x = 0; x < image->width; ++x) mask.push_back(pixel(*image, x, y).r < 0.5f);
+      for (int x = 0; x < image->width; ++x) mask.push_back(image->texel(x, y).r < 0.5f);
     return mask;
   };
   auto differing = [](const std::vector<int>& a, const std::vector<int>& b) {
@@ -310,7 +310,7 @@ TEST_F(CliTest, AutomaticExposure) {
     const auto exr_image = read_exr();
     for (int y = 0; y < 12; ++y)
       for (int x = 0; x < 16; ++x)
-        EXPECT_NEAR(pixel(*exr_image, x, y).g, x < 8 ? 0.125f : 0.5f, 1e-6f) << x << "," << y;
+        EXPECT_NEAR(exr_image->texel(x, y).g, x < 8 ? 0.125f : 0.5f, 1e-6f) << x << "," << y;
   }
   {
     // The luminance is Y of linear sRGB: green 0.5 has Y = 0.7152 * 0.5.
@@ -321,7 +321,7 @@ TEST_F(CliTest, AutomaticExposure) {
     const auto exr_image = read_exr();
     for (int y = 0; y < 12; ++y)
       for (int x = 0; x < 16; ++x) {
-        const Rgb c = pixel(*exr_image, x, y);
+        const Rgb c = exr_image->texel(x, y);
         EXPECT_NEAR(c.g, 0.5 / 0.7152, 1e-6) << x << "," << y;
         EXPECT_EQ(c.r, 0.0f);
         EXPECT_EQ(c.b, 0.0f);

@@ -48,11 +48,11 @@ TEST_F(SceneFileTest, FullSceneMapsOntoTheModel) {
   })");
 
   const Camera& c = s.camera;
-  expect_vec(c.world_line.position, 1, 2, 3);
+  expect_vec(c.world_line.position, {1, 2, 3});
   EXPECT_EQ(c.world_line.time, 4);
-  expect_vec(c.world_line.velocity, 0, 0, -0.5);
-  expect_vec(c.forward, 0, 0, -1);  // directions are normalized
-  expect_vec(c.up, 0, 1, 0);
+  expect_vec(c.world_line.velocity, {0, 0, -0.5});
+  expect_vec(c.forward, {0, 0, -1});  // directions are normalized
+  expect_vec(c.up, {0, 1, 0});
   EXPECT_EQ(c.fov_degrees, 75);
   EXPECT_EQ(c.width, 320);
   EXPECT_EQ(c.height, 200);
@@ -62,18 +62,18 @@ TEST_F(SceneFileTest, FullSceneMapsOntoTheModel) {
   const Object& ball = s.objects[0];
   EXPECT_EQ(ball.name, "ball");
   EXPECT_EQ(std::get<Sphere>(ball.shape).radius, 2);
-  expect_vec(ball.world_line.position, 0, 1, -10);
+  expect_vec(ball.world_line.position, {0, 1, -10});
   EXPECT_EQ(ball.world_line.time, -1);
-  expect_vec(ball.world_line.velocity, 0.6, 0, 0);
+  expect_vec(ball.world_line.velocity, {0.6, 0, 0});
   expect_rgb(std::get<SolidColor>(ball.material.pattern).color, 1, 0.5f, 0.25f);
   EXPECT_TRUE(ball.material.unlit);
 
   const Object& crate = s.objects[1];
-  expect_vec(std::get<Box>(crate.shape).size, 1, 2, 3);
-  expect_vec(crate.scale, 2, 2, 2);
+  expect_vec(std::get<Box>(crate.shape).size, {1, 2, 3});
+  expect_vec(crate.scale, {2, 2, 2});
   // 90 degrees about +z, right-handed: x -> y, y -> -x.
-  expect_vec(crate.rotation * Vec3{1, 0, 0}, 0, 1, 0);
-  expect_vec(crate.rotation * Vec3{0, 1, 0}, -1, 0, 0);
+  expect_vec(crate.rotation * Vec3{1, 0, 0}, {0, 1, 0});
+  expect_vec(crate.rotation * Vec3{0, 1, 0}, {-1, 0, 0});
   const Checker& checker = std::get<Checker>(crate.material.pattern);
   EXPECT_EQ(checker.size, 0.5);
   expect_rgb(checker.colors[0], 1, 1, 1);
@@ -82,15 +82,15 @@ TEST_F(SceneFileTest, FullSceneMapsOntoTheModel) {
   const Object& floor = s.objects[2];
   EXPECT_EQ(std::get<Plane>(floor.shape).size_x, 10);
   EXPECT_EQ(std::get<Plane>(floor.shape).size_z, 20);
-  expect_vec(floor.scale, 1, 2, 3);
+  expect_vec(floor.scale, {1, 2, 3});
 
   const SkyGrid& grid = std::get<SkyGrid>(s.sky.pattern);
   EXPECT_EQ(grid.spacing_degrees, 30);
   EXPECT_EQ(grid.line_width_degrees, 1);
   expect_rgb(grid.line_color, 1, 0, 0);
   expect_rgb(grid.background, 0, 0, 0.1f);
-  expect_vec(s.sky.velocity, 0, 0.3, 0);
-  expect_vec(s.sky.rotation * Vec3{0, 1, 0}, 0, -1, 0);
+  expect_vec(s.sky.velocity, {0, 0.3, 0});
+  expect_vec(s.sky.rotation * Vec3{0, 1, 0}, {0, -1, 0});
 
   EXPECT_FALSE(s.render.relativity);
   EXPECT_FALSE(s.render.light_delay);
@@ -204,9 +204,9 @@ TEST_F(SceneFileTest, BodyMotionAndSpinAreReadAndBadOnesLocated) {
     "motion": {"phases": [{"duration": 2, "acceleration": [0, 0.1, 0]}]},
     "spin": {"axis": [0, 2, 0], "rate": 18}})"));
   ASSERT_EQ(s.objects[0].motion.phases.size(), 1u);
-  expect_vec(s.objects[0].motion.phases[0].acceleration, 0, 0.1, 0);
+  expect_vec(s.objects[0].motion.phases[0].acceleration, {0, 0.1, 0});
   ASSERT_TRUE(s.objects[0].spin);
-  expect_vec(s.objects[0].spin->axis, 0, 1, 0);
+  expect_vec(s.objects[0].spin->axis, {0, 1, 0});
   EXPECT_NEAR(s.objects[0].spin->rate, std::numbers::pi / 10, 1e-15);
 
   const auto object = [](const std::string& extra) {
@@ -265,11 +265,11 @@ TEST_F(SceneFileTest, SpeedOfLightConvertsAtTheEdgeAndBoundsSpeeds) {
 })");
   EXPECT_EQ(s.speed_of_light, 10);
   EXPECT_NEAR(s.camera.world_line.time, 20, 1e-12);
-  expect_vec(s.camera.world_line.velocity, 0.3, 0, 0);
+  expect_vec(s.camera.world_line.velocity, {0.3, 0, 0});
   EXPECT_NEAR(s.objects[0].world_line.time, 10, 1e-12);
-  expect_vec(s.objects[0].world_line.velocity, 0, 0.6, 0);
+  expect_vec(s.objects[0].world_line.velocity, {0, 0.6, 0});
   EXPECT_NEAR(s.objects[0].motion.phases[0].duration, 5, 1e-12);
-  expect_vec(s.objects[0].motion.phases[0].acceleration, 0.2, 0, 0);
+  expect_vec(s.objects[0].motion.phases[0].acceleration, {0.2, 0, 0});
   EXPECT_NEAR(s.objects[0].spin->rate, std::numbers::pi / 10, 1e-15);
   EXPECT_NEAR(std::get<Blink>(s.objects[0].material.pattern).period, 2.5, 1e-12);
 
@@ -290,25 +290,25 @@ TEST_F(SceneFileTest, DefaultsAreTheDocumentedOnes) {
                            "objects": [{"name": "a", "shape": {"sphere": {"radius": 1}}}]})");
   const Camera& c = s.camera;
   EXPECT_EQ(c.world_line.time, 0);
-  expect_vec(c.world_line.velocity, 0, 0, 0);
-  expect_vec(c.forward, 0, 0, -1);
-  expect_vec(c.up, 0, 1, 0);
+  expect_vec(c.world_line.velocity, {0, 0, 0});
+  expect_vec(c.forward, {0, 0, -1});
+  expect_vec(c.up, {0, 1, 0});
   EXPECT_EQ(c.fov_degrees, 60);
   EXPECT_EQ(c.width, 640);
   EXPECT_EQ(c.height, 360);
   EXPECT_EQ(c.samples, 1);
 
   const Object& a = s.objects.at(0);
-  expect_vec(a.world_line.position, 0, 0, 0);
+  expect_vec(a.world_line.position, {0, 0, 0});
   EXPECT_EQ(a.world_line.time, 0);
-  expect_vec(a.world_line.velocity, 0, 0, 0);
-  expect_vec(a.rotation * Vec3{1, 2, 3}, 1, 2, 3);
-  expect_vec(a.scale, 1, 1, 1);
+  expect_vec(a.world_line.velocity, {0, 0, 0});
+  expect_vec(a.rotation * Vec3{1, 2, 3}, {1, 2, 3});
+  expect_vec(a.scale, {1, 1, 1});
   expect_rgb(std::get<SolidColor>(a.material.pattern).color, 1, 1, 1);
   EXPECT_TRUE(a.material.unlit);
 
   expect_rgb(std::get<SolidColor>(s.sky.pattern).color, 0, 0, 0);
-  expect_vec(s.sky.velocity, 0, 0, 0);
+  expect_vec(s.sky.velocity, {0, 0, 0});
   EXPECT_TRUE(s.render.relativity);
   EXPECT_TRUE(s.render.light_delay);
   // A scene file's picture is exposed for its moving bodies and shown through the filmic curve;
@@ -491,33 +491,33 @@ TEST_F(SceneFileTest, LightsOfEachTypeMapOntoTheModel) {
   const Light& bulb = s.lights[0];
   EXPECT_EQ(bulb.name, "bulb");
   EXPECT_TRUE(std::holds_alternative<PointLight>(bulb.kind));
-  expect_vec(bulb.world_line.position, 1, 2, 3);
+  expect_vec(bulb.world_line.position, {1, 2, 3});
   EXPECT_EQ(bulb.world_line.time, -2);
-  expect_vec(bulb.world_line.velocity, 0.5, 0, 0);
+  expect_vec(bulb.world_line.velocity, {0.5, 0, 0});
   expect_rgb(std::get<Rgb>(bulb.spectrum.emission), 1, 0.5f, 2);  // above 1 is allowed
   EXPECT_EQ(bulb.intensity, 10);
 
   const Light& torch = s.lights[1];
   const SpotLight& spot = std::get<SpotLight>(torch.kind);
-  expect_vec(spot.direction, 0, -1, 0);  // normalized
+  expect_vec(spot.direction, {0, -1, 0});  // normalized
   EXPECT_EQ(spot.cone_degrees, 40);
   EXPECT_EQ(spot.falloff_degrees, 20);  // up to half the cone
   EXPECT_EQ(std::get<Blackbody>(torch.spectrum.emission).temperature_k, 3000);
   EXPECT_EQ(torch.intensity, 3);
-  expect_vec(torch.world_line.position, 0, 5, 0);
+  expect_vec(torch.world_line.position, {0, 5, 0});
 
   const Light& sun = s.lights[2];
   const DirectionalLight& directional = std::get<DirectionalLight>(sun.kind);
-  expect_vec(directional.direction, std::sqrt(0.5), -std::sqrt(0.5), 0);
+  expect_vec(directional.direction, {std::sqrt(0.5), -std::sqrt(0.5), 0});
   EXPECT_EQ(directional.irradiance, 2.5);
-  expect_vec(sun.world_line.velocity, 0, 0, 0.3);
-  expect_vec(sun.world_line.position, 9, 9, 9);  // allowed, and ignored by the renderer
+  expect_vec(sun.world_line.velocity, {0, 0, 0.3});
+  expect_vec(sun.world_line.position, {9, 9, 9});  // allowed, and ignored by the renderer
   expect_rgb(std::get<Rgb>(sun.spectrum.emission), 1, 0.9f, 0.8f);
 
   const Light& globe = s.lights[3];
   EXPECT_EQ(std::get<SphereLight>(globe.kind).radius, 0.5);
   EXPECT_EQ(globe.intensity, 0);  // a light may be off
-  expect_vec(globe.world_line.position, 0, 0, -4);
+  expect_vec(globe.world_line.position, {0, 0, -4});
 }
 
 TEST_F(SceneFileTest, LightDefaultsAreTheDocumentedOnes) {
@@ -535,19 +535,19 @@ TEST_F(SceneFileTest, LightDefaultsAreTheDocumentedOnes) {
   ASSERT_EQ(s.lights.size(), 6u);
   for (const Light& l : s.lights) {
     SCOPED_TRACE(l.name);
-    expect_vec(l.world_line.position, 0, 0, 0);
+    expect_vec(l.world_line.position, {0, 0, 0});
     EXPECT_EQ(l.world_line.time, 0);
-    expect_vec(l.world_line.velocity, 0, 0, 0);
+    expect_vec(l.world_line.velocity, {0, 0, 0});
     expect_rgb(std::get<Rgb>(l.spectrum.emission), 1, 1, 1);
     EXPECT_EQ(l.intensity, 1);
   }
   EXPECT_TRUE(std::holds_alternative<PointLight>(s.lights[0].kind));
   const SpotLight& spot = std::get<SpotLight>(s.lights[1].kind);
-  expect_vec(spot.direction, 0, 0, -1);
+  expect_vec(spot.direction, {0, 0, -1});
   EXPECT_EQ(spot.cone_degrees, 60);
   EXPECT_EQ(spot.falloff_degrees, 5);
   const DirectionalLight& directional = std::get<DirectionalLight>(s.lights[2].kind);
-  expect_vec(directional.direction, 0, -1, 0);
+  expect_vec(directional.direction, {0, -1, 0});
   EXPECT_EQ(directional.irradiance, 1);
   EXPECT_EQ(std::get<SphereLight>(s.lights[3].kind).radius, 2);
   // The default soft edge (5 degrees) shrinks to half of a cone narrower than 10 degrees.

@@ -31,10 +31,10 @@ TEST_F(SceneFileTest, OverridesReplaceValues) {
                                         "camera.width=320", "objects.0.velocity=[0.5,0,0]",
                                         "objects[0].position=[1, 2, 3]", "objects.0.name=renamed"});
   EXPECT_FALSE(s.render.relativity);
-  expect_vec(s.camera.world_line.velocity, 0, 0, 0.5);
+  expect_vec(s.camera.world_line.velocity, {0, 0, 0.5});
   EXPECT_EQ(s.camera.width, 320);
-  expect_vec(s.objects.at(0).world_line.velocity, 0.5, 0, 0);
-  expect_vec(s.objects.at(0).world_line.position, 1, 2, 3);
+  expect_vec(s.objects.at(0).world_line.velocity, {0.5, 0, 0});
+  expect_vec(s.objects.at(0).world_line.position, {1, 2, 3});
   EXPECT_EQ(s.objects.at(0).name, "renamed");  // not JSON, so taken as a string
 }
 
@@ -43,8 +43,8 @@ TEST_F(SceneFileTest, OverridesReplaceValues) {
 TEST_F(SceneFileTest, OverridesReadCommaSeparatedNumbersAsArrays) {
   const Scene s = load(kOverrideScene, {"camera.velocity=0,0,-0.99", "objects.0.position=1, 2,3e-1",
                                         "objects.0.name=a,b"});
-  expect_vec(s.camera.world_line.velocity, 0, 0, -0.99);
-  expect_vec(s.objects.at(0).world_line.position, 1, 2, 0.3);
+  expect_vec(s.camera.world_line.velocity, {0, 0, -0.99});
+  expect_vec(s.objects.at(0).world_line.position, {1, 2, 0.3});
   EXPECT_EQ(s.objects.at(0).name, "a,b");
   expect_set_error(kOverrideScene, {"camera.velocity=0,0,x"}, "camera.velocity",
                    "string \"0,0,x\"");

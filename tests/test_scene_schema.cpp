@@ -52,7 +52,7 @@ TEST_F(SceneFileTest, DocumentedExampleLoads) {
   const std::size_t end = doc.find("```", start + 9);
   const Scene s = load(doc.substr(start + 9, end - start - 9));
   EXPECT_EQ(s.objects.size(), 3u);
-  expect_vec(s.camera.world_line.velocity, 0, 0, -0.6);
+  expect_vec(s.camera.world_line.velocity, {0, 0, -0.6});
 }
 
 // Every object in the schema that lists properties forbids others, like the loader.

@@ -24,10 +24,6 @@ int png_byte(float linear) {
   return -1;
 }
 
-Rgb pixel(const Image& image, int x, int y) {
-  return image.texel(x, y);
-}
-
 std::string moving_black_ball() {
   const std::string moving = edited(kScene, "\n      \"velocity\": [0, 0, 0]",
                                     "\n      \"velocity\": [0.8, 0, 0],\n      \"time\": -10");

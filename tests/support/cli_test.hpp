@@ -55,27 +55,23 @@ std::string edited(const std::string& text, const std::string& from, const std::
 std::size_t line_count(const std::string& text);
 // The 8-bit value the PNG holds for a pixel read back as linear (load_image_file decodes sRGB).
 int png_byte(float linear);
-Rgb pixel(const Image& image, int x, int y);
 
 // The ball of kScene crossing the view at 0.8c, placed so that the light from its centre that
 // reaches the camera left it at t = -10 straight ahead. It is black on a red sky at rest: black
 // stays black and the sky stays red whatever the Doppler shift, so a pixel tells which it is.
 std::string moving_black_ball();
 
-class CliTest : public testing::Test {
+class CliTest : public TempDirTest {
  protected:
   void SetUp() override {
-    dir_ = test::fresh_temp_dir("cli");
+    TempDirTest::SetUp();
     out_ = dir_ / "out";
     std::filesystem::create_directories(out_);
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
 
   std::filesystem::path write_scene(const std::string& json,
-                                    const std::string& name = "scene.json") {
-    const std::filesystem::path file = dir_ / name;
-    test::write_text(file, json);
-    return file;
+                                    const std::string& name = "scene.json") const {
+    return write(name, json);
   }
 
   std::filesystem::path png() const { return out_ / "image.png"; }
@@ -127,7 +123,7 @@ class CliTest : public testing::Test {
     expect_nothing_written();
   }
 
-  std::filesystem::path dir_, out_;
+  std::filesystem::path out_;
 };
 
 }  // namespace lightcone::test

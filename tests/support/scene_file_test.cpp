@@ -19,12 +19,6 @@ void expect_rgb(const Rgb& c, float r, float g, float b) {
   EXPECT_FLOAT_EQ(c.b, b);
 }
 
-void expect_vec(const Vec3& v, double x, double y, double z, double tolerance) {
-  EXPECT_NEAR(v.x, x, tolerance);
-  EXPECT_NEAR(v.y, y, tolerance);
-  EXPECT_NEAR(v.z, z, tolerance);
-}
-
 void SceneFileTest::write_two_texel_png(const std::string& name, std::vector<float> rgb) const {
   Image image;
   image.width = 2;

@@ -46,6 +46,4 @@ std::string with_object(const std::string& object);
 
 void expect_rgb(const Rgb& c, float r, float g, float b);
 
-void expect_vec(const Vec3& v, double x, double y, double z, double tolerance = 1e-12);
-
 }  // namespace lightcone::test

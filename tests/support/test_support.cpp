@@ -73,6 +73,12 @@ double fraction_differing(const Image& a, const Image& b) {
   return static_cast<double>(bad) / static_cast<double>(a.rgb.size() / 3);
 }
 
+void expect_vec(const Vec3& v, const Vec3& expected, double tolerance) {
+  EXPECT_NEAR(v.x, expected.x, tolerance) << "x";
+  EXPECT_NEAR(v.y, expected.y, tolerance) << "y";
+  EXPECT_NEAR(v.z, expected.z, tolerance) << "z";
+}
+
 void TempDirTest::SetUp() {
   dir_ = fresh_temp_dir(testing::UnitTest::GetInstance()->current_test_info()->name());
 }

@@ -33,6 +33,9 @@ double bisect_decreasing(const std::function<double(double)>& f, double lo, doub
 // the comparison of the renders of one physical scene described in two frames.
 double fraction_differing(const Image& a, const Image& b);
 
+// Each component of `v` within `tolerance` of `expected`'s.
+void expect_vec(const Vec3& v, const Vec3& expected, double tolerance = 1e-12);
+
 // A fixture with a fresh folder per test, removed afterwards.
 class TempDirTest : public testing::Test {
  protected:

@@ -92,12 +92,9 @@ double cubic_integral(double d, const LinearFactors& x, const LinearFactors& y) 
 RealCubic real_cubic(double dx, const LinearFactors& fx, const LinearFactors& fy, double d12,
                      double d13, double b1) {
   RealCubic c{};
-  c.x1 = std::sqrt(fx.f1), c.x2 = std::sqrt(fx.f2), c.x3 = std::sqrt(fx.f3);
-  c.y1 = std::sqrt(fy.f1), c.y2 = std::sqrt(fy.f2), c.y3 = std::sqrt(fy.f3);
-  const double u1 = (c.x1 * c.y2 * c.y3 + c.y1 * c.x2 * c.x3) / dx;
-  const double u2 = (c.x2 * c.y1 * c.y3 + c.y2 * c.x1 * c.x3) / dx;
-  const double u3 = (c.x3 * c.y1 * c.y2 + c.y3 * c.x1 * c.x2) / dx;
-  c.u1s = u1 * u1, c.u2s = u2 * u2, c.u3s = u3 * u3;
+  c.x = roots(fx), c.y = roots(fy);
+  const RfArgs u = cubic_args(dx, c.x, c.y);
+  c.u1s = u.z, c.u2s = u.y, c.u3s = u.x;
   c.d12 = d12, c.d13 = d13, c.b1 = b1;
   c.rf = rf(c.u1s, c.u2s, c.u3s);
   return c;
@@ -108,7 +105,7 @@ double first_kind(const RealCubic& c) {
 }
 // int_y^x sqrt(L1) dw / sqrt(L2 L3) = (2/3) d12 d13 R_D(U3^2, U2^2, U1^2) + 2 X1 Y1 / U1.
 double second_kind(const RealCubic& c) {
-  return 2.0 / 3 * c.d12 * c.d13 * rd(c.u3s, c.u2s, c.u1s) + 2 * c.x1 * c.y1 / std::sqrt(c.u1s);
+  return 2.0 / 3 * c.d12 * c.d13 * rd(c.u3s, c.u2s, c.u1s) + 2 * c.x.s1 * c.y.s1 / std::sqrt(c.u1s);
 }
 
 namespace {
@@ -137,7 +134,7 @@ double pole_rc(double w2, double x4s, double y4s, double x1y1s, double pq, bool 
 // b4 / (d14 P) in front of the logarithm is 1 there, since P(w = 0) = 1).
 double third_kind(const RealCubic& c, const Pole& p, bool regular) {
   const double w2 = c.u1s - p.b4 * c.d12 * c.d13 / p.d14;
-  const double x1y1s = c.x1 * c.x1 * c.y1 * c.y1;
+  const double x1y1s = c.x.s1 * c.x.s1 * c.y.s1 * c.y.s1;
   const double i3 = pole_rc(w2, p.l4x, p.l4y, x1y1s, p.b4 * p.d24 * p.d34 / p.d14, regular) -
                     2 * c.b1 * c.d12 * c.d13 / (3 * p.d14) * rj(c.u3s, c.u2s, c.u1s, w2);
   return (p.b4 * i3 - c.b1 * first_kind(c)) / p.d14;

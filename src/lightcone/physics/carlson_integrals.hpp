@@ -54,8 +54,8 @@ double cubic_integral(double d, const LinearFactors& x, const LinearFactors& y);
 // (Carlson 1989): the factors' values at x and y, d_ij = a_i b_j - a_j b_i, dx = x - y, and what
 // they share.
 struct RealCubic {
-  double x1, x2, x3, y1, y2, y3;  // sqrt(L_i) at x and y
-  double u1s, u2s, u3s;           // U_1^2 = ((X1 Y2 Y3 + Y1 X2 X3) / dx)^2 and its cyclic shifts
+  FactorRoots x, y;      // sqrt(L_i) at x and y
+  double u1s, u2s, u3s;  // U_1^2 = U23^2 = ((X1 Y2 Y3 + Y1 X2 X3) / dx)^2, U13^2, U12^2
   double d12, d13, b1;
   double rf;  // R_F(U1^2, U2^2, U3^2)
 };

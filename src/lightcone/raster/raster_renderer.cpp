@@ -421,6 +421,15 @@ void RasterRenderer::Impl::light_surfaces(double ox, double oy, int features) {
   check_gl("lighting the lit surfaces");
 }
 
+void RasterRenderer::Impl::bind_frame_state() {
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, rows_texture);
+  glBindVertexArray(vertex_array);
+}
+
 // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
 void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* offsets) {
   const ResolvedScene& resolved = *scene;
@@ -437,14 +446,9 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
   glClearColor(0, 0, 0, 0);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, rows_texture);
+  bind_frame_state();
 
   glDepthFunc(GL_LESS);
-  glBindVertexArray(vertex_array);
   glBindBuffer(GL_ARRAY_BUFFER, gpu_tessellation ? patch_buffer : vertex_buffer);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float), nullptr);
   glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
@@ -547,11 +551,7 @@ const GlDriver& RasterRenderer::driver() const {
 
 void RasterRenderer::sky_pass() {
   impl_->shading_offsets = nullptr;
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glBindVertexArray(impl_->vertex_array);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, impl_->rows_texture);
+  impl_->bind_frame_state();
   impl_->draw_sky(0.5, 0.5);
 }
 

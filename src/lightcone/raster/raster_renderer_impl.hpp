@@ -199,6 +199,9 @@ struct RasterRenderer::Impl {
   // A lit body's own uniforms: what its surfaces write for the lighting pass.
   void set_lit_body(const ResolvedScene& resolved, const BodyDraw& draw);
 
+  // What every pass draws with: the depth test, no culling or blending, the colour rows on unit
+  // 0, the bodies' vertex array.
+  void bind_frame_state();
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
   void pass(double ox, double oy, const std::vector<float>* offsets);
   // The sky and its stars, behind what the bound target's depth buffer holds.
