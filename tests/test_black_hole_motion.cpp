@@ -12,12 +12,10 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -674,32 +672,18 @@ TEST_F(BlackHoleMotion, InfoRenderAndAnimate) {
 // ---------------------------------------------------------------------------------------------
 // The documentation and the schema
 
-std::string read_source_file(const std::string& relative) {
-  std::ifstream in(fs::path(LIGHTCONE_SOURCE_DIR) / relative, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> keys_of(const nlohmann::json& object) {
-  std::vector<std::string> keys;
-  for (const auto& item : object.items()) keys.push_back(item.key());
-  std::sort(keys.begin(), keys.end());
-  return keys;
-}
-
 TEST(BlackHoleMotionSchema, ListsTheKeysTheLoaderReads) {
-  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  const auto schema = nlohmann::json::parse(test::read_source_file("schema/scene.schema.json"));
   const auto& defs = schema.at("$defs");
   EXPECT_EQ(defs.at("camera").at("properties").at("motion").at("$ref"), "#/$defs/bodyMotion");
   const auto& geodesic = defs.at("geodesicMotion").at("properties");
-  EXPECT_EQ(keys_of(geodesic), (std::vector<std::string>{"fall", "orbit"}));
-  EXPECT_EQ(keys_of(geodesic.at("orbit").at("properties")),
+  EXPECT_EQ(test::keys_of(geodesic), (std::vector<std::string>{"fall", "orbit"}));
+  EXPECT_EQ(test::keys_of(geodesic.at("orbit").at("properties")),
             (std::vector<std::string>{"normal", "phase", "radius"}));
   EXPECT_EQ(geodesic.at("orbit").at("properties").at("radius").at("exclusiveMinimum"), 3);
-  EXPECT_EQ(keys_of(geodesic.at("fall").at("properties")),
+  EXPECT_EQ(test::keys_of(geodesic.at("fall").at("properties")),
             (std::vector<std::string>{"direction", "from", "time"}));
-  const std::string doc = read_source_file("docs/scene-format.md");
+  const std::string doc = test::read_source_file("docs/scene-format.md");
   for (const char* word :
        {"`orbit`", "`fall`", "`radius`", "`normal`", "`phase`", "`from`", "`\"infinity\"`",
         "`direction`", "unstable", "2M (1 + 10^-9)", "not drawn yet", "MTW eq. 31.10"})

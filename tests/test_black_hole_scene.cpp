@@ -8,9 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -357,27 +355,14 @@ TEST_F(BlackHoleScene, TheCommandRefusesWithStatus2AndWritesNothing) {
 // ---------------------------------------------------------------------------------------------
 // The documentation and the schema
 
-std::string read_source_file(const std::string& relative) {
-  std::ifstream in(fs::path(LIGHTCONE_SOURCE_DIR) / relative, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 TEST_F(BlackHoleScene, TheDocumentedExampleLoads) {
-  const std::string doc = read_source_file("docs/scene-format.md");
-  const std::size_t section = doc.find("## `black_hole`");
-  ASSERT_NE(section, std::string::npos);
-  const std::size_t start = doc.find("```jsonc\n", section);
-  ASSERT_NE(start, std::string::npos);
-  const std::size_t end = doc.find("```", start + 9);
-  const Scene s = load(doc.substr(start + 9, end - start - 9));
+  const Scene s = load(test::documented_example("## `black_hole`"));
   ASSERT_TRUE(s.black_hole);
   EXPECT_TRUE(s.black_hole->disk);
 }
 
 TEST(BlackHoleSchema, ListsTheKeysTheLoaderReads) {
-  const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
+  const auto schema = nlohmann::json::parse(test::read_source_file("schema/scene.schema.json"));
   const auto& defs = schema.at("$defs");
   EXPECT_EQ(schema.at("properties").at("black_hole").at("$ref"), "#/$defs/blackHole");
   const auto& hole = defs.at("blackHole");
@@ -398,7 +383,7 @@ TEST(BlackHoleSchema, ListsTheKeysTheLoaderReads) {
   EXPECT_EQ(disk.at("temperature").at("default"), 10000);
   EXPECT_EQ(disk.at("luminance").at("default"), 1);
 
-  const std::string doc = read_source_file("docs/scene-format.md");
+  const std::string doc = test::read_source_file("docs/scene-format.md");
   for (const char* word :
        {"`black_hole`", "`mass`", "`disk`", "`inner`", "`outer`", "`normal`", "`temperature`",
         "`luminance`", "GM/c^2", "Schwarzschild coordinate time", "static observer",

@@ -1,12 +1,10 @@
 // The bundled scenes as a user first sees them: each is readable at its own defaults (few
 // pixels the PNG holds as 255), and the README's first command renders the README's picture.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +14,7 @@
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/trace/aov.hpp"
 #include "lightcone/trace/renderer.hpp"
+#include "support/scene_file_test.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {
@@ -36,16 +35,7 @@ const std::string kFirstExample = "docs/scene-format.md's first example";
 
 Scene load_named(const std::string& name) {
   if (name != kFirstExample) return test::load_repository_scene(name);
-  const std::string doc = test::bytes_of(fs::path(LIGHTCONE_SOURCE_DIR) / "docs/scene-format.md");
-  const std::size_t start = doc.find("```jsonc\n");
-  const std::size_t end = doc.find("```", start + 9);
-  const fs::path file = fs::temp_directory_path() /
-                        ("lightcone-first-example-" + std::to_string(::getpid()) + ".json");
-  std::ofstream(file) << doc.substr(start + 9, end - start - 9);
-  SceneLoadReport report;
-  Scene scene = load_scene_file(file, {}, report);
-  fs::remove(file);
-  return scene;
+  return test::scene_from_json(test::documented_example());
 }
 
 // The scene at a quarter of its size (its view, samples and settings unchanged), and, where

@@ -4,9 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,32 +23,15 @@ using namespace test;  // the scene-file fixture and helpers (support/scene_file
 // ---------------------------------------------------------------------------------------------
 // The documentation and the schema
 
-std::string read_source_file(const std::string& relative) {
-  std::ifstream in(fs::path(LIGHTCONE_SOURCE_DIR) / relative, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The lit example in the section on lights is a whole scene, and loads.
 TEST_F(SceneFileTest, DocumentedLightsExampleLoads) {
-  const std::string doc = read_source_file("docs/scene-format.md");
-  const std::size_t section = doc.find("## `lights[]`");
-  ASSERT_NE(section, std::string::npos);
-  const std::size_t start = doc.find("```jsonc\n", section);
-  ASSERT_NE(start, std::string::npos);
-  const std::size_t end = doc.find("```", start + 9);
-  const Scene s = load(doc.substr(start + 9, end - start - 9));
+  const Scene s = load(documented_example("## `lights[]`"));
   EXPECT_EQ(s.lights.size(), 4u);
   EXPECT_FALSE(s.objects.at(0).material.unlit);
 }
 
 TEST_F(SceneFileTest, DocumentedExampleLoads) {
-  const std::string doc = read_source_file("docs/scene-format.md");
-  const std::size_t start = doc.find("```jsonc\n");
-  ASSERT_NE(start, std::string::npos);
-  const std::size_t end = doc.find("```", start + 9);
-  const Scene s = load(doc.substr(start + 9, end - start - 9));
+  const Scene s = load(documented_example());
   EXPECT_EQ(s.objects.size(), 3u);
   expect_vec(s.camera.world_line.velocity, {0, 0, -0.6});
 }
@@ -72,13 +53,6 @@ TEST(SceneSchema, IsClosedEverywhere) {
   const auto schema = nlohmann::json::parse(read_source_file("schema/scene.schema.json"));
   EXPECT_EQ(schema.at("$schema"), "https://json-schema.org/draft/2020-12/schema");
   expect_closed(schema, "");
-}
-
-std::vector<std::string> keys_of(const nlohmann::json& object) {
-  std::vector<std::string> keys;
-  for (const auto& item : object.items()) keys.push_back(item.key());
-  std::sort(keys.begin(), keys.end());
-  return keys;
 }
 
 // The schema's sky.stars: a boolean or the loader's three keys, its one catalogue.

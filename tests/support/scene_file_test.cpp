@@ -2,12 +2,35 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <optional>
 
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 
 namespace lightcone::test {
+
+std::string read_source_file(const std::string& relative) {
+  return bytes_of(std::filesystem::path(LIGHTCONE_SOURCE_DIR) / relative);
+}
+
+std::string documented_example(const std::string& heading) {
+  const std::string doc = read_source_file("docs/scene-format.md");
+  const std::size_t section = heading.empty() ? 0 : doc.find(heading);
+  const std::size_t start =
+      section == std::string::npos ? section : doc.find("```jsonc\n", section);
+  EXPECT_NE(start, std::string::npos) << "no example under '" << heading << "'";
+  if (start == std::string::npos) return "";
+  const std::size_t end = doc.find("```", start + 9);
+  return doc.substr(start + 9, end - start - 9);
+}
+
+std::vector<std::string> keys_of(const nlohmann::json& object) {
+  std::vector<std::string> keys;
+  for (const auto& item : object.items()) keys.push_back(item.key());
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
 
 std::string with_object(const std::string& object) {
   return "{\n  \"camera\": {\"position\": [0, 0, 5]},\n  \"objects\": [" + object + "]\n}";

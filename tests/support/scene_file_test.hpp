@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,14 @@ class SceneFileTest : public TempDirTest {
 
   SceneLoadReport report_;
 };
+
+// A file of the repository (docs/scene-format.md, schema/scene.schema.json), as text.
+std::string read_source_file(const std::string& relative);
+// The first ```jsonc example of docs/scene-format.md after the line `heading` (from the top when
+// empty); a test failure and "" where there is none.
+std::string documented_example(const std::string& heading = "");
+// A JSON object's keys, sorted.
+std::vector<std::string> keys_of(const nlohmann::json& object);
 
 // Wraps one object (given on the third line) in a valid scene.
 std::string with_object(const std::string& object);
