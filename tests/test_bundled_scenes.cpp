@@ -48,10 +48,14 @@ Image display_at_quarter_size(const std::string& name, std::vector<bool>* moving
   if (moving) options.aovs = {Aov::kObject};
   const Image linear = render_image(s, options);
   if (moving) {
+    // The bodies point into the scene they were resolved in (a scene with accelerated or
+    // keyframed bodies is resolved in its tangent copy), whose objects are the scene's, in order.
     const ResolvedScene resolved = resolve_scene(s);
-    std::vector<bool> object_moves(s.objects.size(), false);
+    const std::vector<Object>& objects = resolved.scene->objects;
+    std::vector<bool> object_moves(objects.size(), false);
     for (const ResolvedBody& body : resolved.bodies)
-      object_moves[body.object - s.objects.data()] = body.moves_relative_to_camera();
+      object_moves[static_cast<std::size_t>(body.object - objects.data())] =
+          body.moves_relative_to_camera();
     moving->clear();
     for (const float object : linear.channels.at(0).values)
       moving->push_back(object >= 0 && object_moves[static_cast<std::size_t>(object)]);
