@@ -19,6 +19,7 @@
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/sigmoid_polynomial.hpp"
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/scene_file.hpp"
@@ -113,6 +114,8 @@ EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides
   try {
     SceneLoadReport report;
     auto scene = std::make_unique<Scene>(load_scene_file(path, sets, report));
+    // The rules the program and the Python module check, with their message.
+    if (const auto refused = scene_refused(*scene)) return failure(*refused);
     Page& p = page();
     const bool keep = keep_flight && p.flight && p.path == path;
     p.path = path;

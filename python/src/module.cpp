@@ -3,26 +3,31 @@
 // checked in python/lightcone/__init__.py; this layer takes them as the library does.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <csignal>
+#include <signal.h>
 #include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <regex>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/input_file.hpp"
+#include "lightcone/io/json_locator.hpp"
 #include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/star_catalogue.hpp"
@@ -55,30 +60,268 @@ Scene load(const std::string& path, const std::vector<std::string>& overrides,
   return scene;
 }
 
-Scene load_text(const std::string& text, const std::string& name,
+// How messages name a scene given as Python values (Scene.from_dict), as a file's path names a
+// file's scene.
+constexpr const char* kDictSource = "<dict>";
+
+// A Python value into compact JSON text: the scene format as dicts, lists, strings, numbers,
+// booleans and None, numpy's scalars as numbers and its arrays as lists. It is refused as the
+// program refuses a scene file, and early, as it is walked: more than kMaxSceneFileBytes of text
+// (the 64 MiB of a scene file) or nesting deeper than kMaxSceneNesting; and what JSON cannot
+// hold (NaN, infinity, a key that is not a string, another type), each value named by its path:
+// "<dict>: objects[2].velocity[0]: must be a finite number, got nan" (or for an override's
+// value, "--set camera.velocity[0]: ...").
+class JsonWriter {
+ public:
+  // `source` names the value in messages: kDictSource, or "--set" for the value of the override
+  // at `path`.
+  JsonWriter(std::string source, std::string path)
+      : source_(std::move(source)), path_(std::move(path)) {
+    const py::module_ numpy = py::module_::import("numpy");
+    for (const char* name : {"ndarray", "bool_", "integer", "floating"})
+      numpy_.push_back(numpy.attr(name));
+    mapping_ = py::module_::import("collections.abc").attr("Mapping");
+  }
+
+  std::string write(py::handle value) {
+    this->value(value, 0);
+    return std::move(out_);
+  }
+
+ private:
+  // A step of the path from the root: a member's key (a str), or an element's index.
+  struct Step {
+    py::handle key;
+    std::size_t index = 0;
+  };
+
+  [[noreturn]] void fail(const std::string& what) const {
+    std::string path = path_;
+    for (const Step& step : steps_) {
+      if (!step.key) {
+        path = json_element_path(path, step.index);
+        continue;
+      }
+      // (A key with a lone surrogate is no UTF-8: shown escaped.)
+      const py::object bytes = py::reinterpret_steal<py::object>(
+          PyUnicode_AsEncodedString(step.key.ptr(), "utf-8", "backslashreplace"));
+      path = json_member_path(path, bytes ? std::string(py::bytes(bytes)) : "?");
+    }
+    if (source_ == "--set") throw InputError(fmt::format("--set {}: {}", path, what));
+    throw InputError(
+        fmt::format("{}: {}: {}", source_, path.empty() ? "(top level)" : path, what));
+  }
+
+  // The text so far plus `more` bytes is still within a scene file's limit.
+  void reserve(std::size_t more) const {
+    if (out_.size() + more > kMaxSceneFileBytes) {
+      const std::string what = fmt::format("more than the limit of {} bytes as JSON text (a "
+                                           "scene file's)",
+                                           kMaxSceneFileBytes);
+      if (source_ == "--set") throw InputError(fmt::format("--set {}: {}", path_, what));
+      throw InputError(fmt::format("{}: {}", source_, what));
+    }
+  }
+  void append(std::string_view text) {
+    reserve(text.size());
+    out_ += text;
+  }
+
+  void value(py::handle v, int depth) {
+    PyObject* p = v.ptr();
+    if (PyUnicode_Check(p)) return string(v);
+    if (PyBool_Check(p)) return append(p == Py_True ? "true" : "false");
+    if (PyLong_Check(p)) return integer(v);
+    if (PyFloat_Check(p)) return number(PyFloat_AS_DOUBLE(p));
+    if (PyDict_Check(p)) return object(v, depth);
+    if (PyList_Check(p) || PyTuple_Check(p)) return array(v, depth);
+    if (p == Py_None) return append("null");
+    if (isinstance(v, numpy_[0])) {
+      // At least one character and a comma an element: a huge array is refused before its
+      // elements are made.
+      if (const auto n = v.attr("size").cast<std::size_t>(); n > 0) reserve(2 * n - 1);
+      return value(v.attr("tolist")(), depth);
+    }
+    if (isinstance(v, numpy_[1])) return append(PyObject_IsTrue(p) ? "true" : "false");
+    if (isinstance(v, numpy_[2])) return integer(py::reinterpret_steal<py::object>(check(PyNumber_Index(p))));
+    if (isinstance(v, numpy_[3])) {
+      const double d = PyFloat_AsDouble(p);
+      if (d == -1 && PyErr_Occurred()) throw py::error_already_set();
+      return number(d);
+    }
+    if (isinstance(v, mapping_)) return object(py::dict(py::reinterpret_borrow<py::object>(v)), depth);
+    fail(fmt::format("must be a dict, list, str, number, bool or None (the scene format's JSON), "
+                     "got {}",
+                     py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>()));
+  }
+
+  static bool isinstance(py::handle v, const py::object& type) {
+    const int is = PyObject_IsInstance(v.ptr(), type.ptr());
+    if (is < 0) throw py::error_already_set();
+    return is == 1;
+  }
+  static PyObject* check(PyObject* made) {
+    if (!made) throw py::error_already_set();
+    return made;
+  }
+
+  void number(double d) {
+    if (std::isnan(d)) fail("must be a finite number, got nan");
+    if (std::isinf(d)) fail(fmt::format("must be a finite number, got {}", d));
+    // Python's repr, as json.dumps writes a float: the shortest text that reads back as d.
+    char* text = PyOS_double_to_string(d, 'r', 0, Py_DTSF_ADD_DOT_0, nullptr);
+    if (!text) throw py::error_already_set();
+    const std::unique_ptr<char, void (*)(void*)> owned(text, PyMem_Free);
+    append(text);
+  }
+
+  void integer(py::handle v) {
+    int overflow = 0;
+    const long long i = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+    if (i == -1 && PyErr_Occurred()) throw py::error_already_set();
+    if (overflow == 0) return append(fmt::format_int(i).str());
+    if (overflow > 0) {
+      const unsigned long long u = PyLong_AsUnsignedLongLong(v.ptr());
+      if (!PyErr_Occurred()) return append(fmt::format_int(u).str());
+      PyErr_Clear();
+    }
+    // Beyond 64 bits: the nearest double, as the program reads so large a whole number.
+    const double d = PyLong_AsDouble(v.ptr());
+    if (d == -1 && PyErr_Occurred()) {
+      PyErr_Clear();
+      fail("must be a finite number, got a whole number beyond a double's range");
+    }
+    number(d);
+  }
+
+  void string(py::handle v) {
+    Py_ssize_t size = 0;
+    const char* text = PyUnicode_AsUTF8AndSize(v.ptr(), &size);
+    if (!text) {
+      PyErr_Clear();
+      fail("must be text (UTF-8), got a str with a lone surrogate");
+    }
+    reserve(static_cast<std::size_t>(size) + 2);
+    out_ += '"';
+    const std::string_view s(text, static_cast<std::size_t>(size));
+    std::size_t start = 0;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+      const auto c = static_cast<unsigned char>(s[k]);
+      if (c >= 0x20 && c != '"' && c != '\\') continue;
+      out_.append(s.substr(start, k - start));
+      append(c == '"' ? "\\\"" : c == '\\' ? "\\\\" : fmt::format("\\u{:04x}", c));
+      start = k + 1;
+    }
+    out_.append(s.substr(start));
+    out_ += '"';
+  }
+
+  void open(int depth) const {
+    if (depth >= kMaxSceneNesting)
+      fail(fmt::format("nested more than {} levels deep", kMaxSceneNesting));
+  }
+
+  void object(py::handle v, int depth) {
+    open(depth);
+    append("{");
+    PyObject *key = nullptr, *item = nullptr;
+    Py_ssize_t at = 0;
+    bool first = true;
+    while (PyDict_Next(v.ptr(), &at, &key, &item)) {
+      // Held while they are walked (a numpy conversion runs Python code).
+      const py::object held_key = py::reinterpret_borrow<py::object>(key);
+      const py::object held_item = py::reinterpret_borrow<py::object>(item);
+      if (!PyUnicode_Check(key))
+        fail(fmt::format("a key must be a str, got {} {}",
+                         py::str(py::type::handle_of(key).attr("__name__")).cast<std::string>(),
+                         py::repr(key).cast<std::string>()));
+      if (!first) append(",");
+      first = false;
+      string(key);
+      append(":");
+      steps_.push_back({key});
+      value(item, depth + 1);
+      steps_.pop_back();
+    }
+    append("}");
+  }
+
+  void array(py::handle v, int depth) {
+    open(depth);
+    append("[");
+    const bool list = PyList_Check(v.ptr());
+    for (Py_ssize_t k = 0; k < (list ? PyList_GET_SIZE(v.ptr()) : PyTuple_GET_SIZE(v.ptr())); ++k) {
+      const py::object item = py::reinterpret_borrow<py::object>(
+          list ? PyList_GET_ITEM(v.ptr(), k) : PyTuple_GET_ITEM(v.ptr(), k));
+      if (k > 0) append(",");
+      steps_.push_back({py::handle(), static_cast<std::size_t>(k)});
+      value(item, depth + 1);
+      steps_.pop_back();
+    }
+    append("]");
+  }
+
+  std::string source_, path_;
+  std::vector<py::object> numpy_;  // ndarray, bool_, integer, floating
+  py::object mapping_;
+  std::vector<Step> steps_;
+  std::string out_;
+};
+
+// A scene built in code: the document's JSON text read as a file's text would be, its messages
+// naming "<dict>" and the value's path without a line, its relative paths read from `folder`.
+Scene load_dict(py::handle document, const std::string& folder,
                 const std::vector<std::string>& overrides, std::vector<std::string>& warnings) {
+  std::string text = JsonWriter(kDictSource, "").write(document);
+  SceneLoadOptions options;
+  options.line_numbers = false;
+  options.folder = folder;
   SceneLoadReport report;
-  Scene scene = load_scene_text(text, name, overrides, report);
+  std::optional<Scene> scene;
+  {
+    py::gil_scoped_release unlocked;
+    scene = load_scene_text(std::move(text), kDictSource, overrides, report, options);
+  }
   warnings = std::move(report.warnings);
-  return scene;
+  return std::move(*scene);
 }
 
-// Set while a render runs: Python's SIGINT handler is replaced by one that asks the renderer to
-// stop after its tiles in flight (RenderOptions::cancel), and restored afterwards.
+// While a render runs on Python's main thread, its SIGINT handler is replaced by one that asks
+// the renderer to stop after its tiles in flight (RenderOptions::cancel), and then restored as it
+// was, flags and all (signal() would restore it with SA_RESTART, after which a blocking call,
+// a read from a pipe or a wait for a child, no longer wakes for Ctrl-C). Only on the main
+// thread, where Python handles signals: a render on another thread leaves Ctrl-C to Python (a
+// KeyboardInterrupt in the main thread) and runs on; and two threads' renders would each restore
+// the handler the other had replaced.
 std::atomic<bool> interrupted{false};
+std::atomic<int> renders_running{0};
 
 extern "C" void on_interrupt(int) {
   interrupted = true;
 }
 
+bool on_main_thread() {
+  const py::module_ threading = py::module_::import("threading");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
+
 struct InterruptScope {
-  using Handler = void (*)(int);
-  Handler previous = SIG_DFL;
+  struct sigaction previous = {};
+  bool replaced = false;
   InterruptScope() {
-    interrupted = false;
-    previous = std::signal(SIGINT, on_interrupt);
+    if (renders_running++ == 0) interrupted = false;
+    if (!on_main_thread()) return;
+    struct sigaction ours = {};
+    ours.sa_handler = on_interrupt;
+    sigemptyset(&ours.sa_mask);
+    replaced = sigaction(SIGINT, &ours, &previous) == 0;
   }
-  ~InterruptScope() { std::signal(SIGINT, previous); }
+  ~InterruptScope() {
+    if (replaced) sigaction(SIGINT, &previous, nullptr);
+    --renders_running;
+  }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
 };
 
 // The render: {"rgb": (H, W, 3) float32, linear, exposure applied; each output variable: (H, W)
@@ -91,6 +334,7 @@ py::dict render(const Scene& scene, const std::string& renderer,
   options.seed = seed;
   options.cancel = &interrupted;
   for (const std::string& name : aovs) options.aovs.push_back(*aov_from_name(name));
+  throw_if_refused(render_refused(scene, options.aovs));
   Image image;
   double exposure = 0, seconds = 0;
   bool cancelled = false;
@@ -186,11 +430,22 @@ py::dict render(const Scene& scene, const std::string& renderer,
 
 using LinearArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
-// A linear picture from Python, (H, W, 3), times 2^exposure as the renderers expose theirs.
+std::size_t count_nan(const float* begin, const float* end) {
+  return static_cast<std::size_t>(
+      std::count_if(begin, end, [](float v) { return std::isnan(v); }));
+}
+
+// A linear picture from Python, (H, W, 3), times 2^exposure as the renderers expose theirs. A
+// NaN is refused: it has no colour (the tone curve would show it black), and no picture the
+// library renders holds one.
 Image exposed_image(const LinearArray& linear, double exposure, const char* function) {
   if (linear.ndim() != 3 || linear.shape(2) != 3)
     throw py::value_error(std::string(function) +
                           ": the image must be an array of shape (H, W, 3)");
+  if (const std::size_t n = count_nan(linear.data(), linear.data() + linear.size()); n > 0)
+    throw py::value_error(fmt::format("{}: the image holds {} NaN value{} (of {}): a NaN has no "
+                                      "colour",
+                                      function, n, n == 1 ? "" : "s", linear.size()));
   Image image;
   image.height = static_cast<int>(linear.shape(0));
   image.width = static_cast<int>(linear.shape(1));
@@ -199,6 +454,11 @@ Image exposed_image(const LinearArray& linear, double exposure, const char* func
   fixed.auto_exposure = false;
   fixed.exposure = exposure;
   apply_exposure(image, fixed);
+  if (const std::size_t n = count_nan(image.rgb.data(), image.rgb.data() + image.rgb.size());
+      n > 0)
+    throw py::value_error(fmt::format("{}: exposure {} makes {} value{} NaN (2^exposure is beyond "
+                                      "a float's range, and 0 times infinity is NaN)",
+                                      function, exposure, n, n == 1 ? "" : "s"));
   return image;
 }
 
@@ -219,6 +479,7 @@ std::string located(const Scene& scene, const std::string& kind, const std::stri
                                        : LocateQuery::Kind::SkyDirection;
   query.object = object;
   query.value = {value[0], value[1], value[2]};
+  throw_if_refused(locate_refused(scene, query));
   LocateResult r;
   try {
     r = lightcone::locate(scene, query);
@@ -230,20 +491,72 @@ std::string located(const Scene& scene, const std::string& kind, const std::stri
   return locate_json(r, scene);
 }
 
-// "FILE:LINE: FIELD: what" (or "--set FIELD: what") into SceneError's attributes.
+// A message as the program prints it (src/cli/main.cpp's printable): control characters shown
+// as \xNN, and any run of more than 160 characters without a space (a 10 MB name echoed back)
+// cut to its first 80 and "...".
+std::string printable(const std::string& message) {
+  std::string out;
+  std::size_t start = 0;
+  while (start <= message.size()) {
+    std::size_t end = message.find(' ', start);
+    if (end == std::string::npos) end = message.size();
+    std::string_view word(message.data() + start, end - start);
+    const bool cut = word.size() > 160;
+    if (cut) word = word.substr(0, 80);
+    for (const char ch : word) {
+      const auto c = static_cast<unsigned char>(ch);
+      if (c < 0x20 || c == 0x7f)
+        out += fmt::format("\\x{:02x}", c);
+      else
+        out += ch;
+    }
+    if (cut) out += "...";
+    if (end == message.size()) break;
+    out += ' ';
+    start = end + 1;
+  }
+  return out;
+}
+
+// "FILE:LINE: FIELD: what", "<dict>: FIELD: what" or "--set FIELD: what" into SceneError's
+// attributes, each as the message shows it (printable). Read without std::regex, whose matching
+// recurses once a character: a message of megabytes would overflow the stack.
 void set_location(py::object& error, const std::string& message) {
-  static const std::regex located(R"(^(.*?):(\d+): ([^:]+): )");
-  static const std::regex overridden(R"(^--set ([^:]+): )");
-  std::smatch m;
   error.attr("file") = py::none();
   error.attr("line") = py::none();
   error.attr("field") = py::none();
-  if (std::regex_search(message, m, located)) {
-    error.attr("file") = m[1].str();
-    error.attr("line") = std::stoi(m[2].str());
-    error.attr("field") = m[3].str();
-  } else if (std::regex_search(message, m, overridden)) {
-    error.attr("field") = m[1].str();
+  const auto starts = [&](std::string_view prefix) { return message.rfind(prefix, 0) == 0; };
+  // The field from `at`: up to the first ": ", with no other ':' before it.
+  const auto field_at = [&](std::size_t at) -> std::optional<std::string> {
+    const std::size_t colon = message.find(':', at);
+    if (colon == std::string::npos || colon == at || message.compare(colon, 2, ": ") != 0)
+      return std::nullopt;
+    return printable(message.substr(at, colon - at));
+  };
+  const std::string dict = std::string(kDictSource) + ": ";
+  if (starts(dict)) {
+    error.attr("file") = kDictSource;
+    if (const auto field = field_at(dict.size())) error.attr("field") = *field;
+    return;
+  }
+  if (starts("--set ")) {
+    if (const auto field = field_at(6)) error.attr("field") = *field;
+    return;
+  }
+  // FILE:LINE: the first ':' with digits and ": " after it, and a field after those.
+  for (std::size_t colon = message.find(':'); colon != std::string::npos;
+       colon = message.find(':', colon + 1)) {
+    std::size_t end = colon + 1;
+    while (end < message.size() && end - colon <= 9 &&
+           std::isdigit(static_cast<unsigned char>(message[end])))
+      ++end;
+    if (end == colon + 1 || message.compare(end, 2, ": ") != 0) continue;
+    const auto field = field_at(end + 2);
+    if (colon == 0 || !field) continue;
+    error.attr("file") = printable(message.substr(0, colon));
+    error.attr("line") = std::stoi(message.substr(colon + 1, end - colon - 1));
+    error.attr("field") = *field;
+    return;
   }
 }
 
@@ -259,7 +572,8 @@ PYBIND11_MODULE(_lightcone, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      py::object error = py::reinterpret_borrow<py::object>(scene_error.ptr())(e.what());
+      py::object error =
+          py::reinterpret_borrow<py::object>(scene_error.ptr())(printable(e.what()));
       set_location(error, e.what());
       PyErr_SetObject(scene_error.ptr(), error.ptr());
     }
@@ -278,6 +592,7 @@ PYBIND11_MODULE(_lightcone, m) {
       .def("with_samples", [](const Scene& s, int samples) {
         Scene copy = s;
         copy.camera.samples = samples;
+        throw_if_refused(scene_refused(copy));
         return copy;
       });
 
@@ -290,14 +605,20 @@ PYBIND11_MODULE(_lightcone, m) {
       },
       py::arg("path"), py::arg("overrides"));
   m.def(
-      "load_text",
-      [](const std::string& text, const std::string& name,
+      "load_dict",
+      [](const py::dict& document, const std::string& folder,
          const std::vector<std::string>& overrides) {
         std::vector<std::string> warnings;
-        Scene scene = load_text(text, name, overrides, warnings);
+        Scene scene = load_dict(document, folder, overrides, warnings);
         return std::pair{std::move(scene), warnings};
       },
-      py::arg("text"), py::arg("name"), py::arg("overrides"));
+      py::arg("document"), py::arg("folder"), py::arg("overrides"));
+  m.def(
+      "json_value",
+      [](const py::handle& value, const std::string& path) {
+        return JsonWriter("--set", path).write(value);
+      },
+      py::arg("value"), py::arg("path"));
   m.def("render", &render, py::arg("scene"), py::arg("renderer"), py::arg("aovs"), py::arg("seed"),
         py::arg("threads"), py::arg("tessellation"), py::arg("progress"));
   m.def(

@@ -17,6 +17,7 @@
 
 #include "cli_common.hpp"
 #include "lightcone/frame/tone_map.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -242,7 +243,7 @@ int run_animate(const AnimateArgs& a) {
     if (a.scale) scale_image_size(s.camera, *a.scale);
     return s;
   }();
-  require_drawable_near_black_hole(scene, a.scene);
+  throw_if_refused(scene_refused(scene));
   const Camera& camera = scene.camera;
   if (a.video)
     check_video("--video", *a.video, camera.width, camera.height, a.fps, a.crf, a.gif_width);
@@ -372,10 +373,13 @@ int run_animate(const AnimateArgs& a) {
       return moment;
     }();
     in_frame(i, [&] {
+      // Each frame's EXR header says by what its radiance was scaled (Image::exposure).
       if (raster) {
         try {
-          *image = render_raster(s, nullptr, {}, a.seed, tessellation_mode(a.tessellation),
+          RasterStats stats;
+          *image = render_raster(s, &stats, {}, a.seed, tessellation_mode(a.tessellation),
                                  curved_body_shadows);
+          image->exposure = stats.exposure;
         } catch (const GlUnavailable& e) {
           throw InputError(fmt::format(
               "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) "
@@ -393,6 +397,7 @@ int run_animate(const AnimateArgs& a) {
         };
         RenderStats stats;
         *image = render_image(s, options, &stats);
+        image->exposure = stats.exposure;
         cancelled = stats.cancelled;
       }
       if (std::any_of(image->rgb.begin(), image->rgb.end(),

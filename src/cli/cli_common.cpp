@@ -72,23 +72,6 @@ Scene load(const std::string& file, const std::vector<std::string>& overrides,
   return scene;
 }
 
-void require_drawable_near_black_hole(const Scene& scene, const std::string& file,
-                                      const char* what) {
-  if (!scene.black_hole) return;
-  const auto refuse = [&](const std::string& why) {
-    throw InputError(file + ": black_hole: " + why);
-  };
-  if (!scene.render.relativity || !scene.render.light_delay)
-    refuse(
-        "render.relativity and render.light_delay must stay on: curved spacetime has no "
-        "classical picture");
-  if (!scene.lights.empty() && scene.render.light_source_delay != LightSourceDelay::kSurface)
-    refuse(
-        "render.light_source_delay must stay \"surface\" near a black hole: each light is met "
-        "where its light left for the surface, along the curved ray");
-  if (what) refuse(std::string(what) + " is not available near a black hole yet");
-}
-
 // Checked before rendering: the target is a regular file or absent (a symbolic link counts as
 // the file it points to, which is then written and the link kept), and its folder exists and
 // is writable, so that nothing but a regular file is ever replaced and a render is never lost

@@ -44,13 +44,6 @@ class StopSignals {
   static int exit_status();
 };
 
-// What this version draws near a black hole (docs/design/black-hole.md, "What is not drawn
-// yet"): what it does not, in a scene with `black_hole`, is refused with a message naming it
-// (InputError): the classical picture, lights' delay models other than "surface", and what
-// `what` names (a command or option).
-void require_drawable_near_black_hole(const Scene& scene, const std::string& file,
-                                      const char* what = nullptr);
-
 // Loads a scene file with --set overrides, printing its warnings (and the tangent
 // approximation's) to stderr. Throws InputError.
 Scene load(const std::string& file, const std::vector<std::string>& overrides,

@@ -21,6 +21,7 @@
 #include "animate.hpp"
 #include "cli_common.hpp"
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/locate_json.hpp"
@@ -206,11 +207,7 @@ int run_locate(const LocateArgs& a) {
       throw InputError("--direction: must not be zero");
   }
   const Scene scene = load(a.scene, a.overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene);
-  if (camera_inside_horizon(scene.camera.motion))
-    throw InputError(a.scene +
-                     ": camera: locate does not answer for a camera inside the black hole's "
-                     "horizon yet");
+  throw_if_refused(locate_refused(scene, query));
   LocateResult r;
   try {
     r = locate(scene, query);
@@ -241,7 +238,7 @@ int run_view(const ViewArgs& a) {
   if (a.width) overrides.push_back("camera.width=" + std::to_string(*a.width));
   if (a.height) overrides.push_back("camera.height=" + std::to_string(*a.height));
   const Scene scene = load(a.scene, overrides, a.scene_options);
-  require_drawable_near_black_hole(scene, a.scene);
+  throw_if_refused(scene_refused(scene));
   for (const std::string& difference : raster_differences(scene))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());
@@ -306,7 +303,9 @@ int main(int argc, char** argv) {
                    "Output image: .png (8-bit sRGB), .jpg, .exr (linear float), or - for a PNG "
                    "on standard output")
       ->required();
-  render_cmd->add_option("--exr", render.exr, "Also write linear radiance to this OpenEXR file");
+  render_cmd->add_option("--exr", render.exr,
+                         "Also write linear radiance times 2^exposure to this OpenEXR file (the "
+                         "EV in its header; --set render.exposure=0 for the radiance itself)");
   render_cmd
       ->add_option("--renderer", render.renderer,
                    "trace (the exact ray tracer, the default) or raster (the real-time polygon "
@@ -342,7 +341,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--set", render.overrides, "Override a scene value: key.path=value");
   render_cmd->add_flag("--allow-outside", render.scene_options.mesh.allow_outside,
                        kAllowOutsideHelp);
-  render_cmd->add_flag("--stats", render.stats, "Print one JSON line of timing to stderr");
+  render_cmd->add_flag("--stats", render.stats,
+                       "Print one JSON line of timing and the exposure to stderr");
   render_cmd->add_flag("--quiet", render.quiet, "No progress bar and no summary line");
 
   LocateArgs loc;
@@ -404,7 +404,9 @@ int main(int argc, char** argv) {
   animate_cmd->add_option("-o,--output", animate.output,
                           "Frame files: a pattern with one %d, like frames/shot-%04d.png (.png, "
                           ".jpg or .exr)");
-  animate_cmd->add_option("--exr", animate.exr, "Also linear radiance: a pattern ending in .exr");
+  animate_cmd->add_option("--exr", animate.exr,
+                          "Also linear radiance times 2^exposure (the EV in each header): a "
+                          "pattern ending in .exr");
   animate_cmd->add_option("--video", animate.video,
                           "A video of the frames through ffmpeg: .mp4 (H.264), .webm (VP9) or "
                           ".gif");

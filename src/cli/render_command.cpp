@@ -13,6 +13,7 @@
 
 #include "cli_common.hpp"
 #include "lightcone/frame/false_colour.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
@@ -115,8 +116,8 @@ RenderOutputs checked_outputs(const RenderArgs& a) {
   return out;
 }
 
-// The scene with the command's size, sample and preview options, refused where what it asks
-// cannot be drawn near a black hole.
+// The scene with the command's size, sample and preview options, refused where the library's
+// rules refuse what it asks (frame/request_rules.hpp).
 Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
   std::vector<std::string> overrides = a.overrides;
   if (a.samples) overrides.push_back("camera.samples=" + std::to_string(*a.samples));
@@ -133,17 +134,13 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
       throw;
     }
   }();
-  for (const Aov aov : out.aovs)
-    if (!aov_near_black_hole(aov))
-      require_drawable_near_black_hole(scene, a.scene,
-                                       ("the output variable " + aov_name(aov)).c_str());
-  require_drawable_near_black_hole(scene, a.scene);
   if (a.width || a.height) {
     const std::string kept = resize_keeping_field(scene.camera, a.width, a.height);
     if (!kept.empty() && !a.quiet) std::fprintf(stderr, "lightcone: %s\n", kept.c_str());
   }
   if (a.scale) scale_image_size(scene.camera, *a.scale);
   if (a.preview) scale_image_size(scene.camera, 0.25);  // a quarter of the size, the same view
+  throw_if_refused(render_refused(scene, out.aovs));
   return scene;
 }
 
@@ -219,14 +216,6 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
 // The picture the image files show: the tone-mapped render, or --map's colour map. Without
 // `keep_linear` the render is tone-mapped in place.
 Image display_of(Rendered& r, const Scene& scene, const RenderOutputs& out, bool keep_linear) {
-  // A picture with non-finite values is wrong, not merely dark or bright: say so, write nothing.
-  const auto non_finite = std::count_if(r.image.rgb.begin(), r.image.rgb.end(),
-                                        [](float v) { return !std::isfinite(v); });
-  if (non_finite > 0)
-    throw std::runtime_error(fmt::format(
-        "the render has {} non-finite values (NaN or infinity; is render.exposure {} too "
-        "large?): nothing written",
-        non_finite, r.stats.exposure));
   if (out.map) {
     const std::vector<std::string> names = aov_channel_names(*out.map);
     const auto channel = std::find_if(r.image.channels.begin(), r.image.channels.end(),
@@ -243,6 +232,8 @@ int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs&
   // Only an EXR holds the linear picture.
   const bool keep_linear =
       a.exr.has_value() || (!out.to_stdout && *out.format == ImageFormat::kExr);
+  // The EXR's header says by what the radiance was scaled.
+  r.image.exposure = r.stats.exposure;
   const Image display = display_of(r, scene, out, keep_linear);
   const bool stopped = r.stopped;
   if (stopped && out.to_stdout) {
@@ -274,16 +265,20 @@ int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs&
   const RenderStats& stats = r.stats;
   const double mrays = stats.rays / std::max(stats.seconds, 1e-9) / 1e6;
   if (!a.quiet && out.raster)
-    std::fprintf(stderr, "lightcone: %dx%d, %s (raster, %zu triangles): %.2f s; wrote %s%s\n",
+    std::fprintf(stderr,
+                 "lightcone: %dx%d, %s (raster, %zu triangles): %.2f s; wrote %s%s (exposure "
+                 "%+.2f EV)\n",
                  r.image.width, r.image.height, counted(scene.camera.samples, "sample").c_str(),
-                 r.raster_triangles, stats.seconds, written.c_str(), also.c_str());
+                 r.raster_triangles, stats.seconds, written.c_str(), also.c_str(), stats.exposure);
   else if (!a.quiet)
-    std::fprintf(stderr, "lightcone: %dx%d, %s: %.2f s, %.2f Mrays/s; wrote %s%s\n", r.image.width,
-                 r.image.height, counted(scene.camera.samples, "sample").c_str(), stats.seconds,
-                 mrays, written.c_str(), also.c_str());
+    std::fprintf(stderr, "lightcone: %dx%d, %s: %.2f s, %.2f Mrays/s; wrote %s%s (exposure %+.2f EV)\n",
+                 r.image.width, r.image.height, counted(scene.camera.samples, "sample").c_str(),
+                 stats.seconds, mrays, written.c_str(), also.c_str(), stats.exposure);
   if (a.stats) {
-    nlohmann::ordered_json line = {
-        {"seconds", stats.seconds}, {"rays", stats.rays}, {"mrays_per_s", mrays}};
+    nlohmann::ordered_json line = {{"seconds", stats.seconds},
+                                   {"rays", stats.rays},
+                                   {"mrays_per_s", mrays},
+                                   {"exposure", stats.exposure}};
     if (scene.black_hole) line["mean_image_order"] = stats.mean_image_order;
     std::fprintf(stderr, "%s\n", line.dump().c_str());
   }

@@ -2,6 +2,7 @@
 // field (JSON path), so the CLI prints it as it is and exits with status 2.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -10,5 +11,11 @@ namespace lightcone {
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// Throws the refusal of one of the library's rules (frame/request_rules.hpp), if any, as the
+// error every door shows.
+inline void throw_if_refused(const std::optional<std::string>& refusal) {
+  if (refusal) throw InputError(*refusal);
+}
 
 }  // namespace lightcone

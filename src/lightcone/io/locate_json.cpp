@@ -35,6 +35,12 @@ std::string locate_json(const LocateResult& r, const Scene& scene) {
                                 {"in_view", r.in_view},
                                 {"doppler", r.doppler}};
   if (!r.in_view) out["pixel"] = nullptr;  // behind the camera or outside the image
+  if (scene.black_hole && r.images.empty()) {
+    // No light from the point reaches the camera (an object's point inside the horizon then):
+    // nothing is seen, so there is no direction and no shift to give.
+    out["direction"] = nullptr;
+    out["doppler"] = nullptr;
+  }
   // Times in the scene's units (the model's are c t).
   const double c = scene.speed_of_light;
   if (r.emission_time) out["emission_time"] = *r.emission_time / c;

@@ -13,7 +13,8 @@ namespace lightcone {
 bool locate_result_is_finite(const LocateResult& r);
 
 // The fields of docs/guide.md's "locate": pixel (null out of view), direction, the emission
-// event (times in the scene's units), distance, in_view, doppler; near a black hole every image.
+// event (times in the scene's units), distance, in_view, doppler; near a black hole every image
+// (none, and direction and doppler null, where no light from the point reaches the camera).
 // One line, the fields in that order.
 std::string locate_json(const LocateResult& r, const Scene& scene);
 

@@ -30,8 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kMaxSamples = 65536;
-
 }  // namespace
 
 Scene SceneReader::read(const json& document) {
@@ -130,7 +128,7 @@ Camera SceneReader::camera(const Node& n) const {
   if (std::int64_t{c.width} * c.height > kMaxCameraPixels)
     fail(width, fmt::format("{} x {} pixels is more than the limit of {} (2^27)", c.width, c.height,
                             kMaxCameraPixels));
-  if (Node s = member(n, "samples"); s.value) c.samples = integer(s, 1, kMaxSamples);
+  if (Node s = member(n, "samples"); s.value) c.samples = integer(s, 1, kMaxCameraSamples);
   if (Node sh = member(n, "shutter"); sh.value) {
     c.shutter = non_negative(sh) * c_;
     if (!std::isfinite(c.shutter)) fail(sh, "must be finite");
@@ -543,7 +541,10 @@ Scene load_scene_text(std::string text, const std::filesystem::path& file,
 
   std::vector<std::string> overridden;
   for (const std::string& o : overrides) overridden.push_back(apply_scene_override(document, o));
-  return scene_io::SceneReader(file, lines, std::move(overridden), report, options).read(document);
+  Scene scene =
+      scene_io::SceneReader(file, lines, std::move(overridden), report, options).read(document);
+  scene.source = file.string();
+  return scene;
 }
 
 }  // namespace lightcone

@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/raster/frame_target.hpp"
@@ -43,6 +45,7 @@ void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
                     std::uint64_t seed, RasterTessellation mode,
                     const CurvedShadowSource& curved_shadows) {
+  if (const auto refused = scene_refused(scene)) throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;
   const ResolvedScene resolved = resolve_scene(scene);
@@ -97,6 +100,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  if (const auto refused = picture_refused(scene, image, ev)) throw std::runtime_error(*refused);
   return image;
 }
 

@@ -55,6 +55,9 @@ struct Image {
   std::vector<float> rgb;
   std::string source;
   std::vector<NamedChannel> channels;
+  // The EV a render multiplied the radiance by (the pixels are radiance times 2^exposure), kept
+  // in an EXR's header; nullopt where unknown (an image not rendered here, a PNG).
+  std::optional<double> exposure;
 
   Rgb texel(int x, int y) const {
     const float* p = &rgb[3 * (static_cast<std::size_t>(y) * width + x)];
@@ -235,6 +238,8 @@ inline constexpr double kCameraInnermostRadius = 0.05;
 // The largest picture a camera takes: on each side, and in all.
 inline constexpr int kMaxCameraSide = 16384;
 inline constexpr std::int64_t kMaxCameraPixels = std::int64_t{1} << 27;
+// The most samples a pixel takes.
+inline constexpr int kMaxCameraSamples = 65536;
 
 struct Camera {
   // The observation event is (world_line.time, world_line.position), and world_line.velocity
@@ -353,6 +358,9 @@ struct BlackHole {
 };
 
 struct Scene {
+  // Where it was read from ("scenes/street.json", "<dict>"), the name messages about it start
+  // with; empty for a scene built in code.
+  std::string source;
   // The speed of light in the scene file's units (length per unit of time). The model is in
   // units where c = 1: its times are the file's times c t, its speeds v / c.
   double speed_of_light = 1;

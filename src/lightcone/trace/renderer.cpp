@@ -8,9 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 #include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/received_colour.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/star_field.hpp"
 #include "lightcone/frame/tone_map.hpp"
@@ -127,6 +129,7 @@ struct Observation {
 }  // namespace
 
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
+  if (const auto refused = render_refused(scene, options.aovs)) throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<tbb::global_control> limit;
   if (options.threads > 0)
@@ -313,6 +316,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     stats->cancelled = skipped;
     stats->mean_image_order = stats->rays ? static_cast<double>(image_orders) / stats->rays : 0;
   }
+  if (const auto refused = picture_refused(scene, image, ev)) throw std::runtime_error(*refused);
   return image;
 }
 

@@ -1,0 +1,93 @@
+#include "lightcone/frame/request_rules.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace lightcone {
+namespace {
+
+std::string source_of(const Scene& scene) {
+  return scene.source.empty() ? std::string("the scene") : scene.source;
+}
+
+std::string refusal(const Scene& scene, const std::string& field, const std::string& why) {
+  return fmt::format("{}: {}: {}", source_of(scene), field, why);
+}
+
+}  // namespace
+
+std::optional<std::string> scene_refused(const Scene& scene) {
+  const Camera& c = scene.camera;
+  for (const auto& [field, value] :
+       {std::pair{"camera.width", c.width}, {"camera.height", c.height}})
+    if (!(value >= 1 && value <= kMaxCameraSide))
+      return refusal(scene, field,
+                     fmt::format("must be an integer from 1 to {}, got {}", kMaxCameraSide, value));
+  if (std::int64_t{c.width} * c.height > kMaxCameraPixels)
+    return refusal(scene, "camera.width",
+                   fmt::format("{} x {} pixels is more than the limit of {} (2^27)", c.width,
+                               c.height, kMaxCameraPixels));
+  if (!(c.samples >= 1 && c.samples <= kMaxCameraSamples))
+    return refusal(
+        scene, "camera.samples",
+        fmt::format("must be an integer from 1 to {}, got {}", kMaxCameraSamples, c.samples));
+  if (!scene.black_hole) return std::nullopt;
+  if (!scene.render.relativity || !scene.render.light_delay)
+    return refusal(scene, "black_hole",
+                   "render.relativity and render.light_delay must stay on: curved spacetime has "
+                   "no classical picture");
+  if (!scene.lights.empty() && scene.render.light_source_delay != LightSourceDelay::kSurface)
+    return refusal(scene, "black_hole",
+                   "render.light_source_delay must stay \"surface\" near a black hole: each light "
+                   "is met where its light left for the surface, along the curved ray");
+  return std::nullopt;
+}
+
+std::optional<std::string> render_refused(const Scene& scene, std::span<const Aov> aovs) {
+  if (auto refused = scene_refused(scene)) return refused;
+  if (scene.black_hole)
+    for (const Aov aov : aovs)
+      if (!aov_near_black_hole(aov))
+        return refusal(scene, "black_hole",
+                       fmt::format("the output variable {} is not available near a black hole "
+                                   "yet (near one: doppler, object, image_order)",
+                                   aov_name(aov)));
+  return std::nullopt;
+}
+
+std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery& query) {
+  if (auto refused = scene_refused(scene)) return refused;
+  if (!scene.black_hole) return std::nullopt;
+  if (camera_inside_horizon(scene.camera.motion))
+    return refusal(scene, "camera",
+                   "locate does not answer for a camera inside the black hole's horizon yet");
+  if (query.kind == LocateQuery::Kind::WorldPoint) {
+    const BlackHole& hole = *scene.black_hole;
+    const double r = length(query.value - hole.position), horizon = 2 * hole.mass;
+    if (!(r > horizon))
+      return refusal(
+          scene, "black_hole",
+          fmt::format("no light leaves the world point ({}, {}, {}): it is {} from the hole's "
+                      "centre, {} its horizon r = 2M = {}",
+                      query.value.x, query.value.y, query.value.z, r,
+                      r == horizon ? "on" : "inside", horizon));
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> picture_refused(const Scene& scene, const Image& image,
+                                           double exposure) {
+  const auto non_finite =
+      std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); });
+  if (non_finite == 0) return std::nullopt;
+  return fmt::format(
+      "{}: the render has {} non-finite value{} (NaN or infinity): its radiance times 2^{} is "
+      "beyond a float's range (is render.exposure, sky.stars.exposure or an emitter's luminance "
+      "too large?); no picture is given",
+      source_of(scene), non_finite, non_finite == 1 ? "" : "s", exposure);
+}
+
+}  // namespace lightcone

@@ -1,0 +1,37 @@
+// What may be asked of a scene: the one place for the rules every door checks (the `lightcone`
+// program, the Python module, the web page), so that each refuses the same requests with the
+// same message. Each function returns why the request is refused, "SOURCE: FIELD: why" with
+// SOURCE the scene's Scene::source, or nothing; a door shows that message as its error.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+
+#include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/output_variable.hpp"
+#include "lightcone/scene/scene.hpp"
+
+namespace lightcone {
+
+// Whether any renderer can draw the scene: the camera's size and samples within the scene
+// format's limits (a scene changed in code is checked again), and near a black hole what curved
+// spacetime has: relativity and light delay on (it has no classical picture), each light met
+// where its light left for the surface (docs/design/black-hole.md, "What is not drawn yet").
+std::optional<std::string> scene_refused(const Scene& scene);
+
+// A render of the scene with these output variables: the scene, and near a black hole only the
+// variables defined there (aov_near_black_hole).
+std::optional<std::string> render_refused(const Scene& scene, std::span<const Aov> aovs);
+
+// A locate: the scene; near a black hole a camera outside the horizon (where W's time, and so
+// an emission time, is defined) and a point at rest outside the horizon, from which light can
+// leave.
+std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery& query);
+
+// A rendered picture the library may hand out: every value finite. A non-finite one is wrong,
+// not merely dark or bright (an exposure or an emitter's luminance beyond float's range), and
+// none is ever returned; `exposure` is the EV the render applied.
+std::optional<std::string> picture_refused(const Scene& scene, const Image& image, double exposure);
+
+}  // namespace lightcone
