@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lightcone/frame/request_rules.hpp"
+#include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
@@ -149,6 +150,20 @@ TEST(RequestRules, NoNonFinitePictureLeavesTheLibrary) {
             std::string::npos);
   image.rgb.back() = 5;
   EXPECT_EQ(picture_refused(scene, image, 0), std::nullopt);
+}
+
+// Near a black hole, a point no light leaves for the camera has no image: locate then gives no
+// direction and no shift rather than made-up ones ([0, 0, 0] and 1 were printed).
+TEST(RequestRules, APointWithNoImageHasNoDirectionNorShift) {
+  Scene scene;
+  scene.black_hole = BlackHole{};
+  const auto json = nlohmann::json::parse(locate_json(LocateResult{}, scene));
+  EXPECT_TRUE(json["direction"].is_null());
+  EXPECT_TRUE(json["doppler"].is_null());
+  EXPECT_TRUE(json["pixel"].is_null());
+  EXPECT_TRUE(json["images"].empty());
+  scene.black_hole.reset();  // flat space: every point has its one image
+  EXPECT_FALSE(nlohmann::json::parse(locate_json(LocateResult{}, scene))["direction"].is_null());
 }
 
 }  // namespace
