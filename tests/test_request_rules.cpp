@@ -44,6 +44,10 @@ std::vector<Aov> aovs_of(const nlohmann::json& c) {
   return aovs;
 }
 
+bool raster(const nlohmann::json& c) {
+  return c.contains("render") && c["render"].value("renderer", "trace") == "raster";
+}
+
 Scene loaded(const fs::path& file) {
   SceneLoadReport report;
   return load_scene_file(file, {}, report);
@@ -66,11 +70,16 @@ TEST(RequestRules, EachCaseIsRefusedByItsRuleWithItsMessage) {
       EXPECT_EQ(locate_refused(scene, query).value_or("(accepted)"), expected);
       EXPECT_EQ(render_refused(scene, {}), std::nullopt);  // the scene itself may be drawn
     } else {
-      EXPECT_EQ(render_refused(scene, aovs_of(c)).value_or("(accepted)"), expected);
-      // The renderers themselves refuse it too: no picture of it ever leaves the library.
-      RenderOptions options;
-      options.aovs = aovs_of(c);
-      EXPECT_THROW(render_image(scene, options), std::invalid_argument);
+      EXPECT_EQ(
+          render_refused(scene, {.raster = raster(c), .aovs = aovs_of(c)}).value_or("(accepted)"),
+          expected);
+      // The ray tracer itself refuses it too: no picture of it ever leaves the library (the
+      // raster renderer is asked for no output variables, and refuses the scenes alike).
+      if (!raster(c)) {
+        RenderOptions options;
+        options.aovs = aovs_of(c);
+        EXPECT_THROW(render_image(scene, options), std::invalid_argument);
+      }
     }
   }
 }
@@ -91,6 +100,7 @@ TEST(RequestRules, TheProgramShowsTheRulesMessageAndWritesNothing) {
       for (const auto& name :
            c.value("render", nlohmann::json::object()).value("aovs", nlohmann::json::array()))
         arguments += " --aov " + name.get<std::string>();
+      if (raster(c)) arguments += " --renderer raster";
     }
     const test::CommandResult r = test::run_lightcone(arguments);
     EXPECT_EQ(r.status, 2);

@@ -200,6 +200,26 @@ TEST(WebPage, ADroppedSceneWithAnErrorSaysWhereAndKeepsThePreviousScene) {
   EXPECT_EQ(largest_difference(*a, *b), 0);
 }
 
+// The page is a door to the library's rules (frame/request_rules.hpp): each scene they refuse
+// is refused there with the program's message (tests/test_request_rules.cpp), the dropped file
+// named as the program names its file.
+TEST(WebPage, RefusesTheScenesTheProgramRefusesWithItsMessage) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  ASSERT_TRUE(r.contains("refusals"));
+  std::ifstream in(fs::path(LIGHTCONE_SOURCE_DIR) / "tests/data/refused-requests.json");
+  int scenes = 0;
+  for (const auto& c : nlohmann::json::parse(in)["cases"]) {
+    if (c.contains("render") || c.contains("locate")) continue;
+    const std::string name = c["name"];
+    SCOPED_TRACE(name);
+    ++scenes;
+    EXPECT_EQ(r["refusals"].value(name, "(not dropped)"),
+              name + ".json: " + c["refusal"].get<std::string>());
+  }
+  EXPECT_GE(scenes, 3);
+}
+
 // The page fits the RGB-to-spectrum table's columns as it needs them, with the same fit as the
 // native build's table: the same coefficients, but for WebAssembly's libm and sums (relative
 // 1e-5; a colour's spectrum then differs by far less than a level of 8 bits).

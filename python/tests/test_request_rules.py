@@ -34,6 +34,7 @@ def _programs_message(case, path, folder):
         args = ["render", path, "-o", str(folder / "out.exr")]
         for name in case.get("render", {}).get("aovs", []):
             args += ["--aov", name]
+        args += ["--renderer", case.get("render", {}).get("renderer", "trace")]
     done = subprocess.run([BINARY, *args], capture_output=True, text=True)
     assert done.returncode == 2, done.stderr
     assert done.stderr.startswith("lightcone: ")
@@ -50,7 +51,9 @@ def test_each_refusal_is_the_programs(tmp_path, case):
         if "locate" in case:
             lc.locate(scene, world_point=case["locate"]["world_point"])
         else:
-            lc.render(scene, aovs=case.get("render", {}).get("aovs"), progress=False)
+            request = case.get("render", {})
+            lc.render(scene, renderer=request.get("renderer", "trace"), aovs=request.get("aovs"),
+                      progress=False)
     assert str(refused.value) == expected
 
 

@@ -6,6 +6,8 @@
 //   dragged.png                street after a drag on the picture
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
 //   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
+//   (results.json's refusals)  what the page says of each scene tests/data/refused-requests.json
+//                              refuses as a scene, dropped on it
 //   texture-mapping.png        a user's scene and its image, chosen in the file dialog
 //   lit-texture-mapping.png    the same lit by a lamp under the spectral model (the scene
 //                              beside it, lit-texture-mapping.json, with uv-grid.png)
@@ -153,6 +155,28 @@ try {
     results.drop_message = await text(page, "message");
     await settle(page);
     await shot(page, "drop-after.png");
+    await page.close();
+  }
+
+  step("scenes the library's rules refuse, dropped");
+  {
+    // Each scene of tests/data/refused-requests.json that is refused as a scene (not for an
+    // output variable or a locate, which the page does not ask for): the page shows the message
+    // the program prints.
+    const cases = JSON.parse(await readFile(join(site, "..", "tests/data/refused-requests.json"),
+      "utf8")).cases.filter((c) => !c.render && !c.locate);
+    const page = await open(`scene=street&${still}`);
+    results.refusals = {};
+    for (const c of cases) {
+      const loads = await count(page, "loads");
+      await page.evaluate(([name, text]) => {
+        const files = new DataTransfer();
+        files.items.add(new File([text], `${name}.json`));
+        window.dispatchEvent(new DragEvent("drop", { dataTransfer: files, cancelable: true }));
+      }, [c.name, JSON.stringify(c.scene, null, 1)]);
+      await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads);
+      results.refusals[c.name] = await text(page, "message");
+    }
     await page.close();
   }
 

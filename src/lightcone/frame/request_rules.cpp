@@ -46,10 +46,14 @@ std::optional<std::string> scene_refused(const Scene& scene) {
   return std::nullopt;
 }
 
-std::optional<std::string> render_refused(const Scene& scene, std::span<const Aov> aovs) {
+std::optional<std::string> render_refused(const Scene& scene, const RenderRequest& request) {
   if (auto refused = scene_refused(scene)) return refused;
+  if (request.raster && !request.aovs.empty())
+    return fmt::format(
+        "{}: the output variable {} comes from the ray tracer alone: the raster renderer has none",
+        source_of(scene), aov_name(request.aovs.front()));
   if (scene.black_hole)
-    for (const Aov aov : aovs)
+    for (const Aov aov : request.aovs)
       if (!aov_near_black_hole(aov))
         return refusal(scene, "black_hole",
                        fmt::format("the output variable {} is not available near a black hole "

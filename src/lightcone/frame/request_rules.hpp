@@ -20,9 +20,15 @@ namespace lightcone {
 // where its light left for the surface (docs/design/black-hole.md, "What is not drawn yet").
 std::optional<std::string> scene_refused(const Scene& scene);
 
-// A render of the scene with these output variables: the scene, and near a black hole only the
-// variables defined there (aov_near_black_hole).
-std::optional<std::string> render_refused(const Scene& scene, std::span<const Aov> aovs);
+// What a render is asked for beside the scene.
+struct RenderRequest {
+  bool raster = false;        // by the real-time renderer (else the ray tracer)
+  std::span<const Aov> aovs;  // output variables beside the colour
+};
+
+// A render: the scene; output variables only from the ray tracer, and near a black hole only
+// those defined there (aov_near_black_hole).
+std::optional<std::string> render_refused(const Scene& scene, const RenderRequest& request);
 
 // A locate: the scene; near a black hole a camera outside the horizon (where W's time, and so
 // an emission time, is defined) and a point at rest outside the horizon, from which light can

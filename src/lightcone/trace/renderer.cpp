@@ -129,7 +129,8 @@ struct Observation {
 }  // namespace
 
 Image render_image(const Scene& scene, const RenderOptions& options, RenderStats* stats) {
-  if (const auto refused = render_refused(scene, options.aovs)) throw std::invalid_argument(*refused);
+  if (const auto refused = render_refused(scene, {.aovs = options.aovs}))
+    throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<tbb::global_control> limit;
   if (options.threads > 0)
