@@ -1,13 +1,22 @@
 // The star catalogue (io/star_catalogue.hpp): the equatorial axes, the bundled catalogue against
-// independent coordinates of named stars, and the compact file's checks.
+// independent coordinates of named stars, and the compact file's checks (what it reads, and the
+// ranges of V and B-V).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/star_catalogue.hpp"
@@ -42,13 +51,16 @@ TEST(Celestial, EquatorialAxes) {
 
 // Ballesteros (2012) against measured temperatures: the Sun (B-V 0.653, Ramirez et al. 2012;
 // T_eff 5772 K, the IAU's nominal value, 2015) within 0.5 %, Procyon (B-V 0.42, T_eff 6530 K,
-// Kervella et al. 2004) within 5 % (a star is not quite a blackbody); hotter for bluer stars
-// throughout the catalogue's range.
+// Kervella et al. 2004) within 5 % (a star is not quite a blackbody); finite, positive and
+// hotter for bluer stars throughout the range a catalogue may hold.
 TEST(StarPhysics, TemperatureFromColourIndex) {
   EXPECT_NEAR(star_temperature(0.653), 5772, 0.005 * 5772);
   EXPECT_NEAR(star_temperature(0.42), 6530, 0.05 * 6530);
-  for (double bv = -0.35; bv < 2.0; bv += 0.05)
-    EXPECT_GT(star_temperature(bv), star_temperature(bv + 0.05)) << bv;
+  EXPECT_TRUE(std::isfinite(star_temperature(kBluestColourIndex)));
+  EXPECT_GT(star_temperature(kReddestColourIndex), 0);
+  for (double bv = kBluestColourIndex; bv < kReddestColourIndex; bv += 0.05)
+    EXPECT_GT(star_temperature(bv), star_temperature(std::min(bv + 0.05, kReddestColourIndex)))
+        << bv;
 }
 
 // Pogson: five magnitudes are a factor of 100, one about 2.512.
@@ -142,6 +154,109 @@ TEST(StarCatalogue, CompactFileRoundTripsAndRefusesDamage) {
   refused(dir / "short.lcstars", "damaged");
   test::write_text(dir / "foreign.lcstars", "P6\n1 1\n255\n");
   refused(dir / "foreign.lcstars", "LCSTARS1");
+  fs::remove_all(dir);
+}
+
+// What read_star_catalogue(path) throws, "(read)" if it reads the file, read in a child process
+// that is killed after 10 s: a reader that opens whatever the path names blocks for ever on a
+// FIFO and reads /dev/zero until memory runs out, and such a regression should fail, not hang.
+std::string refusal_within_10_s(const fs::path& path) {
+  int ends[2];
+  if (::pipe(ends) != 0) return "(no pipe)";
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(ends[0]);
+    std::string said = "(read)";
+    try {
+      read_star_catalogue(path);
+    } catch (const InputError& e) {
+      said = e.what();
+    } catch (const std::exception& e) {
+      said = std::string("(not an InputError: ") + e.what() + ")";
+    }
+    [[maybe_unused]] const ssize_t written = ::write(ends[1], said.data(), said.size());
+    ::_exit(0);
+  }
+  ::close(ends[1]);
+  int status = 0;
+  bool ended = false;
+  for (int tick = 0; tick < 1000 && !ended; ++tick) {
+    ended = ::waitpid(child, &status, WNOHANG) == child;
+    if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!ended) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
+  }
+  std::string said;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(ends[0], buffer, sizeof(buffer))) > 0;) said.append(buffer, n);
+  ::close(ends[0]);
+  return ended ? said : "(still reading after 10 s)";
+}
+
+// A FIFO (which blocks whoever opens it to read) and a link to /dev/zero (which never ends) are
+// refused at once, by name, before they are opened; so is a file larger than the most stars a
+// catalogue may hold, before it is read.
+TEST(StarCatalogue, OnlyRegularFilesOfBoundedSizeAreRead) {
+  const fs::path dir = test::fresh_temp_dir("star_catalogue_inputs");
+  const fs::path fifo = dir / "fifo.lcstars", zero = dir / "zero.lcstars";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink("/dev/zero", zero);
+  for (const fs::path& path : {fifo, zero}) {
+    const std::string said = refusal_within_10_s(path);
+    EXPECT_NE(
+        said.find(path.string() + ": cannot read the star catalogue: it is not a regular file"),
+        std::string::npos)
+        << said;
+  }
+  // Sparse: one star more than the most a catalogue may hold (a 12-byte header, 32 bytes a star).
+  const fs::path huge = dir / "huge.lcstars";
+  test::write_text(huge, "LCSTARS1");
+  fs::resize_file(huge, 12 + (std::uintmax_t{kMaxCatalogueStars} + 1) * 32);
+  const std::string said = refusal_within_10_s(huge);
+  EXPECT_NE(said.find(huge.string() + ": cannot read the star catalogue:"), std::string::npos)
+      << said;
+  EXPECT_NE(said.find("more than the limit"), std::string::npos) << said;
+  fs::remove_all(dir);
+}
+
+// V and B-V are checked when the file is read, against the ranges the photometry is used for,
+// naming the file, the star and the field (left to the render, B-V -1 gives a negative
+// temperature and V -1e30 an infinite flux). The ranges' ends are read, B-V -0.40 (the bluest of
+// KStars' catalogue, a float a little below -0.4) among them, and so is W Ori (B-V 3.33).
+TEST(StarCatalogue, MagnitudeAndColourIndexAreCheckedWhenRead) {
+  const fs::path dir = test::fresh_temp_dir("star_catalogue_ranges");
+  const CatalogueStar vega{{0, 1, 0}, 0.03f, 0.0f};
+  const fs::path ends = dir / "ends.lcstars";
+  write_star_catalogue(
+      ends,
+      {vega,
+       {{1, 0, 0}, static_cast<float>(kBrightestMagnitude), -0.4f},
+       {{0, 0, 1}, static_cast<float>(kFaintestMagnitude), static_cast<float>(kReddestColourIndex)},
+       {{0, 0, -1}, 6.1f, 3.33f}});
+  EXPECT_EQ(read_star_catalogue(ends).size(), 4u);
+  struct Bad {
+    const char* name;
+    float magnitude, colour_index;
+    const char* says;
+  };
+  for (const Bad& bad :
+       {Bad{"blue", 1, -1, "star 1: B-V colour index -1 is outside -0.4 to 6"},
+        Bad{"red", 1, 6.5f, "star 1: B-V colour index 6.5 is outside"},
+        Bad{"bright", -1e30f, 0.5f, "star 1: V magnitude -1e+30 is outside -2 to 30"},
+        Bad{"faint", 31, 0.5f, "star 1: V magnitude 31 is outside"},
+        Bad{"nan", std::nanf(""), 0.5f, "star 1: V magnitude nan is outside"}}) {
+    const fs::path path = dir / (std::string(bad.name) + ".lcstars");
+    write_star_catalogue(path, {vega, {{1, 0, 0}, bad.magnitude, bad.colour_index}});
+    try {
+      read_star_catalogue(path);
+      ADD_FAILURE() << bad.name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string() + ": " + bad.says), std::string::npos)
+          << e.what();
+    }
+  }
   fs::remove_all(dir);
 }
 

@@ -11,11 +11,14 @@
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/input_file.hpp"
 #include "lightcone/physics/celestial.hpp"
+#include "lightcone/physics/stars.hpp"
 
 namespace lightcone {
 
@@ -27,8 +30,14 @@ static_assert(std::endian::native == std::endian::little,
 constexpr char kMagic[8] = {'L', 'C', 'S', 'T', 'A', 'R', 'S', '1'};
 constexpr std::size_t kHeaderBytes = sizeof(kMagic) + sizeof(std::uint32_t);
 constexpr std::size_t kStarBytes = 3 * sizeof(double) + 2 * sizeof(float);
-// Far more than any catalogue lightcone ships: a bound on what a corrupt count can ask for.
-constexpr std::uint32_t kMaxStars = 10'000'000;
+constexpr std::uintmax_t kMaxFileBytes =
+    kHeaderBytes + std::uintmax_t{kMaxCatalogueStars} * kStarBytes;
+
+// Whether a value the file holds lies in [lo, hi], the bounds rounded to float32 as the file's
+// values are (KStars' B-V -0.40 is stored a little below -0.4). NaN lies in no range.
+bool within(float value, double lo, double hi) {
+  return value >= static_cast<float>(lo) && value <= static_cast<float>(hi);
+}
 
 // The number in columns [first, first + width) of a line; NaN where there is none.
 double field(const std::string& line, std::size_t first, std::size_t width) {
@@ -91,19 +100,23 @@ void write_star_catalogue(const std::filesystem::path& path,
 
 std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path) {
   const auto fail = [&](const std::string& why) { throw InputError(path.string() + ": " + why); };
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    fail(
-        "the star catalogue is missing: it is made when lightcone is built, from Debian's "
-        "kstars-data (./setup.sh installs it; then build again)");
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
-  if (!in && !in.eof()) fail("cannot read the star catalogue");
+  std::string reason;
+  const std::optional<std::string> read = try_read_input_file(path, kMaxFileBytes, reason);
+  if (!read) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+      fail(
+          "the star catalogue is missing: it is made when lightcone is built, from Debian's "
+          "kstars-data (./setup.sh installs it; then build again)");
+    fail("cannot read the star catalogue: " + reason);
+  }
+  const std::string& bytes = *read;
   if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
     fail("not a lightcone star catalogue (it does not start with LCSTARS1)");
   std::uint32_t count = 0;
   std::memcpy(&count, bytes.data() + sizeof(kMagic), sizeof(count));
-  if (count > kMaxStars || bytes.size() != kHeaderBytes + std::size_t{count} * kStarBytes)
+  // The file's size is capped, so this also bounds what a corrupt count can ask for.
+  if (bytes.size() != kHeaderBytes + std::size_t{count} * kStarBytes)
     fail(fmt::format("the star catalogue is damaged: {} bytes for {} stars", bytes.size(), count));
   std::vector<CatalogueStar> stars(count);
   const char* p = bytes.data() + kHeaderBytes;
@@ -115,9 +128,19 @@ std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path
     CatalogueStar& s = stars[i];
     take(s.direction.x), take(s.direction.y), take(s.direction.z);
     take(s.magnitude), take(s.colour_index);
-    if (!(std::abs(length(s.direction) - 1) < 1e-9) || !std::isfinite(s.magnitude) ||
-        !std::isfinite(s.colour_index))
+    if (!(std::abs(length(s.direction) - 1) < 1e-9))
       fail(fmt::format("the star catalogue is damaged at star {}", i));
+    // Checked here, by name: left to the render, such a star (a negative temperature, an
+    // infinite flux) surfaces only as a picture of non-finite values.
+    if (!within(s.magnitude, kBrightestMagnitude, kFaintestMagnitude))
+      fail(
+          fmt::format("star {}: V magnitude {} is outside {} to {}, the range of stars' magnitudes",
+                      i, s.magnitude, kBrightestMagnitude, kFaintestMagnitude));
+    if (!within(s.colour_index, kBluestColourIndex, kReddestColourIndex))
+      fail(fmt::format(
+          "star {}: B-V colour index {} is outside {} to {}, the range Ballesteros' colour "
+          "temperature is used for",
+          i, s.colour_index, kBluestColourIndex, kReddestColourIndex));
   }
   return stars;
 }

@@ -3,6 +3,7 @@
 // a compact file of lightcone's own and read from there (docs/design/stars.md).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <vector>
@@ -18,11 +19,16 @@ namespace lightcone {
 std::vector<CatalogueStar> parse_kstars_stars(std::istream& in, double magnitude_limit);
 
 // The compact file: "LCSTARS1", the number of stars (uint32, little-endian), then per star its
-// direction (3 float64), V and B-V (2 float32).
+// direction (3 float64), V and B-V (2 float32). A reader takes at most kMaxCatalogueStars: far
+// more than any catalogue lightcone ships, a bound on what a corrupt count or a huge file can ask
+// for.
+inline constexpr std::uint32_t kMaxCatalogueStars = 10'000'000;
 void write_star_catalogue(const std::filesystem::path& path,
                           const std::vector<CatalogueStar>& stars);
-// Throws InputError naming the file when it is missing (and the package that provides it),
-// unreadable, or not such a file.
+// Throws InputError naming the file when it is missing (and the package that provides it), not a
+// regular file, larger than the most stars it may hold, unreadable, or not such a file, and
+// naming the star and the field where a star's V or B-V lies outside the range the photometry
+// is used for (physics/stars.hpp).
 std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path);
 
 // The bundled catalogue's name, "bright", and where the program finds it: beside the program
