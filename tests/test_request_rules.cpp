@@ -102,11 +102,19 @@ TEST(RequestRules, TheProgramShowsTheRulesMessageAndWritesNothing) {
         arguments += " --aov " + name.get<std::string>();
       if (raster(c)) arguments += " --renderer raster";
     }
+    const std::string message =
+        "lightcone: " + file.string() + ": " + c["refusal"].get<std::string>() + "\n";
     const test::CommandResult r = test::run_lightcone(arguments);
     EXPECT_EQ(r.status, 2);
-    EXPECT_EQ(r.err, "lightcone: " + file.string() + ": " + c["refusal"].get<std::string>() + "\n");
+    EXPECT_EQ(r.err, message);
     EXPECT_EQ(r.out, "");
     EXPECT_FALSE(fs::exists(out));
+    // `check` says ok only of a scene the renderers draw.
+    if (!c.contains("render") && !c.contains("locate")) {
+      const test::CommandResult checked = test::run_lightcone("check " + test::quoted(file));
+      EXPECT_EQ(checked.status, 2);
+      EXPECT_EQ(checked.err, message);
+    }
   }
 }
 

@@ -123,6 +123,7 @@ void warn_out_of_view(const Scene& scene) {
 int run_check(const std::string& file, const std::vector<std::string>& overrides,
               const SceneLoadOptions& options) {
   const Scene scene = load(file, overrides, options);
+  throw_if_refused(scene_refused(scene));  // ok only for a scene the renderers draw
   warn_out_of_view(scene);
   std::printf(
       "%s: ok (%s, %s, %dx%d)\n", file.c_str(), counted(scene.objects.size(), "object").c_str(),
