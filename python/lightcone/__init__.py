@@ -18,6 +18,7 @@ See docs/python.md.
 from __future__ import annotations
 
 import json as _json
+import numbers as _numbers
 import os as _os
 import sys as _sys
 import time as _time
@@ -37,6 +38,8 @@ __all__ = ["Scene", "SceneError", "Image", "load", "render", "animate", "tonemap
            "info", "read_image", "physics"]
 
 _MAX_SAMPLES = 65536  # as the scene format's camera.samples
+_MAX_THREADS = 4096  # as the program's --threads
+_MAX_FRAME = 10**12 - 1  # as the program's --frames (12 digits)
 _TONE_CURVES = ("filmic", "reinhard", "clamp")
 
 
@@ -46,12 +49,16 @@ class Image(_np.ndarray):
     It is a numpy array in every way; in a notebook it shows itself (tone-mapped with the
     filmic curve, as the program's PNG)."""
 
-    def _repr_png_(self) -> bytes:
-        return _lightcone.png(_np.asarray(self, dtype=_np.float32), 0.0)
+    def _repr_png_(self) -> Optional[bytes]:
+        try:
+            return _lightcone.png(_np.asarray(self, dtype=_np.float32), 0.0)
+        except ValueError:  # NaN has no colour: the notebook shows the array's text instead
+            return None
 
 
 def _override_lines(overrides: Union[None, Mapping[str, Any], Sequence[str]]) -> list:
-    """--set's "key.path=value" lines from a dict (values as JSON) or from such strings."""
+    """--set's "key.path=value" lines from a dict (values as JSON, numpy's as numbers and lists;
+    NaN, infinity and other types refused with the key named) or from such strings."""
     if overrides is None:
         return []
     if isinstance(overrides, Mapping):
@@ -59,9 +66,7 @@ def _override_lines(overrides: Union[None, Mapping[str, Any], Sequence[str]]) ->
         for key, value in overrides.items():
             if not isinstance(key, str):
                 raise TypeError(f"overrides: a key must be a JSON path string, got {key!r}")
-            if isinstance(value, _np.ndarray):
-                value = value.tolist()
-            lines.append(f"{key}={_json.dumps(value)}")
+            lines.append(f"{key}={_lightcone.json_value(value, key)}")
         return lines
     if isinstance(overrides, str) or not all(isinstance(o, str) for o in overrides):
         raise TypeError("overrides: a dict {path: value} or a list of 'path=value' strings")
@@ -73,27 +78,46 @@ def _warn(warnings: Iterable[str]) -> None:
         _warnings.warn(w, stacklevel=3)
 
 
-def load(path: str, overrides: Union[None, Mapping[str, Any], Sequence[str]] = None) -> Scene:
+def _path(function: str, name: str, value) -> str:
+    """A file or folder name: a str or an os.PathLike (pathlib.Path), never another type."""
+    if not isinstance(value, (str, _os.PathLike)):
+        raise TypeError(f"{function}: {name} must be a str or os.PathLike, got "
+                        f"{type(value).__name__}")
+    return _os.fsdecode(_os.fspath(value))
+
+
+def load(path: Union[str, "_os.PathLike[str]"],
+         overrides: Union[None, Mapping[str, Any], Sequence[str]] = None) -> Scene:
     """Reads a scene file (docs/scene-format.md), as ``lightcone render`` reads it.
 
+    path: a str or an os.PathLike (pathlib.Path).
     overrides: values to replace before the scene is checked, as ``--set`` gives them: a dict
     {"camera.velocity": [0, 0, -0.9]} (values as JSON) or a list of "path=value" strings.
 
     Raises SceneError (with .file, .line and .field) for a scene with an error."""
-    scene, warnings = _lightcone.load(str(path), _override_lines(overrides))
+    scene, warnings = _lightcone.load(_path("load", "path", path), _override_lines(overrides))
     _warn(warnings)
     return scene
 
 
-def _from_dict(document: Mapping[str, Any], name: str = "scene.json",
+def _from_dict(document: Mapping[str, Any], *, folder: Union[None, str, "_os.PathLike[str]"] = None,
                overrides: Union[None, Mapping[str, Any], Sequence[str]] = None) -> Scene:
-    """A scene built in code: the scene format's JSON as dicts and lists. `name` names it in
-    messages, and relative file names in it (meshes, textures) are read from its folder."""
+    """A scene built in code: the scene format (docs/scene-format.md) as dicts, lists, strings,
+    numbers (numpy's too; its arrays as lists), booleans and None.
+
+    folder: where relative file names in it (meshes, textures, the sky's image) are read from;
+        by default the current folder.
+    overrides: as load's.
+
+    Held to a scene file's limits (64 MiB as JSON text, 64 levels of nesting). Raises SceneError
+    "<dict>: objects[2].velocity: what is wrong" (.file "<dict>", .line None, .field the path)
+    for a scene with an error, NaN and infinity among them."""
     if not isinstance(document, Mapping):
-        raise TypeError("Scene.from_dict: a dict in the scene format (docs/scene-format.md)")
-    text = _json.dumps(document, indent=1, default=lambda v: v.tolist()
-                       if isinstance(v, _np.ndarray) else str(v))
-    scene, warnings = _lightcone.load_text(text, str(name), _override_lines(overrides))
+        raise TypeError("Scene.from_dict: a dict in the scene format (docs/scene-format.md), got "
+                        f"{type(document).__name__}")
+    where = "" if folder is None else _path("Scene.from_dict", "folder", folder)
+    scene, warnings = _lightcone.load_dict(document if isinstance(document, dict) else
+                                           dict(document), where, _override_lines(overrides))
     _warn(warnings)
     return scene
 
@@ -150,7 +174,7 @@ def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trac
 
     Returns an Image (float32 (H, W, 3), linear radiance times 2^exposure, unclamped), or the
     dict. The render runs without the GIL; Ctrl-C stops it and raises KeyboardInterrupt, whose
-    .partial["rgb"] holds the tiles finished."""
+    .partial["rgb"] holds the tiles finished (on the main thread; docs/python.md, "Ctrl-C")."""
     if not isinstance(scene, Scene):
         raise TypeError(f"render: scene must be a lightcone.Scene (from load), got {type(scene).__name__}")
     if renderer not in ("trace", "raster"):
@@ -165,8 +189,10 @@ def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trac
         scene = scene.with_samples(int(samples))
     if isinstance(seed, bool) or not isinstance(seed, (int, _np.integer)) or not 0 <= seed < 2**64:
         raise ValueError(f"render: seed must be a whole number from 0 to {2**64 - 1}, got {seed!r}")
-    if isinstance(threads, bool) or not isinstance(threads, (int, _np.integer)) or threads < 0:
-        raise ValueError(f"render: threads must be 0 (all cores) or more, got {threads!r}")
+    if (isinstance(threads, bool) or not isinstance(threads, (int, _np.integer))
+            or not 0 <= threads <= _MAX_THREADS):
+        raise ValueError(f"render: threads must be 0 (all cores) to {_MAX_THREADS}, got "
+                         f"{threads!r}")
     names = list(aovs or [])
     known = _lightcone.aov_names()
     for name in names:
@@ -205,7 +231,8 @@ def animate(scene: Scene, fps: float = 30, frames: Iterable[int] = range(0, 1), 
     put in a video, give the scene a fixed exposure (overrides={"render.exposure": EV})."""
     if not isinstance(scene, Scene):
         raise TypeError(f"animate: scene must be a lightcone.Scene, got {type(scene).__name__}")
-    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not 0 < fps < float("inf"):
+    fps = _finite("animate", "fps", fps)
+    if not fps > 0:
         raise ValueError(f"animate: fps must be a positive number, got {fps!r}")
     if clock not in ("camera", "world"):
         raise ValueError(f"animate: clock must be 'camera' or 'world', got {clock!r}")
@@ -213,23 +240,45 @@ def animate(scene: Scene, fps: float = 30, frames: Iterable[int] = range(0, 1), 
     for i in frames:
         if isinstance(i, bool) or not isinstance(i, (int, _np.integer)):
             raise TypeError(f"animate: a frame number must be a whole number, got {i!r}")
-        yield int(i), render(_lightcone.animation_frame(scene, int(i), float(fps), clock),
+        if not -_MAX_FRAME <= i <= _MAX_FRAME:
+            raise ValueError(f"animate: a frame number must be from {-_MAX_FRAME} to {_MAX_FRAME}"
+                             f" (12 digits, as the program's --frames), got {i}")
+        yield int(i), render(_lightcone.animation_frame(scene, int(i), fps, clock),
                              **render_options)
+
+
+def _finite(function: str, name: str, value) -> float:
+    """A real number (numpy's too) as a finite float, or ValueError naming it."""
+    if isinstance(value, bool) or not isinstance(value, _numbers.Real):
+        raise TypeError(f"{function}: {name} must be a number, got {value!r}")
+    try:
+        number = float(value)
+    except OverflowError:
+        number = float("inf")
+    if not _np.isfinite(number):
+        raise ValueError(f"{function}: {name} must be a finite number, got {value!r}")
+    return number
 
 
 def tonemap(image, exposure: float = 0.0, curve: str = "filmic") -> _np.ndarray:
     """The 8-bit picture of a linear image, as the program's PNG: times 2^exposure, through the
-    tone curve ("filmic", "reinhard" or "clamp"), sRGB-encoded. Returns uint8 (H, W, 3)."""
+    tone curve ("filmic", "reinhard" or "clamp"), sRGB-encoded. Returns uint8 (H, W, 3).
+
+    An image holding NaN is refused (ValueError, with the count): NaN has no colour."""
     if curve not in _TONE_CURVES:
         raise ValueError(f"tonemap: curve must be one of {', '.join(_TONE_CURVES)}, got {curve!r}")
+    exposure = _finite("tonemap", "exposure", exposure)
     array = _np.asarray(image, dtype=_np.float32)
     if array.ndim != 3 or array.shape[2] != 3:
         raise ValueError(f"tonemap: the image must have shape (H, W, 3), got {array.shape}")
-    return _lightcone.tonemap(array, float(exposure), curve)
+    return _lightcone.tonemap(array, exposure, curve)
 
 
 def _triple(name: str, value) -> list:
-    array = _np.asarray(value, dtype=_np.float64)
+    try:
+        array = _np.asarray(value, dtype=_np.float64)
+    except OverflowError:
+        raise ValueError(f"locate: {name} must be finite") from None
     if array.shape != (3,):
         raise ValueError(f"locate: {name} must be three numbers, got shape {array.shape}")
     if not _np.all(_np.isfinite(array)):
@@ -271,4 +320,4 @@ def info(scene: Scene) -> dict:
 def read_image(path: str) -> dict:
     """An image file as the program reads it (PNG, JPEG: linear from sRGB; OpenEXR: as stored,
     with its output variables): a dict with "rgb" (float32 (H, W, 3)) and each other channel."""
-    return _lightcone.read_image(str(path))
+    return _lightcone.read_image(_path("read_image", "path", path))

@@ -90,14 +90,178 @@ def test_a_scene_with_an_error_raises_scene_error_with_its_line(tmp_path):
     assert caught.value.field == "camera.velocity" and caught.value.line is None
 
 
-def test_scene_from_dict_renders_as_its_file(tmp_path):
+def terrell_document():
     with open(TERRELL) as f:
-        text = "\n".join(line for line in f if not line.lstrip().startswith("//"))
-    document = json.loads(text)
+        return json.loads("\n".join(line for line in f if not line.lstrip().startswith("//")))
+
+
+def test_scene_from_dict_renders_as_its_file(tmp_path):
+    document = terrell_document()
     document["camera"].update(width=160, height=90)
-    built = lc.Scene.from_dict(document, name=TERRELL)
+    built = lc.Scene.from_dict(document, folder=os.path.dirname(TERRELL))
     loaded = lc.load(TERRELL, overrides=SMALL)
     assert np.array_equal(lc.render(built, samples=1), lc.render(loaded, samples=1))
+
+
+# Python at the boundary (issue 53, P3): a dict is held to a scene file's limits, and its
+# errors name the dict and the value's path.
+def test_from_dict_refuses_more_than_a_scene_files_64_mib_at_once():
+    """10^6 objects (some 110 MB of JSON) once took 104 s and 2.4 GB to be loaded."""
+    body = {"shape": {"sphere": {"radius": 0.5}}, "position": [1.5, 0.25, -3.0],
+            "material": {"color": [0.5, 0.5, 0.5]}}
+    document = {"camera": {"position": [0, 0, 0]},
+                "objects": [dict(body, name=f"ball {i}") for i in range(10**6)]}
+    start = time.process_time()  # (this process's time: not another's load on the machine)
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(document)
+    assert time.process_time() - start < 1.0
+    assert str(caught.value) == ("<dict>: more than the limit of 67108864 bytes as JSON text "
+                                 "(a scene file's)")
+    assert (caught.value.file, caught.value.line, caught.value.field) == ("<dict>", None, None)
+    # A large array, refused before its elements become Python numbers.
+    start = time.process_time()
+    with pytest.raises(lc.SceneError, match="more than the limit of 67108864 bytes"):
+        lc.Scene.from_dict({"camera": {"position": np.broadcast_to(0.0, (40_000_000,))}})
+    assert time.process_time() - start < 0.1
+
+
+def test_from_dict_refuses_nesting_deeper_than_a_scene_files():
+    deep = inner = {}
+    for _ in range(100_000):  # deeper than Python's own recursion limit
+        inner["a"] = inner = {}
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(deep)
+    message = str(caught.value)
+    assert message.startswith("<dict>: a.a.a.") and message.endswith(
+        ": nested more than 64 levels deep")
+    assert caught.value.field == ".".join(["a"] * 64)
+    looped = {"camera": {"position": [0, 0, 0]}, "objects": []}
+    looped["objects"].append(looped)  # a dict within itself
+    with pytest.raises(lc.SceneError, match="nested more than 64 levels deep"):
+        lc.Scene.from_dict(looped)
+
+
+def test_a_long_value_is_cut_in_the_message_as_the_program_cuts_it():
+    long = "x" * 10**7
+    document = terrell_document()
+    document["objects"][1]["name"] = document["objects"][0]["name"] = long
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(document)
+    assert "duplicate object name" in str(caught.value) and len(str(caught.value)) < 1000
+    assert caught.value.field == "objects[1].name"
+    document = terrell_document()
+    document["camera"][long[:10**6]] = 1
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(document)
+    # (as the program prints it: a word of more than 160 characters cut to its first 80)
+    assert str(caught.value).startswith("<dict>: camera." + "x" * 73 + "... unknown key")
+    assert len(str(caught.value)) < 1000
+    assert caught.value.field == "camera." + "x" * 73 + "..."
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), -np.inf, np.float32("nan")])
+def test_nan_and_infinity_in_a_dict_are_refused_with_their_field(bad):
+    document = terrell_document()
+    document["objects"][1]["velocity"][2] = bad
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(document)
+    error = caught.value
+    assert str(error) == f"<dict>: objects[1].velocity[2]: must be a finite number, got {bad}"
+    assert (error.file, error.line, error.field) == ("<dict>", None, "objects[1].velocity[2]")
+    with pytest.raises(lc.SceneError) as caught:
+        lc.load(TERRELL, overrides={"camera.fov": bad})
+    assert str(caught.value) == f"--set camera.fov: must be a finite number, got {bad}"
+    assert caught.value.field == "camera.fov"
+
+
+def test_numpy_numbers_and_arrays_are_numbers_and_lists():
+    plain = terrell_document()
+    plain["camera"].update(width=160, height=90, fov=50, samples=2)
+    plain["objects"][0]["velocity"] = [0.5, 0, 0]
+    plain["objects"][0]["material"]["checker"]["size"] = 0.25
+    typed = terrell_document()
+    typed["camera"].update(width=np.int64(160), height=np.int32(90), fov=np.float32(50),
+                           samples=np.uint8(2), position=np.zeros(3))
+    typed["objects"][0]["velocity"] = np.array([0.5, 0, 0])
+    typed["objects"][0]["material"]["checker"]["size"] = np.float16(0.25)
+    typed["objects"][1]["position"] = np.array([2.4, 0, -10], dtype=np.float64)
+    typed["render"] = {"shadows": np.bool_(True)}
+    plain["render"] = {"shadows": True}
+    a, b = lc.Scene.from_dict(plain), lc.Scene.from_dict(typed)
+    assert (b.width, b.height, b.samples) == (160, 90, 2)
+    assert lc.info(a) == lc.info(b)
+    overridden = lc.load(TERRELL, overrides={"camera.width": np.int64(160),
+                                             "camera.height": np.uint16(90),
+                                             "camera.velocity": np.array([0, 0, -0.5]),
+                                             "camera.fov": np.float32(50)})
+    assert lc.info(overridden) == lc.info(lc.load(TERRELL, overrides={
+        "camera.width": 160, "camera.height": 90, "camera.velocity": [0, 0, -0.5]}))
+    with pytest.raises(lc.SceneError, match=r"^<dict>: camera\.fov: must be a dict, list, str, "
+                       "number, bool or None .*got complex128"):
+        lc.Scene.from_dict({"camera": {"fov": np.complex128(1)}})
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda scene: lc.render(scene, seed=2**64), "seed"),
+    (lambda scene: lc.render(scene, threads=2**63), "threads"),
+    (lambda scene: lc.render(scene, samples=2**63), "samples"),
+    (lambda scene: next(lc.animate(scene, frames=[2**63])), "frame"),
+    (lambda scene: next(lc.animate(scene, fps=10**400)), "fps"),
+    (lambda scene: lc.tonemap(np.zeros((2, 2, 3)), exposure=10**400), "exposure"),
+])
+def test_out_of_range_integer_arguments_are_refused_by_name(call, name):
+    scene = lc.load(TERRELL, overrides=SMALL)
+    with pytest.raises((ValueError, OverflowError), match=name) as caught:
+        call(scene)
+    assert not isinstance(caught.value, lc.SceneError)
+
+
+def test_errors_of_a_dict_name_the_dict_and_the_field_without_a_line(tmp_path):
+    document = terrell_document()
+    document["objects"][2]["velocity"] = [0, 0, 1.5]
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(document)
+    error = caught.value
+    assert str(error) == "<dict>: objects[2].velocity: speed 1.5 must be below the speed of light (1)"
+    assert (error.file, error.line, error.field) == ("<dict>", None, "objects[2].velocity")
+    with pytest.raises(lc.SceneError, match=r"^<dict>: camera: a key must be a str, got int 3$"):
+        lc.Scene.from_dict({"camera": {3: 1}})
+    # Relative file names: from the folder given, else from the current folder.
+    (tmp_path / "tri.obj").write_text("v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\n")
+    document = {"camera": {"position": [0, 0, 0]},
+                "objects": [{"name": "tri", "shape": {"mesh": {"file": "tri.obj"}}}]}
+    assert lc.Scene.from_dict(document, folder=tmp_path).objects == ["tri"]
+    with pytest.raises(lc.SceneError) as caught:
+        lc.Scene.from_dict(document)
+    assert str(caught.value).startswith("<dict>: objects[0].shape.mesh.file: tri.obj: ")
+    here = os.getcwd()
+    try:
+        os.chdir(tmp_path)
+        assert lc.Scene.from_dict(document).objects == ["tri"]
+    finally:
+        os.chdir(here)
+
+
+def test_load_takes_a_path_and_nothing_else(tmp_path):
+    with pytest.raises(TypeError, match="load: path must be a str or os.PathLike, got int"):
+        lc.load(42)
+    with pytest.raises(TypeError):
+        lc.load(None)
+    import pathlib
+    assert lc.load(pathlib.Path(TERRELL)).objects == ["ball", "crate", "floor"]
+    with pytest.raises(TypeError):
+        lc.Scene.from_dict({}, folder=3)
+
+
+def test_tonemap_refuses_nan_naming_the_count():
+    image = np.ones((4, 4, 3), dtype=np.float32)
+    image[1, 2] = [np.nan, 0.5, np.nan]
+    with pytest.raises(ValueError, match=r"tonemap: the image holds 2 NaN values \(of 48\)"):
+        lc.tonemap(image)
+    with pytest.raises(ValueError, match="tonemap: exposure"):
+        lc.tonemap(np.zeros((2, 2, 3)), exposure=1000)  # 0 times 2^1000 (infinite as a float)
+    assert np.zeros((4, 4, 3), dtype=np.float32).view(lc.Image)._repr_png_() is not None
+    assert image.view(lc.Image)._repr_png_() is None  # the notebook shows the numbers instead
 
 
 def test_bad_arguments_raise_value_or_type_errors():
@@ -214,6 +378,64 @@ def test_ctrl_c_raises_keyboard_interrupt_within_a_second():
     assert words[0] == "interrupted", out
     assert float(words[1]) - sent < 1.0
     assert "(1080, 1920, 3)" in out
+
+
+def run_child(script, wait_for):
+    child = subprocess.Popen([sys.executable, "-c", textwrap.dedent(script)],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             env=os.environ)
+    assert child.stdout.readline().strip() == wait_for
+    return child
+
+
+def test_ctrl_c_still_wakes_a_blocking_call_after_a_render():
+    """The handler a render replaces is put back as it was: without SA_RESTART, so that a read
+    from a pipe (or a wait for a child) still wakes for Ctrl-C."""
+    child = run_child(f"""
+        import os, lightcone as lc
+        lc.render(lc.load({TERRELL!r}, overrides={SMALL!r}), samples=1, progress=False)
+        readable, writable = os.pipe()
+        print("reading", flush=True)
+        try:
+            os.read(readable, 1)
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+    """, "reading")
+    time.sleep(0.5)
+    child.send_signal(signal.SIGINT)
+    try:
+        out, err = child.communicate(timeout=10)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.communicate()
+        pytest.fail("Ctrl-C did not wake os.read after a render")
+    assert out.strip() == "interrupted", err
+
+
+def test_ctrl_c_during_a_render_on_another_thread_reaches_the_main_thread():
+    child = run_child(f"""
+        import os, threading, time, lightcone as lc
+        scene = lc.load({TERRELL!r}, overrides={{"camera.width": 1920, "camera.height": 1080}})
+        worker = threading.Thread(target=lc.render, args=(scene,),
+                                  kwargs=dict(samples=4096, progress=False), daemon=True)
+        worker.start()
+        print("rendering", flush=True)
+        try:
+            time.sleep(60)
+            print("slept", flush=True)
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+        os._exit(0)
+    """, "rendering")
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    try:
+        out, err = child.communicate(timeout=20)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.communicate()
+        pytest.fail("Ctrl-C did not reach the main thread")
+    assert out.strip() == "interrupted", err
 
 
 def test_an_image_shows_itself_in_a_notebook():

@@ -531,12 +531,14 @@ Scene load_scene_text(std::string text, const std::filesystem::path& file,
                       const SceneLoadOptions& options) {
   const DocumentArena arena;  // for the document, which is gone when the scene is returned
   bool repeated_key = false;
-  SceneJson document = parse_scene_document(file, text, repeated_key);
+  SceneJson document = parse_scene_document(file, text, repeated_key, options.line_numbers);
   const JsonLineMap lines(std::move(text));
   if (repeated_key && !lines.duplicate_keys().empty()) {
     const auto& d = lines.duplicate_keys().front();
-    throw InputError(fmt::format("{}:{}: {}: duplicate key (each key may appear only once)",
-                                 file.string(), d.line, d.path));
+    const std::string where =
+        options.line_numbers ? fmt::format("{}:{}", file.string(), d.line) : file.string();
+    throw InputError(
+        fmt::format("{}: {}: duplicate key (each key may appear only once)", where, d.path));
   }
 
   std::vector<std::string> overridden;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,8 +11,19 @@
 
 namespace lightcone {
 
+// The deepest a scene document may nest its arrays and objects (a scene needs some 8 levels; each
+// costs memory and stack to read): deeper is refused, "nested more than 64 levels deep".
+inline constexpr int kMaxSceneNesting = 64;
+
 struct SceneLoadOptions {
   MeshLoadOptions mesh;  // how the mesh files the scene names are read (allow_outside)
+  // For a text that is no file (Python's Scene.from_dict, whose scene is named "<dict>"): false
+  // gives messages without a line, "<dict>: objects[2].velocity: what is wrong", since the
+  // text's lines are no one's to read.
+  bool line_numbers = true;
+  // Where relative paths (meshes, textures, the sky's image) are read from, instead of the scene
+  // file's folder ("" for the current folder): for a text that is no file.
+  std::optional<std::filesystem::path> folder;
 };
 
 struct SceneLoadReport {
@@ -33,7 +45,7 @@ Scene load_scene_file(const std::filesystem::path& file, const std::vector<std::
                       SceneLoadReport& report, const SceneLoadOptions& options = {});
 
 // The same for a scene file's text: `file` names it in messages, and relative paths are
-// resolved against its folder (it need not exist).
+// resolved against its folder (it need not exist), or against options.folder where given.
 Scene load_scene_text(std::string text, const std::filesystem::path& file,
                       const std::vector<std::string>& overrides, SceneLoadReport& report,
                       const SceneLoadOptions& options = {});

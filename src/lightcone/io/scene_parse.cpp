@@ -13,6 +13,7 @@
 
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/input_file.hpp"
+#include "lightcone/io/scene_file.hpp"
 
 namespace lightcone {
 namespace {
@@ -63,7 +64,6 @@ class DomBuilder {
     return false;
   }
 
-  static constexpr int kMaxDepth = 64;
   std::size_t error_byte = 0;  // 1-based offset of the last character read
   std::string error;
   bool repeated_key = false;
@@ -90,8 +90,8 @@ class DomBuilder {
     return true;
   }
   bool open(json::value_t type) {
-    if (open_.size() >= kMaxDepth) {
-      error = fmt::format("nested more than {} levels deep", kMaxDepth);
+    if (open_.size() >= kMaxSceneNesting) {
+      error = fmt::format("nested more than {} levels deep", kMaxSceneNesting);
       return false;
     }
     json* value = place(type);
@@ -133,7 +133,8 @@ std::string read_scene_text(const fs::path& file) {
   return text;
 }
 
-json parse_scene_document(const fs::path& file, const std::string& text, bool& repeated_key) {
+json parse_scene_document(const fs::path& file, const std::string& text, bool& repeated_key,
+                          bool line_numbers) {
   json document;
   DomBuilder builder(document);
   if (json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true,
@@ -143,9 +144,10 @@ json parse_scene_document(const fs::path& file, const std::string& text, bool& r
   }
   const std::size_t end =
       std::min(builder.error_byte > 0 ? builder.error_byte - 1 : 0, text.size());
+  const std::string what = trailing_comma(text, end).value_or(builder.error);
+  if (!line_numbers) throw InputError(fmt::format("{}: (syntax): {}", file.string(), what));
   const auto line = 1 + std::count(text.begin(), text.begin() + end, '\n');
-  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line,
-                               trailing_comma(text, end).value_or(builder.error)));
+  throw InputError(fmt::format("{}:{}: (syntax): {}", file.string(), line, what));
 }
 
 }  // namespace lightcone

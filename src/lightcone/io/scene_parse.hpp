@@ -15,7 +15,8 @@ std::string read_scene_text(const std::filesystem::path& file);
 
 // The document (comments allowed), and whether a key repeats within one of its objects, which
 // the document hides (it keeps the last one): only then need JsonLineMap scan for the repeats.
+// Without `line_numbers` (a text that is no file) an error names `file` alone.
 SceneJson parse_scene_document(const std::filesystem::path& file, const std::string& text,
-                               bool& repeated_key);
+                               bool& repeated_key, bool line_numbers = true);
 
 }  // namespace lightcone

@@ -25,7 +25,9 @@ class SceneReader : public SceneValueReader {
   SceneReader(const std::filesystem::path& file, const JsonLineMap& lines,
               std::vector<std::string> overridden, SceneLoadReport& report,
               const SceneLoadOptions& options)
-      : SceneValueReader(file, lines, std::move(overridden)), report_(report), options_(options) {}
+      : SceneValueReader(file, lines, std::move(overridden), options.line_numbers, options.folder),
+        report_(report),
+        options_(options) {}
 
   Scene read(const json& document);
 

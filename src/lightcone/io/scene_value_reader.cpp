@@ -52,12 +52,13 @@ bool SceneValueReader::overridden(const std::string& path) const {
 void SceneValueReader::fail_at(const std::string& path, int line, const std::string& what) const {
   const std::string shown = path.empty() ? "(top level)" : path;
   if (overridden(path)) throw InputError(fmt::format("--set {}: {}", shown, what));
+  if (!line_numbers_) throw InputError(fmt::format("{}: {}: {}", file_.string(), shown, what));
   throw InputError(fmt::format("{}:{}: {}: {}", file_.string(), line, shown, what));
 }
 
 void SceneValueReader::fail(const Node& n, const std::string& what) const {
   const std::string path = n.path();
-  fail_at(path, lines_.value_line(path), what);
+  fail_at(path, line_numbers_ ? lines_.value_line(path) : 0, what);
 }
 
 void SceneValueReader::limit_gamma(const Node& n, double gamma, const std::string& subject,
@@ -84,7 +85,7 @@ void SceneValueReader::object(const Node& n, Names allowed, Names more,
     std::vector<std::string_view> names(allowed.begin(), allowed.end());
     names.insert(names.end(), more.begin(), more.end());
     const std::optional<std::string_view> near = nearest_name(key, names);
-    fail_at(path, lines_.key_line(path),
+    fail_at(path, line_numbers_ ? lines_.key_line(path) : 0,
             fmt::format("unknown key \"{}\"{} ({}expected one of: {})", json_member_path("", key),
                         context, near ? fmt::format("did you mean \"{}\"? ", *near) : "",
                         join(allowed, more)));
@@ -223,7 +224,7 @@ std::filesystem::path SceneValueReader::file_path(const Node& n) const {
   const std::string text = string(n);
   if (text.empty()) fail(n, "must not be empty");
   const std::filesystem::path p(text);
-  return p.is_relative() ? file_.parent_path() / p : p;
+  return p.is_relative() ? folder_ / p : p;
 }
 
 double SceneValueReader::time(const Node& n) const {

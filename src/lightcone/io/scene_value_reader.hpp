@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -57,12 +58,18 @@ struct Names : std::span<const std::string_view> {
 std::string join(Names words, Names more = {});
 
 // Reads and checks single values; every failure is an InputError "FILE:LINE: PATH: what is
-// wrong" (or "--set PATH: what is wrong").
+// wrong" (or "--set PATH: what is wrong"; without `line_numbers`, "FILE: PATH: what is wrong").
 class SceneValueReader {
  protected:
+  // Relative paths are read from `folder`, or where none is given from `file`'s folder.
   SceneValueReader(const std::filesystem::path& file, const JsonLineMap& lines,
-                   std::vector<std::string> overridden)
-      : lines_(lines), file_(file), overridden_(std::move(overridden)) {}
+                   std::vector<std::string> overridden, bool line_numbers = true,
+                   std::optional<std::filesystem::path> folder = std::nullopt)
+      : lines_(lines),
+        file_(file),
+        overridden_(std::move(overridden)),
+        line_numbers_(line_numbers),
+        folder_(folder ? std::move(*folder) : file.parent_path()) {}
 
   // The one speed limit: every speed a body can reach (the camera, objects, lights, the sky, a
   // spinning body's points), in W and relative to the camera, has gamma at most this; beyond
@@ -127,7 +134,8 @@ class SceneValueReader {
 
   Mat3 rotation(const Node& n) const;
 
-  // A file named in the scene; a relative path is relative to the scene file's folder.
+  // A file named in the scene; a relative path is relative to the scene file's folder (or the
+  // folder the load's options give).
   std::filesystem::path file_path(const Node& n) const;
 
   // A time in the scene's units, in the engine's.
@@ -159,6 +167,8 @@ class SceneValueReader {
 
   const std::filesystem::path& file_;
   std::vector<std::string> overridden_;  // readable paths that --set replaced
+  bool line_numbers_;
+  std::filesystem::path folder_;  // where relative paths are read from
 };
 
 }  // namespace lightcone::scene_io
