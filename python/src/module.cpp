@@ -1,17 +1,17 @@
 // lightcone._lightcone: the library for Python, called as the `lightcone` program calls it
 // (src/cli), so that the same scene gives the same numbers and the same messages. Arguments are
 // checked in python/lightcone/__init__.py; this layer takes them as the library does.
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
-#include <fmt/format.h>
 #include <pybind11/stl.h>
+#include <signal.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <signal.h>
 #include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -108,16 +108,14 @@ class JsonWriter {
       path = json_member_path(path, bytes ? std::string(py::bytes(bytes)) : "?");
     }
     if (source_ == "--set") throw InputError(fmt::format("--set {}: {}", path, what));
-    throw InputError(
-        fmt::format("{}: {}: {}", source_, path.empty() ? "(top level)" : path, what));
+    throw InputError(fmt::format("{}: {}: {}", source_, path.empty() ? "(top level)" : path, what));
   }
 
   // The text so far plus `more` bytes is still within a scene file's limit.
   void reserve(std::size_t more) const {
     if (out_.size() + more > kMaxSceneFileBytes) {
-      const std::string what = fmt::format("more than the limit of {} bytes as JSON text (a "
-                                           "scene file's)",
-                                           kMaxSceneFileBytes);
+      const std::string what = fmt::format(
+          "more than the limit of {} bytes as JSON text (a scene file's)", kMaxSceneFileBytes);
       if (source_ == "--set") throw InputError(fmt::format("--set {}: {}", path_, what));
       throw InputError(fmt::format("{}: {}", source_, what));
     }
@@ -143,16 +141,19 @@ class JsonWriter {
       return value(v.attr("tolist")(), depth);
     }
     if (isinstance(v, numpy_[1])) return append(PyObject_IsTrue(p) ? "true" : "false");
-    if (isinstance(v, numpy_[2])) return integer(py::reinterpret_steal<py::object>(check(PyNumber_Index(p))));
+    if (isinstance(v, numpy_[2]))
+      return integer(py::reinterpret_steal<py::object>(check(PyNumber_Index(p))));
     if (isinstance(v, numpy_[3])) {
       const double d = PyFloat_AsDouble(p);
       if (d == -1 && PyErr_Occurred()) throw py::error_already_set();
       return number(d);
     }
-    if (isinstance(v, mapping_)) return object(py::dict(py::reinterpret_borrow<py::object>(v)), depth);
-    fail(fmt::format("must be a dict, list, str, number, bool or None (the scene format's JSON), "
-                     "got {}",
-                     py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>()));
+    if (isinstance(v, mapping_))
+      return object(py::dict(py::reinterpret_borrow<py::object>(v)), depth);
+    fail(
+        fmt::format("must be a dict, list, str, number, bool or None (the scene format's JSON), "
+                    "got {}",
+                    py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>()));
   }
 
   static bool isinstance(py::handle v, const py::object& type) {
@@ -168,21 +169,22 @@ class JsonWriter {
   void number(double d) {
     if (std::isnan(d)) fail("must be a finite number, got nan");
     if (std::isinf(d)) fail(fmt::format("must be a finite number, got {}", d));
-    // Python's repr, as json.dumps writes a float: the shortest text that reads back as d.
-    char* text = PyOS_double_to_string(d, 'r', 0, Py_DTSF_ADD_DOT_0, nullptr);
-    if (!text) throw py::error_already_set();
-    const std::unique_ptr<char, void (*)(void*)> owned(text, PyMem_Free);
-    append(text);
+    // The shortest text that reads back as d (as Python's repr), still a float when whole.
+    char text[40];
+    char* end = fmt::format_to(text, "{}", d);
+    if (std::all_of(text, end, [](char c) { return c == '-' || (c >= '0' && c <= '9'); }))
+      end = std::copy_n(".0", 2, end);
+    append(std::string_view(text, static_cast<std::size_t>(end - text)));
   }
 
   void integer(py::handle v) {
     int overflow = 0;
     const long long i = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
     if (i == -1 && PyErr_Occurred()) throw py::error_already_set();
-    if (overflow == 0) return append(fmt::format_int(i).str());
+    if (overflow == 0) return append(fmt::format_int(i).c_str());
     if (overflow > 0) {
       const unsigned long long u = PyLong_AsUnsignedLongLong(v.ptr());
-      if (!PyErr_Occurred()) return append(fmt::format_int(u).str());
+      if (!PyErr_Occurred()) return append(fmt::format_int(u).c_str());
       PyErr_Clear();
     }
     // Beyond 64 bits: the nearest double, as the program reads so large a whole number.
@@ -431,8 +433,7 @@ py::dict render(const Scene& scene, const std::string& renderer,
 using LinearArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
 std::size_t count_nan(const float* begin, const float* end) {
-  return static_cast<std::size_t>(
-      std::count_if(begin, end, [](float v) { return std::isnan(v); }));
+  return static_cast<std::size_t>(std::count_if(begin, end, [](float v) { return std::isnan(v); }));
 }
 
 // A linear picture from Python, (H, W, 3), times 2^exposure as the renderers expose theirs. A
@@ -443,9 +444,9 @@ Image exposed_image(const LinearArray& linear, double exposure, const char* func
     throw py::value_error(std::string(function) +
                           ": the image must be an array of shape (H, W, 3)");
   if (const std::size_t n = count_nan(linear.data(), linear.data() + linear.size()); n > 0)
-    throw py::value_error(fmt::format("{}: the image holds {} NaN value{} (of {}): a NaN has no "
-                                      "colour",
-                                      function, n, n == 1 ? "" : "s", linear.size()));
+    throw py::value_error(
+        fmt::format("{}: the image holds {} NaN value{} (of {}): a NaN has no colour", function, n,
+                    n == 1 ? "" : "s", linear.size()));
   Image image;
   image.height = static_cast<int>(linear.shape(0));
   image.width = static_cast<int>(linear.shape(1));
@@ -454,11 +455,11 @@ Image exposed_image(const LinearArray& linear, double exposure, const char* func
   fixed.auto_exposure = false;
   fixed.exposure = exposure;
   apply_exposure(image, fixed);
-  if (const std::size_t n = count_nan(image.rgb.data(), image.rgb.data() + image.rgb.size());
-      n > 0)
-    throw py::value_error(fmt::format("{}: exposure {} makes {} value{} NaN (2^exposure is beyond "
-                                      "a float's range, and 0 times infinity is NaN)",
-                                      function, exposure, n, n == 1 ? "" : "s"));
+  if (const std::size_t n = count_nan(image.rgb.data(), image.rgb.data() + image.rgb.size()); n > 0)
+    throw py::value_error(
+        fmt::format("{}: exposure {} makes {} value{} NaN (2^exposure is beyond "
+                    "a float's range, and 0 times infinity is NaN)",
+                    function, exposure, n, n == 1 ? "" : "s"));
   return image;
 }
 
@@ -572,8 +573,7 @@ PYBIND11_MODULE(_lightcone, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      py::object error =
-          py::reinterpret_borrow<py::object>(scene_error.ptr())(printable(e.what()));
+      py::object error = py::reinterpret_borrow<py::object>(scene_error.ptr())(printable(e.what()));
       set_location(error, e.what());
       PyErr_SetObject(scene_error.ptr(), error.ptr());
     }
