@@ -25,6 +25,7 @@
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/schwarzschild_geodesics.hpp"
+#include "lightcone/scene/animation.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "support/scene_file_test.hpp"
 #include "support/test_support.hpp"
@@ -519,13 +520,19 @@ TEST_F(BlackHoleMotion, TheFallIsDrawnThroughTheHorizonDownTo005M) {
   // Down to r = 0.05M; and not before it came to rest at r0, rising out of the past horizon.
   const double innermost = fall.proper_time_at_radius(0.05);
   expect_error(at(40), 2, "camera.proper_time",
-               "at proper time 40 the falling camera is at r = 0, within 0.05M of the "
-               "singularity at r = 0: the camera is drawn down to r = 0.05M (it is drawn at "
-               "proper times between");
+               fmt::format("at proper time 40 the falling camera has reached the singularity r = "
+                           "0 (at proper time {}): the camera is drawn down to r = 0.05M (it is "
+                           "drawn at proper times between",
+                           fall.proper_time_at_radius(0)));
   expect_error(at(innermost * (1 + 1e-12)), 2, "camera.proper_time", "within 0.05M");
-  for (const double tau : {-outside, -100.0})
-    expect_error(at(tau), 2, "camera.proper_time",
-                 "the falling camera is rising out of the black hole's past horizon");
+  expect_error(at(-outside), 2, "camera.proper_time",
+               "the falling camera, on its way to rest at r0 = 10M at proper time 0, is rising at "
+               "r = 2.000000002 (2.000000002M), within 2M (1 + 1e-09) = 2.000000002 of the black "
+               "hole, just out of its past horizon: rising, the camera is drawn only outside");
+  expect_error(at(-100), 2, "camera.proper_time",
+               fmt::format("does not exist yet (its geodesic begins at the past singularity r = 0 "
+                           "at proper time {})",
+                           -fall.proper_time_at_radius(0)));
   // From infinity only a later end; in the scene's units of time.
   const std::string message = error(
       "{\n  \"speed_of_light\": 2,\n  \"camera\": {\"position\": [0, 0, 30], \"motion\": "
@@ -538,6 +545,141 @@ TEST_F(BlackHoleMotion, TheFallIsDrawnThroughTheHorizonDownTo005M) {
   EXPECT_NE(message.find(":3: camera.proper_time: at proper time 100 the falling camera"),
             std::string::npos)
       << message;
+}
+
+// Released from rest just outside the horizon but within 2M (1 + 1e-9), the camera is not drawn
+// at rest there; the message says so (it used to call it rising out of the past horizon).
+TEST_F(BlackHoleMotion, AFallFromRestWithinTheMarginIsRefusedAtRestNotAsRising) {
+  const auto from = [](const std::string& r0, const std::string& tau) {
+    return camera_near(R"("motion": {"fall": {"from": )" + r0 +
+                       R"(, "direction": [0, 0, 1]}}, "proper_time": )" + tau);
+  };
+  const std::string message = error(from("2.000000001", "0"));
+  expect_error(from("2.000000001", "0"), 2, "camera.proper_time",
+               "at proper time 0 the falling camera is at rest at r0 = 2.000000001M "
+               "(camera.motion.fall.from, or camera.position's distance from the hole), within "
+               "2M (1 + 1e-09) = 2.000000002 of the black hole: at rest or rising the camera is "
+               "drawn only outside that radius, falling also inside it (it is drawn at proper "
+               "times between 0 and ");
+  EXPECT_EQ(message.find("past horizon"), std::string::npos) << message;
+  EXPECT_EQ(message.find("-0 "), std::string::npos) << message;
+  // Falling, it is drawn from there on.
+  EXPECT_EQ(error(from("2.000000001", "1e-6")), "");
+  // Released outside the margin it is drawn from proper time 0 on, and before that while it
+  // rose outside the margin; rising within it, it is refused as just out of the past horizon.
+  const double rose = RadialFall::from_rest(1, 2.000000003).proper_time_at_radius(2 * (1 + 1e-9));
+  for (const double tau : {0.0, -rose / 2})
+    EXPECT_EQ(error(from("2.000000003", fmt::format("{:.17g}", tau))), "") << tau;
+  expect_error(from("2.000000003", fmt::format("{:.17g}", -rose * 1.5)), 2, "camera.proper_time",
+               "just out of its past horizon: rising, the camera is drawn only outside r = 2M "
+               "(1 + 1e-09) = 2.000000002");
+}
+
+// Radii where M is not 1: in the scene's units and in units of M.
+TEST_F(BlackHoleMotion, RefusedFallMessagesGiveRadiiInBothUnits) {
+  const RadialFall fall = RadialFall::from_rest(2, 20);
+  const auto at = [](double tau) {
+    return camera_near(
+        fmt::format(
+            R"("motion": {{"fall": {{"from": 10, "direction": [0, 0, 1]}}}}, "proper_time": {:.17g})",
+            tau),
+        R"({"mass": 2})");
+  };
+  const double rising = -fall.horizon_proper_time() - 0.1;
+  expect_error(at(rising), 2, "camera.proper_time",
+               fmt::format("on its way to rest at r0 = 10M at proper time 0, is rising at r = "
+                           "{0:.12g} ({1:.12g}M), inside the black hole's past horizon r = 2M = 4, "
+                           "out of which it comes at proper time {2}: rising, the camera is drawn "
+                           "only outside r = 2M (1 + 1e-09) = 4.000000004",
+                           fall.at_proper_time(rising).radius,
+                           fall.at_proper_time(rising).radius / 2, -fall.horizon_proper_time()));
+  const double deep = (fall.proper_time_at_radius(0.1) + fall.proper_time_at_radius(0)) / 2;
+  const double r = fall.at_proper_time(deep).radius;
+  ASSERT_LT(r, 0.1);
+  expect_error(at(deep), 2, "camera.proper_time",
+               fmt::format("the falling camera is at r = {:.12g} ({:.12g}M), within 0.05M of the "
+                           "singularity",
+                           r, r / 2));
+}
+
+// A scene's own mistakes near the hole, named as the file spells them.
+TEST_F(BlackHoleMotion, FallAndOrbitRefusalsNameTheFieldsAndTheirUnits) {
+  const auto object = [](const std::string& keys, const std::string& hole = R"({"mass": 1})") {
+    return "{\n  \"camera\": {\"position\": [0, 0, 60]},\n  \"black_hole\": " + hole +
+           ",\n  \"objects\": [{\"name\": \"a\", \"shape\": {\"sphere\": {\"radius\": "
+           "3}}, " +
+           keys + "}]\n}";
+  };
+  const std::string infinity = error(object(R"("motion": {"fall": {"from": "infinity"}})"));
+  expect_error(object(R"("motion": {"fall": {"from": "infinity"}})"), 4, "objects[0].motion.fall",
+               "a fall from \"infinity\" needs objects[0].position: where the object passes");
+  EXPECT_EQ(infinity.find("object.position"), std::string::npos) << infinity;
+  expect_error(object(R"("position": [0, 0, 10], "motion": {"fall": {"direction": [1, 0, 0]}})"), 4,
+               "objects[0].motion.fall.direction",
+               "must point from the black hole toward objects[0].position, where the object is");
+  expect_error(object(R"("motion": {"fall": {"from": 10}})"), 4, "objects[0].motion.fall",
+               "needs \"direction\" [x, y, z], from the black hole along which the object falls "
+               "(or objects[0].position)");
+  // The orbit's radius is given in units of M: so is the least it may be.
+  expect_error(object(R"("motion": {"orbit": {"radius": 3.5}})", R"({"mass": 2})"), 4,
+               "objects[0].motion.orbit.radius",
+               "on an orbit at r = 7 it crosses the horizon r = 2M = 4: an orbit's radius must "
+               "exceed 2M plus the object's reach (here a radius above 3.5, in units of M)");
+  // A falling camera's position is its event at proper time 0, not a static observer's place.
+  const std::string inside =
+      camera_near(R"("position": [0, 0, 1.5], "motion": {"fall": {"from": "infinity"}})");
+  expect_error(inside, 2, "camera.position",
+               "the camera is at r = 1.5 from the black hole, inside its horizon r = 2M = 2: on a "
+               "fall this is where the camera is at its proper time 0, at coordinate time "
+               "motion.fall.time, and W's time is not defined inside the horizon");
+  EXPECT_EQ(error(inside).find("static observer"), std::string::npos) << error(inside);
+}
+
+// An animation's refusals name their frame once, in the library (the Python module's
+// animation_frame shows its reason as it is) and through the command.
+TEST_F(BlackHoleMotion, AnAnimationFrameIsNamedOnce) {
+  const Scene scene =
+      load(camera_near(R"("motion": {"fall": {"from": 10, "direction": [0, 0, 1]}})"));
+  Scene frame;
+  const auto why = animation_frame(scene, 4, 0.1, AnimationClock::kCamera, frame);
+  ASSERT_TRUE(why);
+  EXPECT_TRUE(
+      why->starts_with("frame 4: at proper time 40 the falling camera has reached the "
+                       "singularity"))
+      << *why;
+  const fs::path falling =
+      write("falling.json",
+            "{\"camera\": {\"width\": 16, \"height\": 9, \"samples\": 1, \"motion\": {\"fall\": "
+            "{\"from\": 10, \"direction\": [0, 0, 1]}}},\n \"black_hole\": {\"mass\": 1},\n "
+            "\"objects\": [{\"name\": \"o\", \"shape\": {\"sphere\": {\"radius\": 0.3}}, "
+            "\"position\": [10, 0, 0]}],\n \"render\": {\"exposure\": 0}}");
+  // From rest at 10M the camera reaches the horizon at proper time 33.70.
+  const test::CommandResult r =
+      test::run_lightcone("animate " + test::quoted(falling) + " --fps 1 --frames 33-34 -o " +
+                          test::quoted(dir_ / "f%d.png") + " --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(
+      r.err.starts_with("lightcone: frame 34: by then the falling camera has reached the "
+                        "black hole's horizon (it is at r = "))
+      << r.err;
+  EXPECT_NE(r.err.find(", not outside 2M (1 + 1e-09) = 2.000000002), where objects are not drawn "
+                       "yet"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("frame 34: frame 34"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "f33.png"));
+  // A camera moving without a geodesic is refused on its velocity.
+  const fs::path moving = write("moving.json",
+                                "{\"camera\": {\"position\": [0, 0, 30], \"velocity\": [0.1, "
+                                "0, 0]},\n \"black_hole\": {\"mass\": 1}}");
+  const test::CommandResult m =
+      test::run_lightcone("animate " + test::quoted(moving) + " --fps 1 --frames 0-1 -o " +
+                          test::quoted(dir_ / "m%d.png") + " --quiet");
+  EXPECT_EQ(m.status, 2);
+  EXPECT_NE(m.err.find("moving.json: camera.velocity: a camera that moves near a black hole is "
+                       "animated along a geodesic motion"),
+            std::string::npos)
+      << m.err;
 }
 
 TEST_F(BlackHoleMotion, InsideTheHorizonObjectsAndTheRasterAreRefused) {
@@ -630,11 +772,10 @@ TEST_F(BlackHoleMotion, InfoRenderAndAnimate) {
       test::run_lightcone("animate " + test::quoted(fall) + fixed_exposure +
                           " --fps 0.1 --frames 0-5 --exr " + test::quoted(dir_ / "f%d.exr"));
   EXPECT_EQ(frames.status, 2);
-  EXPECT_NE(frames.err.find("frame 5: at proper time 50 the falling camera is at r = "),
-            std::string::npos)
-      << frames.err;
-  EXPECT_NE(frames.err.find("within 0.05M of the singularity at r = 0: the camera is drawn down "
-                            "to r = 0.05M"),
+  EXPECT_NE(frames.err.find(fmt::format("frame 5: at proper time 50 the falling camera has "
+                                        "reached the singularity r = 0 (at proper time {}): the "
+                                        "camera is drawn down to r = 0.05M",
+                                        law.proper_time_at_radius(0))),
             std::string::npos)
       << frames.err;
   EXPECT_FALSE(fs::exists(dir_ / "f5.exr"));

@@ -16,8 +16,8 @@
 #include <unordered_map>
 
 #include "cli_common.hpp"
-#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/frame/request_rules.hpp"
+#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -255,9 +255,13 @@ int run_animate(const AnimateArgs& a) {
   if (const auto refused = animation_refused(scene)) throw InputError(a.scene + ": " + *refused);
   const AnimationClock clock =
       a.clock == "world" ? AnimationClock::kWorld : AnimationClock::kCamera;
+  // animation_frame's reasons name their frame already; in_frame names it for other failures.
+  struct FrameRefused : InputError {
+    using InputError::InputError;
+  };
   const auto frame_scene = [&](long long i) {
     Scene s;
-    if (const auto why = animation_frame(scene, i, a.fps, clock, s)) throw InputError(*why);
+    if (const auto why = animation_frame(scene, i, a.fps, clock, s)) throw FrameRefused(*why);
     return s;
   };
 
@@ -322,6 +326,8 @@ int run_animate(const AnimateArgs& a) {
     try {
       work();
     } catch (const Stopped&) {
+      throw;
+    } catch (const FrameRefused&) {
       throw;
     } catch (const InputError& e) {
       throw InputError(fmt::format("frame {}: {}", i, e.what()));

@@ -91,12 +91,19 @@ void SceneReader::check_camera_near_hole(const Node& n) const {
   const Node position = member(n, "position");
   if (!position.value && m.value) return;  // an orbit, or a fall that says where it is
   const double r = length(vec3(position) - hole_->position), horizon = 2 * hole_->mass;
+  // A fall's position is its event at proper time 0, not a static observer's.
+  const bool falls = m.value && m.value->is_object() && m.value->contains("fall");
   if (!(r > horizon))
     fail(position,
          fmt::format("the camera is at r = {} from the black hole, inside its horizon r = 2M = {}: "
-                     "its velocity is measured by the local static observer, and there is none "
-                     "inside the horizon",
-                     r, horizon));
+                     "{}",
+                     r, horizon,
+                     falls ? "on a fall this is where the camera is at its proper time 0, at "
+                             "coordinate time motion.fall.time, and W's time is not defined "
+                             "inside the horizon (place it outside, and give a later "
+                             "camera.proper_time to see from inside)"
+                           : "its velocity is measured by the local static observer, and there "
+                             "is none inside the horizon"));
 }
 
 bool SceneReader::geodesic_motion(const Node& m) {
@@ -183,6 +190,8 @@ HoleFall SceneReader::fall(const Node& n, const Node& f, std::string_view noun) 
   // callers check), when given.
   std::optional<Vec3> at;
   double at_r = 0;
+  // The position's path as the file spells it (objects[2].position), for a message.
+  const auto position_key = [&] { return position.path(); };
   if (position.value) {
     at = vec3(position) - hole_->position;
     at_r = length(*at);
@@ -195,9 +204,9 @@ HoleFall SceneReader::fall(const Node& n, const Node& f, std::string_view noun) 
                              "falls from rest) or \"infinity\", got {}",
                              noun, describe(*from.value)));
     if (!at)
-      fail(f, fmt::format("a fall from \"infinity\" needs {0}.position: where the {0} passes at "
-                          "its proper time 0 (at coordinate time motion.fall.time)",
-                          noun));
+      fail(f, fmt::format("a fall from \"infinity\" needs {}: where the {} passes at its proper "
+                          "time 0 (at coordinate time motion.fall.time)",
+                          position_key(), noun));
     fall.from = std::numeric_limits<double>::infinity();
     fall.reference = at_r;
   } else if (from.value) {
@@ -212,27 +221,27 @@ HoleFall SceneReader::fall(const Node& n, const Node& f, std::string_view noun) 
                              mass));
     if (at && !(std::abs(at_r - fall.from) <= 1e-9 * fall.from))
       fail(from, fmt::format("the fall from rest at r0 = {}M starts at r = {} from the black hole, "
-                             "but {}.position, where it is at proper time 0, is at r = {} "
-                             "({}M): give one of them",
-                             r0, fall.from, noun, at_r, at_r / mass));
+                             "but {}, where it is at proper time 0, is at r = {} ({}M): give "
+                             "one of them",
+                             r0, fall.from, position_key(), at_r, at_r / mass));
   } else {
     if (!at)
-      fail(f, fmt::format("needs \"from\": the radius r0 in units of M (> 2) where the {0} falls "
-                          "from rest, or \"infinity\" (or {0}.position, to fall from rest there)",
-                          noun));
+      fail(f, fmt::format("needs \"from\": the radius r0 in units of M (> 2) where the {} falls "
+                          "from rest, or \"infinity\" (or {}, to fall from rest there)",
+                          noun, position_key()));
     fall.from = at_r;
   }
   if (Node d = member(f, "direction"); d.value) {
     fall.direction = direction(d);
     if (at && !(length(cross(fall.direction, *at / at_r)) <= 1e-9 && dot(fall.direction, *at) > 0))
-      fail(d, fmt::format("must point from the black hole toward {0}.position, where the {0} is at "
-                          "its proper time 0 (or be left out: it defaults to that direction)",
-                          noun));
+      fail(d, fmt::format("must point from the black hole toward {}, where the {} is at its "
+                          "proper time 0 (or be left out: it defaults to that direction)",
+                          position_key(), noun));
   } else {
     if (!at)
-      fail(f, fmt::format("needs \"direction\" [x, y, z], from the black hole along which the {0} "
-                          "falls (or {0}.position)",
-                          noun));
+      fail(f, fmt::format("needs \"direction\" [x, y, z], from the black hole along which the {} "
+                          "falls (or {})",
+                          noun, position_key()));
     fall.direction = *at / at_r;
   }
   if (Node t = member(f, "time"); t.value) fall.time = time(t);
@@ -248,8 +257,8 @@ void SceneReader::geodesic_object(const Node& m, Object& o) const {
          fmt::format(
              "the object reaches {:.6g} from its origin, so on an orbit at r = {} it crosses "
              "the horizon r = 2M = {}: an orbit's radius must exceed 2M plus the object's "
-             "reach",
-             reach, orbit->radius, horizon));
+             "reach (here a radius above {:.6g}, in units of M)",
+             reach, orbit->radius, horizon, (horizon + reach) / g.mass));
   const HoleWorldLineState at = hole_world_line(o, *hole_).at(0);
   o.world_line = {0, g.hole + at.position, at.velocity, at.proper_time};
 }

@@ -29,9 +29,9 @@ bool static_near_hole(const Scene& scene) {
 
 std::optional<std::string> animation_refused(const Scene& scene) {
   if (static_near_hole(scene) && length(scene.camera.world_line.velocity) > 0)
-    return "camera: a camera that moves near a black hole is animated along a geodesic motion "
-           "(\"motion\": {\"orbit\": ...} or {\"fall\": ...}); a velocity alone is not a free "
-           "path there";
+    return "camera.velocity: a camera that moves near a black hole is animated along a geodesic "
+           "motion (\"motion\": {\"orbit\": ...} or {\"fall\": ...}); a velocity alone is not "
+           "a free path there";
   return std::nullopt;
 }
 
@@ -54,14 +54,18 @@ std::optional<std::string> animation_frame(const Scene& scene, long long i, doub
   s.camera.motion.proper_time = world ? proper_time_at_world_time(camera, (world_start + step) * c)
                                       : (proper_start + step) * c;
   // A falling camera is drawn down to r = kCameraInnermostRadius M; from inside the horizon
-  // it sees the sky and the disk only.
-  if (const auto why = geodesic_camera_refused(s.camera.motion, c)) return why;
+  // it sees the sky and the disk only. Every reason names its frame, so callers print it as it is.
+  if (const auto why = geodesic_camera_refused(s.camera.motion, c))
+    return fmt::format("frame {}: {}", i, *why);
   s.camera.world_line = camera_observation(s.camera.motion);
-  if (camera_inside_horizon(s.camera.motion) && !s.objects.empty())
+  if (camera_inside_horizon(s.camera.motion) && !s.objects.empty()) {
+    const RadialObserver falling = *falling_camera(s.camera.motion);
     return fmt::format(
-        "frame {}: the falling camera is inside the black hole's horizon by then, where "
-        "objects are not drawn yet (this version draws the sky and the disk from there)",
-        i);
+        "frame {}: by then the falling camera has reached the black hole's horizon (it is at "
+        "r = {:.12g}, not outside 2M (1 + {:g}) = {:.12g}), where objects are not drawn yet "
+        "(this version draws the sky and the disk from there)",
+        i, falling.radius, kCameraHorizonMargin, 2 * falling.mass * (1 + kCameraHorizonMargin));
+  }
   const double speed = length(s.camera.world_line.velocity);
   if (!(speed < 1) || !std::isfinite(lorentz_gamma(s.camera.world_line.velocity)))
     return fmt::format("frame {}: the camera is at the speed of light by then", i);

@@ -20,7 +20,8 @@ std::optional<std::string> animation_refused(const Scene& scene);
 // Near a black hole a camera without a geodesic motion is a static one: it stays where it is,
 // and its clock runs at sqrt(1 - 2M/r) of W's time. Returns why frame i cannot be drawn (the
 // camera at the speed of light by then, a body too fast relative to it, a falling camera past
-// where it is drawn), or nothing. The scene must not be refused by animation_refused.
+// where it is drawn), starting "frame i: ", or nothing. The scene must not be refused by
+// animation_refused.
 std::optional<std::string> animation_frame(const Scene& scene, long long i, double fps,
                                            AnimationClock clock, Scene& frame);
 

@@ -91,23 +91,54 @@ std::optional<std::string> geodesic_camera_refused(const Camera::Motion& motion,
         tau / c, std::holds_alternative<HoleOrbit>(g.path) ? "orbit" : "fall");
   }
   const HoleFall& fall = std::get<HoleFall>(g.path);  // an orbit is drawn at every tau
-  const double r = radial_fall(g, fall).at_proper_time(tau).radius;
+  const RadialFall path = radial_fall(g, fall);
+  const double m = g.mass, r = path.at_proper_time(tau).radius;
+  // + 0.0: a fall from rest within the margin is drawn after -0, which reads as 0.
+  const double earliest = span.earliest + 0.0;
   const std::string drawn =
-      !(span.latest > span.earliest) ? "it starts there, and is drawn at no proper time"
-      : std::isinf(span.earliest)
+      !(span.latest > earliest) ? "it starts there, and is drawn at no proper time"
+      : std::isinf(earliest)
           ? fmt::format("it is drawn at proper times below {}", span.latest / c)
           : fmt::format("it is drawn at proper times between {} and {}, both excluded",
-                        span.earliest / c, span.latest / c);
-  if (tau >= span.latest)
+                        earliest / c, span.latest / c);
+  if (tau >= span.latest) {
+    if (r == 0)
+      return fmt::format(
+          "at proper time {} the falling camera has reached the singularity r = 0 (at proper "
+          "time {}): the camera is drawn down to r = {}M ({})",
+          tau / c, path.proper_time_at_radius(0) / c, kCameraInnermostRadius, drawn);
     return fmt::format(
-        "at proper time {} the falling camera is at r = {:.12g}, within {}M of the singularity "
-        "at r = 0: the camera is drawn down to r = {}M ({})",
-        tau / c, r, kCameraInnermostRadius, kCameraInnermostRadius, drawn);
+        "at proper time {} the falling camera is at r = {:.12g} ({:.12g}M), within {}M of the "
+        "singularity at r = 0: the camera is drawn down to r = {}M ({})",
+        tau / c, r, r / m, kCameraInnermostRadius, kCameraInnermostRadius, drawn);
+  }
+  // From rest at r0 (from infinity every earlier time is drawn): at r0 itself, or before it
+  // came to rest there, on the same geodesic rising out of the past horizon.
+  const std::string margin = fmt::format("2M (1 + {:g}) = {:.12g}", kCameraHorizonMargin,
+                                         2 * m * (1 + kCameraHorizonMargin));
+  if (tau == 0)
+    return fmt::format(
+        "at proper time 0 the falling camera is at rest at r0 = {:.12g}M (camera.motion.fall.from, "
+        "or camera.position's distance from the hole), within {} of the black hole: at rest or "
+        "rising the camera is drawn only outside that radius, falling also inside it ({})",
+        fall.from / m, margin, drawn);
+  const std::string where =
+      r > 2 * m ? fmt::format(
+                      "is rising at r = {:.12g} ({:.12g}M), within {} of the black hole, "
+                      "just out of its past horizon",
+                      r, r / m, margin)
+      : r > 0 ? fmt::format(
+                    "is rising at r = {:.12g} ({:.12g}M), inside the black hole's past "
+                    "horizon r = 2M = {}, out of which it comes at proper time {}",
+                    r, r / m, 2 * m, -path.horizon_proper_time() / c)
+              : fmt::format(
+                    "does not exist yet (its geodesic begins at the past singularity r = 0 "
+                    "at proper time {})",
+                    -path.proper_time_at_radius(0) / c);
   return fmt::format(
-      "at proper time {} the falling camera is rising out of the black hole's past horizon "
-      "(at r = {:.12g}; before it came to rest at r0 it was on the same geodesic, which comes out "
-      "of the past horizon r = 2M = {}): the camera's view there is not drawn ({})",
-      tau / c, r, 2 * g.mass, drawn);
+      "at proper time {} the falling camera, on its way to rest at r0 = {:.12g}M at proper time "
+      "0, {}: rising, the camera is drawn only outside r = {} ({})",
+      tau / c, fall.from / m, where, margin, drawn);
 }
 
 HoleWorldLine hole_world_line(const Object& object, const BlackHole& hole) {
