@@ -208,8 +208,9 @@ TEST(WebPage, RefusesTheScenesTheProgramRefusesWithItsMessage) {
   ASSERT_TRUE(r.is_object());
   ASSERT_TRUE(r.contains("refusals"));
   std::ifstream in(fs::path(LIGHTCONE_SOURCE_DIR) / "tests/data/refused-requests.json");
+  const nlohmann::json cases = nlohmann::json::parse(in)["cases"];
   int scenes = 0;
-  for (const auto& c : nlohmann::json::parse(in)["cases"]) {
+  for (const auto& c : cases) {
     if (c.contains("render") || c.contains("locate")) continue;
     const std::string name = c["name"];
     SCOPED_TRACE(name);
