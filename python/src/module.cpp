@@ -336,7 +336,7 @@ py::dict render(const Scene& scene, const std::string& renderer,
   options.seed = seed;
   options.cancel = &interrupted;
   for (const std::string& name : aovs) options.aovs.push_back(*aov_from_name(name));
-  throw_if_refused(render_refused(scene, options.aovs));
+  throw_if_refused(render_refused(scene, {.raster = renderer == "raster", .aovs = options.aovs}));
   Image image;
   double exposure = 0, seconds = 0;
   bool cancelled = false;
