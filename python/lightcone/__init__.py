@@ -198,8 +198,6 @@ def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trac
     for name in names:
         if name not in known:
             raise ValueError(f"render: unknown output variable {name!r} (use {', '.join(known)})")
-    if names and renderer == "raster":
-        raise ValueError("render: output variables come from the ray tracer (renderer='trace')")
     shown = _Progress() if progress is True else (progress if callable(progress) else None)
     try:
         result = _lightcone.render(scene, renderer, names, int(seed), int(threads), tessellation,
