@@ -633,6 +633,9 @@ TEST_F(BlackHoleMotion, FallAndOrbitRefusalsNameTheFieldsAndTheirUnits) {
                "fall this is where the camera is at its proper time 0, at coordinate time "
                "motion.fall.time, and W's time is not defined inside the horizon");
   EXPECT_EQ(error(inside).find("static observer"), std::string::npos) << error(inside);
+  // An orbit's camera has no position to give, inside the horizon or out.
+  expect_error(camera_near(R"("position": [0, 0, 1.5], "motion": {"orbit": {"radius": 10}})"), 2,
+               "camera.position", "must not be given with motion.orbit");
 }
 
 // An animation's refusals name their frame once, in the library (the Python module's

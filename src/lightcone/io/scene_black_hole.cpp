@@ -89,10 +89,12 @@ void SceneReader::check_camera_near_hole(const Node& n) const {
                      "modelled): give the observation's world time as \"time\", or a motion "
                      "\"orbit\" or \"fall\"");
   const Node position = member(n, "position");
-  if (!position.value && m.value) return;  // an orbit, or a fall that says where it is
+  // With a motion (now an orbit or a fall) only a fall's position is checked here: an orbit's
+  // is refused with the orbit. A fall's position is its event at proper time 0, not a static
+  // observer's.
+  const bool falls = m.value && m.value->contains("fall");
+  if (m.value && !(falls && position.value)) return;
   const double r = length(vec3(position) - hole_->position), horizon = 2 * hole_->mass;
-  // A fall's position is its event at proper time 0, not a static observer's.
-  const bool falls = m.value && m.value->is_object() && m.value->contains("fall");
   if (!(r > horizon))
     fail(position,
          fmt::format("the camera is at r = {} from the black hole, inside its horizon r = 2M = {}: "
