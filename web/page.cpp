@@ -22,6 +22,7 @@
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
+#include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/frame_target.hpp"
@@ -62,8 +63,9 @@ const char* answer(std::string text) {
   return page().result.c_str();
 }
 
+// The error as every door shows it (printable: a 10 MB key cut, control characters escaped).
 const char* failure(const std::string& message) {
-  return answer(nlohmann::json{{"error", message}}.dump());
+  return answer(nlohmann::json{{"error", printable(message)}}.dump());
 }
 
 }  // namespace

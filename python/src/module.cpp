@@ -492,33 +492,6 @@ std::string located(const Scene& scene, const std::string& kind, const std::stri
   return locate_json(r, scene);
 }
 
-// A message as the program prints it (src/cli/main.cpp's printable): control characters shown
-// as \xNN, and any run of more than 160 characters without a space (a 10 MB name echoed back)
-// cut to its first 80 and "...".
-std::string printable(const std::string& message) {
-  std::string out;
-  std::size_t start = 0;
-  while (start <= message.size()) {
-    std::size_t end = message.find(' ', start);
-    if (end == std::string::npos) end = message.size();
-    std::string_view word(message.data() + start, end - start);
-    const bool cut = word.size() > 160;
-    if (cut) word = word.substr(0, 80);
-    for (const char ch : word) {
-      const auto c = static_cast<unsigned char>(ch);
-      if (c < 0x20 || c == 0x7f)
-        out += fmt::format("\\x{:02x}", c);
-      else
-        out += ch;
-    }
-    if (cut) out += "...";
-    if (end == message.size()) break;
-    out += ' ';
-    start = end + 1;
-  }
-  return out;
-}
-
 // "FILE:LINE: FIELD: what", "<dict>: FIELD: what" or "--set FIELD: what" into SceneError's
 // attributes, each as the message shows it (printable). Read without std::regex, whose matching
 // recurses once a character: a message of megabytes would overflow the stack.

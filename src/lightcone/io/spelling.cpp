@@ -28,9 +28,14 @@ std::optional<std::string_view> nearest_name(std::string_view word,
   const std::size_t reach = std::max<std::size_t>(1, word.size() / 3);
   std::optional<std::string_view> best;
   std::size_t best_distance = reach + 1;
-  for (const std::string_view name : names)
+  for (const std::string_view name : names) {
+    // The distance is at least the difference in length: a 10 MB key is compared with no name.
+    const std::size_t length_gap =
+        word.size() > name.size() ? word.size() - name.size() : name.size() - word.size();
+    if (length_gap >= best_distance) continue;
     if (const std::size_t d = edit_distance(word, name); d < best_distance)
       best = name, best_distance = d;
+  }
   return best;
 }
 
