@@ -128,12 +128,15 @@ TEST_F(Animate, AutomaticExposureFollowsSmoothlyAndSplitRunsJoinUp) {
     ASSERT_EQ(r.status, 0) << r.err;
   };
   run("0-23", "all");
-  // The EV of each frame, from the wall's radiance in the EXR (a corner pixel).
+  // The EV of each frame, from the wall's radiance in the EXR (a corner pixel); the EXR's
+  // header says the same.
   std::vector<double> ev;
   for (int i = 0; i <= 23; ++i) {
     const auto image = load_image_file(dir_ / fmt::format("all{:02d}.exr", i));
     ASSERT_TRUE(image);
     ev.push_back(std::log2(image->rgb[0] / 0.05));
+    ASSERT_TRUE(image->exposure.has_value()) << i;
+    EXPECT_NEAR(*image->exposure, ev.back(), 1e-6) << i;
   }
   double low = ev[0], high = ev[0], steepest = 0;
   for (std::size_t i = 1; i < ev.size(); ++i) {
@@ -147,6 +150,16 @@ TEST_F(Animate, AutomaticExposureFollowsSmoothlyAndSplitRunsJoinUp) {
     EXPECT_EQ(bytes_of(dir_ / fmt::format("part{:02d}.exr", i)),
               bytes_of(dir_ / fmt::format("all{:02d}.exr", i)))
         << i;
+  // The raster renderer's frames, --exr beside a PNG, say their EV too.
+  const auto rastered = run_lightcone(
+      "animate " + quoted(file) + " --fps 8 --frames 0-1 --renderer raster -o " +
+      quoted(dir_ / "raster%d.png") + " --exr " + quoted(dir_ / "raster%d.exr") + " --quiet");
+  ASSERT_EQ(rastered.status, 0) << rastered.err;
+  for (int i = 0; i <= 1; ++i) {
+    const auto image = load_image_file(dir_ / fmt::format("raster{}.exr", i));
+    ASSERT_TRUE(image->exposure.has_value()) << i;
+    EXPECT_NEAR(*image->exposure, std::log2(image->rgb[0] / 0.05), 1e-6) << i;
+  }
 }
 
 // The peak signal-to-noise ratio of two 8-bit images of one size, in dB.

@@ -1,6 +1,7 @@
 // What `lightcone render` writes, through the real binary: output formats by extension, bad
 // output requests, replaced files and full disks, crops, seeds, previews and sizes, `check`,
 // `info`, a stopped render, AOV channels and colour maps.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -476,6 +477,45 @@ TEST_F(CliTest, AStoppedRenderWritesItsTilesBesideAnUntouchedTarget) {
     for (const fs::directory_entry& e : fs::directory_iterator(out_))
       EXPECT_EQ(e.path().filename().string().find(".lightcone-"), std::string::npos)
           << "a temporary file left: " << e.path();
+  }
+}
+
+// Under the automatic exposure the EXR holds the radiance times 2^EV, EV set by the scene: its
+// header, the summary line and --stats say which EV, and undoing it gives the radiance that
+// exposure 0 writes, by either renderer.
+TEST_F(CliTest, TheExrSaysWhichExposureScaledTheRadiance) {
+  // The green ball of kScene crossing the view at 0.8c, its light Doppler-shifted and dimmed.
+  const fs::path scene = write_scene(
+      edited(kScene, "\n      \"velocity\": [0, 0, 0]", "\n      \"velocity\": [0.8, 0, 0]"));
+  for (const std::string renderer : {"trace", "raster"}) {
+    SCOPED_TRACE(renderer);
+    const std::string options = " --stats --renderer " + renderer;
+    const CommandResult automatic = render(scene, "--set render.exposure=auto" + options);
+    ASSERT_EQ(automatic.status, 0) << automatic.err;
+    ASSERT_EQ(line_count(automatic.err), 2u) << automatic.err;
+    const std::size_t end_of_summary = automatic.err.find('\n');
+    const std::string summary = automatic.err.substr(0, end_of_summary);
+    const double ev =
+        nlohmann::json::parse(automatic.err.substr(end_of_summary + 1)).at("exposure");
+    EXPECT_GT(std::abs(ev), 1.0);  // a factor that a reader of the radiance would miss
+    EXPECT_TRUE(summary.ends_with(fmt::format(" (exposure {:+.2f} EV)", ev))) << summary;
+    const auto scaled = read_exr();
+    ASSERT_TRUE(scaled->exposure.has_value());
+    EXPECT_EQ(*scaled->exposure, ev);
+
+    const CommandResult unscaled = render(scene, "--set render.exposure=0 --quiet" + options);
+    ASSERT_EQ(unscaled.status, 0) << unscaled.err;
+    EXPECT_EQ(nlohmann::json::parse(unscaled.err).at("exposure").get<double>(), 0.0);
+    const auto radiance = read_exr();
+    ASSERT_TRUE(radiance->exposure.has_value());
+    EXPECT_EQ(*radiance->exposure, 0.0);
+    ASSERT_EQ(scaled->rgb.size(), radiance->rgb.size());
+    // The scale went through a float, so the radiance comes back to float precision.
+    double worst = 0;
+    for (std::size_t i = 0; i < radiance->rgb.size(); ++i)
+      worst = std::max(worst, std::abs(scaled->rgb[i] * std::exp2(-ev) - radiance->rgb[i]) /
+                                  std::max(radiance->rgb[i], 1e-6f));
+    EXPECT_LT(worst, 1e-6);
   }
 }
 

@@ -83,7 +83,7 @@ TEST_F(CliTest, SizeAndSampleOptionsTakeEffect) {
   EXPECT_EQ(read_png()->height, 12);
 }
 
-TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysAndRate) {
+TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysRateAndExposure) {
   const fs::path scene = write_scene(kScene);
   const CommandResult r = render(scene, "--samples 3 --stats --quiet");
   EXPECT_EQ(r.status, 0) << r.err;
@@ -93,7 +93,7 @@ TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysAndRate) {
   ASSERT_TRUE(stats.is_object());
   std::vector<std::string> keys;
   for (const auto& item : stats.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"seconds", "rays", "mrays_per_s"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"seconds", "rays", "mrays_per_s", "exposure"}));
   ASSERT_TRUE(stats["seconds"].is_number());
   ASSERT_TRUE(stats["rays"].is_number_integer());
   ASSERT_TRUE(stats["mrays_per_s"].is_number());
@@ -101,6 +101,7 @@ TEST_F(CliTest, StatsIsOneJsonLineWithSecondsRaysAndRate) {
   EXPECT_GT(seconds, 0.0);
   EXPECT_LT(seconds, 60.0);
   EXPECT_EQ(stats["rays"].get<std::uint64_t>(), 64u * 48u * 3u);
+  EXPECT_EQ(stats["exposure"].get<double>(), 0.0);  // the scene's
   EXPECT_NEAR(stats["mrays_per_s"].get<double>(), 64 * 48 * 3 / seconds / 1e6,
               1e-9 * stats["mrays_per_s"].get<double>());
   EXPECT_EQ(r.out, "");

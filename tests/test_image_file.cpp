@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -220,6 +221,38 @@ TEST_F(ImageFileTest, ExrRoundTripIsExact) {
   ASSERT_EQ(loaded->width, 1);
   ASSERT_EQ(loaded->height, 3);
   EXPECT_EQ(loaded->rgb, rgb);
+}
+
+// The EV an EXR's pixels were scaled by goes into its header, as the documented attribute (a
+// double, so that any OpenEXR reader finds it), and back into Image::exposure; the pixels are
+// written as they are.
+TEST_F(ImageFileTest, ExrKeepsTheExposureInItsHeader) {
+  const std::vector<float> rgb = {0.5f, 2, 7};
+  Image image = make_image(1, 1, rgb);
+  const double ev = 5.576557517458461;
+  image.exposure = ev;
+  const fs::path exr = dir_ / "exposed.exr";
+  write_images(image, std::nullopt, exr);
+  std::string attribute = std::string(kExrExposureAttribute) + '\0' + "double" + '\0';
+  const std::uint32_t size = sizeof(double);
+  static_assert(std::endian::native == std::endian::little);  // EXR's byte order
+  attribute.append(reinterpret_cast<const char*>(&size), sizeof size);
+  attribute.append(reinterpret_cast<const char*>(&ev), sizeof ev);
+  EXPECT_NE(test::bytes_of(exr).find(attribute), std::string::npos);
+  const auto loaded = load_image_file(exr);
+  ASSERT_TRUE(loaded->exposure.has_value());
+  EXPECT_EQ(*loaded->exposure, ev);
+  EXPECT_EQ(loaded->rgb, rgb);
+}
+
+// An image of unknown exposure is written without the attribute, and an image file without it
+// reads as having none, not as exposure 0.
+TEST_F(ImageFileTest, WithoutTheAttributeTheExposureIsUnknown) {
+  const Image image = make_image(1, 1, {0.5f, 0.5f, 0.5f});
+  write_images(image, dir_ / "plain.png", dir_ / "plain.exr");
+  EXPECT_EQ(test::bytes_of(dir_ / "plain.exr").find(kExrExposureAttribute), std::string::npos);
+  EXPECT_FALSE(load_image_file(dir_ / "plain.exr")->exposure.has_value());
+  EXPECT_FALSE(load_image_file(dir_ / "plain.png")->exposure.has_value());
 }
 
 TEST_F(ImageFileTest, WritesBothFilesAndNoTemporaries) {

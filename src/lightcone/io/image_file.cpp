@@ -4,6 +4,7 @@
 #include "lightcone/io/image_file.hpp"
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
@@ -101,6 +102,9 @@ std::shared_ptr<Image> load_exr(const fs::path& file) {
                                             sizeof(float) * image->width));
     in.setFrameBuffer(frame);
     in.readPixels(window.min.y, window.max.y);
+    if (const auto* exposure =
+            in.header().findTypedAttribute<Imf::DoubleAttribute>(kExrExposureAttribute))
+      image->exposure = exposure->value();
     if (grey)
       for (std::size_t i = 0; i < image->rgb.size(); i += 3)
         image->rgb[i + 1] = image->rgb[i + 2] = image->rgb[i];
@@ -371,6 +375,8 @@ void write_exr(const Image& image, const fs::path& temp, const fs::path& target)
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    // Without it, a reader cannot tell a scaled picture from the radiance itself.
+    if (image.exposure) header.insert(kExrExposureAttribute, Imf::DoubleAttribute(*image.exposure));
     const char* names[] = {"R", "G", "B"};
     for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     for (const NamedChannel& c : image.channels)

@@ -11,9 +11,14 @@
 
 namespace lightcone {
 
+// The EXR header attribute (a double) holding Image::exposure, the EV the pixels were scaled by:
+// the radiance is the pixels times 2^-value.
+inline constexpr const char* kExrExposureAttribute = "lightcone:exposureEV";
+
 // PNG and JPEG (sRGB-encoded, decoded to linear) through libspng and libjpeg-turbo; EXR (linear)
-// through OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels. Throws
-// InputError naming the file when it is missing, unreadable or not an image.
+// through OpenEXR, its channels other than R, G, B (or Y) kept as Image::channels and its
+// kExrExposureAttribute as Image::exposure. Throws InputError naming the file when it is
+// missing, unreadable or not an image.
 std::shared_ptr<Image> load_image_file(const std::filesystem::path& file);
 
 enum class ImageFormat { kPng, kJpeg, kExr };
@@ -28,9 +33,10 @@ struct ImageOutput {
 };
 
 // Writes every output, PNG and JPEG (quality 95) 8-bit sRGB from `display` (values in [0, 1]),
-// EXR linear 32-bit float from `linear` (with its named channels), each first under a temporary
-// name beside its target, all renamed only when every write succeeded: a failure leaves no
-// half-written output. Throws std::runtime_error on failure.
+// EXR linear 32-bit float from `linear` (with its named channels, and its exposure, where known,
+// as kExrExposureAttribute), each first under a temporary name beside its target, all renamed
+// only when every write succeeded: a failure leaves no half-written output. Throws
+// std::runtime_error on failure.
 void write_images(const Image& display, const Image& linear,
                   const std::vector<ImageOutput>& outputs);
 
