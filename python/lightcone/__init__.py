@@ -56,6 +56,13 @@ class Image(_np.ndarray):
             return None
 
 
+def _shown(value) -> str:
+    """A value as a message shows it: its repr, cut to 80 characters and "..." as the program
+    cuts a long word (a 10 MB string handed over is not echoed back whole)."""
+    text = repr(value)
+    return text if len(text) <= 80 else text[:80] + "..."
+
+
 def _override_lines(overrides: Union[None, Mapping[str, Any], Sequence[str]]) -> list:
     """--set's "key.path=value" lines from a dict (values as JSON, numpy's as numbers and lists;
     NaN, infinity and other types refused with the key named) or from such strings."""
@@ -65,7 +72,7 @@ def _override_lines(overrides: Union[None, Mapping[str, Any], Sequence[str]]) ->
         lines = []
         for key, value in overrides.items():
             if not isinstance(key, str):
-                raise TypeError(f"overrides: a key must be a JSON path string, got {key!r}")
+                raise TypeError(f"overrides: a key must be a JSON path string, got {_shown(key)}")
             lines.append(f"{key}={_lightcone.json_value(value, key)}")
         return lines
     if isinstance(overrides, str) or not all(isinstance(o, str) for o in overrides):
@@ -83,7 +90,10 @@ def _path(function: str, name: str, value) -> str:
     if not isinstance(value, (str, _os.PathLike)):
         raise TypeError(f"{function}: {name} must be a str or os.PathLike, got "
                         f"{type(value).__name__}")
-    return _os.fsdecode(_os.fspath(value))
+    path = _os.fsdecode(_os.fspath(value))
+    if "\0" in path:  # no file's name holds one; the library's messages would end at it
+        raise ValueError(f"{function}: {name} {_shown(path)} holds a NUL character")
+    return path
 
 
 def load(path: Union[str, "_os.PathLike[str]"],
@@ -177,27 +187,31 @@ def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trac
     .partial["rgb"] holds the tiles finished (on the main thread; docs/python.md, "Ctrl-C")."""
     if not isinstance(scene, Scene):
         raise TypeError(f"render: scene must be a lightcone.Scene (from load), got {type(scene).__name__}")
-    if renderer not in ("trace", "raster"):
-        raise ValueError(f"render: renderer must be 'trace' or 'raster', got {renderer!r}")
-    if tessellation not in ("auto", "cpu", "gpu"):
-        raise ValueError(f"render: tessellation must be 'auto', 'cpu' or 'gpu', got {tessellation!r}")
+    if not isinstance(renderer, str) or renderer not in ("trace", "raster"):
+        raise ValueError(f"render: renderer must be 'trace' or 'raster', got {_shown(renderer)}")
+    if not isinstance(tessellation, str) or tessellation not in ("auto", "cpu", "gpu"):
+        raise ValueError(f"render: tessellation must be 'auto', 'cpu' or 'gpu', got {_shown(tessellation)}")
     if samples is not None:
         if isinstance(samples, bool) or not isinstance(samples, (int, _np.integer)):
-            raise TypeError(f"render: samples must be a whole number, got {samples!r}")
+            raise TypeError(f"render: samples must be a whole number, got {_shown(samples)}")
         if not 1 <= samples <= _MAX_SAMPLES:
             raise ValueError(f"render: samples must be from 1 to {_MAX_SAMPLES}, got {samples}")
         scene = scene.with_samples(int(samples))
     if isinstance(seed, bool) or not isinstance(seed, (int, _np.integer)) or not 0 <= seed < 2**64:
-        raise ValueError(f"render: seed must be a whole number from 0 to {2**64 - 1}, got {seed!r}")
+        raise ValueError(f"render: seed must be a whole number from 0 to {2**64 - 1}, got {_shown(seed)}")
     if (isinstance(threads, bool) or not isinstance(threads, (int, _np.integer))
             or not 0 <= threads <= _MAX_THREADS):
         raise ValueError(f"render: threads must be 0 (all cores) to {_MAX_THREADS}, got "
-                         f"{threads!r}")
-    names = list(aovs or [])
+                         f"{_shown(threads)}")
+    if aovs is None:
+        aovs = []
+    if isinstance(aovs, (str, bytes, Mapping)) or not isinstance(aovs, Iterable):
+        raise TypeError(f"render: aovs must be a list of output variables' names, got {_shown(aovs)}")
+    names = list(aovs)
     known = _lightcone.aov_names()
     for name in names:
-        if name not in known:
-            raise ValueError(f"render: unknown output variable {name!r} (use {', '.join(known)})")
+        if not isinstance(name, str) or name not in known:
+            raise ValueError(f"render: unknown output variable {_shown(name)} (use {', '.join(known)})")
     shown = _Progress() if progress is True else (progress if callable(progress) else None)
     try:
         result = _lightcone.render(scene, renderer, names, int(seed), int(threads), tessellation,
@@ -231,13 +245,13 @@ def animate(scene: Scene, fps: float = 30, frames: Iterable[int] = range(0, 1), 
         raise TypeError(f"animate: scene must be a lightcone.Scene, got {type(scene).__name__}")
     fps = _finite("animate", "fps", fps)
     if not fps > 0:
-        raise ValueError(f"animate: fps must be a positive number, got {fps!r}")
+        raise ValueError(f"animate: fps must be a positive number, got {_shown(fps)}")
     if clock not in ("camera", "world"):
-        raise ValueError(f"animate: clock must be 'camera' or 'world', got {clock!r}")
+        raise ValueError(f"animate: clock must be 'camera' or 'world', got {_shown(clock)}")
     render_options.setdefault("progress", False)
     for i in frames:
         if isinstance(i, bool) or not isinstance(i, (int, _np.integer)):
-            raise TypeError(f"animate: a frame number must be a whole number, got {i!r}")
+            raise TypeError(f"animate: a frame number must be a whole number, got {_shown(i)}")
         if not -_MAX_FRAME <= i <= _MAX_FRAME:
             raise ValueError(f"animate: a frame number must be from {-_MAX_FRAME} to {_MAX_FRAME}"
                              f" (12 digits, as the program's --frames), got {i}")
@@ -248,13 +262,13 @@ def animate(scene: Scene, fps: float = 30, frames: Iterable[int] = range(0, 1), 
 def _finite(function: str, name: str, value) -> float:
     """A real number (numpy's too) as a finite float, or ValueError naming it."""
     if isinstance(value, bool) or not isinstance(value, _numbers.Real):
-        raise TypeError(f"{function}: {name} must be a number, got {value!r}")
+        raise TypeError(f"{function}: {name} must be a number, got {_shown(value)}")
     try:
         number = float(value)
     except OverflowError:
         number = float("inf")
     if not _np.isfinite(number):
-        raise ValueError(f"{function}: {name} must be a finite number, got {value!r}")
+        raise ValueError(f"{function}: {name} must be a finite number, got {_shown(value)}")
     return number
 
 
@@ -264,9 +278,13 @@ def tonemap(image, exposure: float = 0.0, curve: str = "filmic") -> _np.ndarray:
 
     An image holding NaN is refused (ValueError, with the count): NaN has no colour."""
     if curve not in _TONE_CURVES:
-        raise ValueError(f"tonemap: curve must be one of {', '.join(_TONE_CURVES)}, got {curve!r}")
+        raise ValueError(f"tonemap: curve must be one of {', '.join(_TONE_CURVES)}, got {_shown(curve)}")
     exposure = _finite("tonemap", "exposure", exposure)
-    array = _np.asarray(image, dtype=_np.float32)
+    try:
+        array = _np.asarray(image, dtype=_np.float32)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"tonemap: the image must be an array of numbers of shape (H, W, 3), "
+                         f"got {_shown(image)}") from None
     if array.ndim != 3 or array.shape[2] != 3:
         raise ValueError(f"tonemap: the image must have shape (H, W, 3), got {array.shape}")
     return _lightcone.tonemap(array, exposure, curve)
@@ -277,6 +295,8 @@ def _triple(name: str, value) -> list:
         array = _np.asarray(value, dtype=_np.float64)
     except OverflowError:
         raise ValueError(f"locate: {name} must be finite") from None
+    except (TypeError, ValueError):
+        raise ValueError(f"locate: {name} must be three numbers, got {_shown(value)}") from None
     if array.shape != (3,):
         raise ValueError(f"locate: {name} must be three numbers, got shape {array.shape}")
     if not _np.all(_np.isfinite(array)):

@@ -485,7 +485,7 @@ std::string located(const Scene& scene, const std::string& kind, const std::stri
   try {
     r = lightcone::locate(scene, query);
   } catch (const std::invalid_argument& e) {
-    throw py::value_error(std::string("object: ") + e.what());
+    throw py::value_error(printable(std::string("object: ") + e.what()));
   }
   if (!locate_result_is_finite(r))
     throw py::value_error("too far from the camera to be located in double precision");
