@@ -337,5 +337,7 @@ def info(scene: Scene) -> dict:
 
 def read_image(path: str) -> dict:
     """An image file as the program reads it (PNG, JPEG: linear from sRGB; OpenEXR: as stored,
-    with its output variables): a dict with "rgb" (float32 (H, W, 3)) and each other channel."""
+    with its output variables): a dict with "rgb" (float32 (H, W, 3)), each other channel, and
+    "exposure": the EV the renderer applied to an EXR it wrote (its radiance is rgb / 2**EV), or
+    None where the file does not say."""
     return _lightcone.read_image(_path("read_image", "path", path))

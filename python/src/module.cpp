@@ -640,6 +640,9 @@ PYBIND11_MODULE(_lightcone, m) {
         }
         std::vector<float> rgb = image->rgb;
         result["rgb"] = array_of(std::move(rgb), {h, w, 3});
+        // The EV the renderer applied (an EXR's lightcone:exposureEV), None where not known.
+        result["exposure"] =
+            image->exposure ? py::object(py::float_(*image->exposure)) : py::none();
         return result;
       },
       py::arg("path"));

@@ -56,6 +56,18 @@ def test_output_variables_equal_the_programs(tmp_path):
     assert ball.any() and np.all(ours["doppler"][ball] < 0.7)
 
 
+def test_read_image_gives_the_exposure_an_exr_was_written_with(tmp_path):
+    exr, png = tmp_path / "auto.exr", tmp_path / "auto.png"
+    done = subprocess.run([BINARY, "render", TERRELL, "-o", str(png), "--exr", str(exr),
+                           "--samples", "1", "--stats", "--quiet", *SMALL_SET],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    stats = json.loads(done.stderr.strip().splitlines()[-1])
+    assert stats["exposure"] != 0  # terrell.json's automatic exposure
+    assert lc.read_image(exr)["exposure"] == stats["exposure"]
+    assert lc.read_image(png)["exposure"] is None
+
+
 def test_tonemap_equals_the_programs_png(tmp_path):
     png, exr = tmp_path / "cli.png", tmp_path / "cli.exr"
     cli("render", TERRELL, "-o", str(png), "--exr", str(exr), "--samples", "1", "--quiet",
