@@ -110,7 +110,12 @@ std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path
           "kstars-data (./setup.sh installs it; then build again)");
     fail("cannot read the star catalogue: " + reason);
   }
-  const std::string& bytes = *read;
+  return parse_star_catalogue(*read, path);
+}
+
+std::vector<CatalogueStar> parse_star_catalogue(std::string_view bytes,
+                                                const std::filesystem::path& path) {
+  const auto fail = [&](const std::string& why) { throw InputError(path.string() + ": " + why); };
   if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
     fail("not a lightcone star catalogue (it does not start with LCSTARS1)");
   std::uint32_t count = 0;

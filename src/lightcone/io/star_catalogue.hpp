@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <istream>
+#include <string_view>
 #include <vector>
 
 #include "lightcone/scene/scene.hpp"
@@ -30,6 +31,10 @@ void write_star_catalogue(const std::filesystem::path& path,
 // naming the star and the field where a star's V or B-V lies outside the range the photometry
 // is used for (physics/stars.hpp).
 std::vector<CatalogueStar> read_star_catalogue(const std::filesystem::path& path);
+// The same for the file's bytes, read from `path` (which messages name): the parser the fuzzer
+// feeds arbitrary bytes.
+std::vector<CatalogueStar> parse_star_catalogue(std::string_view bytes,
+                                                const std::filesystem::path& path);
 
 // The bundled catalogue's name, "bright", and where the program finds it: beside the program
 // (the build folder's data/) or in the installed data folder (../share/lightcone/ from it).
