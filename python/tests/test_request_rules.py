@@ -74,6 +74,28 @@ def test_a_scene_changed_in_code_keeps_the_cameras_limits(samples):
         scene.with_samples(samples)
 
 
+@pytest.mark.parametrize("scene,setting", [
+    ("black-hole.json", "black_hole.disk.luminance=1e308"),  # gave NaNs
+    ("stars.json", "sky.stars.exposure=1000"),  # gave infinities
+])
+@pytest.mark.parametrize("renderer", ["trace", "raster"])
+def test_radiance_beyond_a_float_is_refused_as_the_program_refuses_it(tmp_path, scene, setting,
+                                                                       renderer):
+    path = os.path.join(SOURCE, "scenes", scene)
+    small = ["--set", "camera.width=48", "--set", "camera.height=27", "--set", "camera.samples=1"]
+    done = subprocess.run([BINARY, "render", path, "-o", str(tmp_path / "out.png"), "--set",
+                           setting, "--renderer", renderer, *small], capture_output=True, text=True)
+    assert done.returncode == 1
+    message = done.stderr.removeprefix("lightcone: error: ").rstrip("\n")
+    assert message.startswith(f"{path}: the render has ") and "non-finite value" in message
+    key, value = setting.split("=")
+    overrides = {key: float(value), "camera.width": 48, "camera.height": 27, "camera.samples": 1}
+    with pytest.raises(RuntimeError) as refused:
+        lc.render(lc.load(path, overrides=overrides), renderer=renderer, progress=False)
+    assert str(refused.value) == message
+    assert not (tmp_path / "out.png").exists()
+
+
 def test_no_non_finite_picture_is_returned(tmp_path):
     path = tmp_path / "bright.json"
     path.write_text(json.dumps({
