@@ -250,6 +250,26 @@ TEST_F(Animate, GifsAreSizedForSlidesAndKeepTheRate) {
   EXPECT_LE(std::abs(total - 100), 1);  // one second, within a hundredth
 }
 
+// A frame the scene cannot be shown at is refused by its number, once (the library's reason
+// names it already). The camera accelerates along +x and the ball comes the other way at gamma
+// 100: by proper time 10 their relative gamma, about 200 cosh(10), is past the limit.
+TEST_F(Animate, ARefusedFrameIsNamedOnce) {
+  const fs::path file = write("scene.json", R"({
+  "camera": {"position": [0, 0, 0], "forward": [0, 0, -1], "width": 16, "height": 9,
+             "motion": {"phases": [{"duration": 12, "acceleration": [1, 0, 0]}]}},
+  "objects": [{"name": "ball", "shape": {"sphere": {"radius": 1}}, "position": [5, 0, -5],
+               "velocity": [-0.9999499987499375, 0, 0]}],
+  "render": {"exposure": 0}
+})");
+  const auto r = run_lightcone("animate " + quoted(file) + " --fps 1 --frames 9-10 -o " +
+                               quoted(dir_ / "f%02d.png") + " --samples 1 --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err,
+            "lightcone: frame 10: by then ball moves too close to the speed of light relative to "
+            "the camera (gamma 2.2e+06; at most 1e+06)\n");
+  EXPECT_TRUE(fs::exists(dir_ / "f09.png"));
+}
+
 TEST_F(Animate, BadInputIsRefusedAndWritesNothing) {
   const std::string rocket = quoted(scene("rocket.json"));
   const std::string png = quoted(dir_ / "f%d.png");
