@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 
 namespace lightcone {
 namespace {
@@ -27,15 +30,55 @@ double component(const Xyz& c, int n) {
   return n == 0 ? c.x : n == 1 ? c.y : c.z;
 }
 
+// A settled grid's promise (DopplerGrid), checked where it costs nothing: the table is constant
+// from node 1 down, so nodes 0 and 1 (of every row `stride` apart) are equal.
+void check_settled(const DopplerGrid& grid, const std::vector<Xyz>& nodes, std::size_t stride) {
+  if (!grid.settled) return;
+  for (std::size_t i = 0; i < stride; ++i)
+    if (nodes[i].x != nodes[stride + i].x || nodes[i].y != nodes[stride + i].y ||
+        nodes[i].z != nodes[stride + i].z)
+      throw std::logic_error(
+          "a colour table on a settled grid is not constant below it: its spectrum is not "
+          "constant where the grid was told it is");
+}
+
 }  // namespace
 
 DopplerGrid DopplerGrid::covering(double lo_log_d, double hi_log_d) {
-  if (!std::isfinite(lo_log_d) || !std::isfinite(hi_log_d)) lo_log_d = hi_log_d = 0;
+  // (A range of ln D wider than this, a factor of 10^130, is no bound anything rendered needs.)
+  constexpr double kWidest = 300;
+  if (!(std::abs(lo_log_d) <= kWidest && std::abs(hi_log_d) <= kWidest))
+    throw std::invalid_argument("a colour table was asked to cover ln D from " +
+                                std::to_string(lo_log_d) + " to " + std::to_string(hi_log_d) +
+                                ": a range of Doppler factors must be finite");
   if (lo_log_d > hi_log_d) std::swap(lo_log_d, hi_log_d);
   DopplerGrid g;
   g.first = static_cast<int>(std::floor(lo_log_d / kStep)) - 2;
   g.last = static_cast<int>(std::ceil(hi_log_d / kStep)) + 2;
   return g;
+}
+
+DopplerGrid DopplerGrid::reaching(double lo_log_d, double hi_log_d, double constant_below) {
+  // The largest D at which the quadrature samples the spectrum only where it is constant (all
+  // of it below hi, where it is constant over the whole range).
+  const double limit = std::min(std::log(constant_below / kCieMaxWavelength), hi_log_d);
+  if (!(lo_log_d > limit) && std::isfinite(limit)) {
+    // Node 1 lies a step or more below the limit: a margin far above the rounding of D lambda.
+    DopplerGrid g = covering(limit, hi_log_d);
+    g.settled = true;
+    return g;
+  }
+  return covering(lo_log_d, hi_log_d);
+}
+
+GridPosition grid_position_outside(const DopplerGrid& grid, double d) {
+  if (grid.settled && grid_log(d) < grid.log_d(1)) return {0, 0.0};
+  std::ostringstream message;
+  message << "a colour table covering D from "
+          << (grid.settled ? 0.0 : std::exp(grid.lowest_log_d())) << " to "
+          << std::exp(grid.highest_log_d()) << " was asked for D = " << d
+          << ": the range it was built for missed a factor the picture shows";
+  throw std::out_of_range(message.str());
 }
 
 GridStencil grid_stencil(const DopplerGrid& grid, double d) {
@@ -53,6 +96,7 @@ GridStencil grid_stencil(const DopplerGrid& grid, double d) {
 
 DopplerXyzTable::DopplerXyzTable(const DopplerGrid& grid, std::vector<Xyz> nodes)
     : grid_(grid), nodes_(std::move(nodes)) {
+  check_settled(grid_, nodes_, 1);
   // Lagrange's cubic through (-1, u0), (0, u1), (1, u2), (2, u3), less u1, is
   // f (c1 + f (c2 + f c3)) with these c from the differences d_k = u_k - u1 (u the values
   // or their logarithms).
@@ -98,7 +142,9 @@ Xyz ReflectionXyzTable::reflected_sum(const double* reflectance, const double* s
 
 ReflectionXyzTable::ReflectionXyzTable(const DopplerGrid& camera, const DopplerGrid& light,
                                        std::vector<Xyz> nodes)
-    : camera_(camera), light_(light), nodes_(std::move(nodes)), logs_(logs_of(nodes_)) {}
+    : camera_(camera), light_(light), nodes_(std::move(nodes)), logs_(logs_of(nodes_)) {
+  check_settled(camera_, nodes_, static_cast<std::size_t>(light_.size()));
+}
 
 Xyz ReflectionXyzTable::operator()(const GridStencil& camera_stencil, double d_light) const {
   const GridStencil light_stencil = grid_stencil(light_, d_light);

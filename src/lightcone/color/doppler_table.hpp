@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "lightcone/color/cie.hpp"
@@ -25,20 +26,43 @@ Xyz xyz_seen_with_doppler(const Spectrum& spectrum, double d) {
 }
 
 // Nodes k h of ln D, k = first .. last, with h = kStep. A grid covering [lo, hi] in ln D has
-// two nodes beyond each end (the cubic stencil).
+// two nodes beyond each end (the cubic stencil). Its tables answer from node 1 to node
+// size - 2 and refuse a factor beyond (grid_position), except below a settled grid.
+//
+// Settled: every table on the grid is constant at node 1 and below, exactly. A table's colour
+// seen with D is the quadrature of L_E(D lambda), lambda <= kCieMaxWavelength, times the
+// searchlight factor D^k outside it; where D kCieMaxWavelength is at or below a wavelength at
+// and below which L_E is constant, so is the quadrature. For a blackbody, and every RGB emitter
+// (the 6504 K blackbody times finite factors), that constant is 0: as D -> 0 the visible band
+// samples the far Wien tail, exp(-kC2 / (D lambda T)), which is 0 in double precision below
+// planck_zero_wavelength(T) (not an approximation). A lookup below a settled grid is node 1's
+// value, which is that constant.
 struct DopplerGrid {
   static constexpr double kStep = 0.02;
   int first = -2, last = 2;
+  bool settled = false;
 
+  // The grid over [lo, hi] (in either order); a range that is not finite is refused
+  // (std::invalid_argument).
   static DopplerGrid covering(double lo_log_d, double hi_log_d);
   static DopplerGrid covering(double max_abs_log_d) {
     return covering(-max_abs_log_d, max_abs_log_d);
   }
+  // The grid over [lo, hi] (lo <= hi, lo may be -infinity) for tables of spectra constant at
+  // and below `constant_below` nm: where lo reaches D = constant_below / kCieMaxWavelength, it
+  // stops there, settled. hi must be finite; so must lo, for spectra that are nowhere constant.
+  static DopplerGrid reaching(double lo_log_d, double hi_log_d, double constant_below);
   int size() const { return last - first + 1; }
   double log_d(int index) const { return (first + index) * kStep; }
   double d(int index) const { return std::exp(log_d(index)); }
   // The index of the node at D = 1 (when the grid holds it: first <= 0 <= last).
   int rest_index() const { return -first; }
+  // The factors its tables answer at: ln D from lowest_log_d() (-infinity where settled) to
+  // highest_log_d().
+  double lowest_log_d() const {
+    return settled ? -std::numeric_limits<double>::infinity() : log_d(1);
+  }
+  double highest_log_d() const { return log_d(size() - 2); }
 };
 
 // Where ln d lies on a grid: the interpolation uses the four nodes first .. first + 3, and d
@@ -47,8 +71,6 @@ struct GridPosition {
   int first = 0;
   double fraction = 0;
 };
-// d should lie within what the grid covers; a factor past it is extrapolated by the end
-// interval's cubic.
 // ln d for the grid, to 1e-12 and several times cheaper than std::log (it runs once per camera
 // ray): d = m 2^e, m in [1, 2) split at its top 10 bits into m_k = 1 + k / 1024 and the rest,
 // ln m = ln m_k + ln(1 + x) with x = (m - m_k) / m_k < 1/1024, the last by its series to x^4.
@@ -77,11 +99,21 @@ inline double grid_log(double d) {
   return e * 0.6931471805599453 + detail::grid_log_table.log_node[k] + series;
 }
 
+// A factor outside what a grid answers: below a settled grid, node 1 (fraction 0); otherwise
+// refused (std::out_of_range): extrapolating the end interval's cubic ran to negative radiance.
+GridPosition grid_position_outside(const DopplerGrid& grid, double d);
+
+// d within what the grid answers (lowest_log_d() to highest_log_d(), give or take rounding).
 inline GridPosition grid_position(const DopplerGrid& grid, double d) {
   constexpr double kNodesPerUnit = 1 / DopplerGrid::kStep;
+  // (grid_log and the caller's own logarithms round: a millionth of a step is let through.)
+  constexpr double kRounding = 1e-6;
   const double t = grid_log(d) * kNodesPerUnit - grid.first;
-  // Truncation is floor for t >= 1 (inside the grid); outside, the clamp takes the end interval.
-  const double held = std::clamp(t, 1.0, static_cast<double>(grid.size() - 3));
+  const double top = grid.size() - 2;
+  if (!(t >= 1 - kRounding && t <= top + kRounding)) [[unlikely]]
+    return grid_position_outside(grid, d);
+  // Truncation is floor for t >= 1; the clamp takes the end intervals up to their ends.
+  const double held = std::clamp(t, 1.0, top - 1);
   GridPosition p;
   p.first = std::min(static_cast<int>(held) - 1, grid.size() - 4);
   p.fraction = t - (p.first + 1);
@@ -219,7 +251,9 @@ Xyz xyz_of_reflection_seen_with_doppler(const Reflectance& rho, const Spectrum& 
 }
 
 // That colour against (ln d_camera, ln d_light) on two grids, interpolated bicubically in the
-// logarithms.
+// logarithms. The camera's grid may be settled: the light is sampled at d_camera d_light lambda,
+// so it must be reached for spectra constant below constant_below / (the light grid's largest
+// factor), and for the reflectance's own constant part (below kCieMinWavelength).
 class ReflectionXyzTable {
  public:
   ReflectionXyzTable() = default;

@@ -16,6 +16,7 @@
 
 #include "lightcone/color/cie.hpp"
 #include "lightcone/color/sigmoid_polynomial.hpp"
+#include "lightcone/color/spectrum.hpp"
 
 namespace lightcone {
 
@@ -45,6 +46,12 @@ double rgb_white_spectrum(double lambda_nm);
 // The factor 1 + sum_k g_k exp(...) itself: rgb_white_spectrum = reference_illuminant * it.
 double rgb_white_factor(double lambda_nm);
 
+// Every RGB emitter below (the RGB white, the emitter nodes N_i and their sums) is the reference
+// illuminant times finite factors, so at and below this wavelength (nm) it is exactly 0.
+inline double rgb_emitter_zero_wavelength() {
+  return planck_zero_wavelength(kReferenceIlluminantTemperature);
+}
+
 // An emitter of any non-negative linear sRGB radiance (negative components and NaN count as 0;
 // components must be finite). Policy (docs/design/spectral.md, "What an RGB colour means"):
 //   L(lambda) = grey * rgb_white_spectrum(lambda)
@@ -64,6 +71,7 @@ struct RgbEmitterSpectrum {
   double blend = 0;   // in [0, 1]
   static RgbEmitterSpectrum from_rgb(const LinearRgb& rgb);
   double operator()(double lambda_nm) const;
+  double constant_below() const { return rgb_emitter_zero_wavelength(); }
 };
 
 // Node i of an emitter case: its reflectance (flat outside 360-830 nm, like every

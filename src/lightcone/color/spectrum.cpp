@@ -51,6 +51,19 @@ double planck_radiance(double lambda_nm, double temperature_k) {
   return std::min(b, std::numeric_limits<double>::max());
 }
 
+double planck_zero_wavelength(double temperature_k) {
+  if (!(temperature_k > 0)) return std::numeric_limits<double>::infinity();
+  // planck_radiance's deep Wien branch (x = kC2 / (lambda T) > 700) is exp(y), y = ln kC1 -
+  // 5 ln lambda - x, and std::exp gives exactly 0 below y = -745.13. With lambda = kC2 / (x T),
+  // y = -746 (a margin far above the rounding of y) is x - 5 ln x = K: the fixed point of
+  // x = K + 5 ln x, a contraction (slope 5 / x < 0.01). y grows with lambda wherever x > 5, so
+  // every shorter wavelength gives 0 as well; the branch needs x > 700.
+  const double k = 746 + std::log(kC1) - 5 * std::log(kC2 / temperature_k);
+  double x = std::max(k, 701.0);
+  for (int i = 0; i < 30; ++i) x = std::max(k + 5 * std::log(x), 701.0);
+  return kC2 / (x * temperature_k);
+}
+
 BlackbodySpectrum BlackbodySpectrum::with_luminance(double temperature_k, double luminance) {
   BlackbodySpectrum s;
   s.temperature_k = temperature_k;
@@ -64,6 +77,11 @@ BlackbodySpectrum BlackbodySpectrum::with_luminance(double temperature_k, double
 
 double BlackbodySpectrum::operator()(double lambda_nm) const {
   return scale * planck_radiance(lambda_nm, temperature_k);
+}
+
+double TabulatedSpectrum::constant_below() const {
+  return wavelengths_nm.empty() || values.empty() ? std::numeric_limits<double>::infinity()
+                                                  : wavelengths_nm.front();
 }
 
 double TabulatedSpectrum::operator()(double lambda_nm) const {

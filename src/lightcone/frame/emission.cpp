@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "lightcone/color/spectrum.hpp"
 #include "lightcone/frame/camera_model.hpp"
@@ -35,34 +37,44 @@ PointEmission lit_colour(const Rgb& albedo, int fixed_colour) {
 LogDopplerRange visible_log_doppler(const ResolvedScene& scene, bool lit) {
   LogDopplerRange range;
   if (!scene.scene->render.relativity) return range;
-  // D depends on the look direction u only through dot(u, velocity), and falls as it grows: its
-  // extremes over the image are at the directions where that product is extreme.
-  // A spinning body's points move relative to it with rapidity up to that of its rim, which
-  // moves their ln D by as much at most.
-  const auto add = [&](const Vec3& v, double spread = 0) {
-    const ViewExtremes e = view_extremes_along(scene.camera, v);
-    const double hi = std::log(scene.doppler(e.smallest, v)) + spread;
-    const double lo = std::log(scene.doppler(e.largest, v)) - spread;
+  // A bound that is not finite is refused: std::min and std::max would drop a NaN silently,
+  // and the colour tables would miss that body's factors.
+  // `object`: the body's (nullptr: the sky's).
+  const auto include = [&](double lo, double hi, const Object* object) {
+    if (!(std::isfinite(lo) && std::isfinite(hi)))
+      throw std::logic_error("the Doppler factors with which " +
+                             (object ? "object \"" + object->name + "\"" : std::string("the sky")) +
+                             " is seen have no finite bound");
     range.lo = range.empty ? lo : std::min(range.lo, lo);
     range.hi = range.empty ? hi : std::max(range.hi, hi);
     range.empty = false;
   };
+  // D depends on the look direction u only through dot(u, velocity), and falls as it grows: its
+  // extremes over the image are at the directions where that product is extreme.
+  // A spinning body's points move relative to it with rapidity up to that of its rim, which
+  // moves their ln D by as much at most.
+  const auto add = [&](const Vec3& v, double spread, const Object* object) {
+    const ViewExtremes e = view_extremes_along(scene.camera, v);
+    include(std::log(scene.doppler(e.largest, v)) - spread,
+            std::log(scene.doppler(e.smallest, v)) + spread, object);
+  };
   if (scene.hole) {
     // Near a hole the sky, the disk and the bodies are seen along curved rays, with the shift g.
-    const auto include = [&](const LogShiftRange& r) {
-      range.lo = range.empty ? r.lo : std::min(range.lo, r.lo);
-      range.hi = range.empty ? r.hi : std::max(range.hi, r.hi);
-      range.empty = false;
-    };
-    if (!lit) include(sky_log_shift_range(*scene.hole));
+    if (!lit) {
+      const LogShiftRange r = sky_log_shift_range(*scene.hole);
+      include(r.lo, r.hi, nullptr);
+    }
     for (const ResolvedBody& b : scene.bodies)
-      if (b.object->material.unlit != lit) include(body_log_shift_range(*scene.hole, *b.object));
+      if (b.object->material.unlit != lit) {
+        const LogShiftRange r = body_log_shift_range(*scene.hole, *b.object);
+        include(r.lo, r.hi, b.object);
+      }
     return range;
   }
-  if (!lit) add(scene.sky_velocity);
+  if (!lit) add(scene.sky_velocity, 0, nullptr);
   for (const ResolvedBody& b : scene.bodies)
     if (b.object->material.unlit != lit)
-      add(b.velocity, b.spin >= 0 ? spin_rapidity(scene.spins[b.spin]) : 0.0);
+      add(b.velocity, b.spin >= 0 ? spin_rapidity(scene.spins[b.spin]) : 0.0, b.object);
   return range;
 }
 
@@ -82,10 +94,13 @@ EmissionTable::EmissionTable(const ResolvedScene& resolved, double margin)
         return ++made;
       }()),
       spectral_(resolved.scene->render.doppler == DopplerModel::kSpectral),
-      grid_([&] {
-        const LogDopplerRange r = visible_log_doppler(resolved, false);
-        return DopplerGrid::covering(r.lo - margin, r.hi + margin);
-      }()) {
+      range_([&] {
+        LogDopplerRange r = visible_log_doppler(resolved, false);
+        r.lo -= margin;
+        r.hi += margin;
+        return r;
+      }()),
+      grid_(DopplerGrid::reaching(range_.lo, range_.hi, rgb_emitter_zero_wavelength())) {
   if (spectral_) {
     illuminant_ = illuminant_samples([](double l) { return reference_illuminant(l); }, grid_,
                                      ParallelNodes{});
@@ -119,8 +134,7 @@ bool EmissionTable::serves(const ResolvedScene& next) const {
       spectral_ != (next.scene->render.doppler == DopplerModel::kSpectral))
     return false;
   const LogDopplerRange r = visible_log_doppler(next, false);
-  const DopplerGrid needed = DopplerGrid::covering(r.lo, r.hi);
-  return grid_.first <= needed.first && needed.last <= grid_.last;
+  return range_.lo <= r.lo && r.hi <= range_.hi;
 }
 
 // The disk's hottest ring, tabulated in every colour model (the others need its colour at rest
@@ -158,8 +172,8 @@ PointEmission EmissionTable::fixed_spectrum(const Spectrum& spectrum) {
   PointEmission e;
   e.rest_rgb = linear_srgb_from_xyz(xyz_from_spectrum(spectrum));
   if (spectral_) {
-    e.tables[0] =
-        &fixed_tables_.emplace_back(DopplerXyzTable::of(spectrum, grid_, ParallelNodes{}));
+    const DopplerGrid grid = DopplerGrid::reaching(range_.lo, range_.hi, spectrum.constant_below());
+    e.tables[0] = &fixed_tables_.emplace_back(DopplerXyzTable::of(spectrum, grid, ParallelNodes{}));
     e.weights[0] = 1;
     e.table_count = 1;
   }

@@ -131,6 +131,10 @@ class EmissionTable {
   const Scene& scene_;
   std::uint64_t serial_;
   bool spectral_;
+  // The factors the scene is seen with, margin included (ln D), and the grid of the RGB
+  // emitters' tables over them (blackbodies and tabulated spectra get grids of their own,
+  // reaching where each is constant).
+  LogDopplerRange range_;
   DopplerGrid grid_;
   std::vector<double> illuminant_;  // the reference illuminant on the grid (illuminant_samples)
   DopplerXyzTable white_;

@@ -86,12 +86,13 @@ namespace {
 HoleDepth line_depth(const HoleView& hole, const HoleWorldLine& line, double reach) {
   const double m = hole.mass;
   // A fall reaches c at the horizon, where its light is shifted without bound: the range stops
-  // at 2M (1 + 1e-6), where its speed is sqrt(1 - f / E^2).
+  // at 2M (1 + 1e-6), where its speed is sqrt(1 - f / E^2) (0 for a fall from rest below it,
+  // which is never that high: f > E^2 there).
   const double nearest = std::max(line.nearest() - reach, 2 * m * (1 + 1e-6));
   double speed = line.max_local_speed();
   if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
     const double f = 1 - 2 * m / nearest, e = fall->fall.energy();
-    speed = std::sqrt(1 - f / (e * e));
+    speed = std::sqrt(std::max(0.0, 1 - f / (e * e)));
   }
   return {0.5 * std::log1p(-2 * m / nearest), std::atanh(std::min(speed, 1 - 1e-16))};
 }

@@ -150,12 +150,23 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
   if (settings.doppler != DopplerModel::kSpectral) return;
 
   const double light_reach = light_rapidity_;
-  LogDopplerRange seen = visible_log_doppler(scene, true);
-  seen.lo -= margin;
-  seen.hi += margin;
-  camera_grid_ = DopplerGrid::covering(seen.lo, seen.hi);
+  seen_ = visible_log_doppler(scene, true);
+  seen_.lo -= margin;
+  seen_.hi += margin;
+  // The lights' spectra are 0 at and below the shortest of their zero wavelengths, and the
+  // albedos constant below kCieMinWavelength: the lights' own tables, read at d_camera d_light,
+  // are constant where that product is below the first divided by kCieMaxWavelength, the
+  // reflections (their light at d_camera d_light lambda) where d_camera is below that over the
+  // light grid's largest factor.
+  double constant_below = kCieMinWavelength;
+  for (const ResolvedLight& r : lights_)
+    constant_below = std::min(
+        constant_below, std::visit([](const auto& s) { return s.constant_below(); }, r.spectrum));
   light_grid_ = DopplerGrid::covering(light_reach);
-  const DopplerGrid total = DopplerGrid::covering(seen.lo - light_reach, seen.hi + light_reach);
+  camera_grid_ = DopplerGrid::reaching(seen_.lo, seen_.hi,
+                                       constant_below / light_grid_.d(light_grid_.size() - 1));
+  const DopplerGrid total =
+      DopplerGrid::reaching(seen_.lo - light_reach, seen_.hi + light_reach, constant_below);
   for (ResolvedLight& r : lights_)
     r.seen = DopplerXyzTable::of([&r](double l) { return r.spectral(l); }, total);
 
@@ -452,8 +463,8 @@ void Lighting::prepare(const LitPoint& point, Shading& shading) const {
   }
   shading.diffuse = object.material.glossy ? 1 - object.material.glossy->specular : 1.0;
   if (settings.doppler != DopplerModel::kSpectral) return;
-  shading.camera_stencil = grid_stencil(camera_grid_, point.d_camera);
   if (lights_.empty()) return;  // nothing to reflect (and no rows kept: the constructor)
+  shading.camera_stencil = grid_stencil(camera_grid_, point.d_camera);
   if (point.surface.fixed_colour >= 0)
     shading.reflections =
         &object_reflections_[hit.body][static_cast<std::size_t>(point.surface.fixed_colour)];
@@ -531,8 +542,7 @@ bool Lighting::serves(const ResolvedScene& next) const {
   }
   if (n.doppler != DopplerModel::kSpectral) return true;
   const LogDopplerRange r = visible_log_doppler(next, true);
-  const DopplerGrid needed = DopplerGrid::covering(r.lo, r.hi);
-  return camera_grid_.first <= needed.first && needed.last <= camera_grid_.last;
+  return seen_.lo <= r.lo && r.hi <= seen_.hi;
 }
 
 LinearRgb Lighting::received(const Hit& hit, const Vec3& u, double d_camera,

@@ -91,6 +91,12 @@ class Lighting {
     return lights_[l].fixed_event;
   }
   double light_rapidity() const { return light_rapidity_; }
+  // The grids of its tables (spectral model), whose factors a renderer that tabulates them reads
+  // within: the camera's and the light's factor (reflected), and light l's own colour
+  // (light_seen).
+  const DopplerGrid& camera_grid() const { return camera_grid_; }
+  const DopplerGrid& light_grid() const { return light_grid_; }
+  const DopplerGrid& light_seen_grid(std::size_t l) const { return lights_[l].seen.grid(); }
 
  private:
   struct ResolvedLight {
@@ -146,6 +152,7 @@ class Lighting {
   // its irradiance apart.
   RenderSettings unshifted_;
   std::vector<ResolvedLight> lights_;
+  LogDopplerRange seen_;  // the factors the camera sees the lit bodies with, margin included
   DopplerGrid camera_grid_, light_grid_;
   RenderSettings settings_;  // as made (serves())
   double light_rapidity_ = 0;

@@ -81,9 +81,8 @@ struct ResolvedSpin {
 
 // The rapidity of a spinning body's rim relative to its centre: the most any of its points'
 // Doppler factors differ from its centre's, in ln D. From the rim speed itself, not from the
-// padded radius: a rim within 1e-9 of the speed of light would round up to 1 there, and an
-// infinite rapidity would leave the colour tables covering D = 1 alone (they extrapolate past
-// their ends, to negative radiance).
+// padded radius: a rim within 1e-9 of the speed of light would round up to 1 there, and the
+// colour tables refuse an infinite range of ln D.
 inline double spin_rapidity(const ResolvedSpin& spin) {
   return std::atanh(spin.rim_speed);
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -39,6 +40,21 @@ EmissionKey key_of(const PointEmission& e) {
           e.weights[1],
           e.weights[2],
           e.table_count};
+}
+
+// The factors (ln D) at which a row's tables answer: a row is read only at its own source's
+// factors, which its tables were built to cover, while the rows span every source's. Its
+// texels past them, which nothing reads, hold its nearest answered colour.
+constexpr LogRange kEveryFactor{-std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::infinity()};
+LogRange answered(const DopplerGrid& grid) {
+  return {grid.lowest_log_d(), grid.highest_log_d()};
+}
+LogRange answered(const PointEmission& e) {
+  return e.table_count > 0 ? answered(e.tables[0]->grid()) : kEveryFactor;
+}
+double held(double log_d, const LogRange& domain) {
+  return std::exp(std::clamp(log_d, domain.lo, domain.hi));
 }
 
 }  // namespace
@@ -95,15 +111,19 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
   // Rows: each a colour against D, tabulated over the frame's range of ln D (unless the rows
   // kept from the frame before serve), and what each is tabulated from.
   std::vector<std::function<LinearRgb(double)>> rows;
+  std::vector<LogRange> row_domains;
   std::vector<RowSource> row_sources;
-  const auto add_row = [&](RowSource source, std::function<LinearRgb(double)> f) {
+  const auto add_row = [&](RowSource source, std::function<LinearRgb(double)> f,
+                           const LogRange& domain) {
     rows.push_back(std::move(f));
+    row_domains.push_back(domain);
     row_sources.push_back(source);
     return static_cast<int>(rows.size() - 1);
   };
   const auto received_row = [&](const PointEmission& e) {
-    return add_row({RowSource::kEmission, &e},
-                   [&e, &settings](double d) { return received_colour(e, d, settings); });
+    return add_row(
+        {RowSource::kEmission, &e},
+        [&e, &settings](double d) { return received_colour(e, d, settings); }, answered(e));
   };
   std::map<EmissionKey, int> row_of;
   const auto emission_row = [&](const PointEmission& e) {
@@ -144,23 +164,26 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       d.event = *fixed - observation;
     }
     if (spectral) {
-      d.row = add_row({RowSource::kLightSeen, nullptr, 0, l}, [&lighting, l](double x) {
-        return linear_srgb_from_xyz(lighting.light_seen(l, x));
-      });
+      d.row = add_row(
+          {RowSource::kLightSeen, nullptr, 0, l},
+          [&lighting, l](double x) { return linear_srgb_from_xyz(lighting.light_seen(l, x)); },
+          answered(lighting.light_seen_grid(l)));
     } else {
       const LinearRgb rgb = lighting.light_rgb(l);
-      d.row = add_row({RowSource::kLightRgb, nullptr, 0, l}, [rgb, &unshifted](double x) {
-        return received_colour(PointEmission{rgb}, x, unshifted);
-      });
+      d.row = add_row(
+          {RowSource::kLightRgb, nullptr, 0, l},
+          [rgb, &unshifted](double x) { return received_colour(PointEmission{rgb}, x, unshifted); },
+          kEveryFactor);
     }
     lights.push_back(d);
   }
   // The colour models other than spectral: the received colour of outgoing radiance.
   for (int c = 0; c < 3; ++c) {
     const LinearRgb unit{c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
-    final_rows[c] = add_row({RowSource::kPrimary, nullptr, 0, 0, c}, [unit, &settings](double x) {
-      return received_colour(PointEmission{unit}, x, settings);
-    });
+    final_rows[c] = add_row(
+        {RowSource::kPrimary, nullptr, 0, 0, c},
+        [unit, &settings](double x) { return received_colour(PointEmission{unit}, x, settings); },
+        kEveryFactor);
   }
 
   // Textures and sky images, spectral model: the RGB white's and the emitter nodes' rows,
@@ -178,8 +201,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
       e.tables[0] = &table;
       e.weights[0] = 1;
       e.table_count = 1;
-      return add_row({RowSource::kBasis, &table},
-                     [e, &settings](double d) { return received_colour(e, d, settings); });
+      return add_row(
+          {RowSource::kBasis, &table},
+          [e, &settings](double d) { return received_colour(e, d, settings); }, answered(e));
     };
     basis_first_row = basis_row(emission.white_table());
     for (int c = 0; c < kRgbEmitterCases; ++c)
@@ -302,20 +326,24 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
           if (lighting.co_moving(object, l)) {
             auto [it, added] = reflection_rows.emplace(key, 0);
             if (added)
-              it->second =
-                  add_row({RowSource::kReflection, nullptr, object, l, k},
-                          [&lighting, object, k, l](double d) {
-                            return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
-                          });
+              it->second = add_row(
+                  {RowSource::kReflection, nullptr, object, l, k},
+                  [&lighting, object, k, l](double d) {
+                    return linear_srgb_from_xyz(lighting.reflected(object, k, l, d, 1.0));
+                  },
+                  answered(lighting.camera_grid()));
             slot[0] = static_cast<float>(it->second);
           } else {
             auto [it, added] = reflection_tables.emplace(key, table_rows);
             if (added) {
               for (int jl = 0; jl < table_light_nodes; ++jl, ++table_rows)
                 for (int jc = 0; jc < table_camera_nodes; ++jc) {
-                  const LinearRgb c = linear_srgb_from_xyz(lighting.reflected(
-                      object, k, l, std::exp(table_camera_first + jc * kTableCameraStep),
-                      std::exp(table_light_first + jl * kTableLightStep)));
+                  const LinearRgb c = linear_srgb_from_xyz(
+                      lighting.reflected(object, k, l,
+                                         held(table_camera_first + jc * kTableCameraStep,
+                                              answered(lighting.camera_grid())),
+                                         held(table_light_first + jl * kTableLightStep,
+                                              answered(lighting.light_grid()))));
                   table_texels.insert(table_texels.end(),
                                       {static_cast<float>(c.r), static_cast<float>(c.g),
                                        static_cast<float>(c.b), 0.0f});
@@ -481,8 +509,9 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     black_hole->prepare(*resolved.hole);
     if (resolved.hole->disk) {
       const ThermalEmission& disk = emission.disk();
-      disk_row = add_row({RowSource::kDisk, &disk},
-                         [&disk](double s) { return disk_row_colour(disk, s); });
+      disk_row = add_row(
+          {RowSource::kDisk, &disk}, [&disk](double s) { return disk_row_colour(disk, s); },
+          answered(disk.peak));
       disk_range = disk_row_range(*resolved.hole, disk);
       disk_floor = disk.floor;
     }
@@ -540,7 +569,7 @@ RasterFrameStats RasterRenderer::Impl::prepare(const ResolvedScene& resolved,
     std::vector<float> texels(static_cast<std::size_t>(nodes) * rows.size() * 4);
     for (std::size_t r = 0; r < rows.size(); ++r)
       for (int k = 0; k < nodes; ++k) {
-        const LinearRgb c = rows[r](std::exp(lo + k * kLogDopplerStep));
+        const LinearRgb c = rows[r](held(lo + k * kLogDopplerStep, row_domains[r]));
         float* t = &texels[4 * (r * nodes + k)];
         t[0] = static_cast<float>(c.r);
         t[1] = static_cast<float>(c.g);
