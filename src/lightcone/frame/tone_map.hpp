@@ -10,12 +10,13 @@ namespace lightcone {
 // The luminance (Y of linear sRGB) that `curve` shows as 0.9 of white.
 double display_white(ToneMap curve);
 
-// The automatic exposure rule: the EV that shows the subject's key (the geometric mean of its
-// luminance) as 0.25, a mid-tone, unless that would take the brightest 2 % of the whole picture
-// past display_white(curve); then the EV that brings them there. `subject` weighs each pixel
-// (the share of its samples that met a body moving relative to the camera); without it, or
-// with less than 0.1 % of the picture's worth, the subject is the whole picture. 0 for an image
-// without light.
+// The automatic exposure rule: the EV that shows the upper quartile of the subject's luminance
+// as 0.5, unless that would take the brightest 2 % of the whole picture past
+// display_white(curve); then the EV that brings them there. `subject` weighs each pixel (the
+// share of its samples that met a body moving relative to the camera); without it, or with
+// less than 0.1 % of the picture's worth, the subject is the whole picture. 0 for an image
+// without light. Both quantiles are exact (the pixels' own values, as a sort would find them),
+// selected in O(pixels) by histograms over the bits of the luminance, in parallel.
 double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject = {});
 
 // Scales a rendered image by 2^EV, EV the settings' exposure or (auto_exposure on) the automatic
