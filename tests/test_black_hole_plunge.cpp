@@ -23,7 +23,6 @@ constexpr double kPi = std::numbers::pi;
 HoleView falling_view(double r, double r0 = 0) {
   const double e = r0 > 0 ? std::sqrt(1 - 2 / r0) : 1.0;
   HoleView v;
-  v.mass = 1;
   v.camera_radius = r;
   v.outward = {0, 0, 1};
   v.falling = RadialObserver{1, r, e, -std::sqrt(e * e - (1 - 2 / r))};

@@ -5,6 +5,7 @@
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "lightcone/physics/carlson_integrals.hpp"
@@ -37,6 +38,29 @@ TEST(CarlsonIntegrals, BatchedRfIsBoostsToTheBit) {
   double out[kMaxBatch];
   rf_batch(args, out, kMaxBatch);
   for (int i = 0; i < kMaxBatch; ++i) EXPECT_EQ(out[i], rf(args[i].x, args[i].y, args[i].z)) << i;
+}
+
+// Boost iterates on a NaN or an infinite argument until it gives up with an exception of its
+// own (whose message names it); here a NaN argument gives NaN, an infinite one the integrals'
+// limit 0, and one outside their domain NaN, none of them an exception.
+TEST(CarlsonIntegrals, NanInfiniteAndNegativeArgumentsThrowNothing) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(std::isnan(rf(kNaN, 1, 2)));
+  EXPECT_TRUE(std::isnan(rd(1, kNaN, 2)));
+  EXPECT_TRUE(std::isnan(rj(1, 2, 3, kNaN)));
+  EXPECT_TRUE(std::isnan(rc(kNaN, 1)));
+  EXPECT_EQ(rf(1, 2, kInf), 0);
+  EXPECT_EQ(rd(1, kInf, 2), 0);
+  EXPECT_EQ(rj(1, 2, 3, kInf), 0);
+  EXPECT_EQ(rc(kInf, 1), 0);
+  EXPECT_TRUE(std::isnan(rf(-1, 1, 2)));
+  EXPECT_TRUE(std::isnan(rj(-1, 1, 2, 3)));
+  double out[2];
+  const RfArgs args[2] = {{kNaN, 1, 2}, {1, kInf, 2}};
+  rf_batch(args, out, 2);
+  EXPECT_TRUE(std::isnan(out[0]));
+  EXPECT_EQ(out[1], 0);
 }
 
 TEST(CarlsonIntegrals, RealCubicIntegralsOfEveryKind) {

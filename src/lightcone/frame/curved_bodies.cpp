@@ -9,6 +9,7 @@
 
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/lorentz.hpp"
+#include "lightcone/physics/math_policy.hpp"
 
 namespace lightcone {
 namespace {
@@ -45,8 +46,8 @@ double segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Ve
   return length(a0 + da * s - (b0 + db * t));
 }
 
-// The events of one ray's path, in W: after sweeping phi it is at the hole's centre plus
-// path.offset(phi, r(phi)), at its start's time less the coordinate time the light took.
+// The events of one ray's path, relative to the hole and in units of M: after sweeping phi it is
+// at path.offset(phi, r(phi)), at its start's time less the coordinate time the light took.
 struct PathEvents {
   const PathStart& start;
   const CurvedPath& path;
@@ -68,7 +69,7 @@ struct PathEvents {
   Vec4 event(double phi, bool timed, double* r_out = nullptr) const {
     const double r = radius(phi);
     if (r_out) *r_out = r;
-    return {timed ? time(phi, r) : 0.0, start.centre + path.offset(phi, r)};
+    return {timed ? time(phi, r) : 0.0, path.offset(phi, r)};
   }
 };
 
@@ -79,7 +80,9 @@ struct MetSurface {
   Vec3 normal;        // kPlane: normal . p = offset
   double offset = 0;
   double at(const Vec3& p) const {
-    return kind == Kind::kSphere ? dot(p, p) - radius * radius : dot(normal, p) - offset;
+    if (kind == Kind::kPlane) return dot(normal, p) - offset;
+    const Vec3 q = p / radius;  // (squares of the scene's lengths need not be doubles)
+    return dot(q, q) - 1;
   }
 };
 
@@ -125,13 +128,13 @@ double moving_reach(double m, double start_radius, double v, double now) {
     return (1 - v) * r - v * (start_radius + 4 * m * std::log1p(r / (2 * m)) + 8 * m) > now;
   };
   double reach = std::max(now, start_radius);
-  while (!beyond(reach)) reach *= 2;
+  while (!beyond(reach) && reach < kInfinity) reach *= 2;  // (NaN: no reach)
   return reach;
 }
 
 Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath& path,
                      const Vec3& n, const PathStart& start) {
-  const double m = start.mass, start_time = start.time;
+  const double m = HoleView::mass, start_time = start.time;
   Windows w;
   const auto at_angle = [&](const Vec3& v) { return std::atan2(dot(v, path.e2), dot(v, path.e1)); };
   const auto everywhere = [&](double near, double reach) {
@@ -211,12 +214,15 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
 }  // namespace
 
 CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segments)
-    : scene_(scene), segments_(segments) {
+    : scene_(scene), hole_(*scene.hole), segments_(segments) {
+  const double m = hole_.scale;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Object& o = *scene.bodies[i].object;
-    bodies_.push_back({static_cast<int>(i), hole_world_line(o, *scene.scene->black_hole),
-                       origin_radius(o.shape, o.scale) * (1 + 1e-9),
-                       (o.rotation * Mat3::diagonal(o.scale)).inverse()});
+    // (R S)^-1 M, not (R S / M)^-1, whose determinant (M^-3) is no double for M far from 1.
+    bodies_.push_back(
+        {static_cast<int>(i), hole_world_line(hole_, o),
+         origin_radius(o.shape, o.scale) / m * (1 + 1e-9),
+         (o.rotation * Mat3::diagonal(o.scale)).inverse() * Mat3::diagonal({m, m, m})});
   }
 }
 
@@ -274,19 +280,20 @@ bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
 }
 
 Vec3 CurvedBodies::Body::shape_point(const WorldShapeMap& world, const Vec4& event,
-                                     const Vec3& hole, const HoleWorldLineState* known) const {
-  if (std::holds_alternative<HoleWorldLine::Straight>(line.path())) return world.shape_point(event);
+                                     const HoleView& hole, const HoleWorldLineState* known) const {
+  if (std::holds_alternative<HoleWorldLine::Straight>(line.path()))
+    return world.shape_point(in_world(hole, event));
   // Its rest frame's coordinates of a point simultaneous in W with its origin at offset d:
   // d stretched by gamma along its velocity.
   const HoleWorldLineState state = known ? *known : line.at(event.t);
-  return to_shape * rest_offset_of(event.x - hole - state.position, state.velocity);
+  return to_shape * rest_offset_of(event.x - state.position, state.velocity);
 }
 
 bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, double from,
                            double limit, Found& best) const {
   // A ray straight through the hole's centre (b = 0) has no plane; it does not see bodies.
   if (bodies_.empty() || !(path.impact > 0) || !(limit > from)) return false;
-  const double m = start.mass;
+  const double m = HoleView::mass;
   const PathEvents events(start, path);
   const Vec3 n = cross(path.e1, path.e2);
   // The smallest radius the path reaches: the start's or the periapsis for a ray outside the
@@ -313,7 +320,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
     const double span = step * std::sqrt(0.25 / kChordError);
     const double span_margin = m > 0 ? 0.375 * m * path.impact * span * span / r_min : 0.0;
     const auto shape_of = [&](const Vec4& e, const HoleWorldLineState* state = nullptr) {
-      return body.shape_point(scene_.world_maps[body.index], e, start.centre, state);
+      return body.shape_point(scene_.world_maps[body.index], e, hole_, state);
     };
     // A geodesic's chords are timed only once they come near where it ever is.
     const bool straight = std::holds_alternative<HoleWorldLine::Straight>(body.line.path());
@@ -326,7 +333,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
             windows.delta >= kPi ? 0.0 : windows.centre[w] - windows.delta + kTwoPi * winding;
         double hi =
             windows.delta >= kPi ? best_phi : windows.centre[w] + windows.delta + kTwoPi * winding;
-        if (lo >= best_phi) continue;
+        if (!(lo < best_phi)) continue;  // (a NaN window is past too)
         past = false;
         lo = std::max(lo, from), hi = std::min(hi, best_phi);
         if (!(lo < hi)) continue;
@@ -361,15 +368,13 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
           double acceleration = 0;
           const auto may_meet = [&](double phi_b, double r_b, Vec4& b, double margin) {
             bool b_timed = timed_at_once;
-            if (body.may_meet_in_space(a.x - start.centre, b.x - start.centre, margin)) {
+            if (body.may_meet_in_space(a.x, b.x, margin)) {
               if (!straight) {
                 if (!a_timed) a.t = events.time(phi_a, r_a), state_a = body.line.at(a.t);
                 b.t = events.time(phi_b, r_b), state_b = body.line.at(b.t);
                 a_timed = b_timed = true;
               }
-              if (body.may_meet_in_time({a.t, a.x - start.centre}, {b.t, b.x - start.centre},
-                                        state_a, state_b, margin, acceleration))
-                return true;
+              if (body.may_meet_in_time(a, b, state_a, state_b, margin, acceleration)) return true;
             }
             phi_a = phi_b, a = b, r_a = r_b, a_timed = b_timed, shape_known = false;
             state_a = state_b;
@@ -413,7 +418,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
             const double side_a = surface.at(shape_a);
             // The path's angle at the chord's point (the angle does not grow linearly along
             // a chord: a long chord, far from a light hole, would miss the body there).
-            const Vec3 chord_at = a.x + (b.x - a.x) * chord->s - start.centre;
+            const Vec3 chord_at = a.x + (b.x - a.x) * chord->s;
             double phi_c = std::atan2(dot(chord_at, path.e2), dot(chord_at, path.e1));
             phi_c += kTwoPi * std::round((0.5 * (phi_a + phi_b) - phi_c) / kTwoPi);
             phi_c = std::clamp(phi_c, phi_a, phi_b);
@@ -424,7 +429,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
               std::uintmax_t iterations = 100;
               const auto [x0, x1] = boost::math::tools::toms748_solve(
                   side, phi_a, other, side_a, side_other,
-                  boost::math::tools::eps_tolerance<double>(), iterations);
+                  boost::math::tools::eps_tolerance<double>(), iterations, MathPolicy());
               phi = (x0 + x1) / 2;
             }
             // else: a grazing hit, within the chord error of the path; the chord's point stands.
@@ -452,14 +457,14 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
 
 bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, double limit,
                              CurvedRay& ray) const {
-  const PathStart start{hole.centre, hole.mass, hole.camera_radius, scene_.observation_event.t};
+  const PathStart start{hole.camera_radius, scene_.observation_event.t / hole.scale};
   Found best;
   if (!nearest(start, path, 0, limit, best)) return false;
   const double m = hole.mass;
   const Body& body = bodies_[best.body];
   ray.end = CurvedRayEnd::kBody;
   ray.phi = best.phi;
-  ray.event = best.event;
+  ray.event = in_world(hole, best.event);
   ray.hit = Hit{};
   ray.hit.body = best.body;
   ray.hit.s = best.phi;
@@ -468,13 +473,13 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   // The body's clock (its origin's) and velocity when it emitted.
   const HoleWorldLineState state = body.line.at(best.event.t);
   ray.hit.velocity = state.velocity;
-  ray.hit.proper_time = state.proper_time;
+  ray.hit.proper_time = state.proper_time * hole.scale;
   // The shift: the energy the point measures for the photon, against the camera's. In the
   // static observer's frame at the point (radial axis rhat, W's axes), the photon has energy
   // 1 / sqrt(f) and travels along nhat (opposite to the backward ray), and the point moves with
   // the velocity w its origin has against the static observer there (a body's points share
   // it: docs/design/black-hole.md, "Bodies"): it measures gamma_w (1 - nhat . w) / sqrt(f).
-  const Vec3 x = best.event.x - hole.centre;
+  const Vec3& x = best.event.x;
   const double r = length(x), f = 1 - 2 * m / r;
   const Vec3 rhat = x / r;
   const Vec3 that = cross(cross(path.e1, path.e2), rhat);  // the direction of growing phi
@@ -491,9 +496,9 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
 }
 
 bool CurvedBodies::occluded(const CurvedShadowRay& shadow) const {
-  const double m = scene_.hole->mass;
-  const Vec3& centre = scene_.hole->centre;
-  const PathStart start{centre, m, length(shadow.origin.x - centre), shadow.origin.t};
+  const double m = hole_.mass;
+  const PathStart start{length((shadow.origin.x - hole_.centre) / hole_.scale),
+                        shadow.origin.t / hole_.scale};
   CurvedPath path;
   path.e1 = shadow.e1;
   path.e2 = shadow.e2;

@@ -32,10 +32,9 @@ class CurvedBodies : public CurvedShadowQuery {
   // The largest distance of a chord from the path, in units of the radius of the body it tests.
   static constexpr double kChordError = 1e-5;
 
-  // Where a path starts: the hole's centre and mass, and the start's radius and W time.
+  // Where a path starts: its radius and W time, in units of the hole's mass (hole_view.hpp).
   struct PathStart {
-    Vec3 centre;
-    double mass = 0, radius = 0, time = 0;
+    double radius = 0, time = 0;
   };
 
   // The chords meet the bodies through `segments` (the ray tracer's, or DirectBodySegments); both
@@ -52,8 +51,9 @@ class CurvedBodies : public CurvedShadowQuery {
 
  private:
   // The body a path meets first between swept angles `from` and `limit`: its index, the angle,
-  // the event and shape point met, the chord's direction there (shape coordinates), the
-  // triangle, and whether the path had passed its turning point.
+  // the event (relative to the hole, in units of its mass) and shape point met, the chord's
+  // direction there (shape coordinates), the triangle, and whether the path had passed its turning
+  // point.
   struct Found {
     int body = -1;
     double phi = 0;
@@ -65,11 +65,12 @@ class CurvedBodies : public CurvedShadowQuery {
   bool nearest(const PathStart& start, const CurvedPath& path, double from, double limit,
                Found& found) const;
 
+  // Its lengths and times in units of the hole's mass, as the paths'.
   struct Body {
     int index = 0;
     HoleWorldLine line;  // of its origin
     double radius = 0;   // of its ball about its origin, in its rest frame (holds it in W too)
-    Mat3 to_shape;       // its rest frame's axes to its shape's coordinates: (R S)^-1
+    Mat3 to_shape;       // its rest frame's axes to its shape's coordinates: M (R S)^-1
     // Whether the chord between points a and b (relative to the hole) can come within the
     // body's radius of where its origin ever is (its orbit's plane, its line of fall): a test
     // before the chord is timed. Always, for a straight line, whose windows are tight. Both
@@ -84,10 +85,11 @@ class CurvedBodies : public CurvedShadowQuery {
                           double& acceleration) const;
     // Where the body is at the event's time, in its shape's coordinates: by its resolved
     // (affine) map on a straight line, by its state then on a geodesic (`state`, if known).
-    Vec3 shape_point(const WorldShapeMap& world, const Vec4& event, const Vec3& hole,
+    Vec3 shape_point(const WorldShapeMap& world, const Vec4& event, const HoleView& hole,
                      const HoleWorldLineState* state = nullptr) const;
   };
   const ResolvedScene& scene_;
+  const HoleView& hole_;
   const BodySegments& segments_;
   std::vector<Body> bodies_;
 };

@@ -20,7 +20,8 @@ class CurvedBodies;
 
 // A camera ray's path about the hole: in the plane of the hole, the camera (along e1) and the
 // look direction (toward e2), its position after sweeping phi is
-// centre + r(phi) (cos(phi) e1 + sin(phi) e2), r(phi) = radius_after_angle(sweep, phi).
+// centre + M r(phi) (cos(phi) e1 + sin(phi) e2), r(phi) = radius_after_angle(sweep, phi): its
+// lengths (r, the impact parameter) are in units of M (hole_view.hpp).
 struct CurvedPath {
   Vec3 e1, e2;
   double impact = 0;
@@ -51,7 +52,7 @@ struct CurvedRay {
   // factor, (p . u_camera) / (p . u_emitter). 0 at the horizon.
   double shift = 0;
   Vec3 sky_direction;      // kSky: the look direction in the sky's pattern coordinates
-  double disk_radius = 0;  // kDisk: the Schwarzschild r where the ray meets the disk
+  double disk_radius = 0;  // kDisk: the Schwarzschild r / M where the ray meets the disk
   Hit hit;                 // kBody: the body and the point met (its s is phi)
   Vec4 event;              // kBody: the event met, in W
   // kBody: the direction in which the light leaves the point toward the camera, and the

@@ -5,21 +5,39 @@
 #include <limits>
 
 #include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/physics/schwarzschild_geodesics.hpp"
 
 namespace lightcone {
+namespace {
+
+// A point's offset from the hole in units of M, and its length (std::hypot's: a distance of
+// more than 1e154 M, a small hole far away, has no finite square).
+Vec3 offset_in_mass(const HoleView& hole, const Vec3& x) {
+  return (x - hole.centre) / hole.scale;
+}
+double radius_of(const Vec3& offset) {
+  return std::hypot(offset.x, offset.y, offset.z);
+}
+
+}  // namespace
 
 std::optional<HoleView> hole_view(const Scene& scene) {
   if (!scene.black_hole) return std::nullopt;
   const BlackHole& hole = *scene.black_hole;
   HoleView v;
-  v.mass = hole.mass;
+  v.scale = hole.mass;
   v.centre = hole.position;
-  const Vec3 from_hole = scene.camera.world_line.position - hole.position;
-  v.camera_radius = length(from_hole);
+  const Vec3 from_hole = offset_in_mass(v, scene.camera.world_line.position);
+  v.camera_radius = radius_of(from_hole);
   v.outward = from_hole / v.camera_radius;
   v.falling = falling_camera(scene.camera.motion);
-  if (v.falling) v.camera_radius = v.falling->radius;
-  v.camera_lapse = std::sqrt(std::max(0.0, 1 - 2 * hole.mass / v.camera_radius));
+  if (v.falling) {
+    // Its energy and dr/dtau per unit mass are numbers; its radius is in W's units.
+    v.falling->mass = v.mass;
+    v.falling->radius /= v.scale;
+    v.camera_radius = v.falling->radius;
+  }
+  v.camera_lapse = std::sqrt(std::max(0.0, 1 - 2 * v.mass / v.camera_radius));
   if (!camera_inside_horizon(scene.camera.motion)) {
     // The static observer's route, which the raster renderer takes (a falling camera's velocity
     // against it is its world-line's, outside the horizon).
@@ -38,8 +56,39 @@ std::optional<HoleView> hole_view(const Scene& scene) {
   v.world_to_sky = boost(scene.sky.velocity);
   v.to_pattern = scene.sky.rotation.transposed();
   v.sky_rapidity = rapidity(scene.sky.velocity);
-  v.disk = hole.disk;
+  if (hole.disk) {
+    v.disk = hole.disk;
+    v.disk->inner /= v.scale;
+    v.disk->outer /= v.scale;
+  }
   return v;
+}
+
+Vec4 in_hole_units(const HoleView& hole, const Vec4& world) {
+  return {world.t / hole.scale, offset_in_mass(hole, world.x)};
+}
+
+Vec4 in_world(const HoleView& hole, const Vec4& near) {
+  return {near.t * hole.scale, hole.centre + near.x * hole.scale};
+}
+
+HoleWorldLine hole_world_line(const HoleView& hole, const WorldLine& w) {
+  return HoleWorldLine::straight(hole.mass, w.time / hole.scale, offset_in_mass(hole, w.position),
+                                 w.velocity, w.proper_time / hole.scale);
+}
+
+HoleWorldLine hole_world_line(const HoleView& hole, const Object& object) {
+  if (!object.motion.geodesic) return hole_world_line(hole, object.world_line);
+  const HoleGeodesic& g = *object.motion.geodesic;
+  const double m = hole.scale;
+  if (const auto* orbit = std::get_if<HoleOrbit>(&g.path))
+    return HoleWorldLine::orbit(hole.mass, orbit->radius / m, orbit->axis_x, orbit->axis_y,
+                                orbit->phase);
+  const HoleFall& fall = std::get<HoleFall>(g.path);
+  const RadialFall path = std::isinf(fall.from)
+                              ? RadialFall::from_infinity(hole.mass, fall.reference / m)
+                              : RadialFall::from_rest(hole.mass, fall.from / m);
+  return HoleWorldLine::fall(path, fall.direction, fall.time / m);
 }
 
 double camera_photon_energy(const HoleView& hole, const Vec4& in_static) {
@@ -100,18 +149,18 @@ HoleDepth line_depth(const HoleView& hole, const HoleWorldLine& line, double rea
 }  // namespace
 
 HoleDepth object_depth(const HoleView& hole, const Object& object) {
-  return line_depth(hole, hole_world_line(object, BlackHole{hole.centre, hole.mass, std::nullopt}),
-                    origin_radius(object.shape, object.scale));
+  return line_depth(hole, hole_world_line(hole, object),
+                    origin_radius(object.shape, object.scale) / hole.scale);
 }
 
 HoleDepth light_depth(const HoleView& hole, const Light& light) {
   const WorldLine& w = light.world_line;
   if (std::holds_alternative<DirectionalLight>(light.kind)) return {0, rapidity(w.velocity)};
   const double m = hole.mass;
-  const HoleWorldLine line =
-      HoleWorldLine::straight(m, w.time, w.position - hole.centre, w.velocity, 0);
+  const HoleWorldLine line = hole_world_line(hole, w);
   double reach = 0;
-  if (const auto* sphere = std::get_if<SphereLight>(&light.kind)) reach = sphere->radius;
+  if (const auto* sphere = std::get_if<SphereLight>(&light.kind))
+    reach = sphere->radius / hole.scale;
   const double nearest = std::max(line.nearest() - reach, 2 * m * (1 + 1e-6));
   return {0.5 * std::log1p(-2 * m / nearest),
           std::atanh(std::min(line.max_local_speed(), 1 - 1e-16))};
@@ -119,8 +168,8 @@ HoleDepth light_depth(const HoleView& hole, const Light& light) {
 
 LogShiftRange body_log_shift_range(const HoleView& hole, const Object& object) {
   const double m = hole.mass;
-  const HoleWorldLine line = hole_world_line(object, BlackHole{hole.centre, m, std::nullopt});
-  const double reach = origin_radius(object.shape, object.scale);
+  const HoleWorldLine line = hole_world_line(hole, object);
+  const double reach = origin_radius(object.shape, object.scale) / hole.scale;
   const double farthest = line.farthest() + reach;
   const HoleDepth depth = line_depth(hole, line, reach);
   const double far_lapse = std::isinf(farthest) ? 0.0 : 0.5 * std::log1p(-2 * m / farthest);

@@ -5,23 +5,30 @@
 // the static observer at its event, whose axes are W's (its radial axis is the unit vector from
 // the hole to the camera). Far away the static observers are W itself, so the sky's rest frame
 // is reached from W as in flat space.
+//
+// Lengths and times near the hole are kept in units of its mass M (G = c = 1 leave no other
+// length), so that the kernels see every scene that differs only in scale alike, whatever M is
+// (docs/design/black-hole.md, "Scale"): a position relative to the hole, or a W time, divided by
+// `scale` is one here, and what is handed back to W is multiplied by it.
 #pragma once
 
 #include <optional>
 
 #include "lightcone/color/doppler_table.hpp"
+#include "lightcone/physics/hole_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
 
 struct HoleView {
-  double mass = 0;
-  Vec3 centre;                 // in W
-  double camera_radius = 0;    // Schwarzschild r of the camera, > 2M unless it is falling
-  Vec3 outward;                // unit, from the hole toward the camera
-  double camera_lapse = 1;     // sqrt(1 - 2M / r) at the camera
-  double camera_rapidity = 0;  // of the camera relative to the static observer there
+  static constexpr double mass = 1;  // in its own units
+  double scale = 1;                  // M in W's units
+  Vec3 centre;                       // in W
+  double camera_radius = 0;          // Schwarzschild r of the camera, > 2 unless it is falling
+  Vec3 outward;                      // unit, from the hole toward the camera
+  double camera_lapse = 1;           // sqrt(1 - 2M / r) at the camera
+  double camera_rapidity = 0;        // of the camera relative to the static observer there
   // A camera on a radial fall: the tracer finds its rays in its own frame
   // (physics/radial_observer.hpp), at and inside the horizon too, where there is no static
   // observer (camera_lapse 0, no rapidity; trace_to_static, which the raster renderer reads
@@ -29,14 +36,23 @@ struct HoleView {
   std::optional<RadialObserver> falling;
   // The range of ln(camera_photon_energy) over the rays that can bring the camera light.
   double camera_log_energy_lo = 0, camera_log_energy_hi = 0;
-  Mat4 trace_to_static;     // F to the static observer's orthonormal frame (Lorentz)
-  Mat4 world_to_sky;        // W (far away) to the sky's rest frame (Lorentz)
-  Mat3 to_pattern;          // the sky's rest frame to its pattern coordinates
-  double sky_rapidity = 0;  // of the sky relative to W
-  std::optional<AccretionDisk> disk;
+  Mat4 trace_to_static;               // F to the static observer's orthonormal frame (Lorentz)
+  Mat4 world_to_sky;                  // W (far away) to the sky's rest frame (Lorentz)
+  Mat3 to_pattern;                    // the sky's rest frame to its pattern coordinates
+  double sky_rapidity = 0;            // of the sky relative to W
+  std::optional<AccretionDisk> disk;  // its radii in units of M
 };
 
 std::optional<HoleView> hole_view(const Scene& scene);
+
+// An event of W relative to the hole, in units of M, and back.
+Vec4 in_hole_units(const HoleView& hole, const Vec4& world);
+Vec4 in_world(const HoleView& hole, const Vec4& near);
+
+// The world-line of an object's origin about the hole, or of a straight coordinate line
+// position + velocity (t - time) (a light's), in units of M.
+HoleWorldLine hole_world_line(const HoleView& hole, const Object& object);
+HoleWorldLine hole_world_line(const HoleView& hole, const WorldLine& line);
 
 // The energy the camera measures for a photon it receives along look direction u (unit, in its
 // rest frame F), in units of the photon's conserved energy (what a static observer far away

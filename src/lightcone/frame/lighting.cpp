@@ -120,8 +120,7 @@ Lighting::Lighting(const ResolvedScene& scene, const ShadowQuery* shadows,
     const WorldLine& line = light.world_line;
     if (scene.hole && !std::holds_alternative<DirectionalLight>(light.kind))
       // Always the exact delay, along the curved ray.
-      r.near_hole = HoleWorldLine::straight(scene.hole->mass, line.time,
-                                            line.position - scene.hole->centre, line.velocity, 0);
+      r.near_hole = hole_world_line(*scene.hole, line);
     r.fixed_event = fixed_emission(scene, light);
     lights_.push_back(std::move(r));
   }
@@ -311,8 +310,10 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   shadow.reset();
   const Light& light = *rl.light;
   const RenderSettings& settings = scene_->scene->render;
+  // The legs are solved in units of the hole's mass (hole_view.hpp); their distance is W's.
   const HoleView& hole = *scene_->hole;
-  const Vec3 receiver = surface_world.x - hole.centre;
+  const Vec4 surface = in_hole_units(hole, surface_world);
+  const Vec3& receiver = surface.x;
   const auto shadow_along = [&](const HoleLegPath& path, double near, double far) {
     if (settings.shadows && curved_shadows_)
       shadow =
@@ -346,11 +347,11 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   double intensity = light.intensity;
   const auto* sphere = std::get_if<SphereLight>(&light.kind);
   if (sphere) rest_offset = sphere_point(light_sample) * sphere->radius;
-  const Vec3 offset = contracted_offset(rest_offset, light.world_line.velocity);
+  const Vec3 offset = contracted_offset(rest_offset, light.world_line.velocity) / hole.scale;
   // The light that reaches the surface event left at t_e with t_s - t_e the coordinate time of
   // the direct ray from where the light then was: exact for a light at rest; on a moving line
   // the root of that equation (physics/emission_root.hpp).
-  HoleWorldLineState state = line.at(surface_world.t);
+  HoleWorldLineState state = line.at(surface.t);
   auto leg = hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
                             surface_velocity, order);
   if (!leg) return false;
@@ -362,14 +363,15 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
     };
     const auto late = [&](double t) {
       const auto l = leg_at(t);
-      return l ? t + l->time - surface_world.t : std::numeric_limits<double>::quiet_NaN();
+      return l ? t + l->time - surface.t : std::numeric_limits<double>::quiet_NaN();
     };
-    const auto root = emission_time_root(late, surface_world.t, surface_world.t, leg->time);
+    const auto root = emission_time_root(late, surface.t, surface.t, leg->time);
     if (!root) return false;
     const double t_e = *root;
     leg = leg_at(t_e);
     if (!leg) return false;
   }
+  leg->leg.distance *= hole.scale;
   out.direction_to_light = -leg->leg.direction;
   out.doppler = leg->leg.doppler;
   const double cos_i = dot(normal, out.direction_to_light);

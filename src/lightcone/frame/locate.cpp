@@ -99,11 +99,13 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
                                                     const HoleWorldLine& line,
                                                     const Vec3& rest_point, int order,
                                                     std::optional<double> emission_time_guess) {
-  const double now = camera.time;
+  // Solved in units of the hole's mass, as `line` is; the answers' times and position are W's.
+  const double m = hole.scale, now = camera.time / m;
+  const Vec3 rest = rest_point / m;
   PointState point;
   double r_e = 0;
   const auto ray_at = [&](double t) {
-    point = body_point_at(line, rest_point, t);
+    point = body_point_at(line, rest, t);
     r_e = length(point.position);
     return r_e > 2 * hole.mass ? hole_image_ray(hole, r_e, point.position / r_e, order)
                                : std::nullopt;
@@ -125,12 +127,12 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
     ray = ray_at(now);
     if (!ray) return std::nullopt;
     t_e = now - ray->lens.time;
-    point = body_point_at(line, rest_point, t_e);  // (its clock then)
+    point = body_point_at(line, rest, t_e);  // (its clock then)
   } else {
     // From the guess (or the camera's time); a part of a body that has fallen within the
     // horizon by the camera's time is still seen from before it crossed.
     const double start =
-        emission_time_guess && *emission_time_guess < now ? *emission_time_guess : now;
+        emission_time_guess && *emission_time_guess / m < now ? *emission_time_guess / m : now;
     const auto root = emission_time_root(late, now, start, late(start));
     if (!root) return std::nullopt;
     t_e = *root;
@@ -139,9 +141,9 @@ std::optional<HolePointImage> hole_body_point_image(const HoleView& hole, const 
   }
   HolePointImage out;
   out.direction = aberrate_into_moving_frame(ray->static_direction, camera.velocity);
-  out.emission_time = t_e;
-  out.emission_position = hole.centre + point.position;
-  out.proper_time = point.proper_time;
+  out.emission_time = t_e * m;
+  out.emission_position = hole.centre + point.position * m;
+  out.proper_time = point.proper_time * m;
   out.to_camera = photon_direction_at_point(hole, *ray, r_e);
   out.local_velocity = point.local_velocity;
   out.shift = camera_photon_energy(hole, out.direction) /
@@ -197,7 +199,7 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
   std::optional<HoleWorldLine> line;
   Vec3 rest_point;
   if (object) {
-    line = hole_world_line(*object, *scene.black_hole);
+    line = hole_world_line(hole, *object);
     rest_point = object->rotation * component_mul(object->scale, query.value);
   }
   LocateResult result;
@@ -221,13 +223,13 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
       out.emission_proper_time = image->proper_time;
       out.shift = image->shift;
     } else {
-      const Vec3 from_hole = query.value - hole.centre;
-      r_e = length(from_hole);
+      const Vec3 from_hole = (query.value - hole.centre) / hole.scale;
+      r_e = std::hypot(from_hole.x, from_hole.y, from_hole.z);
       if (!(r_e > 2 * hole.mass)) continue;
       ray = hole_image_ray(hole, r_e, from_hole / r_e, order);
       if (!ray) continue;
       out.direction = aberrate_into_moving_frame(ray->static_direction, beta);
-      out.emission_time = now - ray->lens.time;
+      out.emission_time = now - ray->lens.time * hole.scale;
       out.emission_position = query.value;
       out.shift = camera_photon_energy(hole, out.direction) /
                   emitter_photon_energy(hole, photon_direction_at_point(hole, *ray, r_e), r_e, {});

@@ -68,20 +68,21 @@ std::vector<BodyOutOfView> bodies_out_of_view(const Scene& scene);
 
 // Near a black hole (the camera outside the horizon): the image of order k (0, 1, 2, ...) of a
 // point of a body, `rest_point` its offset from the body's origin in the body's rest frame
-// (W's axes: rotation and scale applied), on the body's world-line `line`: the emission event
+// (W's axes: rotation and scale applied), on the body's world-line `line` (in units of the
+// hole's mass: hole_world_line(hole, object), hole_view.hpp): the emission event
 // at which light from where the point then is reaches the camera at its time along that
 // order's exact ray, t_cam - t_e - T_k(x(t_e)) = 0 (strictly decreasing in t_e; bracketed and
 // solved with TOMS 748), with its look direction in the camera's frame, shift and clock. None
 // where the point is within the horizon or has no image of that order. locate's --object answers
 // and the raster renderer's vertices near a hole both come from here; the renderer's
-// `emission_time_guess` (its neighbours') starts the bracket near the root.
+// `emission_time_guess` (its neighbours', a W time) starts the bracket near the root.
 struct HoleView;
 struct HolePointImage {
-  Vec3 direction;  // look direction, camera rest frame
-  double emission_time = 0;
-  Vec3 emission_position;  // W
-  double proper_time = 0;  // the body's clock (its origin's) then
-  double shift = 1;        // g = nu_camera / nu_emitter
+  Vec3 direction;            // look direction, camera rest frame
+  double emission_time = 0;  // W
+  Vec3 emission_position;    // W
+  double proper_time = 0;    // the body's clock (its origin's) then
+  double shift = 1;          // g = nu_camera / nu_emitter
   // In the static observer's frame at the emission event: the direction the light leaves in
   // toward the camera, and the body's velocity.
   Vec3 to_camera, local_velocity;

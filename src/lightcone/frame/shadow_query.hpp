@@ -25,7 +25,7 @@ struct ShadowRay {
 struct CurvedShadowRay {
   Vec4 origin;  // the surface event, in W
   Vec3 e1, e2;
-  double impact = 0;
+  double impact = 0;     // in units of M
   bool outward = false;  // r grows at the surface along the path
   double sweep_near = 0, sweep_far = 0;
 };

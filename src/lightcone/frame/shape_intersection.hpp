@@ -25,8 +25,13 @@ struct ShapeRay {
 
 // The entry and exit parameters of a ray through a sphere or a box (false if it misses).
 inline bool sphere_span(const Sphere& sphere, const ShapeRay& ray, double& in, double& out) {
-  const double a = dot(ray.direction, ray.direction), b = dot(ray.origin, ray.direction);
-  const double c = dot(ray.origin, ray.origin) - sphere.radius * sphere.radius;
+  // In units of the radius, which leave the parameters as they are: the discriminant goes as the
+  // fourth power of the lengths, which for a sphere of 1e100 (or 1e-100) units is no double.
+  const double unit = sphere.radius > 0 ? 1 / sphere.radius : 1.0;
+  const Vec3 o = ray.origin * unit, d = ray.direction * unit;
+  const double r = sphere.radius * unit;  // 1, or 0 for a point
+  const double a = dot(d, d), b = dot(o, d);
+  const double c = dot(o, o) - r * r;
   const double disc = b * b - a * c;
   if (disc < 0 || a == 0) return false;
   const double q = -(b + std::copysign(std::sqrt(disc), b));

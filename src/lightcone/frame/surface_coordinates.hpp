@@ -50,9 +50,11 @@ inline std::array<double, 2> plane_uv(const Plane& plane, const Vec3& p) {
 // are put exactly on the face, so that procedural patterns (a checker boundary at the face) do
 // not flip with rounding.
 inline void analytic_surface(const Shape& shape, Hit& hit) {
-  if (std::holds_alternative<Sphere>(shape)) {
-    hit.uv = sphere_uv(hit.shape_point);
-    hit.shape_normal = hit.shape_point;
+  if (const auto* sphere = std::get_if<Sphere>(&shape)) {
+    // In units of the radius: the point's square need not be a double.
+    const Vec3 n = hit.shape_point / sphere->radius;
+    hit.uv = sphere_uv(n);
+    hit.shape_normal = n;
   } else if (const auto* box = std::get_if<Box>(&shape)) {
     const int axis = box_face_axis(*box, hit.shape_point);
     hit.shape_point[axis] = std::copysign(box->size[axis] * 0.5, hit.shape_point[axis]);

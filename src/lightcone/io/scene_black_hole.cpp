@@ -15,6 +15,42 @@
 #include "lightcone/physics/schwarzschild_motion.hpp"
 
 namespace lightcone::scene_io {
+namespace {
+
+// The renderers follow light near the hole in units of its mass M (frame/hole_view.hpp): a
+// point's distance from it must be a finite number of M, and a body's or a light's at most
+// kFarthestBody M, since the chords that meet them square such distances (a hole bends nothing
+// that far out in double precision).
+constexpr double kFarthestBody = 1e150;
+
+// A point's distance from the hole in units of M, from its offset.
+double distance_in_mass(const Vec3& offset, double mass) {
+  const Vec3 d = offset / mass;
+  return std::hypot(d.x, d.y, d.z);
+}
+
+// Why `whose` point (a body's or a light's, if `body`), `in_mass` M from the hole, cannot be
+// followed, if it cannot.
+std::optional<std::string> out_of_reach(std::string_view whose, double in_mass, double mass,
+                                        bool body) {
+  if (!std::isfinite(in_mass))
+    return fmt::format(
+        "{} distance from the black hole, in units of its mass M = {}, is not a "
+        "finite number: light near the hole is followed in units of M (give a "
+        "larger mass or a nearer position)",
+        whose, mass);
+  if (body && in_mass > kFarthestBody)
+    return fmt::format(
+        "{} distance from the black hole is {:.6g} M (M = {}): bodies and lights "
+        "are drawn within {:g} M of a hole (light near it is followed in units of "
+        "M, and the chords that meet them square such distances); that far out the "
+        "hole bends nothing in double precision: leave it out, or give a larger "
+        "mass",
+        whose, in_mass, mass, kFarthestBody);
+  return std::nullopt;
+}
+
+}  // namespace
 
 BlackHole SceneReader::black_hole(const Node& n) const {
   if (n.value->is_array())
@@ -94,8 +130,11 @@ void SceneReader::check_camera_near_hole(const Node& n) const {
   // observer's.
   const bool falls = m.value && m.value->contains("fall");
   if (m.value && !(falls && position.value)) return;
-  const double r = length(vec3(position) - hole_->position), horizon = 2 * hole_->mass;
-  if (!(r > horizon))
+  const double in_mass = distance_in_mass(vec3(position) - hole_->position, hole_->mass);
+  if (const auto why = out_of_reach("the camera's", in_mass, hole_->mass, false))
+    fail(position, *why);
+  const double r = in_mass * hole_->mass, horizon = 2 * hole_->mass;
+  if (!(in_mass > 2))
     fail(position,
          fmt::format("the camera is at r = {} from the black hole, inside its horizon r = 2M = {}: "
                      "{}",
@@ -158,6 +197,8 @@ HoleOrbit SceneReader::orbit(const Node& o, std::string_view noun) const {
                              "(in units of M) must be greater than 3 (and orbits inside 6M, the "
                              "ISCO, are unstable)",
                              r));
+  if (const auto why = out_of_reach(fmt::format("the {}'s", noun), r, mass, noun != "camera"))
+    fail(radius, *why);
   HoleOrbit orbit;
   orbit.radius = r * mass;
   if (!std::isfinite(orbit.radius))
@@ -196,7 +237,11 @@ HoleFall SceneReader::fall(const Node& n, const Node& f, std::string_view noun) 
   const auto position_key = [&] { return position.path(); };
   if (position.value) {
     at = vec3(position) - hole_->position;
-    at_r = length(*at);
+    const double in_mass = distance_in_mass(*at, mass);
+    if (const auto why =
+            out_of_reach(fmt::format("the {}'s", noun), in_mass, mass, noun != "camera"))
+      fail(position, *why);
+    at_r = in_mass * mass;
   }
   HoleFall fall;
   const Node from = member(f, "from");
@@ -217,6 +262,8 @@ HoleFall SceneReader::fall(const Node& n, const Node& f, std::string_view noun) 
       fail(from, fmt::format("{} is not outside the horizon, 2M: the radius (in units of M) where "
                              "the {} falls from rest must be greater than 2, or \"infinity\"",
                              r0, noun));
+    if (const auto why = out_of_reach(fmt::format("the {}'s", noun), r0, mass, noun != "camera"))
+      fail(from, *why);
     fall.from = r0 * mass;
     if (!std::isfinite(fall.from))
       fail(from, fmt::format("the radius {} M, with M = {}, is too large (not a finite number)", r0,
@@ -274,6 +321,9 @@ void SceneReader::check_line_near_hole(const Node& n, const WorldLine& line,
                                        std::string_view noun) const {
   const double mass = hole_->mass, horizon = 2 * mass;
   const Vec3 from_hole = line.position - hole_->position;
+  if (const auto why = out_of_reach(fmt::format("the {}'s", noun),
+                                    distance_in_mass(from_hole, mass), mass, true))
+    fail(member(n, "position"), *why);
   const LineSpeedPeak peak = peak_static_observer_speed(mass, from_hole, line.velocity);
   if (line.velocity == Vec3{}) {
     if (peak.reaches_horizon)

@@ -6,27 +6,42 @@
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
+
+#include "lightcone/physics/math_policy.hpp"
 
 namespace lightcone::carlson {
 namespace {
 
-// Boost's default policy promotes double to long double (the header says why not here).
-using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+// Boost's duplication runs until its arguments agree, which a NaN or an infinite one never does
+// (for a million steps, then an evaluation error): an integral of a NaN argument is NaN, and each
+// tends to 0 as one argument grows without bound. Whether `args` settle it so, and its value.
+bool settled(std::initializer_list<double> args, double& value) {
+  for (const double a : args)
+    if (std::isnan(a)) return value = std::numeric_limits<double>::quiet_NaN(), true;
+  for (const double a : args)
+    if (a == std::numeric_limits<double>::infinity()) return value = 0, true;
+  return false;
+}
 
 }  // namespace
 
 double rf(double x, double y, double z) {
-  return boost::math::ellint_rf(x, y, z, DoublePolicy());
+  double value;
+  return settled({x, y, z}, value) ? value : boost::math::ellint_rf(x, y, z, MathPolicy());
 }
 double rd(double x, double y, double z) {
-  return boost::math::ellint_rd(x, y, z, DoublePolicy());
+  double value;
+  return settled({x, y, z}, value) ? value : boost::math::ellint_rd(x, y, z, MathPolicy());
 }
 double rj(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p, DoublePolicy());
+  double value;
+  return settled({x, y, z, p}, value) ? value : boost::math::ellint_rj(x, y, z, p, MathPolicy());
 }
 double rc(double x, double y) {
-  return boost::math::ellint_rc(x, y, DoublePolicy());
+  double value;
+  return settled({x, y}, value) ? value : boost::math::ellint_rc(x, y, MathPolicy());
 }
 
 // Boost's algorithm for double (ellint_rf_imp: the duplication theorem until Q / 4^n < |A_n|,

@@ -11,8 +11,8 @@
 
 namespace lightcone::carlson {
 
-// Boost's R_F, R_D, R_J and R_C without its default promotion of double to long double (x87,
-// several times slower), which no caller's tolerance needs.
+// Boost's R_F, R_D, R_J and R_C in double precision, without exceptions (math_policy.hpp): NaN
+// for a NaN argument or one outside their domain, 0 (their limit) for an infinite one.
 double rf(double x, double y, double z);
 double rd(double x, double y, double z);
 double rj(double x, double y, double z, double p);

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "lightcone/physics/math_policy.hpp"
+
 namespace lightcone {
 
 // `late(t)`: as above; +infinity where the source's light never arrives (within a horizon), NaN
@@ -58,8 +60,9 @@ std::optional<double> emission_time_root(const Late& late, double t_receiver, do
     return std::isnan(value) ? 0.0 : value;
   };
   std::uintmax_t iterations = 200;
-  const auto [a, b] = boost::math::tools::toms748_solve(
-      checked, lo, hi, late_lo, late_hi, boost::math::tools::eps_tolerance<double>(), iterations);
+  const auto [a, b] = boost::math::tools::toms748_solve(checked, lo, hi, late_lo, late_hi,
+                                                        boost::math::tools::eps_tolerance<double>(),
+                                                        iterations, MathPolicy());
   if (failed) return std::nullopt;
   return (a + b) / 2;
 }

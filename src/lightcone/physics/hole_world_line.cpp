@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/physics/math_policy.hpp"
 #include "lightcone/physics/schwarzschild_motion.hpp"
 
 namespace lightcone {
@@ -52,8 +53,8 @@ HoleWorldLineState HoleWorldLine::at(double t) const {
       return clock_rate(m, s->position + s->velocity * (u - s->time), s->velocity);
     };
     const auto integral = [&](double from, double to) {
-      return boost::math::quadrature::gauss_kronrod<double, 21>::integrate(rate, from, to, 12,
-                                                                           1e-13);
+      return boost::math::quadrature::gauss_kronrod<double, 21, MathPolicy>::integrate(
+          rate, from, to, 12, 1e-13);
     };
     const double elapsed = t >= s->time ? integral(s->time, t) : -integral(t, s->time);
     const double r = length(x), f = 1 - 2 * m / r, v_r = dot(s->velocity, x) / r;

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "lightcone/physics/carlson_integrals.hpp"
+#include "lightcone/physics/math_policy.hpp"
 
 namespace lightcone {
 namespace {
@@ -203,15 +204,13 @@ double ray_time(const PhotonOrbit& o, double r_lo, double r_hi, bool inner, bool
 // ~ 0.1, so the rebuilt k_3' loses about 1e-15 and the phase no more (these are the first steps
 // of the arithmetic-geometric mean that Boost runs anyway, only started from the exact k').
 
-// Jacobi's functions, from Boost.Math in double: its default policy's promotion to long double
-// (x87, several times slower) is more than the tests' tolerances need.
-using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+// Jacobi's functions, from Boost.Math in double, without exceptions (math_policy.hpp).
 struct Jacobi {
   double sn, cn, dn;
 };
 Jacobi jacobi(double k, double x) {
   Jacobi j{};
-  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, DoublePolicy());
+  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, MathPolicy());
   return j;
 }
 // One Landen step up: from the functions of modulus k_1 (1 - k_1 = c_1) at x / (1 + k_1) to those

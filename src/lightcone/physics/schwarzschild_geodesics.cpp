@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <numbers>
 
+#include "lightcone/physics/math_policy.hpp"
+
 namespace lightcone {
 namespace {
 
@@ -19,7 +21,7 @@ double increasing_root(const G& g, double lo, double hi) {
   if (!(g_hi > 0)) return hi;
   std::uintmax_t iterations = 200;
   const auto [a, b] = boost::math::tools::toms748_solve(
-      g, lo, hi, g_lo, g_hi, boost::math::tools::eps_tolerance<double>(), iterations);
+      g, lo, hi, g_lo, g_hi, boost::math::tools::eps_tolerance<double>(), iterations, MathPolicy());
   return a + (b - a) / 2;
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "lightcone/physics/math_policy.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
 
 namespace lightcone {
@@ -70,7 +71,8 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
     const bool rising = start < hi;  // (the second stretch is solved from its upper end down)
     const auto [lo, up] = boost::math::tools::toms748_solve(
         miss, rising ? start : hi, rising ? hi : start, rising ? value_start : value_hi,
-        rising ? value_hi : value_start, boost::math::tools::eps_tolerance<double>(), iterations);
+        rising ? value_hi : value_start, boost::math::tools::eps_tolerance<double>(), iterations,
+        MathPolicy());
     alpha = (lo + up) / 2;
     return true;
   };

@@ -312,7 +312,7 @@ std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
                                                    const EmissionTable& emission,
                                                    const Lighting& lighting,
                                                    const TessellationLimits& limits) {
-  const BlackHole& hole = *scene.scene->black_hole;
+  const HoleView& hole = *scene.hole;
   std::vector<std::vector<float>> parts(bodies.size() * kRasterHoleOrders);
   parallel_for(std::size_t{0}, parts.size(), [&](std::size_t k) {
     const HoleBodiesPass::Body& body = bodies[k / kRasterHoleOrders];
@@ -328,7 +328,7 @@ std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
       lit.texture_albedo = &emission;
       lit.object = static_cast<std::size_t>(&object - scene.scene->objects.data());
     }
-    tessellate_hole_image(scene, object, hole_world_line(object, hole), *body.mesh,
+    tessellate_hole_image(scene, object, hole_world_line(hole, object), *body.mesh,
                           static_cast<int>(k % kRasterHoleOrders), limits, parts[k],
                           body.lit ? &lit : nullptr);
   });

@@ -55,7 +55,8 @@ struct HoleLitBody {
   std::size_t object = 0;
 };
 
-// Appends the triangles of image `order` of the body drawn with `mesh` on `line`. A triangle is
+// Appends the triangles of image `order` of the body drawn with `mesh` on `line` (in units of the
+// hole's mass: hole_world_line(hole, object), frame/hole_view.hpp). A triangle is
 // left out where a corner has no image of this order (inside the horizon) and where the body's
 // emission points wind round the line through the hole and the camera: such a triangle's image
 // wraps round the shadow (an Einstein ring) and has no straight-edged drawing.

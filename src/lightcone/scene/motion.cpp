@@ -175,13 +175,15 @@ WorldLine camera_observation(const Camera::Motion& motion) {
 
 double origin_radius(const Shape& shape, const Vec3& scale) {
   struct Visitor {
+    static double norm(const Vec3& v) { return std::hypot(v.x, v.y, v.z); }
     const Vec3& k;
     double operator()(const Sphere& s) const {
       return s.radius * std::max({std::abs(k.x), std::abs(k.y), std::abs(k.z)});
     }
-    double operator()(const Box& b) const { return length(component_mul(k, b.size * 0.5)); }
+    // (std::hypot: the square of a box's half-diagonal need not be a double.)
+    double operator()(const Box& b) const { return norm(component_mul(k, b.size * 0.5)); }
     double operator()(const Plane& p) const {
-      return length(component_mul(k, Vec3{p.size_x / 2, 0, p.size_z / 2}));
+      return norm(component_mul(k, Vec3{p.size_x / 2, 0, p.size_z / 2}));
     }
     double operator()(const MeshShape& m) const {
       double r = 0;

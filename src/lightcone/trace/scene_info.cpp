@@ -32,11 +32,12 @@ HoleInfo hole_info(const ResolvedScene& resolved, const Vec3& camera_velocity) {
   const HoleView& hole = *resolved.hole;
   const double m = hole.mass;
   HoleInfo h;
-  h.mass = m;
-  h.horizon = 2 * m;
-  h.photon_sphere = photon_sphere_radius(m);
-  h.isco = isco_radius(m);
-  h.camera_radius = hole.camera_radius;
+  // In W's units; the view's lengths are in units of the mass.
+  h.mass = hole.scale;
+  h.horizon = 2 * hole.scale;
+  h.photon_sphere = photon_sphere_radius(hole.scale);
+  h.isco = isco_radius(hole.scale);
+  h.camera_radius = hole.camera_radius * hole.scale;
   // Inside the horizon there is no static observer (NaN: printed as none).
   h.shadow_static_degrees = hole.camera_radius > 2 * m
                                 ? static_shadow_angle(m, hole.camera_radius) * kDegrees
