@@ -118,6 +118,25 @@ TEST(RequestRules, TheProgramShowsTheRulesMessageAndWritesNothing) {
   }
 }
 
+// The horizon rule holds at every mass the kernels take (they work in units of M): a point
+// outside the horizon of a hole of 1e-300 is located, one inside a hole of 1e300 refused.
+TEST(RequestRules, TheHorizonRuleIsScaleFree) {
+  for (const double mass : {1e-300, 1.0, 1e300}) {
+    SCOPED_TRACE(mass);
+    Scene scene;
+    scene.black_hole = BlackHole{};
+    scene.black_hole->mass = mass;
+    scene.black_hole->position = {mass, 0, 0};
+    LocateQuery query;
+    query.kind = LocateQuery::Kind::WorldPoint;
+    query.value = {mass, 2.5 * mass, 0};
+    EXPECT_EQ(locate_refused(scene, query), std::nullopt);
+    query.value = {mass, 1.5 * mass, 0};
+    EXPECT_NE(locate_refused(scene, query).value_or("").find("inside its horizon"),
+              std::string::npos);
+  }
+}
+
 // What the scene format's loader refuses, a scene changed in code is refused for by the same
 // limits: no renderer is handed a camera it cannot draw (0 samples gave an all-NaN picture).
 TEST(RequestRules, ASceneChangedInCodeIsHeldToTheCamerasLimits) {

@@ -70,14 +70,17 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
                    "locate does not answer for a camera inside the black hole's horizon yet");
   if (query.kind == LocateQuery::Kind::WorldPoint) {
     const BlackHole& hole = *scene.black_hole;
-    const double r = length(query.value - hole.position), horizon = 2 * hole.mass;
-    if (!(r > horizon))
+    // In units of M, as the kernels measure (the scene's units' squares overflow or underflow
+    // at the masses the kernels take, 1e-300 to 1e300).
+    const double r_in_m = length((query.value - hole.position) / hole.mass);
+    const double r = r_in_m * hole.mass, horizon = 2 * hole.mass;
+    if (!(r_in_m > 2))
       return refusal(
           scene, "black_hole",
           fmt::format("no light leaves the world point ({}, {}, {}): it is {} from the hole's "
                       "centre, {} its horizon r = 2M = {}",
-                      query.value.x, query.value.y, query.value.z, r,
-                      r == horizon ? "on" : "inside", horizon));
+                      query.value.x, query.value.y, query.value.z, r, r_in_m == 2 ? "on" : "inside",
+                      horizon));
   }
   return std::nullopt;
 }
