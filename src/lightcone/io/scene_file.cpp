@@ -54,12 +54,14 @@ Scene SceneReader::read(const json& document) {
   if (Node objects = member(root, "objects"); objects.value) {
     read_objects(objects, scene);
     if (camera_inside_horizon(scene.camera.motion) && !scene.objects.empty())
-      fail(
-          objects,
-          fmt::format("objects seen from inside the black hole's horizon are not drawn yet (the "
-                      "falling camera is at r = {:.6g} there, inside r = 2M = {}); this version "
-                      "draws the sky and the disk from there",
-                      length(scene.camera.world_line.position - hole_->position), 2 * hole_->mass));
+      fail(objects,
+           fmt::format("objects seen from inside the black hole's horizon are not drawn yet (the "
+                       "falling camera is at r = {:.6g} there, inside r = 2M = {}); this version "
+                       "draws the sky and the disk from there",
+                       // In units of M: the scene units' square underflows for a tiny hole.
+                       hole_->mass * length((scene.camera.world_line.position - hole_->position) /
+                                            hole_->mass),
+                       2 * hole_->mass));
   }
   if (Node lights = member(root, "lights"); lights.value) read_lights(lights, scene);
   if (Node sky_node = member(root, "sky"); sky_node.value) scene.sky = sky(sky_node);
