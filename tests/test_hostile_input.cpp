@@ -1,16 +1,19 @@
-// The hostile-input cases of animation and video, through the real `lightcone` command: each
-// gives a non-zero status or a correct result, and loses no file that was there before.
-// (Speed limits, mesh references and determinism have their own suites.)
+// The hostile-input cases of animation, video and the star catalogue, through the real
+// `lightcone` command: each gives a non-zero status or a correct result, and loses no file that
+// was there before. (Speed limits, mesh references and determinism have their own suites; the
+// Python module's boundary is python/tests/test_hostile_input.py.)
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/io/star_catalogue.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {
@@ -50,6 +53,43 @@ class HostileInput : public test::TempDirTest {
     return found;
   }
 };
+
+// The program reads its catalogue beside itself (data/): a copy of it whose catalogue is a FIFO,
+// a link to /dev/zero or a crafted file. The reader used to wait on the FIFO for ever and grow
+// without end on /dev/zero, heeding neither SIGINT nor SIGTERM, and to take B-V -1 or V -1e30 to
+// the render, which then blamed render.exposure for its non-finite picture.
+TEST_F(HostileInput, TheStarCatalogueIsReadOnlyWhenItIsARegularFileOfStars) {
+  const fs::path program = dir_ / "lightcone", catalogue = dir_ / "data" / kBrightCatalogueFile;
+  fs::copy_file(LIGHTCONE_BINARY, program);
+  fs::create_directories(catalogue.parent_path());
+  const std::string stars = quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes" / "stars.json");
+  const auto render = [&] {
+    // `timeout` stands for the user's patience: the old reader outlived it on the FIFO.
+    return run_command("timeout -s KILL 60 " + quoted(program) + " render " + stars + " -o " +
+                       quoted(dir_ / "sky.png") + small());
+  };
+  const auto expect_refused = [&](const std::string& says) {
+    const test::CommandResult r = render();
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(catalogue.string() + ": " + says), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("render.exposure"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "sky.png"));
+  };
+  ASSERT_EQ(::mkfifo(catalogue.c_str(), 0600), 0);
+  expect_refused("cannot read the star catalogue: it is not a regular file");
+  fs::remove(catalogue);
+  fs::create_symlink("/dev/zero", catalogue);
+  expect_refused("cannot read the star catalogue: it is not a regular file");
+  fs::remove(catalogue);
+  const CatalogueStar vega{{0, 1, 0}, 0.03f, 0.0f};
+  write_star_catalogue(catalogue, {vega, {{1, 0, 0}, 2.0f, -1.0f}});
+  expect_refused("star 1: B-V colour index -1 is outside");
+  write_star_catalogue(catalogue, {vega, {{1, 0, 0}, -1e30f, 0.5f}});
+  expect_refused("star 1: V magnitude -1e+30 is outside");
+  write_star_catalogue(catalogue, {vega});
+  const test::CommandResult fine = render();
+  EXPECT_EQ(fine.status, 0) << fine.err;
+}
 
 TEST_F(HostileInput, AVideoOnAFullDiskIsAbsentAndTheRunFails) {
   if (!have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
