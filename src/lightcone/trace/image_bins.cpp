@@ -40,12 +40,16 @@ struct BinnedRect {
   std::size_t cells() const { return std::size_t(a1 - a0 + 1) * std::size_t(c1 - c0 + 1); }
 };
 
-// The cells of a grid `count` cells wide over [-half, half] from lo to hi, clamped to it.
+// The cells of a grid `count` cells wide over [-half, half] from lo to hi, clamped to it: in
+// double before the cast, since a body far off the axis (near a hole of 1e300, say) has an edge
+// at infinity; an edge that is no number is taken as the grid's, so that the body is kept.
 std::pair<int, int> cell_range(double lo, double hi, double half, int count) {
-  const auto at = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor((x + half) / (2 * half) * count)), 0, count - 1);
+  const auto at = [&](double x, int unknown) {
+    const double cell = std::floor((x + half) / (2 * half) * count);
+    if (std::isnan(cell)) return unknown;
+    return static_cast<int>(std::clamp(cell, 0.0, static_cast<double>(count - 1)));
   };
-  return {at(lo), at(hi)};
+  return {at(lo, 0), at(hi, count - 1)};
 }
 
 // The point of box b nearest to p.
