@@ -16,6 +16,7 @@
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/test_support.hpp"
 
@@ -115,6 +116,30 @@ TEST(RequestRules, TheProgramShowsTheRulesMessageAndWritesNothing) {
       EXPECT_EQ(checked.status, 2);
       EXPECT_EQ(checked.err, message);
     }
+  }
+}
+
+// The names a render request takes are the library's too: the program refuses another with the
+// rule's message (the Python module too: python/tests/test_request_rules.py).
+TEST(RequestRules, TheRendererAndTessellationNamesAreTheLibrarys) {
+  for (const char* name : {"trace", "raster"}) EXPECT_EQ(renderer_refused(name), std::nullopt);
+  for (const char* name : {"cpu", "gpu", "auto"})
+    EXPECT_EQ(tessellation_refused(name), std::nullopt);
+  EXPECT_EQ(tessellation_named("cpu"), RasterTessellation::kCpu);
+  EXPECT_EQ(tessellation_named("gpu"), RasterTessellation::kGpu);
+  EXPECT_EQ(tessellation_named("auto"), RasterTessellation::kAuto);
+  const std::string scene = test::quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/terrell.json");
+  const fs::path out = test::fresh_temp_dir("request-rules-names") / "out.png";
+  const struct {
+    std::string arguments, message;
+  } cases[] = {{" --renderer bogus", *renderer_refused("bogus")},
+               {" --renderer raster --tessellation nope", *tessellation_refused("nope")}};
+  for (const auto& c : cases) {
+    const test::CommandResult r =
+        test::run_lightcone("render " + scene + " -o " + test::quoted(out) + c.arguments);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
   }
 }
 

@@ -187,10 +187,11 @@ def render(scene: Scene, samples: Optional[int] = None, *, renderer: str = "trac
     .partial["rgb"] holds the tiles finished (on the main thread; docs/python.md, "Ctrl-C")."""
     if not isinstance(scene, Scene):
         raise TypeError(f"render: scene must be a lightcone.Scene (from load), got {type(scene).__name__}")
-    if not isinstance(renderer, str) or renderer not in ("trace", "raster"):
-        raise ValueError(f"render: renderer must be 'trace' or 'raster', got {_shown(renderer)}")
-    if not isinstance(tessellation, str) or tessellation not in ("auto", "cpu", "gpu"):
-        raise ValueError(f"render: tessellation must be 'auto', 'cpu' or 'gpu', got {_shown(tessellation)}")
+    # Their values are the library's rule (renderer_refused, tessellation_refused): a SceneError
+    # with the program's message.
+    for name, value in (("renderer", renderer), ("tessellation", tessellation)):
+        if not isinstance(value, str):
+            raise TypeError(f"render: {name} must be a str, got {_shown(value)}")
     if samples is not None:
         if isinstance(samples, bool) or not isinstance(samples, (int, _np.integer)):
             raise TypeError(f"render: samples must be a whole number, got {_shown(samples)}")

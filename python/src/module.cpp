@@ -129,6 +129,8 @@ py::dict render(const Scene& scene, const std::string& renderer,
   options.seed = seed;
   options.cancel = &interrupted;
   for (const std::string& name : aovs) options.aovs.push_back(*aov_from_name(name));
+  throw_if_refused(renderer_refused(renderer));
+  throw_if_refused(tessellation_refused(tessellation));
   throw_if_refused(render_refused(scene, {.raster = renderer == "raster", .aovs = options.aovs}));
   Image image;
   double exposure = 0, seconds = 0;
@@ -146,9 +148,7 @@ py::dict render(const Scene& scene, const std::string& renderer,
     InterruptScope interrupt;
     if (renderer == "raster") {
       RasterStats stats;
-      const RasterTessellation mode = tessellation == "cpu"   ? RasterTessellation::kCpu
-                                      : tessellation == "gpu" ? RasterTessellation::kGpu
-                                                              : RasterTessellation::kAuto;
+      const RasterTessellation mode = tessellation_named(tessellation);
       py::gil_scoped_release unlocked;
       try {
         // Shadows near a black hole through the tracer's Embree scenes, as the CLI casts them.

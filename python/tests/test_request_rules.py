@@ -67,6 +67,22 @@ def test_output_variables_undefined_near_the_hole_are_refused(aov):
         lc.render(lc.load(path), aovs=[aov], progress=False)
 
 
+@pytest.mark.parametrize("option,request_", [
+    ("--renderer", {"renderer": "bogus"}),
+    ("--tessellation", {"renderer": "raster", "tessellation": "nope"}),
+])
+def test_renderer_and_tessellation_names_are_refused_as_the_program_refuses_them(
+        tmp_path, option, request_):
+    path = os.path.join(SOURCE, "scenes", "terrell.json")
+    args = [a for key, value in request_.items() for a in (f"--{key}", value)]
+    done = subprocess.run([BINARY, "render", path, "-o", str(tmp_path / "out.png"), *args],
+                          capture_output=True, text=True)
+    assert done.returncode == 2
+    with pytest.raises(lc.SceneError) as refused:
+        lc.render(lc.load(path), progress=False, **request_)
+    assert done.stderr == f"lightcone: {option}: {refused.value} (see --help)\n"
+
+
 @pytest.mark.parametrize("renderer", ["trace", "raster"])
 def test_the_raster_renderer_refuses_alike(tmp_path, renderer):
     case = next(c for c in CASES if c["name"] == "classical-hole")

@@ -383,7 +383,7 @@ int run_animate(const AnimateArgs& a) {
       if (raster) {
         try {
           RasterStats stats;
-          *image = render_raster(s, &stats, {}, a.seed, tessellation_mode(a.tessellation),
+          *image = render_raster(s, &stats, {}, a.seed, tessellation_named(a.tessellation),
                                  curved_body_shadows);
           image->exposure = stats.exposure;
         } catch (const GlUnavailable& e) {

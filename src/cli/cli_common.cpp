@@ -164,10 +164,10 @@ std::string partial_name(const std::string& path) {
   return partial.string();
 }
 
-RasterTessellation tessellation_mode(const std::string& name) {
-  return name == "cpu"   ? RasterTessellation::kCpu
-         : name == "gpu" ? RasterTessellation::kGpu
-                         : RasterTessellation::kAuto;
+CLI::Validator library_rule(std::optional<std::string> (*refused)(std::string_view),
+                            const std::string& names) {
+  return CLI::Validator([refused](std::string& value) { return refused(value).value_or(""); },
+                        names);
 }
 
 std::vector<double> parse_numbers(const std::string& option, const std::string& text,

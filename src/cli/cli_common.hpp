@@ -4,6 +4,7 @@
 
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <memory>
@@ -83,7 +84,10 @@ std::unique_ptr<tbb::global_control> thread_limit(int threads);
 // Where an interrupted render's image goes, beside its target: out.png -> out.partial.png.
 std::string partial_name(const std::string& path);
 
-RasterTessellation tessellation_mode(const std::string& name);
+// A CLI11 check of an option's value by one of the library's name rules (renderer_refused,
+// tessellation_refused): the option is refused with the library's message.
+CLI::Validator library_rule(std::optional<std::string> (*refused)(std::string_view),
+                            const std::string& names);
 
 // `count` comma-separated finite numbers (integers if `integers`), or an error that says so:
 // "OPTION TEXT: expected WHAT".

@@ -222,14 +222,14 @@ int run_view(const ViewArgs& a) {
     if (a.benchmark) {
       if (*a.benchmark < 1)
         throw InputError("--benchmark: the number of frames must be at least 1");
-      return run_viewer_benchmark(scene, *a.benchmark, tessellation_mode(a.tessellation),
+      return run_viewer_benchmark(scene, *a.benchmark, tessellation_named(a.tessellation),
                                   curved_body_shadows);
     }
     ViewerOptions options;
     options.scene_path = a.scene;
     options.split = a.split;
     options.time_scale = a.time_scale;
-    options.tessellation = tessellation_mode(a.tessellation);
+    options.tessellation = tessellation_named(a.tessellation);
     options.curved_shadows = curved_body_shadows;
     return run_viewer(scene, options);
   } catch (const GlUnavailable& e) {
@@ -284,12 +284,12 @@ int main(int argc, char** argv) {
       ->add_option("--renderer", render.renderer,
                    "trace (the exact ray tracer, the default) or raster (the real-time polygon "
                    "renderer, through OpenGL)")
-      ->check(CLI::IsMember({"trace", "raster"}));
+      ->check(library_rule(renderer_refused, "trace|raster"));
   render_cmd
       ->add_option("--tessellation", render.tessellation,
                    "raster: cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), "
                    "or auto (gpu on a hardware OpenGL 4 driver, else cpu; the default)")
-      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
+      ->check(library_rule(tessellation_refused, "cpu|gpu|auto"));
   render_cmd->add_option("--width", render.width, "Override camera.width");
   render_cmd->add_option("--height", render.height, "Override camera.height");
   render_cmd->add_option("--samples", render.samples, "Override camera.samples");
@@ -366,7 +366,7 @@ int main(int argc, char** argv) {
       ->add_option("--tessellation", view.tessellation,
                    "Cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), or auto "
                    "(gpu on a hardware OpenGL 4 driver, else cpu; the default)")
-      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
+      ->check(library_rule(tessellation_refused, "cpu|gpu|auto"));
   view_cmd->add_option("--benchmark", view.benchmark,
                        "Render this many frames of a scripted flight offscreen and print one "
                        "JSON line (no window)");
@@ -402,9 +402,9 @@ int main(int argc, char** argv) {
                         "Keep frames whose files exist, decode and have the run's size; render "
                         "the rest");
   animate_cmd->add_option("--renderer", animate.renderer, "trace (the default) or raster")
-      ->check(CLI::IsMember({"trace", "raster"}));
+      ->check(library_rule(renderer_refused, "trace|raster"));
   animate_cmd->add_option("--tessellation", animate.tessellation, "raster: cpu, gpu or auto")
-      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
+      ->check(library_rule(tessellation_refused, "cpu|gpu|auto"));
   animate_cmd->add_option("--width", animate.width, "Override camera.width");
   animate_cmd->add_option("--height", animate.height, "Override camera.height");
   animate_cmd->add_option("--samples", animate.samples, "Override camera.samples");

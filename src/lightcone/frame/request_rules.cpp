@@ -46,6 +46,14 @@ std::optional<std::string> scene_refused(const Scene& scene) {
   return std::nullopt;
 }
 
+std::optional<std::string> renderer_refused(std::string_view name) {
+  if (name == "trace" || name == "raster") return std::nullopt;
+  return fmt::format(
+      "renderer '{}': must be trace (the ray tracer) or raster (the real-time "
+      "renderer)",
+      name);
+}
+
 std::optional<std::string> render_refused(const Scene& scene, const RenderRequest& request) {
   if (auto refused = scene_refused(scene)) return refused;
   if (request.raster && !request.aovs.empty())

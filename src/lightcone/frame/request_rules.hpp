@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/output_variable.hpp"
@@ -19,6 +20,10 @@ namespace lightcone {
 // spacetime has: relativity and light delay on (it has no classical picture), each light met
 // where its light left for the surface (docs/design/black-hole.md, "What is not drawn yet").
 std::optional<std::string> scene_refused(const Scene& scene);
+
+// The renderer a request names, as every front end takes it: "trace" (the ray tracer) or
+// "raster" (the real-time renderer). Why another name is refused, or nothing.
+std::optional<std::string> renderer_refused(std::string_view name);
 
 // What a render is asked for beside the scene.
 struct RenderRequest {

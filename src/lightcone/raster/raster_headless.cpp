@@ -45,7 +45,7 @@ void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
                     std::uint64_t seed, RasterTessellation mode,
                     const CurvedShadowSource& curved_shadows) {
-  if (const auto refused = render_refused(scene, {.raster = true}))
+  if (const auto refused = render_refused(scene, {.raster = true, .aovs = {}}))
     throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;

@@ -17,6 +17,17 @@
 #include "lightcone/raster/shader_sources.hpp"
 
 namespace lightcone {
+
+std::optional<std::string> tessellation_refused(std::string_view name) {
+  if (name == "cpu" || name == "gpu" || name == "auto") return std::nullopt;
+  return fmt::format("tessellation '{}': must be cpu, gpu or auto", name);
+}
+
+RasterTessellation tessellation_named(std::string_view name) {
+  return name == "cpu"   ? RasterTessellation::kCpu
+         : name == "gpu" ? RasterTessellation::kGpu
+                         : RasterTessellation::kAuto;
+}
 namespace {
 
 // The surface textures' units in the lighting pass: 4 (the sky's image in its own pass) and

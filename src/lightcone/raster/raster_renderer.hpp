@@ -8,7 +8,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
@@ -39,6 +41,11 @@ struct RasterFrameStats {
 // Where edges are cut: on the CPU (any OpenGL 3.3), by tessellation shaders on the GPU
 // (OpenGL 4), or (auto) by the GL driver, as tessellate_on_gpu says.
 enum class RasterTessellation { kCpu, kGpu, kAuto };
+
+// The modes by name, as every front end takes them: "cpu", "gpu", "auto". Why another name is
+// refused, or nothing; and the mode a name that is not refused names.
+std::optional<std::string> tessellation_refused(std::string_view name);
+RasterTessellation tessellation_named(std::string_view name);
 
 // What the tessellation path is chosen by: facts of the GL driver, the same on every run.
 struct GlDriver {
