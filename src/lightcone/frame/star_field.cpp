@@ -7,6 +7,7 @@
 #include "lightcone/color/spectrum.hpp"
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/pixel_lattice.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/stars.hpp"
@@ -227,7 +228,8 @@ double pixel_solid_angle(const CameraBasis& camera, int i, int j) {
 
 void deposit_stars(std::span<const StarImage> stars, const CameraBasis& camera, int x0, int y0,
                    int width, int height, std::span<const float> sky_coverage, double weight,
-                   std::span<float> rgb) {
+                   std::span<float> rgb, int stride) {
+  const int columns = lattice_size(width, stride);
   for (const StarImage& star : stars) {
     const StarFootprint f = star_footprint(star.x, star.y);
     // The corners of the footprint's pixels on the image plane, once each.
@@ -238,11 +240,15 @@ void deposit_stars(std::span<const StarImage> stars, const CameraBasis& camera, 
     for (int b = 0; b < 3; ++b) {
       const int j = f.j0 + b - y0;
       if (j < 0 || j >= height) continue;
+      const int row = lattice_index(j, height, stride);
+      if (row < 0) continue;
       for (int a = 0; a < 3; ++a) {
         const int i = f.i0 + a - x0;
         const double w = f.wx[a] * f.wy[b];
         if (i < 0 || i >= width || w == 0) continue;
-        const std::size_t at = static_cast<std::size_t>(j) * width + i;
+        const int column = lattice_index(i, width, stride);
+        if (column < 0) continue;
+        const std::size_t at = static_cast<std::size_t>(row) * columns + column;
         const double solid_angle =
             corner[b][a + 1] - corner[b][a] - corner[b + 1][a + 1] + corner[b + 1][a];
         const double k =

@@ -104,9 +104,10 @@ double pixel_solid_angle(const CameraBasis& camera, int i, int j);
 // Adds the stars to a linear image of the pixels [x0, x0 + width) x [y0, y0 + height) of the
 // camera's picture: each pixel gets flux times its filter weight over its solid angle, times the
 // fraction of it where the sky is seen (`sky_coverage`, one per pixel; bodies and the disk hide
-// the stars behind them), times `weight`.
+// the stars behind them), times `weight`. With a `stride` above 1 the image (and
+// `sky_coverage`) holds that window's lattice alone (frame/pixel_lattice.hpp).
 void deposit_stars(std::span<const StarImage> stars, const CameraBasis& camera, int x0, int y0,
                    int width, int height, std::span<const float> sky_coverage, double weight,
-                   std::span<float> rgb);
+                   std::span<float> rgb, int stride = 1);
 
 }  // namespace lightcone

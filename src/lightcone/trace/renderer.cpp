@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "lightcone/frame/curved_bodies.hpp"
+#include "lightcone/frame/pixel_lattice.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/sampler.hpp"
@@ -143,7 +144,12 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   // resolved scene, so they are rendered one after the other and summed.
   const int observations = cam.shutter > 0 ? n : 1;
   const PixelWindow window = options.crop.value_or(PixelWindow{0, 0, cam.width, cam.height});
-  const int width = window.x1 - window.x0, height = window.y1 - window.y0;
+  const int stride = options.lattice;
+  if (stride < 1) throw std::invalid_argument("RenderOptions::lattice must be at least 1");
+  // The image's pixel (a, b) is the window's pixel (lattice_pixel(a), lattice_pixel(b)).
+  const int window_width = window.x1 - window.x0, window_height = window.y1 - window.y0;
+  const int width = lattice_size(window_width, stride),
+            height = lattice_size(window_height, stride);
   Image image;
   image.width = width;
   image.height = height;
@@ -178,7 +184,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
       star_rgb(with_stars && observations > 1 ? pixels * 3 : 0);
   // The automatic exposure's subject: the share of each pixel's samples that met a body moving
   // relative to the camera (summed over the observations).
-  const bool with_subject = scene.render.auto_exposure;
+  const bool with_subject = scene.render.auto_exposure || options.subject;
   std::vector<float> subject(with_subject ? pixels : 0, 0.0f);
 
   double setup_seconds = 0, stars_seconds = 0;
@@ -202,24 +208,29 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
           skipped = true;
           continue;
         }
-        // Pixel (i, j) of the camera's image; its samples depend on (i, j) alone, so a crop
-        // renders exactly the pixels of the whole image.
-        const int x0 = window.x0 + static_cast<int>(tile % tiles_x) * kTileSize;
-        const int y0 = window.y0 + static_cast<int>(tile / tiles_x) * kTileSize;
-        const int x_end = std::min(x0 + kTileSize, window.x1);
-        const int y_end = std::min(y0 + kTileSize, window.y1);
+        // Pixel (a, b) of the image is pixel (i, j) of the camera's; its samples depend on
+        // (i, j) alone, so a crop or a lattice renders exactly the pixels of the whole image.
+        const int x0 = static_cast<int>(tile % tiles_x) * kTileSize;
+        const int y0 = static_cast<int>(tile / tiles_x) * kTileSize;
+        const int x_end = std::min(x0 + kTileSize, width);
+        const int y_end = std::min(y0 + kTileSize, height);
         std::uint64_t tile_orders = 0;  // the image orders of its curved rays, summed
         for (int by = y0; by < y_end; by += kBlockHeight)
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
+            int pixel_a[Tracer::kPacketSize], pixel_b[Tracer::kPacketSize];
             int pixel_i[Tracer::kPacketSize], pixel_j[Tracer::kPacketSize];
             // Constructed in place: a sampler built aside and copied in was a store-forwarding
             // stall per pixel (a twentieth of a black-hole render).
             std::optional<PixelSampler> samplers[Tracer::kPacketSize];
             std::size_t lanes = 0;
-            for (int j = by; j < std::min(by + kBlockHeight, y_end); ++j)
-              for (int i = bx; i < std::min(bx + kBlockWidth, x_end); ++i) {
+            for (int b = by; b < std::min(by + kBlockHeight, y_end); ++b)
+              for (int a = bx; a < std::min(bx + kBlockWidth, x_end); ++a) {
+                const int i = window.x0 + lattice_pixel(a, window_width, stride);
+                const int j = window.y0 + lattice_pixel(b, window_height, stride);
                 samplers[lanes].emplace(i, j, n, options.seed, light_samples);
+                pixel_a[lanes] = a;
+                pixel_b[lanes] = b;
                 pixel_i[lanes] = i;
                 pixel_j[lanes++] = j;
               }
@@ -264,8 +275,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
             }
             for (std::size_t l = 0; l < lanes; ++l) {
               const int i = pixel_i[l], j = pixel_j[l];
-              const std::size_t at =
-                  static_cast<std::size_t>(j - window.y0) * width + (i - window.x0);
+              const std::size_t at = static_cast<std::size_t>(pixel_b[l]) * width + pixel_a[l];
               for (int c = 0; c < 3; ++c) {
                 if (observations > 1)
                   sum[3 * at + c] += sums[l][c];
@@ -295,8 +305,9 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
       const auto stars_start = std::chrono::steady_clock::now();
       const StarPhotometry photometry = star_photometry(resolved);
       const std::vector<StarImage> stars = star_images(resolved, photometry);
-      deposit_stars(stars, resolved.camera, window.x0, window.y0, width, height, sky_coverage,
-                    1.0 / observations, observations > 1 ? star_rgb : image.rgb);
+      deposit_stars(stars, resolved.camera, window.x0, window.y0, window_width, window_height,
+                    sky_coverage, 1.0 / observations, observations > 1 ? star_rgb : image.rgb,
+                    stride);
       stars_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - stars_start).count();
     }
@@ -306,6 +317,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   for (std::size_t v = 0; v < star_rgb.size(); ++v) image.rgb[v] += star_rgb[v];
 
   const double ev = apply_exposure(image, scene.render, subject);
+  if (options.subject) *options.subject = std::move(subject);
 
   if (stats) {
     stats->exposure = ev;

@@ -32,6 +32,13 @@ struct RenderOptions {
   // that region of the whole render pixel for pixel (with a fixed exposure; "auto" looks at
   // the window only).
   std::optional<PixelWindow> crop;
+  // Above 1: render only the window's lattice of that stride (frame/pixel_lattice.hpp, one
+  // pixel of each lattice x lattice block): the image is the lattice's size and equals those
+  // pixels of the window's render exactly (with a fixed exposure; "auto" looks at them only).
+  int lattice = 1;
+  // When set, receives each pixel's share of samples that met a body moving relative to the
+  // camera (the automatic exposure's subject weights), whatever the exposure.
+  std::vector<float>* subject = nullptr;
   // When set (from any thread, e.g. a signal handler), tiles not yet started are skipped and
   // stay black; RenderStats::cancelled says so.
   const std::atomic<bool>* cancel = nullptr;
