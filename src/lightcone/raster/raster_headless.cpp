@@ -44,7 +44,7 @@ void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int
 
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
                     std::uint64_t seed, RasterTessellation mode,
-                    const CurvedShadowSource& curved_shadows) {
+                    const CurvedShadowSource& curved_shadows, std::vector<float>* subject_out) {
   if (const auto refused = render_refused(scene, {.raster = true, .aovs = {}}))
     throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
@@ -62,7 +62,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   std::vector<double> sum(3 * pixels, 0.0);
   // The automatic exposure's subject, as the ray tracer finds it: the share of each pixel's
   // samples that met a body moving relative to the camera.
-  std::vector<float> subject(scene.render.auto_exposure ? pixels : 0, 0.0f);
+  std::vector<float> subject(scene.render.auto_exposure || subject_out ? pixels : 0, 0.0f);
   std::vector<float>* const subject_sum = subject.empty() ? nullptr : &subject;
   const float share = 1.0f / static_cast<float>(n);
   std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
@@ -93,6 +93,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   image.rgb.resize(3 * pixels);
   for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / n);
   const double ev = apply_exposure(image, scene.render, subject);
+  if (subject_out) *subject_out = std::move(subject);
   if (stats) {
     stats->exposure = ev;
     stats->triangles = triangles;

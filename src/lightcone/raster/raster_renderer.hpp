@@ -128,10 +128,12 @@ struct RasterStats {
 // applied, as render_image does. Pass k covers the pixels at point k of a multi-jittered
 // pattern and shades each pixel at the ray tracer's sample k for it (pixel_sample with `seed`),
 // so that away from outlines both renderers average the same directions. Near a black hole
-// `curved_shadows` casts the shadows. Throws GlUnavailable without OpenGL 3.3.
+// `curved_shadows` casts the shadows. `subject`, when given, receives the automatic exposure's
+// subject weight of each pixel whatever the exposure. Throws GlUnavailable without OpenGL 3.3.
 Image render_raster(const Scene& scene, RasterStats* stats = nullptr,
                     const TessellationLimits& limits = {}, std::uint64_t seed = 0,
                     RasterTessellation mode = RasterTessellation::kAuto,
-                    const CurvedShadowSource& curved_shadows = {});
+                    const CurvedShadowSource& curved_shadows = {},
+                    std::vector<float>* subject = nullptr);
 
 }  // namespace lightcone
