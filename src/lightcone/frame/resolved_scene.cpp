@@ -502,6 +502,9 @@ Bounds3 label_step_bounds(const LabelledBounds& bounds, const ShadowLight& light
 
 double ResolvedScene::doppler(const Vec3& u, const Vec3& velocity) const {
   if (!scene->render.relativity) return 1.0;
+  // An emitter at rest in F: the law gives (k.U)/(k.U) = 1 exactly, without its square root
+  // and division (the sky and the bodies at rest, most of a picture's rays).
+  if (velocity.x == 0 && velocity.y == 0 && velocity.z == 0) return 1.0;
   return doppler_factor(-u, velocity, {});
 }
 
