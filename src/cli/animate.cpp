@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <deque>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -16,6 +17,7 @@
 #include <unordered_map>
 
 #include "cli_common.hpp"
+#include "lightcone/frame/pixel_lattice.hpp"
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
@@ -111,8 +113,10 @@ std::pair<long long, long long> parse_frame_range(const std::string& option,
 
 namespace {
 
-// An animation's automatic exposure is averaged over this many seconds either side of a frame.
+// An animation's automatic exposure is averaged over this many seconds either side of a frame,
+// each frame's metered on one pixel of each block of this many pixels square.
 constexpr double kExposureSmoothing = 0.5;
+constexpr int kMeteringLattice = 4;
 
 // Every file the run writes, checked before the first frame: under each pattern, each frame's
 // name is a regular file or absent, in a folder that exists and is writable, and no file is
@@ -212,6 +216,16 @@ int run_animate(const AnimateArgs& a) {
         fmt::format("{}: {} frames; one run renders at most {} (split it with --frames A-B)",
                     a.frames ? "--frames " + *a.frames : fmt::format("--duration {}", *a.duration),
                     last - first + 1, kMaxFramesPerRun));
+  // The whole animation, of which this run renders a part (a job array's task): the automatic
+  // exposure's smoothing stops at its ends.
+  long long animation_first = first, animation_last = last;
+  if (a.animation) {
+    std::tie(animation_first, animation_last) = parse_frame_range("--animation", *a.animation);
+    if (animation_first > first || animation_last < last)
+      throw InputError(
+          fmt::format("--animation {}: the animation must hold the {} this run renders",
+                      *a.animation, describe_frames(first, last)));
+  }
   if (!a.output && !a.exr && !a.video)
     throw InputError("nothing to write: give -o PATTERN, --exr PATTERN or --video FILE");
   std::optional<FramePattern> output, exr;
@@ -265,26 +279,75 @@ int run_animate(const AnimateArgs& a) {
     return s;
   };
 
-  // With the automatic exposure, frame i is exposed at the mean of the EVs metered on the frames
-  // within half a second of it (each metered on a render a quarter of the size, one sample a
-  // pixel), so that a video neither pumps nor jumps. The mean depends on the frame alone, not on
-  // the frames this run renders, so the frames of a job array's tasks join up.
-  const long long reach = scene.render.auto_exposure ? std::llround(a.fps * kExposureSmoothing) : 0;
+  // The frame's picture as a renderer makes it; with `subject`, its linear radiance (at
+  // exposure 0) and the automatic exposure's subject weights. The tracer renders the lattice
+  // alone where asked; the raster renderer draws the whole frame and the lattice is taken.
+  struct Rendered {
+    Image image;
+    double ev = 0;  // applied
+    bool cancelled = false;
+  };
+  const auto render_frame = [&](Scene s, std::vector<float>* subject, int lattice,
+                                const std::function<void(std::size_t, std::size_t)>& progress) {
+    Rendered out;
+    if (subject) {
+      s.render.auto_exposure = false;
+      s.render.exposure = 0;
+    }
+    if (raster) {
+      try {
+        RasterStats stats;
+        out.image = render_raster(s, &stats, {}, a.seed, tessellation_named(a.tessellation),
+                                  curved_body_shadows, subject);
+        out.ev = stats.exposure;
+      } catch (const GlUnavailable& e) {
+        throw InputError(fmt::format(
+            "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) "
+            "through EGL, e.g. Mesa's llvmpipe",
+            e.what()));
+      }
+      if (lattice > 1) {
+        if (subject) *subject = lattice_of(*subject, out.image.width, out.image.height, 1, lattice);
+        out.image = lattice_of(out.image, lattice);
+      }
+      return out;
+    }
+    RenderOptions options;
+    options.threads = a.threads;
+    options.seed = a.seed;
+    options.cancel = &interrupted;
+    options.progress = progress;
+    options.lattice = lattice;
+    options.subject = subject;
+    RenderStats stats;
+    out.image = render_image(s, options, &stats);
+    out.ev = stats.exposure;
+    out.cancelled = stats.cancelled;
+    return out;
+  };
+
+  // With the automatic exposure, frame i is exposed at the mean of the EVs metered on the
+  // animation's frames within half a second of it, so that a video neither pumps nor jumps. A
+  // frame's EV is the automatic exposure of the lattice of its own linear render (one pixel of
+  // each 4 x 4 block, with all its samples): taken from the render of a frame this run makes,
+  // else from a render of the lattice alone (a job array's neighbouring tasks' frames, frames
+  // kept by --resume). It depends on the frame alone, and the window on the animation
+  // (--animation), so the frames of a job array's tasks join up.
+  const bool metering = scene.render.auto_exposure;
+  const long long reach = metering ? std::llround(a.fps * kExposureSmoothing) : 0;
   std::unordered_map<long long, std::optional<double>> metered;
+  const auto lattice_ev = [&](const Image& linear, const std::vector<float>& subject) {
+    const Image lattice = lattice_of(linear, kMeteringLattice);
+    return auto_exposure(lattice, scene.render.tonemap,
+                         lattice_of(subject, linear.width, linear.height, 1, kMeteringLattice));
+  };
   const auto metered_ev = [&](long long j) -> std::optional<double> {
     if (const auto found = metered.find(j); found != metered.end()) return found->second;
     std::optional<double> ev;
     try {
-      Scene small = frame_scene(j);
-      small.camera.width = std::max(16, small.camera.width / 4);
-      small.camera.height = std::max(9, small.camera.height / 4);
-      small.camera.samples = 1;
-      RenderOptions options;
-      options.threads = a.threads;
-      options.cancel = &interrupted;
-      RenderStats stats;
-      render_image(small, options, &stats);
-      ev = stats.exposure;
+      std::vector<float> subject;
+      const Rendered lattice = render_frame(frame_scene(j), &subject, kMeteringLattice, {});
+      ev = auto_exposure(lattice.image, scene.render.tonemap, subject);
     } catch (const InputError&) {
       // A moment the scene cannot be shown at (a camera past the speed of light by then): the
       // frames near it are exposed by the others.
@@ -294,7 +357,8 @@ int run_animate(const AnimateArgs& a) {
   const auto smoothed_exposure = [&](long long i) {
     double sum = 0;
     int n = 0;
-    for (long long j = i - reach; j <= i + reach; ++j)
+    for (long long j = std::max(i - reach, animation_first);
+         j <= std::min(i + reach, animation_last); ++j)
       if (const auto ev = metered_ev(j)) sum += *ev, ++n;
     return n > 0 ? sum / n : 0.0;
   };
@@ -335,6 +399,60 @@ int run_animate(const AnimateArgs& a) {
       throw std::runtime_error(fmt::format("frame {}: {}", i, e.what()));
     }
   };
+
+  // The frames rendered or kept and not yet written, in order: a rendered frame waits (as
+  // linear radiance, with the automatic exposure) until the EVs of the frames up to `reach`
+  // after it are known: at most reach + 1 frames.
+  struct Pending {
+    long long frame;
+    std::vector<ImageOutput> outputs;
+    std::shared_ptr<Image> image;  // the render, or the file kept by --resume (for the video)
+    bool kept = false;
+    ToneMap curve;
+  };
+  std::deque<Pending> pending;
+  const auto finish = [&](Pending& p) {
+    wait_for_writer();
+    if (p.kept) {
+      if (video)
+        in_frame(p.frame, [&] {
+          // The video gets the frame as its file holds it.
+          video->add(p.outputs.front().format == ImageFormat::kExr ? tone_map(*p.image, p.curve)
+                                                                   : *p.image);
+        });
+      return;
+    }
+    const std::optional<double> ev =
+        metering ? std::optional(smoothed_exposure(p.frame)) : std::nullopt;
+    if (interrupted) return;  // a metering render stopped short
+    writing = std::async(std::launch::async, [=, &video, image = p.image] {
+      in_frame(p.frame, [&] {
+        if (ev) {
+          // Each frame's EXR header says by what its radiance was scaled (Image::exposure).
+          RenderSettings settings;
+          settings.auto_exposure = false;
+          settings.exposure = *ev;
+          image->exposure = apply_exposure(*image, settings);
+        }
+        if (std::any_of(image->rgb.begin(), image->rgb.end(),
+                        [](float v) { return !std::isfinite(v); }))
+          throw std::runtime_error("the render has non-finite values (NaN or infinity)");
+        const Image display = tone_map(*image, p.curve);
+        if (!p.outputs.empty()) write_images(display, *image, p.outputs);
+        if (video) video->add(display);
+      });
+    });
+    ++rendered;
+  };
+  // Writes the frames waiting whose window of frames this run renders ends at or before `done`.
+  const auto finish_through = [&](long long done) {
+    while (!pending.empty() && !interrupted &&
+           (pending.front().kept || std::min(pending.front().frame + reach, last) <= done)) {
+      finish(pending.front());
+      pending.pop_front();
+    }
+  };
+
   for (long long i = first; i <= last && !interrupted; ++i) {
     const std::size_t frames_done = static_cast<std::size_t>(i - first);
     std::vector<ImageOutput> outputs;
@@ -355,74 +473,43 @@ int run_animate(const AnimateArgs& a) {
         ++redone;
       } else {
         ++skipped;
-        wait_for_writer();
-        if (video)
-          in_frame(i, [&] {
-            // The video gets the frame as its file holds it.
-            video->add(outputs.front().format == ImageFormat::kExr
-                           ? tone_map(*saved, scene.render.tonemap)
-                           : *saved);
-          });
+        pending.push_back(
+            {i, std::move(outputs), video ? saved : nullptr, true, scene.render.tonemap});
+        finish_through(i);
         bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
         continue;
       }
     }
-    bool cancelled = false;
-    auto image = std::make_shared<Image>();
-    const Scene s = [&] {
-      Scene moment;
-      in_frame(i, [&] { moment = frame_scene(i); });
-      if (moment.render.auto_exposure && last > first) {
-        moment.render.exposure = smoothed_exposure(i);
-        moment.render.auto_exposure = false;
-      }
-      return moment;
-    }();
-    in_frame(i, [&] {
-      // Each frame's EXR header says by what its radiance was scaled (Image::exposure).
-      if (raster) {
-        try {
-          RasterStats stats;
-          *image = render_raster(s, &stats, {}, a.seed, tessellation_named(a.tessellation),
-                                 curved_body_shadows);
-          image->exposure = stats.exposure;
-        } catch (const GlUnavailable& e) {
-          throw InputError(fmt::format(
-              "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) "
-              "through EGL, e.g. Mesa's llvmpipe",
-              e.what()));
-        }
-      } else {
-        RenderOptions options;
-        options.threads = a.threads;
-        options.seed = a.seed;
-        options.cancel = &interrupted;
-        options.progress = [&](std::size_t done, std::size_t total) {
-          bar.update(frames_done * kSteps + done * kSteps / std::max<std::size_t>(total, 1),
-                     static_cast<std::size_t>(count) * kSteps);
-        };
-        RenderStats stats;
-        *image = render_image(s, options, &stats);
-        image->exposure = stats.exposure;
-        cancelled = stats.cancelled;
-      }
-      if (std::any_of(image->rgb.begin(), image->rgb.end(),
-                      [](float v) { return !std::isfinite(v); }))
-        throw std::runtime_error("the render has non-finite values (NaN or infinity)");
-    });
-    if (cancelled || interrupted) break;
-    wait_for_writer();
-    const ToneMap curve = s.render.tonemap;
-    writing = std::async(std::launch::async, [=, &video] {
+    Rendered frame;
+    Scene moment;
+    try {
       in_frame(i, [&] {
-        const Image display = tone_map(*image, curve);
-        if (!outputs.empty()) write_images(display, *image, outputs);
-        if (video) video->add(display);
+        moment = frame_scene(i);
+        std::vector<float> subject;
+        frame = render_frame(
+            moment, metering ? &subject : nullptr, 1, [&](std::size_t done, std::size_t total) {
+              bar.update(frames_done * kSteps + done * kSteps / std::max<std::size_t>(total, 1),
+                         static_cast<std::size_t>(count) * kSteps);
+            });
+        if (metering && !frame.cancelled && !interrupted)
+          metered[i] = lattice_ev(frame.image, subject);
       });
-    });
-    ++rendered;
+    } catch (const InputError&) {
+      // A moment that cannot be shown stops the run there: the frames before it are written
+      // first, exposed as any run would (the moment counts for none).
+      metered[i] = std::nullopt;
+      finish_through(last);
+      wait_for_writer();
+      throw;
+    }
+    if (frame.cancelled || interrupted) break;
+    frame.image.exposure = frame.ev;
+    pending.push_back({i, std::move(outputs), std::make_shared<Image>(std::move(frame.image)),
+                       false, moment.render.tonemap});
+    finish_through(i);
     bar.update((frames_done + 1) * kSteps, static_cast<std::size_t>(count) * kSteps);
   }
+  finish_through(last);
   wait_for_writer();
   if (interrupted) {
     video.reset();  // its temporary file goes with it

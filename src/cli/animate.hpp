@@ -14,6 +14,7 @@ namespace lightcone {
 struct AnimateArgs {
   std::string scene;
   std::optional<std::string> output, exr, video, frames;
+  std::optional<std::string> animation;  // the whole animation's frames, A-B (default: the run's)
   std::optional<double> duration;
   double fps = 30;
   std::string clock = "proper", renderer = "trace", tessellation = "auto";

@@ -386,6 +386,9 @@ int main(int argc, char** argv) {
                           ".gif");
   animate_cmd->add_option("--fps", animate.fps, "Frames per unit of the clock (default 30)");
   animate_cmd->add_option("--frames", animate.frames, "Frames A-B (inclusive) only");
+  animate_cmd->add_option("--animation", animate.animation,
+                          "The whole animation's frames A-B, of which this run renders a part "
+                          "(the automatic exposure is smoothed within it; default: the run's)");
   animate_cmd->add_option("--duration", animate.duration,
                           "Frames 0 to duration * fps - 1 (instead of --frames)");
   animate_cmd
