@@ -309,4 +309,8 @@ PointEmission EmissionTable::sky(const Vec3& d) const {
   return sky_.colours[0];
 }
 
+const PointEmission* EmissionTable::uniform_sky() const {
+  return std::holds_alternative<SolidColor>(scene_.sky.pattern) ? &sky_.colours[0] : nullptr;
+}
+
 }  // namespace lightcone

@@ -96,6 +96,8 @@ class EmissionTable {
 
   PointEmission surface(std::size_t object_index, const Hit& hit) const;
   PointEmission sky(const Vec3& pattern_direction) const;
+  // The sky's emission where it is the same in every direction (a solid colour), else null.
+  const PointEmission* uniform_sky() const;
   // The fixed colours of a material (0, or 1 for a checker's second) and of the sky (a grid's
   // line colour is 1), for a renderer that tabulates them.
   const PointEmission& object_colour(std::size_t object_index, int colour) const {

@@ -49,31 +49,50 @@ void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
   // An emitter's colour does not depend on D when neither its colour nor its brightness does.
   const bool emitters_see_d =
       settings.doppler != DopplerModel::kOff || settings.searchlight != SearchlightModel::kOff;
+  // A sky of one colour seen with D = 1 (at rest in F, or its colour blind to D) is received
+  // the same in every direction: once, not per ray.
+  const PointEmission* uniform_sky = emission.uniform_sky();
+  const Vec3& sky_velocity = scene.sky_velocity;
+  const bool sky_sees_d =
+      emitters_see_d && (sky_velocity.x != 0 || sky_velocity.y != 0 || sky_velocity.z != 0);
+  const std::optional<LinearRgb> sky_everywhere =
+      uniform_sky && !sky_sees_d ? std::optional(received_colour(*uniform_sky, 1.0, settings))
+                                 : std::nullopt;
   constexpr std::size_t kBatch = Lighting::kBatchSize;
   for (std::size_t first = 0; first < hits.size(); first += kBatch) {
     const std::size_t count = std::min(kBatch, hits.size() - first);
-    Lighting::LitPoint lit[kBatch];
+    // The sky and the emitters first; the lit points, if any, are shaded together after.
     std::size_t lit_ray[kBatch], lit_count = 0;
     for (std::size_t r = first; r < first + count; ++r) {
       const std::optional<Hit>& hit = hits[r];
       const Vec3& u = directions[r];
       if (!hit) {
-        const double d = emitters_see_d ? scene.doppler(u, scene.sky_velocity) : 1.0;
-        out[r] = received_colour(emission.sky(scene.sky_direction(u)), d, settings);
+        if (sky_everywhere) {
+          out[r] = *sky_everywhere;
+          continue;
+        }
+        const double d = emitters_see_d ? scene.doppler(u, sky_velocity) : 1.0;
+        out[r] = received_colour(uniform_sky ? *uniform_sky : emission.sky(scene.sky_direction(u)),
+                                 d, settings);
         continue;
       }
-      const PointEmission surface = emission.surface(hit->body, *hit);
       if (scene.bodies[hit->body].object->material.unlit) {
-        out[r] = received_colour(surface, emitters_see_d ? scene.doppler(u, hit->velocity) : 1.0,
-                                 settings);
+        out[r] = received_colour(emission.surface(hit->body, *hit),
+                                 emitters_see_d ? scene.doppler(u, hit->velocity) : 1.0, settings);
       } else if (!lighting) {
         out[r] = {0, 0, 0};
       } else {
-        lit[lit_count] = {&*hit, u, scene.doppler(u, hit->velocity), surface, light_samples[r]};
         lit_ray[lit_count++] = r;
       }
     }
     if (lit_count == 0) continue;
+    Lighting::LitPoint lit[kBatch];
+    for (std::size_t k = 0; k < lit_count; ++k) {
+      const std::size_t r = lit_ray[k];
+      const Hit& hit = *hits[r];
+      lit[k] = {&hit, directions[r], scene.doppler(directions[r], hit.velocity),
+                emission.surface(hit.body, hit), light_samples[r]};
+    }
     LinearRgb shaded[kBatch];
     lighting->received(std::span(lit, lit_count), std::span(shaded, lit_count));
     for (std::size_t k = 0; k < lit_count; ++k) out[lit_ray[k]] = shaded[k];
