@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "lightcone/frame/exposure_meter.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "support/glsl_eval.hpp"
@@ -98,6 +99,10 @@ Image uniform_image(int width, int height, float value) {
   return image;
 }
 
+// The meter reads a quantile as the geometric middle of its bin of 1/256 of an octave: within
+// half a bin of the pixel's own luminance.
+const double kMetered = 0.5 * std::log2(1 + 1.0 / 256);
+
 // The automatic exposure shows the subject's upper quartile at 0.5, unless the brightest 2 %
 // of the picture would then pass the luminance the curve shows as 0.9.
 TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
@@ -107,7 +112,7 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
               1e-12);
   // A uniform grey 0.2 is its own subject: brought to 0.5.
   for (const ToneMap curve : {ToneMap::kClamp, ToneMap::kFilmic})
-    EXPECT_NEAR(auto_exposure(uniform_image(8, 8, 0.2f), curve), std::log2(0.5 / 0.2), 1e-6);
+    EXPECT_NEAR(auto_exposure(uniform_image(8, 8, 0.2f), curve), std::log2(0.5 / 0.2), kMetered);
   // A dim moving body (0.01) before a wall at rest (0.02, 0.03 in its top 3 %): the body sets
   // the exposure unless the wall's highlights would pass the curve's 0.9 (under clamp they
   // would).
@@ -118,15 +123,15 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
     if (p < 2500) subject[p] = 1;
     if (p >= 9700) scene.rgb[3 * p] = scene.rgb[3 * p + 1] = scene.rgb[3 * p + 2] = 0.03f;
   }
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, subject), std::log2(0.5 / 0.01), 1e-6);
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kClamp, subject), std::log2(0.9 / 0.03), 1e-6);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, subject), std::log2(0.5 / 0.01), kMetered);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kClamp, subject), std::log2(0.9 / 0.03), kMetered);
   // Without the subject, the wall is the picture.
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic), std::log2(0.5 / 0.02), 1e-6);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic), std::log2(0.5 / 0.02), kMetered);
   // A subject pixel weighs the share of its samples that met the body: a quarter body counts a
   // quarter. Less than 0.1 % of the picture's worth does not set the exposure.
   std::vector<float> speck(100 * 100, 0.0f);
   for (std::size_t p = 0; p < 36; ++p) speck[p] = 0.25f;
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, speck), std::log2(0.5 / 0.02), 1e-6);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, speck), std::log2(0.5 / 0.02), kMetered);
   // A picture without light is left as it is; no NaN or infinity.
   EXPECT_EQ(auto_exposure(uniform_image(4, 4, 0.0f), ToneMap::kFilmic), 0.0);
   Image odd = uniform_image(4, 4, 0.3f);
@@ -139,7 +144,7 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
     black_subject[p] = 1;
     dark.rgb[3 * p] = dark.rgb[3 * p + 1] = dark.rgb[3 * p + 2] = 0;
   }
-  EXPECT_NEAR(auto_exposure(dark, ToneMap::kClamp, black_subject), std::log2(0.9 / 0.3), 1e-6);
+  EXPECT_NEAR(auto_exposure(dark, ToneMap::kClamp, black_subject), std::log2(0.9 / 0.3), kMetered);
 }
 
 // The rule as its description reads, by sorting every pixel: the independent derivation that
@@ -181,9 +186,52 @@ double exposure_by_sorting(const Image& linear, ToneMap curve, std::span<const f
                   std::log2(display_white(curve) / highlights));
 }
 
-// auto_exposure selects (by histograms over the luminance's bits) what sorting finds: the same
-// EV, within 0.01, on pictures that stress the selection, with subjects of every size.
-TEST(AutomaticExposure, SelectsWhatSortingFinds) {
+// Each luminance from 2^-64 to 2^64 falls in the bin whose middle is within half a bin of it;
+// the bins order as the luminances do; beyond the range, the end bins.
+TEST(ExposureMeter, BinsByLogLuminance) {
+  std::mt19937 random(256);
+  std::uniform_real_distribution<double> octave(-64, 64);
+  std::size_t last_bin = 0;
+  double last = 0;
+  std::vector<double> ys(100000);
+  for (double& y : ys) y = std::exp2(octave(random));
+  std::sort(ys.begin(), ys.end());
+  for (const double y : ys) {
+    const std::size_t bin = ExposureMeter::bin_of(y);
+    ASSERT_GE(bin, 1u);
+    ASSERT_LT(bin, ExposureMeter::kBins);
+    EXPECT_LE(std::abs(std::log2(ExposureMeter::value_of(bin) / y)), kMetered + 1e-12) << y;
+    EXPECT_GE(bin, last_bin) << last << " " << y;
+    last_bin = bin, last = y;
+  }
+  EXPECT_EQ(ExposureMeter::bin_of(0), 0u);
+  EXPECT_EQ(ExposureMeter::bin_of(std::exp2(-64) * 0.999), 0u);
+  EXPECT_EQ(ExposureMeter::bin_of(std::exp2(-64)), 1u);
+  EXPECT_EQ(ExposureMeter::bin_of(1e300), ExposureMeter::kBins - 1);
+  EXPECT_EQ(ExposureMeter::value_of(0), 0.0);
+}
+
+// A meter's EV does not depend on how its pixels were shared among meters (threads): its sums
+// are integers.
+TEST(ExposureMeter, IsTheSameHoweverThePixelsAreShared) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> unit(0, 1);
+  std::vector<float> rgb(3 * 5000), share(5000);
+  for (float& v : rgb) v = std::exp2(20 * unit(random) - 10);
+  for (float& s : share) s = unit(random) < 0.3f ? unit(random) : 0.0f;
+  ExposureMeter whole, first, second;
+  for (std::size_t p = 0; p < share.size(); ++p) {
+    whole.add(&rgb[3 * p], share[p]);
+    (p % 3 ? first : second).add(&rgb[3 * p], share[p]);
+  }
+  first.add(second);
+  EXPECT_EQ(first.pixels(), 5000u);
+  EXPECT_EQ(first.ev(ToneMap::kFilmic), whole.ev(ToneMap::kFilmic));
+}
+
+// auto_exposure reads (from its meter's histograms) what sorting finds: the same EV within half
+// a bin, on pictures that stress the selection, with subjects of every size.
+TEST(AutomaticExposure, ReadsWhatSortingFinds) {
   std::mt19937 random(54);
   std::uniform_real_distribution<double> unit(0, 1);
   const int width = 480, height = 270;  // two of the parallel passes' pieces
@@ -235,16 +283,14 @@ TEST(AutomaticExposure, SelectsWhatSortingFinds) {
         const double ev = auto_exposure(image, curve, weights),
                      sorted = exposure_by_sorting(image, curve, weights);
         EXPECT_TRUE(std::isfinite(ev));
-        EXPECT_NEAR(ev, sorted, 0.01)
+        EXPECT_NEAR(ev, sorted, kMetered + 1e-12)
             << picture << ", subject " << subject << ", curve " << static_cast<int>(curve);
-        // The weights are sixteenths, whose sums are exact in any order: the very same pixel.
-        EXPECT_EQ(ev, sorted) << picture << ", subject " << subject;
       }
 }
 
 // The program's automatic EV on each bundled scene (its other settings at their defaults, at
-// 320x180 and 1 sample) is the one the sort-based rule gave: recorded with it, before the
-// selection replaced it.
+// 320x180 and 1 sample) is the one the sort-based rule gave, within half a meter's bin:
+// recorded with it, before the meter replaced it (the issue asks for 0.01 EV).
 using AutomaticExposureOfScenes = test::TempDirTest;
 TEST_F(AutomaticExposureOfScenes, IsWhatTheSortBasedRuleGave) {
   const std::map<std::string, double> recorded = {
@@ -278,7 +324,8 @@ TEST_F(AutomaticExposureOfScenes, IsWhatTheSortBasedRuleGave) {
         " --width 320 --height 180 --samples 1 --stats --set render.exposure=auto");
     ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     const std::string last = r.err.substr(r.err.rfind('{'));
-    EXPECT_NEAR(nlohmann::json::parse(last).at("exposure").get<double>(), ev, 0.01) << name;
+    EXPECT_NEAR(nlohmann::json::parse(last).at("exposure").get<double>(), ev, kMetered + 1e-9)
+        << name;
   }
 }
 

@@ -13,12 +13,14 @@
 #include <cstring>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #ifdef __EMSCRIPTEN__
 #define LIGHTCONE_HAVE_MEMORY_RESOURCE 0
 #else
 #define LIGHTCONE_HAVE_MEMORY_RESOURCE 1
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <bit>
@@ -119,5 +121,35 @@ void parallel_for_pieces(Index first, Index last, Index grain, const Body& body)
                     [&](const tbb::blocked_range<Index>& r) { body(r.begin(), r.end()); });
 #endif
 }
+
+// One T a thread (TBB's enumerable_thread_specific; in the browser, the one thread's), made on
+// first use; combined() adds them with T::add.
+template <class T>
+class PerThread {
+ public:
+  T& local() {
+#ifdef __EMSCRIPTEN__
+    return one_;
+#else
+    return each_.local();
+#endif
+  }
+  T combined() {
+#ifdef __EMSCRIPTEN__
+    return std::move(one_);
+#else
+    T sum;
+    for (const T& part : each_) sum.add(part);
+    return sum;
+#endif
+  }
+
+ private:
+#ifdef __EMSCRIPTEN__
+  T one_;
+#else
+  tbb::enumerable_thread_specific<T> each_;
+#endif
+};
 
 }  // namespace lightcone

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "lightcone/frame/curved_bodies.hpp"
+#include "lightcone/frame/exposure_meter.hpp"
 #include "lightcone/frame/pixel_lattice.hpp"
 #include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/request_rules.hpp"
@@ -18,6 +19,7 @@
 #include "lightcone/frame/star_field.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -202,9 +204,13 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   std::vector<float> sky_coverage(with_stars ? pixels : 0),
       star_rgb(with_stars && observations > 1 ? pixels * 3 : 0);
   // The automatic exposure's subject: the share of each pixel's samples that met a body moving
-  // relative to the camera (summed over the observations).
-  const bool with_subject = scene.render.auto_exposure || options.subject;
+  // relative to the camera (summed over the observations). Where a pixel is final when its tile
+  // is done (one observation, no stars), the tiles fill the exposure's meters as they write
+  // their pixels, and the picture is not read again; otherwise the subject is kept per pixel.
+  const bool metered_in_pass = scene.render.auto_exposure && observations == 1 && !with_stars;
+  const bool with_subject = (scene.render.auto_exposure && !metered_in_pass) || options.subject;
   std::vector<float> subject(with_subject ? pixels : 0, 0.0f);
+  PerThread<ExposureMeter> meters;
 
   double setup_seconds = 0, stars_seconds = 0;
   for (int o = 0; o < observations; ++o) {
@@ -234,6 +240,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         const int x_end = std::min(x0 + kTileSize, width);
         const int y_end = std::min(y0 + kTileSize, height);
         std::uint64_t tile_orders = 0;  // the image orders of its curved rays, summed
+        ExposureMeter* const meter = metered_in_pass ? &meters.local() : nullptr;
         for (int by = y0; by < y_end; by += kBlockHeight)
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
@@ -302,7 +309,9 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                   image.rgb[3 * at + c] = static_cast<float>(sums[l][c] / n);
               }
               if (with_stars) sky_coverage[at] = static_cast<float>(sky_samples[l]) / count;
-              if (with_subject) subject[at] += static_cast<float>(subject_samples[l]) / n;
+              const float subject_share = static_cast<float>(subject_samples[l]) / n;
+              if (with_subject) subject[at] += subject_share;
+              if (meter) meter->add(&image.rgb[3 * at], subject_share);
               if (with_aovs) {
                 const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
                 for (std::size_t a = 0; a < options.aovs.size(); ++a) {
@@ -335,7 +344,10 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     for (std::size_t v = 0; v < sum.size(); ++v) image.rgb[v] = static_cast<float>(sum[v] / n);
   for (std::size_t v = 0; v < star_rgb.size(); ++v) image.rgb[v] += star_rgb[v];
 
-  const double ev = apply_exposure(image, scene.render, subject);
+  const double ev = !scene.render.auto_exposure ? scene.render.exposure
+                    : metered_in_pass           ? meters.combined().ev(scene.render.tonemap)
+                                      : auto_exposure(image, scene.render.tonemap, subject);
+  expose(image, ev);
   if (options.subject) *options.subject = std::move(subject);
 
   if (stats) {

@@ -1,0 +1,79 @@
+#include "lightcone/frame/exposure_meter.hpp"
+
+#include <limits>
+
+#include "lightcone/frame/tone_map.hpp"
+
+namespace lightcone {
+namespace {
+
+// The automatic exposure's constants (docs/design/colour.md): the subject's upper quartile of
+// luminance is shown at kSubjectLevel, unless the brightest 2 % of the picture would then pass
+// display_white.
+constexpr double kSubjectQuantile = 0.75, kSubjectLevel = 0.5, kHighlightQuantile = 0.98;
+// A subject smaller than this share of the picture (a distant speck) does not set the exposure;
+// a share, not a count, so that a small metering render finds what the full one does.
+constexpr double kMinSubjectShare = 1e-3;
+
+// The first bin at which the histogram summed in order reaches `target` (the last non-empty bin
+// if none does, as a sort's last element would stand in).
+template <class T>
+std::size_t bin_reaching(const std::vector<T>& histogram, double target) {
+  double below = 0;
+  std::size_t last = 0;
+  for (std::size_t b = 0; b < histogram.size(); ++b) {
+    if (histogram[b] == 0) continue;
+    below += static_cast<double>(histogram[b]);
+    last = b;
+    if (below >= target) break;
+  }
+  return last;
+}
+
+}  // namespace
+
+void ExposureMeter::add(const ExposureMeter& other) {
+  for (std::size_t b = 0; b < kBins; ++b) {
+    count_[b] += other.count_[b];
+    weight_[b] += other.weight_[b];
+  }
+}
+
+std::uint64_t ExposureMeter::pixels() const {
+  std::uint64_t n = 0;
+  for (const std::uint32_t c : count_) n += c;
+  return n;
+}
+
+double ExposureMeter::value_of(std::size_t bin) {
+  if (bin == 0) return 0;
+  const auto edge = [](std::size_t b) {
+    const std::uint64_t top = (std::uint64_t{1023 + kLowestOctave} << kOctaveBits) + b;
+    return bit_cast<double>(top << (52 - kOctaveBits));
+  };
+  return std::sqrt(edge(bin - 1) * edge(bin));
+}
+
+double ExposureMeter::ev(ToneMap curve) const {
+  const std::uint64_t n = pixels();
+  if (n == 0) return 0;
+  // The highlights: the pixel of rank 0.98 (n - 1), as nth_element would find it.
+  const auto rank = static_cast<std::uint64_t>(kHighlightQuantile * static_cast<double>(n - 1));
+  const double highlights = value_of(bin_reaching(count_, static_cast<double>(rank + 1)));
+  if (!(highlights > 0)) return 0;
+  // The subject's level: a weighted quantile of its luminance (of the whole picture's where no
+  // subject is given or seen). A quantile, not a mean, so that the subject's own black parts
+  // (a pattern's dark checks shifted out of the visible) and a few bright pixels do not move it.
+  std::uint64_t total = 0;
+  for (const std::uint64_t w : weight_) total += w;
+  const bool weighted =
+      static_cast<double>(total) >= kMinSubjectShare * static_cast<double>(n) * kWeightUnit;
+  const double level =
+      weighted ? value_of(bin_reaching(weight_, kSubjectQuantile * static_cast<double>(total)))
+               : value_of(bin_reaching(count_, kSubjectQuantile * static_cast<double>(n)));
+  const double bright_enough =
+      level > 0 ? std::log2(kSubjectLevel / level) : std::numeric_limits<double>::infinity();
+  return std::min(bright_enough, std::log2(display_white(curve) / highlights));
+}
+
+}  // namespace lightcone
