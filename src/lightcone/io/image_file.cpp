@@ -291,23 +291,26 @@ std::vector<unsigned char> display_rgb8(const Image& image) {
 }
 
 void display_rgb8(const Image& image, unsigned char* pixels) {
-  const std::array<float, 256>& thresholds = code_thresholds();
-  const std::array<unsigned char, 0x3F81>& runs = run_codes();
   parallel_for_pieces(std::size_t{0}, image.rgb.size(), std::size_t{1} << 16,
                       [&](std::size_t begin, std::size_t end) {
-                        for (std::size_t i = begin; i < end; ++i) {
-                          const float v = std::min(image.rgb[i] > 0 ? image.rgb[i] : 0.0f, 1.0f);
-                          std::uint32_t bits;
-                          std::memcpy(&bits, &v, sizeof bits);
-                          // A run of 2^16 bit patterns spans less than one code (two thirds of
-                          // one at most, just above 0.5), so one step up the thresholds
-                          // suffices (tested at every code boundary); without a branch, as the
-                          // step is not predictable.
-                          unsigned code = runs[bits >> 16];
-                          code += v >= thresholds[code];
-                          pixels[i] = static_cast<unsigned char>(code);
-                        }
+                        display_rgb8_values(&image.rgb[begin], end - begin, &pixels[begin]);
                       });
+}
+
+void display_rgb8_values(const float* values, std::size_t count, unsigned char* codes) {
+  const std::array<float, 256>& thresholds = code_thresholds();
+  const std::array<unsigned char, 0x3F81>& runs = run_codes();
+  for (std::size_t i = 0; i < count; ++i) {
+    const float v = std::min(values[i] > 0 ? values[i] : 0.0f, 1.0f);
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    // A run of 2^16 bit patterns spans less than one code (two thirds of one at most, just
+    // above 0.5), so one step up the thresholds suffices (tested at every code boundary);
+    // without a branch, as the step is not predictable.
+    unsigned code = runs[bits >> 16];
+    code += v >= thresholds[code];
+    codes[i] = static_cast<unsigned char>(code);
+  }
 }
 
 namespace {

@@ -44,6 +44,8 @@ void write_images(const Image& display, const Image& linear,
 std::vector<unsigned char> display_rgb8(const Image& display);
 // The same into `pixels` (3 width height bytes), which need not be initialised.
 void display_rgb8(const Image& display, unsigned char* pixels);
+// The codes of `count` display values (one thread; a row of a picture, say).
+void display_rgb8_values(const float* values, std::size_t count, unsigned char* codes);
 
 // The PNG file's bytes for a display image (for writing to standard output).
 std::vector<unsigned char> encode_png(const Image& display);

@@ -112,24 +112,26 @@ std::vector<unsigned char> encode_png(const Image& display) {
 
   // Uninitialised (new[] without "()"), so that the pages are first touched by the threads
   // that fill them rather than zeroed by one.
-  const std::unique_ptr<unsigned char[]> pixels(new unsigned char[height * row]);
   const std::unique_ptr<unsigned char[]> filtered(new unsigned char[height * line]);
-  display_rgb8(display, pixels.get());
   std::vector<Strip> deflated(strips);
-  // Each strip filters its own rows first, then deflates them with the byte before them, which
-  // the strip above filters: so the filtering is one pass and the deflating another.
+  // Each strip codes and filters its own rows first (coding the row above it again), then
+  // deflates them with the byte before them, which the strip above filters: so the filtering is
+  // one pass over the picture and the deflating another.
   parallel_for_pieces(std::size_t{0}, height, strip_rows, [&](std::size_t y0, std::size_t y1) {
+    std::vector<unsigned char> rows(2 * row);
+    unsigned char *above = rows.data(), *here = above + row;
+    if (y0 > 0) display_rgb8_values(&display.rgb[(y0 - 1) * row], row, above);
     for (std::size_t y = y0; y < y1; ++y) {
+      display_rgb8_values(&display.rgb[y * row], row, here);
       unsigned char* out = &filtered[y * line];
-      const unsigned char* here = &pixels[y * row];
       out[0] = kFilterUp;
       if (y == 0) {
         std::copy(here, here + row, out + 1);
       } else {
-        const unsigned char* above = here - row;
         for (std::size_t i = 0; i < row; ++i)
           out[1 + i] = static_cast<unsigned char>(here[i] - above[i]);
       }
+      std::swap(above, here);
     }
   });
   tbb::enumerable_thread_specific<Deflater> deflaters;
