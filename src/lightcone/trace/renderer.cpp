@@ -18,6 +18,7 @@
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/star_field.hpp"
 #include "lightcone/frame/tone_map.hpp"
+#include "lightcone/huge_pages.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/portable.hpp"
 
@@ -175,7 +176,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   image.width = width;
   image.height = height;
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  image.rgb.assign(pixels * 3, 0.0f);
+  assign_zeros_on_huge_pages(image.rgb, pixels * 3);
   std::vector<double> sum(observations > 1 ? pixels * 3 : 0, 0.0);
   const int tiles_x = (width + kTileSize - 1) / kTileSize;
   const int tiles_y = (height + kTileSize - 1) / kTileSize;
