@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "lightcone/huge_pages.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/portable.hpp"
 
@@ -113,6 +114,7 @@ std::vector<unsigned char> encode_png(const Image& display) {
   // Uninitialised (new[] without "()"), so that the pages are first touched by the threads
   // that fill them rather than zeroed by one.
   const std::unique_ptr<unsigned char[]> filtered(new unsigned char[height * line]);
+  advise_huge_pages(filtered.get(), height * line);
   std::vector<Strip> deflated(strips);
   // Each strip codes and filters its own rows first (coding the row above it again), then
   // deflates them with the byte before them, which the strip above filters: so the filtering is
