@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+
+#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -95,14 +98,22 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
 
 std::optional<std::string> picture_refused(const Scene& scene, const Image& image,
                                            double exposure) {
-  const auto non_finite =
-      std::count_if(image.rgb.begin(), image.rgb.end(), [](float v) { return !std::isfinite(v); });
+  // In parallel: a serial pass over a 1080p picture is a visible share of a render on 2 threads.
+  std::atomic<std::size_t> non_finite{0};
+  parallel_for_pieces(std::size_t{0}, image.rgb.size(), std::size_t{1} << 16,
+                      [&](std::size_t begin, std::size_t end) {
+                        const auto found =
+                            std::count_if(image.rgb.begin() + static_cast<std::ptrdiff_t>(begin),
+                                          image.rgb.begin() + static_cast<std::ptrdiff_t>(end),
+                                          [](float v) { return !std::isfinite(v); });
+                        if (found) non_finite += static_cast<std::size_t>(found);
+                      });
   if (non_finite == 0) return std::nullopt;
   return fmt::format(
       "{}: the render has {} non-finite value{} (NaN or infinity): its radiance times 2^{} is "
       "beyond a float's range (is render.exposure, sky.stars.exposure or an emitter's luminance "
       "too large?); no picture is given",
-      source_of(scene), non_finite, non_finite == 1 ? "" : "s", exposure);
+      source_of(scene), non_finite.load(), non_finite == 1 ? "" : "s", exposure);
 }
 
 }  // namespace lightcone
