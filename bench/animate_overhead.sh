@@ -12,8 +12,8 @@
 # bench/targets.py's sphere_scene (the targets' animate row is `bodies:20000 24 0 24`); TAU0 is
 # the scene's camera.proper_time (2 for rocket.json, 0 for bodies:COUNT); FPS defaults to 30.
 # Images are 640x360 at 1 sample. REPEATS=R measures each R times, alternating, and prints the
-# medians; OLD=BINARY also times that build's animate in the same run (another build's, for a
-# before and after).
+# medians; LIGHTCONE=BINARY names the program (default build/lightcone), and OLD=BINARY also
+# times another build's animate in the same run (for a before and after).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=${1:-scenes/rocket.json}
@@ -21,7 +21,7 @@ frames=${2:-120}
 tau0=${3:-2}
 fps=${4:-30}
 repeats=${REPEATS:-1}
-new=./build/lightcone
+new=${LIGHTCONE:-./build/lightcone}
 options=(--width 640 --height 360 --samples 1 --quiet)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -60,7 +60,7 @@ for ((r = 0; r < repeats; r++)); do
   for job in $(printf '%s\n' new old renders | shuf); do
     case $job in
       new) animate_new+=("$(animate_seconds "$new")") ;;
-      old) [ -n "${OLD:-}" ] && animate_old+=("$(animate_seconds "$OLD")") ;;
+      old) if [ -n "${OLD:-}" ]; then animate_old+=("$(animate_seconds "$OLD")"); fi ;;
       renders)
         read -r w g < <(renders_seconds)
         whole+=("$w") rendering+=("$g")
