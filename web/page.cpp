@@ -49,7 +49,7 @@ struct Page {
   std::unique_ptr<Flight> flight;
   bool split = false;
   double proper_time = 0;  // the camera's clock
-  ExposureMeter meter;
+  ExposureFollower meter;
   std::string result;  // what the last call returns to JavaScript
 };
 

@@ -11,7 +11,6 @@
 namespace lightcone {
 namespace {
 
-constexpr int kMeteringStep = 4;
 constexpr double kMeteringTime = 0.5;  // s
 
 }  // namespace
@@ -53,8 +52,8 @@ FlightBenchmark benchmark_flight(RasterRenderer& renderer, const Scene& scene,
   return result;
 }
 
-double ExposureMeter::follow(const FloatTarget& frame, ToneMap tonemap, double seconds) {
-  const double target = auto_exposure(frame.sampled(kMeteringStep, subject_), tonemap, subject_);
+double ExposureFollower::follow(const FloatTarget& frame, ToneMap tonemap, double seconds) {
+  const double target = frame.metered_exposure(tonemap);
   metered_ = metered_yet_
                  ? metered_ + (target - metered_) * (1 - std::exp(-seconds / kMeteringTime))
                  : target;

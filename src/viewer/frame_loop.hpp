@@ -4,10 +4,8 @@
 #pragma once
 
 #include <memory>
-#include <vector>
 
 #include "lightcone/frame/emission.hpp"
-#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/scene.hpp"
@@ -36,10 +34,10 @@ struct FlightBenchmark {
 FlightBenchmark benchmark_flight(RasterRenderer& renderer, const Scene& scene,
                                  const FloatTarget& target, int frames, bool on_gpu);
 
-// The automatic exposure: metered on every 4th pixel of every 4th row of each frame and
-// followed with a time constant of half a second, so that it does not pump; the first frame
-// after a reset takes the metered value at once.
-class ExposureMeter {
+// The automatic exposure: metered on each frame (FloatTarget::metered_exposure, the rule of
+// both renderers on a sample of the frame) and followed with a time constant of half a second,
+// so that it does not pump; the first frame after a reset takes the metered value at once.
+class ExposureFollower {
  public:
   double follow(const FloatTarget& frame, ToneMap tonemap, double seconds);
   void reset() { metered_yet_ = false; }
@@ -48,7 +46,6 @@ class ExposureMeter {
  private:
   double metered_ = 0;
   bool metered_yet_ = false;
-  std::vector<float> subject_;
 };
 
 }  // namespace lightcone

@@ -127,7 +127,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     // the slider's offset; else the slider's EV.
     bool automatic = scene.render.auto_exposure;
     double exposure_offset = automatic ? 0.0 : scene.render.exposure;
-    ExposureMeter meter;
+    ExposureFollower meter;
     auto last = std::chrono::steady_clock::now();
     const auto started = last;
     double fps = 0;

@@ -67,13 +67,16 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
                           " --exr " + quoted(dir / "trace.exr") + " --aov object");
   EXPECT_EQ(traced.status, 0) << traced.err;
   const auto rastered = test::run_lightcone("render " + source + common + " " + raster_extra +
-                                            " --renderer raster -o " + quoted(dir / "raster.png"));
+                                            " --renderer raster -o " + quoted(dir / "raster.png") +
+                                            " --exr " + quoted(dir / "raster.exr"));
   EXPECT_EQ(rastered.status, 0) << rastered.err;
   Agreement result;
   result.raster_err = rastered.err;
   if (traced.status != 0 || rastered.status != 0) return result;
   const auto a = load_image_file(dir / "trace.png"), b = load_image_file(dir / "raster.png");
   const auto exr = load_image_file(dir / "trace.exr");
+  result.trace_ev = exr->exposure.value_or(NAN);
+  result.raster_ev = load_image_file(dir / "raster.exr")->exposure.value_or(NAN);
   const std::vector<float>* object = nullptr;
   for (const NamedChannel& c : exr->channels)
     if (c.name == "object") object = &c.values;
@@ -84,13 +87,14 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
   return result;
 }
 
-void expect_agreement(const std::string& scene, const std::string& extra, int samples) {
+Agreement expect_agreement(const std::string& scene, const std::string& extra, int samples) {
   const Agreement a = agreement(scene, samples, extra);
   EXPECT_GE(a.within, 0.99) << scene << extra << ": " << a.compared << " pixels compared";
   EXPECT_GT(a.compared, 640u * 360u / 2) << scene;
   EXPECT_EQ(a.raster_err, "") << scene;  // nothing this renderer shows differently
   std::printf("%s %s: %.4f of %zu pixels within 4/255\n", scene.c_str(), extra.c_str(), a.within,
               a.compared);
+  return a;
 }
 
 }  // namespace lightcone::test

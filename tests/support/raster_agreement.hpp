@@ -32,6 +32,8 @@ struct Agreement {
   double within = 0;         // fraction of the compared pixels within 4/255 in every channel
   std::size_t compared = 0;  // pixels off the silhouette band
   std::string raster_err;    // what the raster render said on stderr
+  // The EV each renderer applied (its EXR's header): the scene's, or its automatic exposure.
+  double trace_ev = 0, raster_ev = 0;
 };
 
 // Renders a scene (a bundled one by name, or a path) both ways at 640x360 with `samples`
@@ -42,7 +44,8 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
                     const std::string& raster_extra = "");
 
 // At least 99 % of the compared pixels within 4/255, over half the picture compared, and
-// nothing the raster renderer says it draws differently.
-void expect_agreement(const std::string& scene, const std::string& extra = "", int samples = 16);
+// nothing the raster renderer says it draws differently; returns the agreement.
+Agreement expect_agreement(const std::string& scene, const std::string& extra = "",
+                           int samples = 16);
 
 }  // namespace lightcone::test

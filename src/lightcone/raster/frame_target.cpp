@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lightcone/frame/tone_map.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/shader_build.hpp"
 
@@ -38,13 +39,17 @@ void FloatTarget::bind() const {
   glViewport(0, 0, width_, height_);
 }
 
-void FloatTarget::add_to(std::vector<double>& sum, std::vector<float>* subject,
-                         float weight) const {
+void FloatTarget::read_back() const {
   pixels_.resize(4 * static_cast<std::size_t>(width_) * height_);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, pixels_.data());
   check_gl("reading the image back");
+}
+
+void FloatTarget::add_to(std::vector<double>& sum, std::vector<float>* subject,
+                         float weight) const {
+  read_back();
   // GL's rows run from the bottom up.
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x) {
@@ -55,24 +60,19 @@ void FloatTarget::add_to(std::vector<double>& sum, std::vector<float>* subject,
     }
 }
 
-Image FloatTarget::sampled(int step, std::vector<float>& subject) const {
-  pixels_.resize(4 * static_cast<std::size_t>(width_) * height_);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, pixels_.data());
-  check_gl("reading the image back");
-  Image image;
-  image.width = (width_ + step - 1) / step;
-  image.height = (height_ + step - 1) / step;
-  image.rgb.clear();
-  subject.clear();
-  for (int y = 0; y < height_; y += step)
-    for (int x = 0; x < width_; x += step) {
+double FloatTarget::metered_exposure(ToneMap curve) const {
+  read_back();
+  metered_.width = (width_ + kMeteringStep - 1) / kMeteringStep;
+  metered_.height = (height_ + kMeteringStep - 1) / kMeteringStep;
+  metered_.rgb.clear();
+  metered_subject_.clear();
+  for (int y = 0; y < height_; y += kMeteringStep)
+    for (int x = 0; x < width_; x += kMeteringStep) {
       const float* p = &pixels_[4 * (static_cast<std::size_t>(height_ - 1 - y) * width_ + x)];
-      image.rgb.insert(image.rgb.end(), {p[0], p[1], p[2]});
-      subject.push_back(p[3] > 1.5f ? 1.0f : 0.0f);
+      metered_.rgb.insert(metered_.rgb.end(), {p[0], p[1], p[2]});
+      metered_subject_.push_back(p[3] > 1.5f ? 1.0f : 0.0f);
     }
-  return image;
+  return auto_exposure(metered_, curve, metered_subject_);
 }
 
 Image FloatTarget::read() const {

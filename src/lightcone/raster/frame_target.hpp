@@ -28,15 +28,23 @@ class FloatTarget {
   // drawn (its alpha is 2, body.frag's subject_alpha).
   void add_to(std::vector<double>& sum, std::vector<float>* subject = nullptr,
               float weight = 0) const;
-  // Every `step`-th pixel of every `step`-th row, as an image (rows from the top), and in
-  // `subject` whether each shows a body moving relative to the camera: a sample of the frame
-  // for metering its automatic exposure.
-  Image sampled(int step, std::vector<float>& subject) const;
+  // The automatic exposure of one pass drawn here, as the viewer and the web page meter each
+  // frame: the rule of both renderers (tone_map.hpp's auto_exposure) on every
+  // kMeteringStep-th pixel of every kMeteringStep-th row, each weighed as render_raster weighs
+  // it at one sample (1 where a body moving relative to the camera is drawn, else 0).
+  static constexpr int kMeteringStep = 4;
+  double metered_exposure(ToneMap curve) const;
 
  private:
+  // The target's RGBA into pixels_, rows from the bottom (GL's).
+  void read_back() const;
+
   int width_, height_;
   unsigned framebuffer_ = 0, colour_ = 0, depth_ = 0;
   mutable std::vector<float> pixels_;
+  // metered_exposure's sample of the frame and its subject weights, kept from frame to frame.
+  mutable Image metered_;
+  mutable std::vector<float> metered_subject_;
 };
 
 // Draws float textures into the bound framebuffer: radiance times 2^exposure, tone-mapped and
