@@ -4,31 +4,73 @@
 Each figure is a ratio within one run (or a time whose bound the issue fixed), so that it can be
 reproduced on any machine with this one command. Each is measured REPETITIONS times, the
 variants interleaved; the table shows the median and the spread (lowest to highest) of the
-repetitions. Prints the table and exits with 1 when a target is missed, 2 when something could
-not be measured. It is not a test: shared machines are noisy, so read the spread.
+repetitions. It is not a test: shared machines are noisy, so read the spread, and the machine's
+load printed around the table.
 
-    ./scripts/build.sh all && bench/targets.py [--repetitions N] [--only GROUP,...]
+    ./scripts/build.sh all && bench/targets.py [--repetitions N] [--only GROUP,...] [--build DIR]
+
+What is measured is what a user runs: a row that names the program (`lightcone render`,
+`lightcone animate`) times its whole process on a scene at the scene's own defaults (a scene
+file without a `render` section gets the automatic exposure and the filmic tone curve; the
+bundled scenes fix theirs, street.json at EV -3); a row marked "in-process" calls the library
+from lightcone_bench, and "at a fixed exposure (tracer only)" says that it leaves out what
+the program adds (reading the scene, the exposure, the tone map, the file), to isolate the tracer.
 
 Groups:
-  tracer   lightcone's rays per second over raw Embree's on the same 1M-triangle grid at
-           1920x1080, at rest (>= 0.70) and with the spheres at 0.9c (>= 0.60), 1 and 2 threads
-  swarm    the time per camera ray among 10,000 bodies over 100 covering the same 30 % of the
-           picture, unlit and lit (<= 2)
-  scaling  `lightcone render scenes/street.json` at 1920x1080, the whole process on 1 thread
-           over 2, at 1 and 4 samples (>= 1.8)
+  tracer   in-process at a fixed exposure (tracer only): lightcone's rays per second over raw
+           Embree's (rtcIntersect1 per pixel) on the same 1M-triangle grid at 1920x1080, at rest
+           (>= 0.70) and with the spheres at 0.9c (>= 0.60), 1 and 2 threads
+  cli      the same grid written as a scene file (bench/grid_scene.py) at its defaults:
+           `lightcone render GRID -o out.png --threads 1 --quiet`, camera rays over the whole
+           process's wall time, over raw Embree's rays per second on one thread measured in the
+           same run, at rest (>= 0.70) and at 0.9c (>= 0.60); the grid at rest, whole process,
+           automatic exposure over `--set render.exposure=0` on 1 thread and on all (<= 1.02)
+  swarm    in-process at a fixed exposure (tracer only): the time per camera ray apart from the
+           setup among 10,000 bodies over 100 covering the same 30 % of the picture, unlit and
+           lit (<= 2)
+  scaling  `lightcone render scenes/street.json` at 1920x1080 as its file says, the whole
+           process on 1 thread over 2, at 1 and 4 samples (>= 1.8)
   setup    the whole process of a 16x16 render of 100,000 plain-colour moving spheres read from
-           a scene file, less that of one sphere, per sphere (<= 10 us); the peak memory of a
-           render of 100,000 spheres of distinct colours (bench_bodies.cpp) per sphere
-           (<= 1.5 KB)
-  png      encoding street's 1080p picture as PNG over the whole 1-thread, 1-sample process
-           (<= 0.10)
-  colour   the emission tables of 1,000 distinct colours (<= 50 ms) and of 1,920 bodies
-           sharing one tabulated spectrum (<= 20 ms)
-  stars    the whole catalogue over sky.json at 1920x1080: tracer and raster frame with stars
-           over without (<= 1.10); loading the catalogue (<= 20 ms)
-  raster   one raster frame over the pass-through baseline drawing its triangles: street.json
-           at 640x360 and 1280x720 (<= 1.5), street-lit.json (<= 3); the 1,000-body swarm at
-           1280x720 in frames per second (>= 5)
+           a scene file at its defaults, less that of one sphere, per sphere (<= 10 us); the
+           peak memory of an in-process render of 100,000 spheres of distinct colours at a fixed
+           exposure (bench_bodies.cpp) per sphere (<= 1.5 KB)
+  animate  `lightcone animate` at its defaults (the automatic exposure, metered and smoothed
+           over the frames) of 24 frames at 24 fps of 20,000 moving spheres at 640x360, whole
+           process, over the 24 whole `lightcone render --set camera.proper_time=i/24`
+           processes of the same moments (<= 1.05)
+  png      in-process PNG encoding of street's 1080p picture over the whole 1-thread, 1-sample
+           `lightcone render scenes/street.json` process (<= 0.10)
+  colour   in-process: the emission tables of 1,000 distinct colours (<= 50 ms) and of 1,920
+           bodies sharing one tabulated spectrum (<= 20 ms); street.json at 1920x1080 as its
+           file says (spectral colour) over the same with `doppler: off`, on one thread
+           (bench_render.cpp's StreetDefault variants 0 and 1; <= 1.10)
+  stars    in-process, sky.json as its file says at 1920x1080: tracer and raster frame with the
+           whole catalogue over without (<= 1.10); loading the catalogue (<= 20 ms)
+  raster   in-process: one raster frame over the pass-through baseline drawing its triangles:
+           street.json at 640x360 and 1280x720 (<= 1.5), street-lit.json (<= 3); the
+           1,000-body swarm at 1280x720 in frames per second (>= 5)
+
+The default run (all groups, 3 repetitions) takes some 3 minutes on 2 cores.
+
+--build DIR measures any build, for instance one of an older commit:
+
+    git worktree add /tmp/old OLD && (cd /tmp/old && ./scripts/build.sh all)
+    bench/targets.py --build /tmp/old/build
+
+It times that build's `lightcone` and `lightcone_bench`; the scene files the program renders
+are this checkout's (scenes/, and those this script writes), while lightcone_bench reads the
+scenes of the source tree it was built from. A group whose benchmarks that build lacks is
+reported as not measured. The first line names the commit of the build's source tree.
+
+The machine: before the table it prints the CPU model, the cores and the load averages at the
+start; after it, the load averages at the end and the cores' time that other work took during
+the run. The run is called quiet only if the 1-minute load average at the start and the other
+work's share during the run are both at most 0.5 per core; otherwise it prints `machine: NOT
+quiet (...)` and why. (The load average at the end counts this run's own benchmarks, so the
+other work is taken from the machine's busy time, /proc/stat, less this run's own CPU time.)
+
+Exit status: 0 when every target measured is met, 1 when one is missed, 2 when something could
+not be measured, whether or not the machine was quiet.
 """
 import argparse
 import json
@@ -40,6 +82,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+from grid_scene import grid_scene, write_grid_scene
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -57,8 +101,11 @@ def bench_runs(build, pattern, repetitions):
     command = [os.path.join(build, "lightcone_bench"), f"--benchmark_filter={pattern}",
                f"--benchmark_repetitions={repetitions}",
                "--benchmark_enable_random_interleaving=true", "--benchmark_format=json"]
-    done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                          cwd=ROOT)
+    try:
+        done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              text=True, cwd=ROOT)
+    except OSError as e:  # a build relinking it, say
+        raise Unmeasured(f"{command[0]} could not be run: {e.strerror}")
     if done.returncode != 0:
         raise Unmeasured(f"lightcone_bench --benchmark_filter='{pattern}' failed: "
                          f"{done.stderr.strip()[-300:]}")
@@ -86,8 +133,11 @@ def series(runs, name, value):
 def process(command):
     """Wall seconds and peak resident bytes of one run of a command."""
     start = time.perf_counter()
-    child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                             cwd=ROOT)
+    try:
+        child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                 cwd=ROOT)
+    except OSError as e:  # a build relinking it, say
+        raise Unmeasured(f"{command[0]} could not be run: {e.strerror}")
     _, status, usage = os.wait4(child.pid, 0)
     wall = time.perf_counter() - start
     child.returncode = os.waitstatus_to_exitcode(status)
@@ -151,9 +201,45 @@ def measure_tracer(table, build, repetitions, scratch):
             ours = series(runs, f"Throughput_lightcone/{motion}/case:0/threads:{threads}"
                           "/real_time", rays)
             table.add("tracer", f"grid {what}, {threads} thread{'s' * (threads > 1)}, "
-                      f"share of raw Embree ({statistics.median(ours) / 1e6:.2f} / "
+                      "in-process at a fixed exposure (tracer only), over raw Embree "
+                      f"({statistics.median(ours) / 1e6:.2f} / "
                       f"{statistics.median(raw) / 1e6:.2f} Mrays/s)",
                       ratios(ours, raw), bound, True)
+
+
+def measure_cli(table, build, repetitions, scratch):
+    raw = series(bench_runs(build, r"^Throughput_raw_embree/single/case:0/threads:1/",
+                            repetitions),
+                 "Throughput_raw_embree/single/case:0/threads:1/real_time",
+                 lambda r: r["rays_per_s"])
+    camera = grid_scene()["camera"]
+    rays = camera["width"] * camera["height"] * camera.get("samples", 1)
+    folder = os.path.join(scratch, "grid")
+    scenes = {moving: write_grid_scene(folder, moving) for moving in (False, True)}
+
+    def render(moving, *options):
+        return [lightcone(build), "render", scenes[moving], "-o",
+                os.path.join(folder, "out.png"), "--quiet", *options]
+
+    one, fixed = ("--threads", "1"), ("--set", "render.exposure=0")
+    commands = {("rest", 1, "auto"): render(False, *one),
+                ("moving", 1, "auto"): render(True, *one),
+                ("rest", 1, "fixed"): render(False, *one, *fixed),
+                ("rest", "all", "auto"): render(False),
+                ("rest", "all", "fixed"): render(False, *fixed)}
+    walls = {key: [wall for wall, _ in runs]
+             for key, runs in alternate(commands, repetitions).items()}
+    for motion, bound, what in (("rest", 0.70, "at rest"), ("moving", 0.60, "at 0.9c")):
+        ours = [rays / wall for wall in walls[(motion, 1, "auto")]]
+        table.add("cli", f"grid {what}, 1 thread, `render` at its defaults, whole process, "
+                  f"over raw Embree ({statistics.median(ours) / 1e6:.2f} / "
+                  f"{statistics.median(raw) / 1e6:.2f} Mrays/s)", ratios(ours, raw), bound, True)
+    for threads in (1, "all"):
+        auto, exposed = walls[("rest", threads, "auto")], walls[("rest", threads, "fixed")]
+        table.add("cli", f"grid at rest, {threads} thread{'s' * (threads != 1)}, whole "
+                  "process, automatic exposure over render.exposure=0 "
+                  f"({statistics.median(auto):.2f} / {statistics.median(exposed):.2f} s)",
+                  ratios(auto, exposed), 1.02, False)
 
 
 def measure_swarm(table, build, repetitions, scratch):
@@ -162,8 +248,9 @@ def measure_swarm(table, build, repetitions, scratch):
     for lit in (0, 1):
         dense = series(runs, f"DenseSwarm/bodies:10000/lit:{lit}/manual_time", per_ray)
         sparse = series(runs, f"DenseSwarm/bodies:100/lit:{lit}/manual_time", per_ray)
-        table.add("swarm", f"{'lit' if lit else 'unlit'} dense swarm, time per ray, 10^4 over "
-                  "10^2 bodies", ratios(dense, sparse), 2.0, False)
+        table.add("swarm", f"{'lit' if lit else 'unlit'} dense swarm, in-process at a fixed "
+                  "exposure (tracer only), time per ray, 10^4 over 10^2 bodies",
+                  ratios(dense, sparse), 2.0, False)
 
 
 def lightcone(build):
@@ -181,19 +268,21 @@ def measure_scaling(table, build, repetitions, scratch):
         walls = alternate(commands, repetitions)
         one = [w for w, _ in walls[1]]
         two = [w for w, _ in walls[2]]
-        table.add("scaling", f"street 1920x1080, {samples} sample{'s' * (samples > 1)}, whole "
-                  f"process, 1 thread over 2 ({statistics.median(one):.2f} / "
+        table.add("scaling", f"street.json 1920x1080 as its file says, {samples} "
+                  f"sample{'s' * (samples > 1)}, whole `render` process, 1 thread over 2 "
+                  f"({statistics.median(one):.2f} / "
                   f"{statistics.median(two):.2f} s)", ratios(one, two), 1.8, True)
 
 
-def sphere_scene(path, count):
-    """`count` unit spheres of 16 plain colours, each with its own velocity, seen at 16x16."""
+def sphere_scene(path, count, width=16, height=16):
+    """`count` spheres of 16 plain colours, each with its own velocity, seen at `width` x
+    `height`, without a `render` section (the program's defaults)."""
     rng = random.Random(7)
     palette = [[round(rng.random(), 3) for _ in range(3)] for _ in range(16)]
     side = int(round(count ** (1 / 3))) + 1
     with open(path, "w") as f:
-        f.write('{"camera": {"position": [0, 0, 0], "fov": 60, "width": 16, "height": 16, '
-                '"samples": 1},\n "objects": [\n')
+        f.write('{"camera": {"position": [0, 0, 0], "fov": 60, "width": %d, "height": %d, '
+                '"samples": 1},\n "objects": [\n' % (width, height))
         for i in range(count):
             position = [i % side - side / 2, (i // side) % side - side / 2, -5 - i // side ** 2]
             velocity = [round(rng.uniform(-0.5, 0.5), 4), round(rng.uniform(-0.5, 0.5), 4), 0]
@@ -212,12 +301,38 @@ def measure_setup(table, build, repetitions, scratch):
                     "--quiet"] for n, path in ((count, many), (1, one))}
     runs = alternate(commands, repetitions)
     per_body = [(a - b) / (count - 1) for (a, _), (b, _) in zip(runs[count], runs[1])]
-    table.add("setup", "setup per body at 10^5 bodies (whole process, less one body's)",
-              per_body, 10e-6, False, " us", 1e6)
+    table.add("setup", "setup per body at 10^5 bodies (whole `render` process at its defaults, "
+              "less one body's)", per_body, 10e-6, False, " us", 1e6)
     memory = bench_runs(build, r"^BM_Bodies/bodies:100000/", repetitions)
-    table.add("setup", "peak memory per body at 10^5 bodies (BM_Bodies' process peak / 10^5)",
+    table.add("setup", "peak memory per body at 10^5 bodies (in-process at a fixed exposure: "
+              "BM_Bodies' process peak / 10^5)",
               series(memory, "BM_Bodies/bodies:100000/iterations:1/real_time",
                      lambda r: r["peak_rss_bytes"] / r["bodies"]), 1500, False, " KB", 1e-3)
+
+
+def measure_animate(table, build, repetitions, scratch):
+    count, frames, fps = 20_000, 24, 24
+    scene = os.path.join(scratch, "bodies.json")
+    sphere_scene(scene, count, 640, 360)
+    folder = os.path.join(scratch, "frames")
+    os.makedirs(folder, exist_ok=True)
+    animate = [lightcone(build), "animate", scene, "--fps", str(fps), "--frames",
+               f"0-{frames - 1}", "-o", os.path.join(folder, "animate-%04d.png"), "--quiet"]
+    # Frame i is the picture at the camera's proper time camera.proper_time + i / fps (the
+    # scene's is 0).
+    renders = [[lightcone(build), "render", scene, "-o",
+                os.path.join(folder, f"render-{i:04d}.png"), "--quiet", "--set",
+                f"camera.proper_time={i / fps!r}"] for i in range(frames)]
+    walls = {"animate": [], "renders": []}
+    for _ in range(repetitions):
+        for key in random.sample(sorted(walls), len(walls)):
+            walls[key].append(process(animate)[0] if key == "animate" else
+                              sum(process(command)[0] for command in renders))
+    table.add("animate", f"`animate` at its defaults over {frames} `render` calls, {frames} "
+              f"frames of {count:,} moving spheres at 640x360, whole processes "
+              f"({statistics.median(walls['animate']):.2f} / "
+              f"{statistics.median(walls['renders']):.2f} s)",
+              ratios(walls["animate"], walls["renders"]), 1.05, False)
 
 
 def measure_png(table, build, repetitions, scratch):
@@ -227,7 +342,7 @@ def measure_png(table, build, repetitions, scratch):
                os.path.join(scratch, "street.png"), "--width", "1920", "--height", "1080",
                "--samples", "1", "--threads", "1", "--quiet"]
     walls = [w for w, _ in alternate({0: command}, repetitions)[0]]
-    table.add("png", f"PNG encoding's share of street's 1-thread process "
+    table.add("png", f"PNG encoding (in-process) over street's whole 1-thread `render` process "
               f"({statistics.median(encode):.3f} / {statistics.median(walls):.2f} s)",
               ratios(encode, walls), 0.10, False)
 
@@ -240,6 +355,12 @@ def measure_colour(table, build, repetitions, scratch):
     table.add("colour", "emission tables, one tabulated spectrum on 1,920 bodies",
               series(runs, "ColourTables/tabulated_spectrum/real_time", seconds), 0.020, False,
               " ms", 1e3, 1)
+    street = bench_runs(build, r"^BM_StreetDefault/variant:[01]/", repetitions)
+    spectral, off = (series(street, f"BM_StreetDefault/variant:{v}/iterations:3/real_time",
+                            seconds) for v in (0, 1))
+    table.add("colour", f"street.json 1920x1080 as its file says, spectral colour over "
+              f"doppler: off, in-process, 1 thread ({statistics.median(spectral):.2f} / "
+              f"{statistics.median(off):.2f} s)", ratios(spectral, off), 1.10, False)
 
 
 def measure_stars(table, build, repetitions, scratch):
@@ -248,7 +369,8 @@ def measure_stars(table, build, repetitions, scratch):
         suffix = "/iterations:3/real_time" if kind == "SkyTrace" else "/real_time"
         with_stars = series(runs, f"{kind}/stars:1{suffix}", seconds)
         without = series(runs, f"{kind}/stars:0{suffix}", seconds)
-        table.add("stars", f"sky.json 1920x1080, {what} with the catalogue over without",
+        table.add("stars", f"sky.json 1920x1080, in-process {what} with the catalogue over "
+                  "without",
                   ratios(with_stars, without), 1.10, False)
     table.add("stars", "loading the catalogue",
               series(runs, "StarCatalogueLoad", seconds), 0.020, False, " ms", 1e3, 1)
@@ -262,7 +384,8 @@ def measure_raster(table, build, repetitions, scratch):
         baseline = series(runs, f"RasterBaseline/{scene}/{size}/real_time", seconds)
         # The floor: the same frame with its bodies shaded for nothing (RasterFloor).
         floor = series(runs, f"RasterFloor/{scene}/{size}/real_time", seconds)
-        table.add("raster", f"{scene}.json {size}, frame over the pass-through baseline "
+        table.add("raster", f"{scene}.json {size}, in-process frame over the pass-through "
+                  "baseline "
                   f"({1e3 * statistics.median(frame):.1f} / "
                   f"{1e3 * statistics.median(baseline):.1f} ms; bodies shaded for nothing: "
                   f"{statistics.median(ratios(floor, baseline)):.2f})", ratios(frame, baseline),
@@ -273,9 +396,10 @@ def measure_raster(table, build, repetitions, scratch):
 
 
 # Each takes the table, the build directory, the repetitions and a scratch directory.
-MEASURES = {"tracer": measure_tracer, "swarm": measure_swarm, "scaling": measure_scaling,
-            "setup": measure_setup, "png": measure_png, "colour": measure_colour,
-            "stars": measure_stars, "raster": measure_raster}
+MEASURES = {"tracer": measure_tracer, "cli": measure_cli, "swarm": measure_swarm,
+            "scaling": measure_scaling, "setup": measure_setup, "animate": measure_animate,
+            "png": measure_png, "colour": measure_colour, "stars": measure_stars,
+            "raster": measure_raster}
 
 
 def cpu_model():
@@ -289,6 +413,83 @@ def cpu_model():
     return platform.processor() or "unknown"
 
 
+def source_tree(build):
+    """The source tree a build was configured from (its CMakeCache.txt), else this checkout."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            for line in f:
+                if line.startswith("CMAKE_HOME_DIRECTORY:"):
+                    return line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    return ROOT
+
+
+def busy_seconds():
+    """The CPU seconds all the machine's cores have spent busy since boot (/proc/stat: user,
+    nice, system, irq, softirq and steal), or None where that cannot be read."""
+    try:
+        with open("/proc/stat") as f:
+            fields = f.readline().split()
+    except OSError:
+        return None
+    if not fields or fields[0] != "cpu" or len(fields) < 9:
+        return None
+    user, nice, system, _, _, irq, softirq, steal = (int(v) for v in fields[1:9])
+    return (user + nice + system + irq + softirq + steal) / os.sysconf("SC_CLK_TCK")
+
+
+def own_seconds():
+    """The CPU seconds this script and the children it has waited for have spent."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
+def loads(load):
+    return " ".join(f"{v:.2f}" for v in load)
+
+
+class Machine:
+    """The load before and after a run: quiet only if the 1-minute load average at the start
+    and the other work during the run are both at most 0.5 per core."""
+
+    QUIET_LOAD_PER_CORE = 0.5
+
+    def __init__(self):
+        self.cores = os.cpu_count() or 1
+        self.start_load = os.getloadavg()
+        self.start_busy, self.start_own = busy_seconds(), own_seconds()
+        self.start_wall = time.perf_counter()
+
+    def start_line(self):
+        return (f"machine: {cpu_model()}, {self.cores} cores; load average "
+                f"{loads(self.start_load)} (1, 5, 15 minutes) at the start")
+
+    def end_lines(self):
+        """The end's load, the other work's share of the cores during the run, and whether the
+        run was quiet."""
+        end_load, end_busy = os.getloadavg(), busy_seconds()
+        wall = time.perf_counter() - self.start_wall
+        limit = self.QUIET_LOAD_PER_CORE * self.cores
+        lines = [f"machine: load average {loads(end_load)} at the end (this run's own work "
+                 "included)"]
+        noisy = []
+        if self.start_load[0] > limit:
+            noisy.append(f"load {self.start_load[0]:.2f} on {self.cores} cores at the start")
+        if end_busy is None or self.start_busy is None:
+            lines.append("machine: the other work during the run is unknown (no /proc/stat)")
+            noisy.append("the other work during the run is unknown")
+        else:
+            others = max(0.0, end_busy - self.start_busy - (own_seconds() - self.start_own))
+            share = others / wall
+            lines.append(f"machine: other work took {share:.2f} of the {self.cores} cores during "
+                         f"the run ({others:.0f} CPU s in {wall:.0f} s)")
+            if share > limit:
+                noisy.append(f"other work took {share:.2f} of {self.cores} cores during the run")
+        lines.append(f"machine: NOT quiet ({'; '.join(noisy)})" if noisy else "machine: quiet")
+        return lines
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -296,34 +497,40 @@ def main():
     parser.add_argument("--only", default=",".join(MEASURES),
                         help="comma-separated groups (default: all)")
     parser.add_argument("--build", default=os.path.join(ROOT, "build"),
-                        help="the build directory (build/)")
+                        help="the build directory whose lightcone and lightcone_bench are timed "
+                        "(build/)")
     args = parser.parse_args()
     groups = [g for g in args.only.split(",") if g]
     unknown = [g for g in groups if g not in MEASURES]
     if unknown or args.repetitions < 1:
         parser.error(f"unknown group {unknown[0]} (groups: {', '.join(MEASURES)})" if unknown
                      else "--repetitions must be at least 1")
+    build = os.path.abspath(args.build)
     for tool in ("lightcone", "lightcone_bench"):
-        if not os.access(os.path.join(args.build, tool), os.X_OK):
-            sys.exit(f"targets.py: {os.path.join(args.build, tool)} is missing: run "
+        if not os.access(os.path.join(build, tool), os.X_OK):
+            sys.exit(f"targets.py: {os.path.join(build, tool)} is missing: run "
                      "./scripts/build.sh all first")
+    machine = Machine()
+    source = source_tree(build)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True, cwd=ROOT).stdout.strip()
+                            text=True, cwd=source).stdout.strip() or "unknown commit"
     dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True, cwd=ROOT).stdout.strip()
-    print(f"lightcone {commit}{' (with uncommitted changes)' if dirty else ''}, "
-          f"{time.strftime('%Y-%m-%d %H:%M %Z')}, {cpu_model()}, {os.cpu_count()} cores, "
-          f"{args.repetitions} repetitions", flush=True)
+                           capture_output=True, text=True, cwd=source).stdout.strip()
+    print(f"lightcone {commit}{' (with uncommitted changes)' if dirty else ''}, build {build}, "
+          f"{time.strftime('%Y-%m-%d %H:%M %Z')}, {args.repetitions} repetitions", flush=True)
+    print(machine.start_line(), flush=True)
     table = Table()
     failures = []
     with tempfile.TemporaryDirectory(prefix="lightcone-targets-") as scratch:
         for group in groups:
             log(f"targets.py: measuring {group}...")
             try:
-                MEASURES[group](table, args.build, args.repetitions, scratch)
+                MEASURES[group](table, build, args.repetitions, scratch)
             except Unmeasured as e:
                 failures.append(f"{group}: {e}")
     table.print()
+    for line in machine.end_lines():
+        print(line)
     for failure in failures:
         print(f"not measured: {failure}")
     missed = table.missed()
