@@ -108,7 +108,7 @@ std::uint64_t pixel_key(int i, int j, std::uint64_t seed) {
 
 }  // namespace
 
-PixelSampler::PixelSampler(int i, int j, int n, std::uint64_t seed, bool with_light) {
+void PixelSampler::make_patterns(int i, int j, int n, std::uint64_t seed, bool with_light) {
   const auto count = static_cast<std::uint32_t>(n < 1 ? 1 : n);
   const std::uint64_t pixel = pixel_key(i, j, seed);
   // One sample a pixel is its centre; the point on lights only where there are sphere lights.

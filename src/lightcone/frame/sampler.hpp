@@ -54,10 +54,15 @@ PixelSample pixel_sample(int i, int j, int k, int n, std::uint64_t seed, bool wi
 class PixelSampler {
  public:
   PixelSampler() = default;  // every sample at the centre, no point on lights
-  PixelSampler(int i, int j, int n, std::uint64_t seed, bool with_light = true);
+  PixelSampler(int i, int j, int n, std::uint64_t seed, bool with_light = true) {
+    // One sample a pixel and no point on lights: the centre, with no pattern to make (inline,
+    // as that is most renders' every pixel).
+    if (n > 1 || with_light) make_patterns(i, j, n, seed, with_light);
+  }
   PixelSample operator()(int k) const;
 
  private:
+  void make_patterns(int i, int j, int n, std::uint64_t seed, bool with_light);
   std::optional<MultiJittered> position_, light_;
 };
 
