@@ -24,7 +24,8 @@ Groups:
            `lightcone render GRID -o out.png --threads 1 --quiet`, camera rays over the whole
            process's wall time, over raw Embree's rays per second on one thread measured in the
            same run, at rest (>= 0.70) and at 0.9c (>= 0.60); the grid at rest, whole process,
-           automatic exposure over `--set render.exposure=0` on 1 thread and on all (<= 1.02)
+           automatic exposure over `--set render.exposure=0` on 1 thread and on all (<= 1.02);
+           each repetition of these times the mean of three runs
   swarm    in-process at a fixed exposure (tracer only): the time per camera ray apart from the
            setup among 10,000 bodies over 100 covering the same 30 % of the picture, unlit and
            lit (<= 2)
@@ -57,10 +58,11 @@ The default run (all groups, 3 repetitions) takes some 3 minutes on 2 cores.
     git worktree add /tmp/old OLD && (cd /tmp/old && ./scripts/build.sh all)
     bench/targets.py --build /tmp/old/build
 
-It times that build's `lightcone` and `lightcone_bench`; the scene files the program renders
-are this checkout's (scenes/, and those this script writes), while lightcone_bench reads the
-scenes of the source tree it was built from. A group whose benchmarks that build lacks is
-reported as not measured. The first line names the commit of the build's source tree.
+It times that build's `lightcone` and `lightcone_bench`, copies taken at the start (so that a
+rebuild during the run changes nothing); the scene files the program renders are this
+checkout's (scenes/, and those this script writes), while lightcone_bench reads the scenes of
+the source tree it was built from. A group whose benchmarks that build lacks is reported as not
+measured. The first line names the commit of the build's source tree.
 
 The machine: before the table it prints the CPU model, the cores and the load averages at the
 start; after it, the load averages at the end and the cores' time that other work took during
@@ -77,6 +79,7 @@ import json
 import os
 import platform
 import random
+import shutil
 import statistics
 import subprocess
 import sys
@@ -148,14 +151,20 @@ def process(command):
     return wall, usage.ru_maxrss * 1024
 
 
-def alternate(commands, repetitions):
-    """{key: [(wall, peak) per repetition]}, the commands run in a shuffled order each round."""
+def alternate(commands, repetitions, rounds=1):
+    """{key: [(wall, peak) per repetition]}, the commands run in a shuffled order each round; a
+    repetition's wall is the sum of `rounds` rounds' (so that a short process's noise averages
+    out), its peak their highest."""
     out = {key: [] for key in commands}
     order = list(commands)
     for _ in range(repetitions):
-        random.shuffle(order)
-        for key in order:
-            out[key].append(process(commands[key]))
+        runs = {key: [] for key in commands}
+        for _ in range(rounds):
+            random.shuffle(order)
+            for key in order:
+                runs[key].append(process(commands[key]))
+        for key, measured in runs.items():
+            out[key].append((sum(wall for wall, _ in measured), max(peak for _, peak in measured)))
     return out
 
 
@@ -227,8 +236,10 @@ def measure_cli(table, build, repetitions, scratch):
                 ("rest", 1, "fixed"): render(False, *one, *fixed),
                 ("rest", "all", "auto"): render(False),
                 ("rest", "all", "fixed"): render(False, *fixed)}
-    walls = {key: [wall for wall, _ in runs]
-             for key, runs in alternate(commands, repetitions).items()}
+    # Each a fraction of a second, against a bound of 2 %: three runs a repetition.
+    rounds = 3
+    walls = {key: [wall / rounds for wall, _ in runs]
+             for key, runs in alternate(commands, repetitions, rounds).items()}
     for motion, bound, what in (("rest", 0.70, "at rest"), ("moving", 0.60, "at 0.9c")):
         ours = [rays / wall for wall in walls[(motion, 1, "auto")]]
         table.add("cli", f"grid {what}, 1 thread, `render` at its defaults, whole process, "
@@ -413,6 +424,21 @@ def cpu_model():
     return platform.processor() or "unknown"
 
 
+PROGRAMS = ("lightcone", "lightcone_bench")
+
+
+def snapshot(build, scratch):
+    """A copy of the build's programs in `scratch`, with its data/ (the star catalogue, which
+    the programs look for beside themselves) linked beside them: the whole run times one build,
+    even while build/ is being rebuilt. Returns the copy's folder."""
+    copy = os.path.join(scratch, "build")
+    os.makedirs(copy)
+    for program in PROGRAMS:
+        shutil.copy2(os.path.join(build, program), copy)
+    os.symlink(os.path.join(build, "data"), os.path.join(copy, "data"))
+    return copy
+
+
 def source_tree(build):
     """The source tree a build was configured from (its CMakeCache.txt), else this checkout."""
     try:
@@ -506,7 +532,7 @@ def main():
         parser.error(f"unknown group {unknown[0]} (groups: {', '.join(MEASURES)})" if unknown
                      else "--repetitions must be at least 1")
     build = os.path.abspath(args.build)
-    for tool in ("lightcone", "lightcone_bench"):
+    for tool in PROGRAMS:
         if not os.access(os.path.join(build, tool), os.X_OK):
             sys.exit(f"targets.py: {os.path.join(build, tool)} is missing: run "
                      "./scripts/build.sh all first")
@@ -522,10 +548,11 @@ def main():
     table = Table()
     failures = []
     with tempfile.TemporaryDirectory(prefix="lightcone-targets-") as scratch:
+        programs = snapshot(build, scratch)
         for group in groups:
             log(f"targets.py: measuring {group}...")
             try:
-                MEASURES[group](table, build, args.repetitions, scratch)
+                MEASURES[group](table, programs, args.repetitions, scratch)
             except Unmeasured as e:
                 failures.append(f"{group}: {e}")
     table.print()
