@@ -51,7 +51,7 @@ Groups:
            street.json at 640x360 and 1280x720 (<= 1.5), street-lit.json (<= 3); the
            1,000-body swarm at 1280x720 in frames per second (>= 5)
 
-The default run (all groups, 3 repetitions) takes some 3 minutes on 2 cores.
+The default run (all groups, 3 repetitions) takes some 4 minutes on 2 cores.
 
 --build DIR measures any build, for instance one of an older commit:
 
