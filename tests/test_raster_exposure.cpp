@@ -12,11 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "lightcone/frame/emission.hpp"
-#include "lightcone/frame/resolved_scene.hpp"
+#include "lightcone/frame/pixel_lattice.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/raster/frame_target.hpp"
-#include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "support/raster_agreement.hpp"
@@ -115,24 +113,10 @@ TEST(RasterExposure, BothRenderersWeighTheSamePixelsButOnTheOutline) {
   }
 }
 
-// A frame as the viewer and the web page draw it (one pass, through the pixels' centres).
-double metered_frame(const Scene& scene) {
-  const HeadlessGlContext context;
-  RasterRenderer renderer;
-  const FloatTarget target(scene.camera.width, scene.camera.height);
-  const ResolvedScene resolved = resolve_scene(scene);
-  const EmissionTable emission(resolved);
-  target.bind();
-  renderer.prepare(resolved, emission, {},
-                   tessellate_on_gpu(RasterTessellation::kAuto, renderer.driver()));
-  renderer.pass();
-  return target.metered_exposure(scene.render.tonemap);
-}
-
 // The viewer's and the page's metering (FloatTarget::metered_exposure; the smoothing over time
-// aside) is the rule on every 4th pixel of every 4th row of render_raster's one-sample picture,
-// weighed by its subject: exactly that, and so within what a sixteenth of the pixels allows of
-// the EV render_raster applies.
+// aside) is the rule on the lattice of render_raster's one-sample picture that an animation
+// meters (one pixel of each 4 x 4 block), weighed by its subject: exactly that, and so within
+// what a sixteenth of the pixels allows of the EV render_raster applies.
 TEST(RasterExposure, TheViewersMeteringIsTheLibrarysRuleOnASampleOfTheFrame) {
   for (const std::string name : {"terrell.json", "street.json", "occluder"}) {
     SCOPED_TRACE(name);
@@ -149,17 +133,10 @@ TEST(RasterExposure, TheViewersMeteringIsTheLibrarysRuleOnASampleOfTheFrame) {
         render_raster(linear, nullptr, {}, 0, RasterTessellation::kAuto, {}, &subject);
     render_raster(scene, &stats);
     constexpr int step = FloatTarget::kMeteringStep;
-    Image sample;
-    sample.width = (picture.width + step - 1) / step;
-    sample.height = (picture.height + step - 1) / step;
-    std::vector<float> sample_subject;
-    for (int y = 0; y < picture.height; y += step)
-      for (int x = 0; x < picture.width; x += step) {
-        const std::size_t at = static_cast<std::size_t>(y) * picture.width + x;
-        sample.rgb.insert(sample.rgb.end(), &picture.rgb[3 * at], &picture.rgb[3 * at + 3]);
-        sample_subject.push_back(subject[at]);
-      }
-    const double metered = metered_frame(scene);
+    const Image sample = lattice_of(picture, step);
+    const std::vector<float> sample_subject =
+        lattice_of(subject, picture.width, picture.height, 1, step);
+    const double metered = test::metered_frame_exposure(scene);
     std::printf("%s: metered %+.4f, the rule on the sample %+.4f, render_raster %+.4f\n",
                 name.c_str(), metered, auto_exposure(sample, scene.render.tonemap, sample_subject),
                 stats.exposure);

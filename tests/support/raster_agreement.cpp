@@ -8,7 +8,12 @@
 #include <filesystem>
 #include <vector>
 
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/raster/frame_target.hpp"
+#include "lightcone/raster/gl_context.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone::test {
@@ -95,6 +100,19 @@ Agreement expect_agreement(const std::string& scene, const std::string& extra, i
   std::printf("%s %s: %.4f of %zu pixels within 4/255\n", scene.c_str(), extra.c_str(), a.within,
               a.compared);
   return a;
+}
+
+double metered_frame_exposure(const Scene& scene) {
+  const HeadlessGlContext context;
+  RasterRenderer renderer;
+  const FloatTarget target(scene.camera.width, scene.camera.height);
+  const ResolvedScene resolved = resolve_scene(scene);
+  const EmissionTable emission(resolved);
+  target.bind();
+  renderer.prepare(resolved, emission, {},
+                   tessellate_on_gpu(RasterTessellation::kAuto, renderer.driver()));
+  renderer.pass();
+  return target.metered_exposure(scene.render.tonemap);
 }
 
 }  // namespace lightcone::test

@@ -48,4 +48,8 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
 Agreement expect_agreement(const std::string& scene, const std::string& extra = "",
                            int samples = 16);
 
+// The automatic exposure the viewer and the web page meter on their frame of `scene` (one pass
+// through the pixels' centres, FloatTarget::metered_exposure), before they smooth it over time.
+double metered_frame_exposure(const Scene& scene);
+
 }  // namespace lightcone::test

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lightcone/frame/pixel_lattice.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/shader_build.hpp"
@@ -62,12 +63,14 @@ void FloatTarget::add_to(std::vector<double>& sum, std::vector<float>* subject,
 
 double FloatTarget::metered_exposure(ToneMap curve) const {
   read_back();
-  metered_.width = (width_ + kMeteringStep - 1) / kMeteringStep;
-  metered_.height = (height_ + kMeteringStep - 1) / kMeteringStep;
+  metered_.width = lattice_size(width_, kMeteringStep);
+  metered_.height = lattice_size(height_, kMeteringStep);
   metered_.rgb.clear();
   metered_subject_.clear();
-  for (int y = 0; y < height_; y += kMeteringStep)
-    for (int x = 0; x < width_; x += kMeteringStep) {
+  for (int b = 0; b < metered_.height; ++b)
+    for (int a = 0; a < metered_.width; ++a) {
+      const int x = lattice_pixel(a, width_, kMeteringStep);
+      const int y = lattice_pixel(b, height_, kMeteringStep);
       const float* p = &pixels_[4 * (static_cast<std::size_t>(height_ - 1 - y) * width_ + x)];
       metered_.rgb.insert(metered_.rgb.end(), {p[0], p[1], p[2]});
       metered_subject_.push_back(p[3] > 1.5f ? 1.0f : 0.0f);

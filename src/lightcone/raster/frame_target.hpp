@@ -29,9 +29,10 @@ class FloatTarget {
   void add_to(std::vector<double>& sum, std::vector<float>* subject = nullptr,
               float weight = 0) const;
   // The automatic exposure of one pass drawn here, as the viewer and the web page meter each
-  // frame: the rule of both renderers (tone_map.hpp's auto_exposure) on every
-  // kMeteringStep-th pixel of every kMeteringStep-th row, each weighed as render_raster weighs
-  // it at one sample (1 where a body moving relative to the camera is drawn, else 0).
+  // frame: the rule of both renderers (tone_map.hpp's auto_exposure) on the lattice of stride
+  // kMeteringStep that an animation meters (frame/pixel_lattice.hpp), each pixel weighed as
+  // render_raster weighs it at one sample (1 where a body moving relative to the camera is
+  // drawn, else 0).
   static constexpr int kMeteringStep = 4;
   double metered_exposure(ToneMap curve) const;
 
