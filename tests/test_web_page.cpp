@@ -16,6 +16,7 @@
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/sigmoid_polynomial.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/raster/raster_renderer.hpp"
 #include "support/raster_agreement.hpp"
 #include "support/test_support.hpp"
 
@@ -51,16 +52,18 @@ int largest_difference(const Image& a, const Image& b) {
   return worst;
 }
 
-// The page's picture of `scene` against the native raster renderer's, at 640x360, exposure 0:
-// the share of pixels within 4/255 off a one-pixel band along the bodies' outlines (the ray
-// tracer's object ids mark them); with `bodies_alone`, also on the bodies' pixels alone.
+// The page's picture of `scene` against the native raster renderer's, at 640x360, at the
+// exposure `ev` (the page's own, 0 for most): the share of pixels within 4/255 off a one-pixel
+// band along the bodies' outlines (the ray tracer's object ids mark them); with
+// `bodies_alone`, also on the bodies' pixels alone.
 void expect_page_agrees(const fs::path& scene, const std::string& page_png,
-                        bool bodies_alone = false) {
+                        bool bodies_alone = false, double ev = 0) {
   const auto page = seen(page_png);
   ASSERT_NE(page, nullptr) << page_png << ": the page's picture is missing (see the fixture)";
   const fs::path dir = test::fresh_temp_dir("web-agreement");
   const std::string common =
-      " --width 640 --height 360 --samples 1 --set render.exposure=0 --quiet";
+      " --width 640 --height 360 --samples 1 --set render.exposure=" + std::to_string(ev) +
+      " --quiet";
   const auto raster =
       test::run_lightcone("render " + test::quoted(scene) + common + " --renderer raster -o " +
                           test::quoted(dir / "raster.png"));
@@ -102,6 +105,30 @@ TEST(WebPage, DrawsTerrellAsTheNativeRasterRenderer) {
 
 TEST(WebPage, DrawsStreetAsTheNativeRasterRenderer) {
   expect_page_agrees(kScenes / "street.json", "street.png");
+}
+
+// At its own, automatic exposure the page meters its frame as the native viewer does
+// (FloatTarget::metered_exposure, the program's rule on one pixel of each 4 x 4 block): within
+// 0.03 EV of the native metering of that frame (the page's WebGL picture and the native one
+// agree within 4/255, a few per cent) and within 0.1 EV of the whole picture's, which
+// `lightcone render --renderer raster` applies (a sixteenth of the pixels metered: the sixteen
+// ways to pick them give EVs within 0.06 of it); its picture at that EV is the native one's.
+TEST(WebPage, ExposesTerrellAsTheProgramDoes) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  ASSERT_TRUE(r.contains("terrell_auto_ev")) << "the page's EV is missing (see the fixture)";
+  const double page_ev = r["terrell_auto_ev"].get<double>();
+  Scene scene = test::load_repository_scene("terrell.json");
+  scene.camera.width = 640, scene.camera.height = 360, scene.camera.samples = 1;
+  ASSERT_TRUE(scene.render.auto_exposure);
+  RasterStats whole;
+  render_raster(scene, &whole);
+  const double native = test::metered_frame_exposure(scene);
+  std::printf("terrell's EV: the page %+.4f, the native viewer %+.4f, render %+.4f\n", page_ev,
+              native, whole.exposure);
+  EXPECT_NEAR(page_ev, native, 0.03);
+  EXPECT_NEAR(page_ev, whole.exposure, 0.1);
+  expect_page_agrees(kScenes / "terrell.json", "terrell-auto.png", false, page_ev);
 }
 
 // Lit by its lamps, with their shadows: the lit bodies' surfaces, then the lighting pass.

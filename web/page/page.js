@@ -284,8 +284,9 @@ createLightcone({ canvas }).then(async (lc) => {
     else {
       $("numbers").textContent = `beta ${shown.beta.toFixed(3)}  gamma ${shown.gamma.toFixed(3)}  ` +
         `D ${shown.doppler[0].toFixed(2)} to ${shown.doppler[1].toFixed(2)}  ` +
-        `tau ${shown.proper_time.toFixed(2)}  ${fps.toFixed(1)} fps`;
+        `tau ${shown.proper_time.toFixed(2)}  EV ${shown.exposure.toFixed(2)}  ${fps.toFixed(1)} fps`;
       $("numbers").dataset.beta = shown.beta;
+      $("numbers").dataset.exposure = shown.exposure;
     }
     if (!document.body.dataset.firstFrame) document.body.dataset.firstFrame = String(performance.now());
     document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);

@@ -2,6 +2,8 @@
 // would, and writes what it saw into OUT for tests/test_web_page.cpp to judge:
 //   terrell.png, street.png, street-lit.png   each scene at 640x360 (exposure 0, paused at the
 //                              scene's time; street-lit's lamps and shadows by the lighting pass)
+//   terrell-auto.png           terrell at 640x360 at its own, automatic exposure, paused (and
+//                              results.json's terrell_auto_ev, the EV the page applied)
 //   key-before.png, key-after.png   street before and after the W key
 //   dragged.png                street after a drag on the picture
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
@@ -61,6 +63,14 @@ try {
     const page = await open(`scene=${scene}&${still}`);
     results.load_ms[scene] = await page.evaluate(() => Number(document.body.dataset.firstFrame));
     await shot(page, `${scene}.png`);
+    await page.close();
+  }
+
+  step("terrell at its automatic exposure");
+  {
+    const page = await open("scene=terrell&paused=on");
+    results.terrell_auto_ev = Number(await page.evaluate(() => document.getElementById("numbers").dataset.exposure));
+    await shot(page, "terrell-auto.png");
     await page.close();
   }
 
