@@ -16,6 +16,7 @@
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/emission.hpp"
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/received_colour.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/doppler.hpp"
 #include "lightcone/scene/reframe.hpp"
@@ -504,6 +505,49 @@ TEST(Locate, DopplerAgreesWithTheRenderedBrighteningOfAFlatSpectrum) {
   }
   EXPECT_TRUE(blue);
   EXPECT_TRUE(red);
+}
+
+// The sky seen along every direction is its emission there received with its own Doppler factor
+// there, by each colour model: at rest (one colour, which the renderer receives once), seen
+// from a moving camera (a colour that changes with D) and with a pattern.
+TEST(ColourRender, TheSkyIsReceivedWithItsOwnDopplerFactorInEveryDirection) {
+  for (const DopplerModel model :
+       {DopplerModel::kSpectral, DopplerModel::kRgb3, DopplerModel::kHue, DopplerModel::kOff})
+    for (const double camera_speed : {0.0, 0.6})
+      for (const bool grid : {false, true}) {
+        SCOPED_TRACE("model " + std::to_string(static_cast<int>(model)) + " at " +
+                     std::to_string(camera_speed) + (grid ? ", grid" : ", solid"));
+        Scene s;
+        s.camera.world_line.velocity = {camera_speed, 0, 0};
+        s.camera.fov_degrees = 150;
+        s.render.doppler = model;
+        if (grid)
+          s.sky.pattern = SkyGrid{};
+        else
+          s.sky.pattern = SolidColor{{0.2f, 0.5f, 0.3f}};
+        const ResolvedScene r = resolve_scene(s);
+        const Tracer tracer(r);
+        const EmissionTable emission(r);
+        std::vector<LinearRgb> seen;
+        for (int j = 0; j <= 8; ++j)
+          for (int i = 0; i <= 8; ++i) {
+            const Vec3 u =
+                look_direction(r.camera, i * s.camera.width / 8.0, j * s.camera.height / 8.0);
+            const LinearRgb got = radiance_along(r, emission, tracer, u);
+            const LinearRgb want = received_colour(emission.sky(r.sky_direction(u)),
+                                                   r.doppler(u, r.sky_velocity), s.render);
+            EXPECT_EQ(got.r, want.r);
+            EXPECT_EQ(got.g, want.g);
+            EXPECT_EQ(got.b, want.b);
+            seen.push_back(got);
+          }
+        // Seen from a moving camera the solid sky's colour (or, with `doppler: off`, its
+        // brightness) changes across the view, so the directions above do test its D.
+        const bool varies = std::any_of(seen.begin(), seen.end(), [&](const LinearRgb& c) {
+          return c.r != seen[0].r || c.g != seen[0].g || c.b != seen[0].b;
+        });
+        if (!grid) EXPECT_EQ(varies, camera_speed > 0);
+      }
 }
 
 }  // namespace
