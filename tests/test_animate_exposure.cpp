@@ -214,6 +214,36 @@ TEST_F(AnimateExposure, ResumedFramesAreExposedAsBefore) {
   EXPECT_EQ(after, before);
 }
 
+// A moment the scene cannot be shown at stops the run there, after the frames waiting for their
+// exposure are written, exposed as a run that stops before it would expose them (the moment
+// counts for none). The camera accelerates along +x and the ball comes the other way at gamma
+// 100: by proper time 9.5 their relative gamma, about 200 cosh(9.5), is past the limit.
+TEST_F(AnimateExposure, ARefusedMomentStopsTheRunAfterTheFramesBeforeIt) {
+  const fs::path file = write("scene.json", R"({
+  "camera": {"position": [0, 0, 0], "forward": [0, 0, -1], "width": 16, "height": 9,
+             "motion": {"phases": [{"duration": 12, "acceleration": [1, 0, 0]}]}},
+  "objects": [{"name": "ball", "shape": {"sphere": {"radius": 1}}, "position": [5, 0, -5],
+               "velocity": [-0.9999499987499375, 0, 0]}]
+})");
+  // At 2 frames a second the exposure is smoothed over a frame either side.
+  const std::string common = " --fps 2 --samples 1 --quiet -o ";
+  const auto r = run_lightcone("animate " + quoted(file) + " --frames 15-19" + common +
+                               quoted(dir_ / "f%02d.exr"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err,
+            "lightcone: frame 19: by then ball moves too close to the speed of light relative to "
+            "the camera (gamma 1.34e+06; at most 1e+06)\n");
+  const auto before =
+      run_lightcone("animate " + quoted(file) + " --frames 15-18 --animation 15-19" + common +
+                    quoted(dir_ / "g%02d.exr"));
+  ASSERT_EQ(before.status, 0) << before.err;
+  for (int i = 15; i <= 18; ++i)
+    EXPECT_EQ(bytes_of(dir_ / fmt::format("f{:02d}.exr", i)),
+              bytes_of(dir_ / fmt::format("g{:02d}.exr", i)))
+        << i;
+  EXPECT_FALSE(fs::exists(dir_ / "f19.exr"));
+}
+
 TEST_F(AnimateExposure, ABadAnimationIsRefusedAndWritesNothing) {
   const std::string png = " -o " + quoted(dir_ / "out" / "f%d.png");
   fs::create_directories(dir_ / "out");

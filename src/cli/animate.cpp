@@ -278,6 +278,19 @@ int run_animate(const AnimateArgs& a) {
     if (const auto why = animation_frame(scene, i, a.fps, clock, s)) throw FrameRefused(*why);
     return s;
   };
+  const auto in_frame = [](long long i, const std::function<void()>& work) {
+    try {
+      work();
+    } catch (const Stopped&) {
+      throw;
+    } catch (const FrameRefused&) {
+      throw;
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("frame {}: {}", i, e.what()));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(fmt::format("frame {}: {}", i, e.what()));
+    }
+  };
 
   // The frame's picture as a renderer makes it; with `subject`, its linear radiance (at
   // exposure 0) and the automatic exposure's subject weights. The tracer renders the lattice
@@ -345,9 +358,11 @@ int run_animate(const AnimateArgs& a) {
     if (const auto found = metered.find(j); found != metered.end()) return found->second;
     std::optional<double> ev;
     try {
-      std::vector<float> subject;
-      const Rendered lattice = render_frame(frame_scene(j), &subject, kMeteringLattice, {});
-      ev = auto_exposure(lattice.image, scene.render.tonemap, subject);
+      in_frame(j, [&] {
+        std::vector<float> subject;
+        const Rendered lattice = render_frame(frame_scene(j), &subject, kMeteringLattice, {});
+        ev = auto_exposure(lattice.image, scene.render.tonemap, subject);
+      });
     } catch (const InputError&) {
       // A moment the scene cannot be shown at (a camera past the speed of light by then): the
       // frames near it are exposed by the others.
@@ -384,19 +399,6 @@ int run_animate(const AnimateArgs& a) {
       writing.get();
     } catch (const std::exception&) {
       if (!interrupted) throw;
-    }
-  };
-  const auto in_frame = [](long long i, const std::function<void()>& work) {
-    try {
-      work();
-    } catch (const Stopped&) {
-      throw;
-    } catch (const FrameRefused&) {
-      throw;
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("frame {}: {}", i, e.what()));
-    } catch (const std::exception& e) {
-      throw std::runtime_error(fmt::format("frame {}: {}", i, e.what()));
     }
   };
 
