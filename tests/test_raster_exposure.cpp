@@ -42,11 +42,14 @@ constexpr const char* kLitMovingOccluder = R"({
 
 // The two EVs may differ only as far as the pictures the rule reads do: along the outlines,
 // where a pass covers each pixel at one point of the pattern and the tracer at each pixel's own
-// sample (and a sphere's tessellated outline lies up to half a pixel inside it), and by the
-// colour approximations' per cent in radiance. 0.03 EV scales the radiance by 2 %, which moves
-// an 8-bit level of the filmic curve's output by at most 1.5 of the 4 the pictures are compared
-// within. Losing the subject costs a quarter of an EV to an EV in these scenes.
-constexpr double kEvAgreement = 0.03;
+// sample, and where a sphere's tessellated outline lies up to half a pixel inside the true one
+// (at 640x360 terrell.json's raster subject is 0.13 % smaller for it, 0.8 % with the GPU's
+// coarser tessellation, which raises its EV by 0.013 and 0.017); and by the colour
+// approximations' per cent or so in radiance (terrell.json drawn with the GPU's tessellation:
+// +0.025 EV in all). 0.04 EV scales the radiance by 2.8 %, which moves an 8-bit level of the filmic
+// curve's output by at most 2 of the 4 the pictures are compared within. Losing the subject
+// costs a quarter of an EV to an EV in these scenes.
+constexpr double kEvAgreement = 0.04;
 // The viewer meters a sixteenth of the pixels: on these scenes the sixteen ways to pick them
 // (the lattice's offsets) give EVs within 0.06 of the whole picture's.
 constexpr double kSampledEvAgreement = 0.1;
