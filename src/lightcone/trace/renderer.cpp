@@ -242,11 +242,13 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         const int y_end = std::min(y0 + kTileSize, height);
         std::uint64_t tile_orders = 0;  // the image orders of its curved rays, summed
         ExposureMeter* const meter = metered_in_pass ? &meters.local() : nullptr;
-        // A block's samplers and hits, made once a tile: made per block, their 2.5 KB were
-        // zeroed for every 8 pixels. Constructed in place: a sampler built aside and copied in
-        // was a store-forwarding stall per pixel (a twentieth of a black-hole render).
+        // A block's samplers, rays, hits and colours, made once a tile: made per block, their
+        // 2.9 KB were zeroed for every 8 pixels. Constructed in place: a sampler built aside and
+        // copied in was a store-forwarding stall per pixel (a twentieth of a black-hole render).
         std::optional<PixelSampler> samplers[Tracer::kPacketSize];
+        Vec3 directions[Tracer::kPacketSize];
         std::optional<Hit> hits[Tracer::kPacketSize];
+        LinearRgb colours[Tracer::kPacketSize];
         for (int by = y0; by < y_end; by += kBlockHeight)
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
@@ -265,7 +267,6 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
               }
             double sums[Tracer::kPacketSize][3] = {};
             int sky_samples[Tracer::kPacketSize] = {}, subject_samples[Tracer::kPacketSize] = {};
-            Vec3 directions[Tracer::kPacketSize];
             std::array<double, 2> light[Tracer::kPacketSize];
             for (int k = first; k < first + count; ++k) {
               for (std::size_t l = 0; l < lanes; ++l) {
@@ -274,7 +275,6 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                     look_direction(resolved.camera, pixel_i[l] + ps.x, pixel_j[l] + ps.y);
                 light[l] = ps.light;
               }
-              LinearRgb colours[Tracer::kPacketSize];
               if (resolved.hole) {
                 for (std::size_t l = 0; l < lanes; ++l) {
                   const CurvedRay ray =
