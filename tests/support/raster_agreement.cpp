@@ -88,6 +88,7 @@ Agreement agreement(const std::string& scene, int samples, const std::string& ex
   EXPECT_NE(object, nullptr);
   if (object == nullptr || a->width != b->width || a->height != b->height) return result;
   result.within = share_within_4_off_outlines(*a, *b, *object, result.compared);
+  result.bodies_within = share_within_4_off_outlines(*a, *b, *object, result.bodies_compared, true);
   fs::remove_all(dir);
   return result;
 }

@@ -31,7 +31,9 @@ ValueDifference compare_values(const Image& a, const Image& b, float relative);
 struct Agreement {
   double within = 0;         // fraction of the compared pixels within 4/255 in every channel
   std::size_t compared = 0;  // pixels off the silhouette band
-  std::string raster_err;    // what the raster render said on stderr
+  double bodies_within = 0;  // the same on the bodies' pixels alone (the sky's left out)
+  std::size_t bodies_compared = 0;
+  std::string raster_err;  // what the raster render said on stderr
   // The EV each renderer applied (its EXR's header): the scene's, or its automatic exposure.
   double trace_ev = 0, raster_ev = 0;
 };

@@ -63,15 +63,26 @@ float lit_code(int body, int k, float alpha) {
 layout(location = 0) out vec4 colour;
 #endif
 
-// The ray parameter where the sample's ray meets the surface: trace/tracer.cpp's sphere and
-// plane intersections (the nearer root; where the tessellated outline covers a sample just
-// past the true one, the ray's closest approach).
+// The ray parameter where the sample's ray meets the surface: trace/tracer.cpp's sphere, box
+// and plane intersections (the nearer root; a box's entry into its slabs, so that a sample near
+// an edge meets the face its own ray meets, not the one the tessellated edge, up to half a
+// pixel off, drew there; where the tessellated outline covers a sample just past the true one,
+// the ray's closest approach, or the fragment's face).
 float surface_parameter(vec3 origin, vec3 direction) {
   if (shape_kind == 3) {
     float a = dot(direction, direction), b = dot(origin, direction);
     float c = dot(origin, origin) - sphere_radius * sphere_radius;
     float root = sqrt(max(b * b - a * c, 0.0));
     return b < 0.0 ? c / (root - b) : -(b + root) / a;
+  }
+  if (shape_kind == 1) {
+    // A direction's zero component kept off zero with its sign, so that no slab divides by 0.
+    vec3 safe = sign(direction + vec3(1e-30)) * max(abs(direction), vec3(1e-30));
+    vec3 near_side = (-0.5 * sign(safe) * box_size - origin) / safe;
+    vec3 far_side = (0.5 * sign(safe) * box_size - origin) / safe;
+    float enter = max(max(near_side.x, near_side.y), near_side.z);
+    float leave = min(min(far_side.x, far_side.y), far_side.z);
+    if (enter <= leave && enter > 0.0) return enter;
   }
   return (plane.w - dot(plane.xyz, origin)) / dot(plane.xyz, direction);
 }
