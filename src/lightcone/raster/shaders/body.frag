@@ -1,7 +1,8 @@
 // A body's fragment: the sample's own ray, carried into the body's shape coordinates (where the
-// body is static), meets the face the fragment belongs to (or the sphere) exactly, as the ray
-// tracer's does; that surface point's rest-frame pattern colour is received with the Doppler
-// factor of the exact look direction, and its light travel distance is the fragment's depth.
+// body is static), meets the face the fragment belongs to (a box where the ray enters it, or
+// the sphere) exactly, as the ray tracer's does; that surface point's rest-frame pattern colour
+// is received with the Doppler factor of the exact look direction, and its light travel
+// distance is the fragment's depth.
 flat in vec4 plane;
 in float vertex_distance;  // the light travel distance at the vertices, interpolated
 
