@@ -269,6 +269,27 @@ TEST(DopplerXyzTable, InterpolatesItsQuadratureToAFewPartsInTenThousandEvenForSt
   EXPECT_EQ(a.at_rest().y, rest.y);
 }
 
+// A table's sRGB lookup (its cubics' coefficients taken to sRGB when it is made) is the sRGB
+// of its XYZ lookup, in every kind of interval: cubics in the values, in the logarithms, and
+// linear where a node is zero.
+TEST(DopplerXyzTable, ItsSrgbLookupIsTheSrgbOfItsXyzLookup) {
+  const DopplerGrid grid = DopplerGrid::covering(1.5);
+  const RgbEmitterSpectrum red = RgbEmitterSpectrum::from_rgb({0.9, 0.1, 0.05});
+  const BlackbodySpectrum cool = BlackbodySpectrum::with_luminance(2500, 1.0);
+  const TabulatedSpectrum red_only{{599, 600, 2000}, {0, 1, 1}};
+  for (const DopplerXyzTable& table :
+       {DopplerXyzTable::of(red, grid), DopplerXyzTable::of(cool, grid),
+        DopplerXyzTable::of(red_only, grid)})
+    for (double d = 0.23; d < 4.4; d *= 1.0071) {
+      const GridPosition p = grid_position(grid, d);
+      const LinearRgb got = table.rgb(p), want = linear_srgb_from_xyz(table(p));
+      const double scale = std::max({std::abs(want.r), std::abs(want.g), std::abs(want.b), 1e-300});
+      EXPECT_NEAR(got.r / scale, want.r / scale, 1e-13) << d;
+      EXPECT_NEAR(got.g / scale, want.g / scale, 1e-13) << d;
+      EXPECT_NEAR(got.b / scale, want.b / scale, 1e-13) << d;
+    }
+}
+
 TEST(DopplerGrid, ItsLogarithmIsStdLogToOnePartInATrillion) {
   for (double d = 1e-6; d < 1e6; d *= 1.0137)
     EXPECT_NEAR(grid_log(d), std::log(d), 1e-12 * std::max(1.0, std::abs(std::log(d)))) << d;

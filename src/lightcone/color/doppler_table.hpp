@@ -221,6 +221,19 @@ class DopplerXyzTable {
   }
   Xyz operator()(double d) const { return (*this)(grid_position(grid_, d)); }
 
+  // linear_srgb_from_xyz of the colour at p. Where the interval is a cubic in the values, the
+  // matrix is applied to its coefficients once, when the table is made (the cubic is linear in
+  // them), not to every lookup's colour: the spectral model's lookup per ray is shorter by it.
+  LinearRgb rgb(const GridPosition& p) const {
+    const Interval& in = intervals_[p.first + 1];
+    if (!in.all_values) return linear_srgb_from_xyz((*this)(p));
+    const double f = p.fraction;
+    double out[3];
+    for (int k = 0; k < 3; ++k)
+      out[k] = in.rgb_value[k] + f * (in.rgb_c1[k] + f * (in.rgb_c2[k] + f * in.rgb_c3[k]));
+    return {out[0], out[1], out[2]};
+  }
+
  private:
   DopplerGrid grid_;
   std::vector<Xyz> nodes_;
@@ -234,6 +247,9 @@ class DopplerXyzTable {
     double value[3] = {0, 0, 0}, c1[3] = {0, 0, 0}, c2[3] = {0, 0, 0}, c3[3] = {0, 0, 0};
     Mode mode[3] = {kLinear, kLinear, kLinear};
     bool all_values = false;
+    // Where all_values: the same cubic's coefficients in linear sRGB.
+    double rgb_value[3] = {0, 0, 0}, rgb_c1[3] = {0, 0, 0}, rgb_c2[3] = {0, 0, 0},
+           rgb_c3[3] = {0, 0, 0};
   };
   std::vector<Interval> intervals_;
 };

@@ -42,6 +42,19 @@ struct PointEmission {
     }
     return sum;
   }
+  // linear_srgb_from_xyz(seen_with_doppler(d)), by the tables' own sRGB cubics.
+  LinearRgb rgb_seen_with_doppler(double d) const {
+    if (table_count == 0) return {};
+    const GridPosition position = grid_position(tables[0]->grid(), d);
+    LinearRgb sum;
+    for (int k = 0; k < table_count; ++k) {
+      const LinearRgb c = tables[k]->rgb(position);
+      sum.r += weights[k] * c.r;
+      sum.g += weights[k] * c.g;
+      sum.b += weights[k] * c.b;
+    }
+    return sum;
+  }
 };
 
 // A blackbody whose temperature varies over the emitter (the accretion disk): the emission of

@@ -48,8 +48,7 @@ LinearRgb received_colour(const PointEmission& e, double d, const RenderSettings
       break;
   }
   if (d == 1 || e.table_count == 0) return e.rest_rgb;
-  return scaled(linear_srgb_from_xyz(e.seen_with_doppler(d)),
-                spectral_searchlight(d, settings.searchlight));
+  return scaled(e.rgb_seen_with_doppler(d), spectral_searchlight(d, settings.searchlight));
 }
 
 LinearRgb received_thermal_colour(const ThermalEmission& thermal, double tau, double d,
