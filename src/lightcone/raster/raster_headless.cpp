@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <variant>
 
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/sampler.hpp"
@@ -22,10 +23,11 @@ namespace lightcone {
 namespace {
 
 // Pass k of n: the pixels covered at one point of a multi-jittered pattern, each shaded at the
-// ray tracer's own sample k for it (one sample: the centres).
+// ray tracer's own sample k for it (one sample: the centres, at the tracer's own point on the
+// sphere lights; without `offsets`, a sample and no sphere light, the centres alone).
 void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int width, int height,
                  std::vector<float>& offsets) {
-  if (n == 1) return renderer.pass(0.5, 0.5);
+  if (offsets.empty()) return renderer.pass(0.5, 0.5);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const PixelSample p = pixel_sample(x, y, k, n, seed);
@@ -36,7 +38,8 @@ void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int
       o[3] = static_cast<float>(p.light[1]);
     }
   const std::array<double, 2> cover =
-      multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0);
+      n > 1 ? multi_jittered(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n), 0)
+            : std::array<double, 2>{0.5, 0.5};
   renderer.pass(cover[0], cover[1], &offsets);
 }
 
@@ -65,7 +68,10 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   std::vector<float> subject(scene.render.auto_exposure || subject_out ? pixels : 0, 0.0f);
   std::vector<float>* const subject_sum = subject.empty() ? nullptr : &subject;
   const float share = 1.0f / static_cast<float>(n);
-  std::vector<float> offsets(n > 1 ? 4 * pixels : 0);
+  const bool sphere_lights =
+      std::any_of(scene.lights.begin(), scene.lights.end(),
+                  [](const Light& l) { return std::holds_alternative<SphereLight>(l.kind); });
+  std::vector<float> offsets(n > 1 || sphere_lights ? 4 * pixels : 0);
   const bool on_gpu = tessellate_on_gpu(mode, renderer.driver());
   std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
