@@ -12,7 +12,7 @@
 //                                                 (unlit, doppler and searchlight off, 1 sample)
 //   Throughput_lightcone/moving/case:C/threads:T   the same scene in motion
 // The cases, all at 1920 x 1080:
-//   0 grid: a 10 x 10 grid of unit UV spheres (100 x 10,082 triangles, one shared mesh) at
+//   0 grid: a 10 x 10 grid of unit UV spheres (100 x 10,080 triangles, one shared mesh) at
 //     distance 20, fov 70; in motion the spheres move at 0.9c along x. Targets: rays_per_s at
 //     least 0.70 of raw_embree/single's at the same thread count at rest, 0.60 in motion.
 //   1 street: scenes/street.json (boxes and planes; raw Embree traces their 12 and 2 triangles
