@@ -66,4 +66,23 @@ BENCHMARK(BM_AutoExposure)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// Scaling the picture by 2^EV (expose), which a fixed exposure of 0 skips.
+void BM_Expose(benchmark::State& state) {
+  Image image = picture().image;
+  const auto threads = static_cast<std::size_t>(state.range(0));
+  const auto limit = threads ? std::make_unique<tbb::global_control>(
+                                   tbb::global_control::max_allowed_parallelism, threads)
+                             : nullptr;
+  for (auto _ : state) {
+    expose(image, 0.25);
+    benchmark::DoNotOptimize(image.rgb.data());
+  }
+}
+BENCHMARK(BM_Expose)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 }  // namespace

@@ -100,7 +100,7 @@ Image uniform_image(int width, int height, float value) {
 }
 
 // The meter reads a quantile as the geometric middle of its bin of 1/256 of an octave: within
-// half a bin of the pixel's own luminance.
+// half a bin of the pixel's own luminance (computed in single precision: 1e-6 more).
 const double kMetered = 0.5 * std::log2(1 + 1.0 / 256);
 
 // The automatic exposure shows the subject's upper quartile at 0.5, unless the brightest 2 %
@@ -112,7 +112,8 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
               1e-12);
   // A uniform grey 0.2 is its own subject: brought to 0.5.
   for (const ToneMap curve : {ToneMap::kClamp, ToneMap::kFilmic})
-    EXPECT_NEAR(auto_exposure(uniform_image(8, 8, 0.2f), curve), std::log2(0.5 / 0.2), kMetered);
+    EXPECT_NEAR(auto_exposure(uniform_image(8, 8, 0.2f), curve), std::log2(0.5 / 0.2),
+                kMetered + 1e-6);
   // A dim moving body (0.01) before a wall at rest (0.02, 0.03 in its top 3 %): the body sets
   // the exposure unless the wall's highlights would pass the curve's 0.9 (under clamp they
   // would).
@@ -123,15 +124,18 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
     if (p < 2500) subject[p] = 1;
     if (p >= 9700) scene.rgb[3 * p] = scene.rgb[3 * p + 1] = scene.rgb[3 * p + 2] = 0.03f;
   }
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, subject), std::log2(0.5 / 0.01), kMetered);
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kClamp, subject), std::log2(0.9 / 0.03), kMetered);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, subject), std::log2(0.5 / 0.01),
+              kMetered + 1e-6);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kClamp, subject), std::log2(0.9 / 0.03),
+              kMetered + 1e-6);
   // Without the subject, the wall is the picture.
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic), std::log2(0.5 / 0.02), kMetered);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic), std::log2(0.5 / 0.02), kMetered + 1e-6);
   // A subject pixel weighs the share of its samples that met the body: a quarter body counts a
   // quarter. Less than 0.1 % of the picture's worth does not set the exposure.
   std::vector<float> speck(100 * 100, 0.0f);
   for (std::size_t p = 0; p < 36; ++p) speck[p] = 0.25f;
-  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, speck), std::log2(0.5 / 0.02), kMetered);
+  EXPECT_NEAR(auto_exposure(scene, ToneMap::kFilmic, speck), std::log2(0.5 / 0.02),
+              kMetered + 1e-6);
   // A picture without light is left as it is; no NaN or infinity.
   EXPECT_EQ(auto_exposure(uniform_image(4, 4, 0.0f), ToneMap::kFilmic), 0.0);
   Image odd = uniform_image(4, 4, 0.3f);
@@ -144,7 +148,8 @@ TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
     black_subject[p] = 1;
     dark.rgb[3 * p] = dark.rgb[3 * p + 1] = dark.rgb[3 * p + 2] = 0;
   }
-  EXPECT_NEAR(auto_exposure(dark, ToneMap::kClamp, black_subject), std::log2(0.9 / 0.3), kMetered);
+  EXPECT_NEAR(auto_exposure(dark, ToneMap::kClamp, black_subject), std::log2(0.9 / 0.3),
+              kMetered + 1e-6);
 }
 
 // The rule as its description reads, by sorting every pixel: the independent derivation that
@@ -186,28 +191,30 @@ double exposure_by_sorting(const Image& linear, ToneMap curve, std::span<const f
                   std::log2(display_white(curve) / highlights));
 }
 
-// Each luminance from 2^-64 to 2^64 falls in the bin whose middle is within half a bin of it;
-// the bins order as the luminances do; beyond the range, the end bins.
+// Each luminance a float holds falls in the bin whose middle is within half a bin of it (give
+// or take the luminance's own rounding to a float); the bins order as the luminances do; black,
+// negative, NaN and infinite pixels are in bin 0, worth 0.
 TEST(ExposureMeter, BinsByLogLuminance) {
   std::mt19937 random(256);
-  std::uniform_real_distribution<double> octave(-64, 64);
+  std::uniform_real_distribution<double> octave(-125, 127);
+  std::vector<float> greys(100000);
+  for (float& y : greys) y = static_cast<float>(std::exp2(octave(random)));
+  std::sort(greys.begin(), greys.end());
   std::size_t last_bin = 0;
-  double last = 0;
-  std::vector<double> ys(100000);
-  for (double& y : ys) y = std::exp2(octave(random));
-  std::sort(ys.begin(), ys.end());
-  for (const double y : ys) {
-    const std::size_t bin = ExposureMeter::bin_of(y);
-    ASSERT_GE(bin, 1u);
+  for (const float y : greys) {
+    const float grey[3] = {y, y, y};
+    const std::size_t bin = ExposureMeter::bin_of(grey);
+    ASSERT_GE(bin, std::max<std::size_t>(last_bin, 1)) << y;
     ASSERT_LT(bin, ExposureMeter::kBins);
-    EXPECT_LE(std::abs(std::log2(ExposureMeter::value_of(bin) / y)), kMetered + 1e-12) << y;
-    EXPECT_GE(bin, last_bin) << last << " " << y;
-    last_bin = bin, last = y;
+    EXPECT_LE(std::abs(std::log2(ExposureMeter::value_of(bin) / y)), kMetered + 1e-6) << y;
+    last_bin = bin;
   }
-  EXPECT_EQ(ExposureMeter::bin_of(0), 0u);
-  EXPECT_EQ(ExposureMeter::bin_of(std::exp2(-64) * 0.999), 0u);
-  EXPECT_EQ(ExposureMeter::bin_of(std::exp2(-64)), 1u);
-  EXPECT_EQ(ExposureMeter::bin_of(1e300), ExposureMeter::kBins - 1);
+  for (const float odd : {0.0f, -0.0f, -1.0f, NAN, INFINITY, -INFINITY}) {
+    const float pixel[3] = {odd, odd, odd};
+    EXPECT_EQ(ExposureMeter::bin_of(pixel), 0u) << odd;
+  }
+  const float largest[3] = {3e38f, 3e38f, 3e38f};
+  EXPECT_TRUE(std::isfinite(ExposureMeter::value_of(ExposureMeter::bin_of(largest))));
   EXPECT_EQ(ExposureMeter::value_of(0), 0.0);
 }
 
@@ -283,7 +290,7 @@ TEST(AutomaticExposure, ReadsWhatSortingFinds) {
         const double ev = auto_exposure(image, curve, weights),
                      sorted = exposure_by_sorting(image, curve, weights);
         EXPECT_TRUE(std::isfinite(ev));
-        EXPECT_NEAR(ev, sorted, kMetered + 1e-12)
+        EXPECT_NEAR(ev, sorted, kMetered + 1e-6)
             << picture << ", subject " << subject << ", curve " << static_cast<int>(curve);
       }
 }
@@ -324,7 +331,7 @@ TEST_F(AutomaticExposureOfScenes, IsWhatTheSortBasedRuleGave) {
         " --width 320 --height 180 --samples 1 --stats --set render.exposure=auto");
     ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     const std::string last = r.err.substr(r.err.rfind('{'));
-    EXPECT_NEAR(nlohmann::json::parse(last).at("exposure").get<double>(), ev, kMetered + 1e-9)
+    EXPECT_NEAR(nlohmann::json::parse(last).at("exposure").get<double>(), ev, kMetered + 1e-6)
         << name;
   }
 }

@@ -1,5 +1,6 @@
 #include "lightcone/frame/exposure_meter.hpp"
 
+#include <cmath>
 #include <limits>
 
 #include "lightcone/frame/tone_map.hpp"
@@ -33,6 +34,8 @@ std::size_t bin_reaching(const std::vector<T>& histogram, double target) {
 }  // namespace
 
 void ExposureMeter::add(const ExposureMeter& other) {
+  end_run();
+  other.end_run();
   for (std::size_t b = 0; b < kBins; ++b) {
     count_[b] += other.count_[b];
     weight_[b] += other.weight_[b];
@@ -40,6 +43,7 @@ void ExposureMeter::add(const ExposureMeter& other) {
 }
 
 std::uint64_t ExposureMeter::pixels() const {
+  end_run();
   std::uint64_t n = 0;
   for (const std::uint32_t c : count_) n += c;
   return n;
@@ -47,11 +51,10 @@ std::uint64_t ExposureMeter::pixels() const {
 
 double ExposureMeter::value_of(std::size_t bin) {
   if (bin == 0) return 0;
-  const auto edge = [](std::size_t b) {
-    const std::uint64_t top = (std::uint64_t{1023 + kLowestOctave} << kOctaveBits) + b;
-    return bit_cast<double>(top << (52 - kOctaveBits));
+  const auto edge = [](std::size_t b) -> double {
+    return b == kBins ? 0x1p128 : bit_cast<float>(static_cast<std::uint32_t>(b << kShift));
   };
-  return std::sqrt(edge(bin - 1) * edge(bin));
+  return std::sqrt(edge(bin) * edge(bin + 1));
 }
 
 double ExposureMeter::ev(ToneMap curve) const {

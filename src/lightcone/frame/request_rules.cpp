@@ -108,12 +108,17 @@ std::optional<std::string> picture_refused(const Scene& scene, const Image& imag
                                           [](float v) { return !std::isfinite(v); });
                         if (found) non_finite += static_cast<std::size_t>(found);
                       });
+  return picture_refused(scene, non_finite.load(), exposure);
+}
+
+std::optional<std::string> picture_refused(const Scene& scene, std::size_t non_finite,
+                                           double exposure) {
   if (non_finite == 0) return std::nullopt;
   return fmt::format(
       "{}: the render has {} non-finite value{} (NaN or infinity): its radiance times 2^{} is "
       "beyond a float's range (is render.exposure, sky.stars.exposure or an emitter's luminance "
       "too large?); no picture is given",
-      source_of(scene), non_finite.load(), non_finite == 1 ? "" : "s", exposure);
+      source_of(scene), non_finite, non_finite == 1 ? "" : "s", exposure);
 }
 
 }  // namespace lightcone

@@ -44,5 +44,9 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
 // not merely dark or bright (an exposure or an emitter's luminance beyond float's range), and
 // none is ever returned; `exposure` is the EV the render applied.
 std::optional<std::string> picture_refused(const Scene& scene, const Image& image, double exposure);
+// The same for a picture with `non_finite` such values, counted by its maker (expose() counts
+// them as it scales the picture).
+std::optional<std::string> picture_refused(const Scene& scene, std::size_t non_finite,
+                                           double exposure);
 
 }  // namespace lightcone

@@ -1,6 +1,7 @@
 #include "lightcone/frame/tone_map.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <span>
 #include <vector>
@@ -75,14 +76,22 @@ double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> 
   return meters.combined().ev(curve);
 }
 
-void expose(Image& linear, double ev) {
+std::size_t expose(Image& linear, double ev) {
   const auto scale = static_cast<float>(std::exp2(ev));
-  if (scale == 1.0f) return;
+  std::atomic<std::size_t> non_finite{0};
   // In parallel: on one thread, a 1080p frame's scaling is a few ms, a visible share of a render.
   parallel_for_pieces(std::size_t{0}, linear.rgb.size(), std::size_t{1} << 16,
                       [&](std::size_t begin, std::size_t end) {
-                        for (std::size_t i = begin; i < end; ++i) linear.rgb[i] *= scale;
+                        std::size_t found = 0;
+                        float* v = linear.rgb.data();
+                        if (scale == 1.0f)
+                          for (std::size_t i = begin; i < end; ++i) found += !std::isfinite(v[i]);
+                        else
+                          for (std::size_t i = begin; i < end; ++i)
+                            found += !std::isfinite(v[i] *= scale);
+                        if (found) non_finite += found;
                       });
+  return non_finite;
 }
 
 double apply_exposure(Image& linear, const RenderSettings& settings,

@@ -20,8 +20,10 @@ double display_white(ToneMap curve);
 // parallel pass; a renderer that fills the meter as it draws gets the same EV without it.
 double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject = {});
 
-// Scales a rendered image by 2^EV (nothing to do for EV 0).
-void expose(Image& linear, double ev);
+// Scales a rendered image by 2^EV (nothing to scale at EV 0) and returns how many of its
+// values are then not finite: counted in the same pass, so that a renderer's check of its
+// picture (request_rules' picture_refused) does not read it again.
+std::size_t expose(Image& linear, double ev);
 
 // expose() at the settings' exposure or (auto_exposure on) the automatic one; returns the EV
 // applied. Both renderers' pictures end here or in expose().
