@@ -130,16 +130,11 @@ DopplerXyzTable::DopplerXyzTable(const DopplerGrid& grid, std::vector<Xyz> nodes
       }
       in.all_values = in.all_values && in.mode[k] == Interval::kValues;
     }
-    if (in.all_values) {
-      const auto to_rgb = [](const double(&xyz)[3], double(&rgb)[3]) {
-        const LinearRgb c = linear_srgb_from_xyz({xyz[0], xyz[1], xyz[2]});
-        rgb[0] = c.r, rgb[1] = c.g, rgb[2] = c.b;
-      };
-      to_rgb(in.value, in.rgb_value);
-      to_rgb(in.c1, in.rgb_c1);
-      to_rgb(in.c2, in.rgb_c2);
-      to_rgb(in.c3, in.rgb_c3);
-    }
+    if (in.all_values)
+      for (double* c : {in.value, in.c1, in.c2, in.c3}) {
+        const LinearRgb rgb = linear_srgb_from_xyz({c[0], c[1], c[2]});
+        c[0] = rgb.r, c[1] = rgb.g, c[2] = rgb.b;
+      }
   }
 }
 

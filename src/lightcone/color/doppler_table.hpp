@@ -203,13 +203,10 @@ class DopplerXyzTable {
   const Xyz& at_rest() const { return nodes_[grid_.rest_index()]; }
   Xyz operator()(const GridPosition& p) const {
     const Interval& in = intervals_[p.first + 1];
+    if (in.all_values)  // (at a node, the node itself: a settled grid's limit stays exact)
+      return p.fraction == 0 ? nodes_[p.first + 1] : xyz_from_linear_srgb(rgb(p));
     const double f = p.fraction;
     double out[3];
-    if (in.all_values) {  // the common case, without branches
-      for (int k = 0; k < 3; ++k)
-        out[k] = in.value[k] + f * (in.c1[k] + f * (in.c2[k] + f * in.c3[k]));
-      return {out[0], out[1], out[2]};
-    }
     for (int k = 0; k < 3; ++k) {
       const double q = f * (in.c1[k] + f * (in.c2[k] + f * in.c3[k]));
       out[k] = in.mode[k] == Interval::kValues ? in.value[k] + q
@@ -221,16 +218,17 @@ class DopplerXyzTable {
   }
   Xyz operator()(double d) const { return (*this)(grid_position(grid_, d)); }
 
-  // linear_srgb_from_xyz of the colour at p. Where the interval is a cubic in the values, the
-  // matrix is applied to its coefficients once, when the table is made (the cubic is linear in
-  // them), not to every lookup's colour: the spectral model's lookup per ray is shorter by it.
+  // linear_srgb_from_xyz of the colour at p. Where the interval is a cubic in the values (the
+  // common case), its coefficients are kept in linear sRGB, taken there once when the table is
+  // made (the cubic is linear in them), so that the spectral model's lookup per ray needs no
+  // matrix; the XYZ lookup above takes them back.
   LinearRgb rgb(const GridPosition& p) const {
     const Interval& in = intervals_[p.first + 1];
     if (!in.all_values) return linear_srgb_from_xyz((*this)(p));
     const double f = p.fraction;
     double out[3];
     for (int k = 0; k < 3; ++k)
-      out[k] = in.rgb_value[k] + f * (in.rgb_c1[k] + f * (in.rgb_c2[k] + f * in.rgb_c3[k]));
+      out[k] = in.value[k] + f * (in.c1[k] + f * (in.c2[k] + f * in.c3[k]));
     return {out[0], out[1], out[2]};
   }
 
@@ -246,10 +244,7 @@ class DopplerXyzTable {
     enum Mode : unsigned char { kValues, kLogarithms, kLinear };
     double value[3] = {0, 0, 0}, c1[3] = {0, 0, 0}, c2[3] = {0, 0, 0}, c3[3] = {0, 0, 0};
     Mode mode[3] = {kLinear, kLinear, kLinear};
-    bool all_values = false;
-    // Where all_values: the same cubic's coefficients in linear sRGB.
-    double rgb_value[3] = {0, 0, 0}, rgb_c1[3] = {0, 0, 0}, rgb_c2[3] = {0, 0, 0},
-           rgb_c3[3] = {0, 0, 0};
+    bool all_values = false;  // then the coefficients are of linear sRGB, not XYZ
   };
   std::vector<Interval> intervals_;
 };
