@@ -1,7 +1,9 @@
 #include "lightcone/frame/exposure_meter.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <new>
 
 #include "lightcone/frame/tone_map.hpp"
 
@@ -16,13 +18,23 @@ constexpr double kSubjectQuantile = 0.75, kSubjectLevel = 0.5, kHighlightQuantil
 // a share, not a count, so that a small metering render finds what the full one does.
 constexpr double kMinSubjectShare = 1e-3;
 
-// The first bin at which the histogram summed in order reaches `target` (the last non-empty bin
-// if none does, as a sort's last element would stand in).
+}  // namespace
+
+void ExposureMeter::Free::operator()(void* p) const {
+  std::free(p);
+}
+
+ExposureMeter::ExposureMeter()
+    : count_(static_cast<std::uint32_t*>(std::calloc(kBins, sizeof(std::uint32_t)))),
+      weight_(static_cast<std::uint64_t*>(std::calloc(kBins, sizeof(std::uint64_t)))) {
+  if (!count_ || !weight_) throw std::bad_alloc();
+}
+
 template <class T>
-std::size_t bin_reaching(const std::vector<T>& histogram, double target) {
+std::size_t ExposureMeter::bin_reaching(const T* histogram, double target) const {
   double below = 0;
   std::size_t last = 0;
-  for (std::size_t b = 0; b < histogram.size(); ++b) {
+  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) {
     if (histogram[b] == 0) continue;
     below += static_cast<double>(histogram[b]);
     last = b;
@@ -31,21 +43,21 @@ std::size_t bin_reaching(const std::vector<T>& histogram, double target) {
   return last;
 }
 
-}  // namespace
-
 void ExposureMeter::add(const ExposureMeter& other) {
   end_run();
   other.end_run();
-  for (std::size_t b = 0; b < kBins; ++b) {
+  for (std::size_t b = other.first_bin_; b <= other.last_bin_ && b < kBins; ++b) {
     count_[b] += other.count_[b];
     weight_[b] += other.weight_[b];
   }
+  first_bin_ = std::min(first_bin_, other.first_bin_);
+  last_bin_ = std::max(last_bin_, other.last_bin_);
 }
 
 std::uint64_t ExposureMeter::pixels() const {
   end_run();
   std::uint64_t n = 0;
-  for (const std::uint32_t c : count_) n += c;
+  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) n += count_[b];
   return n;
 }
 
@@ -62,18 +74,19 @@ double ExposureMeter::ev(ToneMap curve) const {
   if (n == 0) return 0;
   // The highlights: the pixel of rank 0.98 (n - 1), as nth_element would find it.
   const auto rank = static_cast<std::uint64_t>(kHighlightQuantile * static_cast<double>(n - 1));
-  const double highlights = value_of(bin_reaching(count_, static_cast<double>(rank + 1)));
+  const double highlights = value_of(bin_reaching(count_.get(), static_cast<double>(rank + 1)));
   if (!(highlights > 0)) return 0;
   // The subject's level: a weighted quantile of its luminance (of the whole picture's where no
   // subject is given or seen). A quantile, not a mean, so that the subject's own black parts
   // (a pattern's dark checks shifted out of the visible) and a few bright pixels do not move it.
   std::uint64_t total = 0;
-  for (const std::uint64_t w : weight_) total += w;
+  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) total += weight_[b];
   const bool weighted =
       static_cast<double>(total) >= kMinSubjectShare * static_cast<double>(n) * kWeightUnit;
   const double level =
-      weighted ? value_of(bin_reaching(weight_, kSubjectQuantile * static_cast<double>(total)))
-               : value_of(bin_reaching(count_, kSubjectQuantile * static_cast<double>(n)));
+      weighted
+          ? value_of(bin_reaching(weight_.get(), kSubjectQuantile * static_cast<double>(total)))
+          : value_of(bin_reaching(count_.get(), kSubjectQuantile * static_cast<double>(n)));
   const double bright_enough =
       level > 0 ? std::log2(kSubjectLevel / level) : std::numeric_limits<double>::infinity();
   return std::min(bright_enough, std::log2(display_white(curve) / highlights));
