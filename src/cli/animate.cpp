@@ -221,10 +221,8 @@ int run_animate(const AnimateArgs& a) {
   long long animation_first = first, animation_last = last;
   if (a.animation) {
     std::tie(animation_first, animation_last) = parse_frame_range("--animation", *a.animation);
-    if (animation_first > first || animation_last < last)
-      throw InputError(
-          fmt::format("--animation {}: the animation must hold the {} this run renders",
-                      *a.animation, describe_frames(first, last)));
+    if (const auto why = animation_part_refused(first, last, animation_first, animation_last))
+      throw InputError(fmt::format("--animation {}: {}", *a.animation, *why));
   }
   if (!a.output && !a.exr && !a.video)
     throw InputError("nothing to write: give -o PATTERN, --exr PATTERN or --video FILE");
@@ -430,15 +428,12 @@ int run_animate(const AnimateArgs& a) {
     writing = std::async(std::launch::async, [=, &video, image = p.image] {
       in_frame(p.frame, [&] {
         if (ev) {
-          // Each frame's EXR header says by what its radiance was scaled (Image::exposure).
-          RenderSettings settings;
-          settings.auto_exposure = false;
-          settings.exposure = *ev;
-          image->exposure = apply_exposure(*image, settings);
+          // Each frame's EXR header says by what its radiance was scaled (Image::exposure). The
+          // renderer checked the linear picture; the scaled one is checked as it is scaled.
+          image->exposure = *ev;
+          if (const auto refused = picture_refused(scene, expose(*image, *ev), *ev))
+            throw std::runtime_error(*refused);
         }
-        if (std::any_of(image->rgb.begin(), image->rgb.end(),
-                        [](float v) { return !std::isfinite(v); }))
-          throw std::runtime_error("the render has non-finite values (NaN or infinity)");
         const Image display = tone_map(*image, p.curve);
         if (!p.outputs.empty()) write_images(display, *image, p.outputs);
         if (video) video->add(display);

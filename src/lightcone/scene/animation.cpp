@@ -27,6 +27,14 @@ bool static_near_hole(const Scene& scene) {
 
 }  // namespace
 
+std::optional<std::string> animation_part_refused(long long first, long long last,
+                                                  long long whole_first, long long whole_last) {
+  if (whole_first <= first && last <= whole_last) return std::nullopt;
+  return first == last ? fmt::format("the animation must hold the frame {} this run renders", first)
+                       : fmt::format("the animation must hold the frames {} to {} this run renders",
+                                     first, last);
+}
+
 std::optional<std::string> animation_refused(const Scene& scene) {
   if (static_near_hole(scene) && length(scene.camera.world_line.velocity) > 0)
     return "camera.velocity: a camera that moves near a black hole is animated along a geodesic "

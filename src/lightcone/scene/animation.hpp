@@ -16,6 +16,12 @@ enum class AnimationClock { kCamera, kWorld };
 // motion: a velocity alone is not a free path there), or nothing.
 std::optional<std::string> animation_refused(const Scene& scene);
 
+// Why frames [first, last] cannot be rendered as a part of the animation of frames
+// [whole_first, whole_last] (a job array's task given the whole animation, whose automatic
+// exposure is smoothed over its frames alone): the whole must hold the part. Or nothing.
+std::optional<std::string> animation_part_refused(long long first, long long last,
+                                                  long long whole_first, long long whole_last);
+
 // Sets `frame` to frame i's scene: the camera's clock set as camera.proper_time would set it.
 // Near a black hole a camera without a geodesic motion is a static one: it stays where it is,
 // and its clock runs at sqrt(1 - 2M/r) of W's time. Returns why frame i cannot be drawn (the
