@@ -244,10 +244,7 @@ Image exposed_image(const LinearArray& linear, double exposure, const char* func
   image.height = static_cast<int>(linear.shape(0));
   image.width = static_cast<int>(linear.shape(1));
   image.rgb.assign(linear.data(), linear.data() + linear.size());
-  RenderSettings fixed;
-  fixed.auto_exposure = false;
-  fixed.exposure = exposure;
-  apply_exposure(image, fixed);
+  expose(image, exposure);
   if (const std::size_t n = count_nan(image.rgb.data(), image.rgb.data() + image.rgb.size()); n > 0)
     throw py::value_error(
         fmt::format("{}: exposure {} makes {} value{} NaN (2^exposure is beyond "

@@ -3,11 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
-
-#include "lightcone/portable.hpp"
 
 namespace lightcone {
 namespace {
@@ -94,21 +91,6 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
                       horizon));
   }
   return std::nullopt;
-}
-
-std::optional<std::string> picture_refused(const Scene& scene, const Image& image,
-                                           double exposure) {
-  // In parallel: a serial pass over a 1080p picture is a visible share of a render on 2 threads.
-  std::atomic<std::size_t> non_finite{0};
-  parallel_for_pieces(std::size_t{0}, image.rgb.size(), std::size_t{1} << 16,
-                      [&](std::size_t begin, std::size_t end) {
-                        const auto found =
-                            std::count_if(image.rgb.begin() + static_cast<std::ptrdiff_t>(begin),
-                                          image.rgb.begin() + static_cast<std::ptrdiff_t>(end),
-                                          [](float v) { return !std::isfinite(v); });
-                        if (found) non_finite += static_cast<std::size_t>(found);
-                      });
-  return picture_refused(scene, non_finite.load(), exposure);
 }
 
 std::optional<std::string> picture_refused(const Scene& scene, std::size_t non_finite,

@@ -43,9 +43,8 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
 // A rendered picture the library may hand out: every value finite. A non-finite one is wrong,
 // not merely dark or bright (an exposure or an emitter's luminance beyond float's range), and
 // none is ever returned; `exposure` is the EV the render applied.
-std::optional<std::string> picture_refused(const Scene& scene, const Image& image, double exposure);
-// The same for a picture with `non_finite` such values, counted by its maker (expose() counts
-// them as it scales the picture).
+// `non_finite` is how many of its values are not finite, as expose() (tone_map.hpp) counts
+// them while it scales the picture.
 std::optional<std::string> picture_refused(const Scene& scene, std::size_t non_finite,
                                            double exposure);
 

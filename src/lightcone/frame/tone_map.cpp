@@ -94,12 +94,11 @@ std::size_t expose(Image& linear, double ev) {
   return non_finite;
 }
 
-double apply_exposure(Image& linear, const RenderSettings& settings,
-                      std::span<const float> subject) {
+AppliedExposure apply_exposure(Image& linear, const RenderSettings& settings,
+                               std::span<const float> subject) {
   const double ev =
       settings.auto_exposure ? auto_exposure(linear, settings.tonemap, subject) : settings.exposure;
-  expose(linear, ev);
-  return ev;
+  return {ev, expose(linear, ev)};
 }
 
 namespace {

@@ -25,10 +25,14 @@ double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> 
 // picture (request_rules' picture_refused) does not read it again.
 std::size_t expose(Image& linear, double ev);
 
-// expose() at the settings' exposure or (auto_exposure on) the automatic one; returns the EV
-// applied. Both renderers' pictures end here or in expose().
-double apply_exposure(Image& linear, const RenderSettings& settings,
-                      std::span<const float> subject = {});
+// expose() at the settings' exposure or (auto_exposure on) the automatic one: the EV applied
+// and the values then not finite. Both renderers' pictures end here or in expose().
+struct AppliedExposure {
+  double ev = 0;
+  std::size_t non_finite = 0;
+};
+AppliedExposure apply_exposure(Image& linear, const RenderSettings& settings,
+                               std::span<const float> subject = {});
 
 // Display-referred linear values in [0, 1] (the PNG then applies the sRGB curve):
 //   clamp:    min(max(L, 0), 1) per channel;

@@ -98,17 +98,18 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   image.height = height;
   image.rgb.resize(3 * pixels);
   for (std::size_t i = 0; i < sum.size(); ++i) image.rgb[i] = static_cast<float>(sum[i] / n);
-  const double ev = apply_exposure(image, scene.render, subject);
+  const AppliedExposure applied = apply_exposure(image, scene.render, subject);
   if (subject_out) *subject_out = std::move(subject);
   if (stats) {
-    stats->exposure = ev;
+    stats->exposure = applied.ev;
     stats->triangles = triangles;
     stats->gpu_tessellation = on_gpu;
     stats->gl = context.description();
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  if (const auto refused = picture_refused(scene, image, ev)) throw std::runtime_error(*refused);
+  if (const auto refused = picture_refused(scene, applied.non_finite, applied.ev))
+    throw std::runtime_error(*refused);
   return image;
 }
 
