@@ -41,26 +41,10 @@ constexpr const char* kLitMovingOccluder = R"({
 })";
 
 // Occluders moving relative to a lamp at rest, a sun and a sphere lamp (test_raster_lights'
-// scene) at the scene format's defaults: a lit crate at 0.7c and a lit ball at 0.5c over a
-// lit floor.
-constexpr const char* kMovingOccluders = R"({
-  "camera": {"position": [0, 7, 11], "forward": [0, -0.6, -1], "fov": 60},
-  "objects": [
-    {"name": "floor", "shape": {"plane": {"size": [40, 40]}}, "position": [0, 0, 0],
-     "material": {"checker": {"size": 2, "colors": [[0.7, 0.7, 0.7], [0.5, 0.5, 0.55]]},
-                  "unlit": false}},
-    {"name": "crate", "shape": {"box": {"size": [2, 2, 2]}}, "position": [-2, 2.5, 0],
-     "time": -12, "velocity": [0.7, 0, 0], "material": {"color": [0.8, 0.4, 0.3], "unlit": false}},
-    {"name": "ball", "shape": {"sphere": {"radius": 1.2}}, "position": [2.5, 2, -3], "time": -12,
-     "velocity": [0, 0, 0.5], "material": {"color": [0.3, 0.6, 0.8], "unlit": false}}
-  ],
-  "lights": [
-    {"name": "lamp", "type": "point", "position": [0, 8, -1], "intensity": 200},
-    {"name": "sun", "type": "directional", "direction": [0.3, -1, 0.2], "irradiance": 0.4},
-    {"name": "globe", "type": "sphere", "position": [4, 6, 2], "radius": 0.3, "intensity": 60}
-  ],
-  "sky": {"color": [0.02, 0.02, 0.03]}
-})";
+// scene, tests/data/moving-occluders.json) at the scene format's defaults: a lit crate at 0.7c
+// and a lit ball at 0.5c over a lit floor.
+const std::string kMovingOccluders =
+    std::string(LIGHTCONE_SOURCE_DIR) + "/tests/data/moving-occluders.json";
 
 // The two EVs may differ only as far as the pictures the rule reads do: along the outlines,
 // where a pass covers each pixel at one point of the pattern and the tracer at each pixel's own
@@ -105,9 +89,7 @@ TEST(RasterAgreement, ALitMovingOccluderAtTheDefaultExposure) {
 // bright before (75 pixels more than 4/255 off), which moved the automatic exposure of the
 // scene by 0.04 EV.
 TEST(RasterAgreement, LitMovingBoxesEdgesMatchTheRayTracer) {
-  const fs::path dir = test::fresh_temp_dir("box-edges");
-  test::write_text(dir / "scene.json", kMovingOccluders);
-  const test::Agreement a = test::agreement((dir / "scene.json").string(), 16);
+  const test::Agreement a = test::agreement(kMovingOccluders, 16);
   const auto off = static_cast<std::size_t>(
       std::lround((1 - a.bodies_within) * static_cast<double>(a.bodies_compared)));
   std::printf(
@@ -116,7 +98,6 @@ TEST(RasterAgreement, LitMovingBoxesEdgesMatchTheRayTracer) {
       off, a.bodies_compared, a.trace_ev, a.raster_ev);
   EXPECT_LE(off, 10u);
   EXPECT_NEAR(a.raster_ev, a.trace_ev, 0.02);
-  fs::remove_all(dir);
 }
 
 // The subject each renderer finds (its weights, whatever the exposure) is the same pixels but

@@ -176,9 +176,10 @@ TEST(RasterAgreement, ASphereLampAtOneSampleMatchesTheRayTracer) {
 
 // The raster renderer's shadows of `scene` agree with the tracer's at 16 samples, and they show:
 // drawn without them, more than 2 % of the pixels differ.
-void expect_shadows_that_show(const std::string& scene, const char* label) {
-  expect_agreement(scene, "", 16);
-  const Agreement without = agreement(scene, 16, "", "--set render.shadows=false");
+void expect_shadows_that_show(const std::string& scene, const char* label,
+                              const std::string& extra = "") {
+  expect_agreement(scene, extra, 16);
+  const Agreement without = agreement(scene, 16, extra, "--set render.shadows=false");
   std::printf("%s, raster without shadows: %.4f within 4/255\n", label, without.within);
   EXPECT_LT(without.within, 0.98);
 }
@@ -187,28 +188,9 @@ void expect_shadows_that_show(const std::string& scene, const char* label) {
 // lamp at rest (and a sun, and a sphere lamp) and the floor, whose shadows are retarded: each
 // met exactly along each shadow ray in the body's own rest frame.
 TEST(RasterAgreement, ShadowsOfMovingOccludersMatchTheRayTracer) {
-  const fs::path dir = test::fresh_temp_dir("moving-occluders");
-  test::write_text(dir / "scene.json", R"({
-  "camera": {"position": [0, 7, 11], "forward": [0, -0.6, -1], "fov": 60},
-  "objects": [
-    {"name": "floor", "shape": {"plane": {"size": [40, 40]}}, "position": [0, 0, 0],
-     "material": {"checker": {"size": 2, "colors": [[0.7, 0.7, 0.7], [0.5, 0.5, 0.55]]},
-                  "unlit": false}},
-    {"name": "crate", "shape": {"box": {"size": [2, 2, 2]}}, "position": [-2, 2.5, 0],
-     "time": -12, "velocity": [0.7, 0, 0], "material": {"color": [0.8, 0.4, 0.3], "unlit": false}},
-    {"name": "ball", "shape": {"sphere": {"radius": 1.2}}, "position": [2.5, 2, -3], "time": -12,
-     "velocity": [0, 0, 0.5], "material": {"color": [0.3, 0.6, 0.8], "unlit": false}}
-  ],
-  "lights": [
-    {"name": "lamp", "type": "point", "position": [0, 8, -1], "intensity": 200},
-    {"name": "sun", "type": "directional", "direction": [0.3, -1, 0.2], "irradiance": 0.4},
-    {"name": "globe", "type": "sphere", "position": [4, 6, 2], "radius": 0.3, "intensity": 60}
-  ],
-  "sky": {"color": [0.02, 0.02, 0.03]},
-  "render": {"doppler": "off", "searchlight": "off", "exposure": 0}
-})");
-  expect_shadows_that_show((dir / "scene.json").string(), "moving occluders");
-  fs::remove_all(dir);
+  expect_shadows_that_show(
+      std::string(LIGHTCONE_SOURCE_DIR) + "/tests/data/moving-occluders.json", "moving occluders",
+      "--set render.doppler=off --set render.searchlight=off --set render.exposure=0");
 }
 
 // Every kind of body casts: a mesh at 0.6c and the same mesh at rest (in the lamp's maps,
