@@ -109,21 +109,11 @@ TEST_F(Animate, SplitRangesMakeTheSameFramesAndResumeRendersOnlyTheMissingOnes) 
 // the animation's follows over the frames within half a second, and a run of some of the frames
 // exposes them as the whole run does.
 TEST_F(Animate, AutomaticExposureFollowsSmoothlyAndSplitRunsJoinUp) {
-  const fs::path file = dir_ / "blink.json";
-  std::ofstream(file) << R"({
-  "camera": {"position": [0, 0, 0], "fov": 50, "width": 64, "height": 36, "samples": 1},
-  "objects": [
-    {"name": "wall", "shape": {"box": {"size": [100, 100, 1]}}, "position": [0, 0, -10],
-     "material": {"color": [0.05, 0.05, 0.05], "unlit": true}},
-    {"name": "ball", "shape": {"sphere": {"radius": 0.3}}, "position": [0, 0, -1.5],
-     "velocity": [0.05, 0, 0],
-     "material": {"blink": {"period": 4, "duty": 0.5, "colors": [[0.5, 0.5, 0.5], [0.004, 0.004, 0.004]]},
-                  "unlit": true}}
-  ],
-  "render": {"doppler": "off", "searchlight": "off"}
-})";
+  // (tests/data/blink.json, at 64 x 36 and one sample)
+  const fs::path file = fs::path(LIGHTCONE_SOURCE_DIR) / "tests/data/blink.json";
   const auto run = [&](const std::string& frames, const std::string& prefix) {
-    const auto r = run_lightcone("animate " + quoted(file) + " --fps 8 --frames " + frames +
+    const auto r = run_lightcone("animate " + quoted(file) +
+                                 " --width 64 --height 36 --samples 1 --fps 8 --frames " + frames +
                                  " -o " + quoted(dir_ / (prefix + "%02d.exr")) + " --quiet");
     ASSERT_EQ(r.status, 0) << r.err;
   };

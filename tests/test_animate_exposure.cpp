@@ -93,25 +93,14 @@ TEST(LatticeRender, EqualsTheWholeRendersPixelsExactly) {
 
 // A moving ball that shines for two seconds and goes dark for two (a blink of period 4), before
 // a grey wall at rest: the automatic exposure follows it.
-constexpr const char* kBlink = R"({
-  "camera": {"position": [0, 0, 0], "fov": 50, "width": 66, "height": 38, "samples": 2},
-  "objects": [
-    {"name": "wall", "shape": {"box": {"size": [100, 100, 1]}}, "position": [0, 0, -10],
-     "material": {"color": [0.05, 0.05, 0.05], "unlit": true}},
-    {"name": "ball", "shape": {"sphere": {"radius": 0.3}}, "position": [0, 0, -1.5],
-     "velocity": [0.05, 0, 0],
-     "material": {"blink": {"period": 4, "duty": 0.5, "colors": [[0.5, 0.5, 0.5], [0.004, 0.004, 0.004]]},
-                  "unlit": true}}
-  ],
-  "render": {"doppler": "off", "searchlight": "off"}
-})";
+const std::string kBlink = std::string(LIGHTCONE_SOURCE_DIR) + "/tests/data/blink.json";
 constexpr double kFps = 8;  // half a second either side: 4 frames
 
 class AnimateExposure : public test::TempDirTest {
  protected:
   void SetUp() override {
     TempDirTest::SetUp();
-    blink_ = write("blink.json", kBlink);
+    blink_ = kBlink;
   }
   // Animates `frames` of the blink (more options after them) into PNGs and EXRs named prefix%02d.
   void animate(const std::string& frames, const std::string& prefix) const {
