@@ -227,10 +227,9 @@ TEST(ExposureMeter, IsTheSameHoweverThePixelsAreShared) {
   for (float& v : rgb) v = std::exp2(20 * unit(random) - 10);
   for (float& s : share) s = unit(random) < 0.3f ? unit(random) : 0.0f;
   ExposureMeter whole, first, second;
-  for (std::size_t p = 0; p < share.size(); ++p) {
-    whole.add(&rgb[3 * p], share[p]);
-    (p % 3 ? first : second).add(&rgb[3 * p], share[p]);
-  }
+  whole.add(rgb.data(), share.size(), share.data());
+  for (std::size_t p = 0; p < share.size(); ++p)
+    (p % 3 ? first : second).add(&rgb[3 * p], 1, &share[p]);
   first.add(second);
   EXPECT_EQ(first.pixels(), 5000u);
   EXPECT_EQ(first.ev(ToneMap::kFilmic), whole.ev(ToneMap::kFilmic));

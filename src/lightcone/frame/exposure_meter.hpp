@@ -48,18 +48,21 @@ class ExposureMeter {
                      : 0;
   }
 
-  // Counts a pixel of linear radiance rgb, `subject_share` of whose samples met the subject.
-  void add(const float* rgb, float subject_share) {
-    count(rgb);
-    if (subject_share > 0) run_weight_ += weight_units(subject_share);
+  // Counts `pixels` consecutive pixels of linear radiance (3 floats each), `subject_shares[i]`
+  // of pixel i met the subject (none, where null).
+  void add(const float* rgb, std::size_t pixels, const float* subject_shares = nullptr) {
+    if (subject_shares)
+      count(rgb, pixels, [&](std::size_t i) { return weight_units(subject_shares[i]); });
+    else
+      count(rgb, pixels, [](std::size_t) { return std::uint64_t{0}; });
   }
-  void add(const float* rgb) { count(rgb); }
-  // The same for a pixel `subject_samples` of whose `samples` met the subject: its share is
-  // float(subject_samples) / samples, as a renderer's subject weights hold it.
-  void add_samples(const float* rgb, int subject_samples, int samples) {
-    count(rgb);
-    if (subject_samples > 0)
-      run_weight_ += weight_units(static_cast<float>(subject_samples) / samples);
+  // The same for pixels `subject_samples[i]` of whose `samples` met the subject: a share of
+  // float(subject_samples[i]) / samples, as a renderer's subject weights hold it.
+  void add_samples(const float* rgb, std::size_t pixels, const int* subject_samples, int samples) {
+    count(rgb, pixels, [&](std::size_t i) {
+      return subject_samples[i] > 0 ? weight_units(static_cast<float>(subject_samples[i]) / samples)
+                                    : std::uint64_t{0};
+    });
   }
 
   // Adds another meter's pixels.
@@ -71,17 +74,35 @@ class ExposureMeter {
   double ev(ToneMap curve) const;
 
  private:
-  // Counts a pixel in the run of its bin, ending the run of another. A run of pixels in one bin
-  // (a flat sky) is counted in registers and added to the histograms when it ends:
-  // incrementing one counter in memory pixel after pixel waits on the previous increment's
-  // store every time.
-  void count(const float* rgb) {
-    const std::size_t bin = bin_of(rgb);
-    if (bin != run_bin_) {
-      end_run();
-      run_bin_ = bin;
+  // Counts pixels in runs of one bin (a flat sky), in registers, each added to the histograms
+  // when it ends: incrementing one counter in memory pixel after pixel waits on the previous
+  // increment's store every time. The run in progress is kept between calls.
+  template <class WeightOf>
+  void count(const float* rgb, std::size_t pixels, WeightOf weight_of) {
+    std::size_t bin = run_bin_, first = first_bin_, last = last_bin_;
+    std::uint32_t run = run_count_;
+    std::uint64_t weight = run_weight_;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const std::size_t pixel_bin = bin_of(rgb + 3 * i);
+      if (pixel_bin != bin) {
+        if (run != 0) {
+          count_[bin] += run;
+          if (weight != 0) weight_[bin] += weight;
+          first = std::min(first, bin);
+          last = std::max(last, bin);
+        }
+        bin = pixel_bin;
+        run = 0;
+        weight = 0;
+      }
+      ++run;
+      weight += weight_of(i);
     }
-    ++run_count_;
+    run_bin_ = bin;
+    first_bin_ = first;
+    last_bin_ = last;
+    run_count_ = run;
+    run_weight_ = weight;
   }
   void end_run() const {
     if (run_count_ == 0) return;

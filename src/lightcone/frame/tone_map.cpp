@@ -64,15 +64,10 @@ double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> 
   // One meter a thread; their counts are integers, so the sum is the same however the pixels
   // were shared out.
   PerThread<ExposureMeter> meters;
-  parallel_for_pieces(std::size_t{0}, pixels, std::size_t{1} << 15,
-                      [&](std::size_t begin, std::size_t end) {
-                        ExposureMeter& meter = meters.local();
-                        for (std::size_t i = begin; i < end; ++i)
-                          if (with_subject)
-                            meter.add(&rgb[3 * i], subject[i]);
-                          else
-                            meter.add(&rgb[3 * i]);
-                      });
+  parallel_for_pieces(
+      std::size_t{0}, pixels, std::size_t{1} << 15, [&](std::size_t begin, std::size_t end) {
+        meters.local().add(&rgb[3 * begin], end - begin, with_subject ? &subject[begin] : nullptr);
+      });
   return meters.combined().ev(curve);
 }
 

@@ -157,8 +157,8 @@ void meter_tile(ExposureMeter& meter, const float* rgb, int width, int x0, int y
                 int y_end, const int* subject_samples, int samples) {
   for (int y = y0; y < y_end; ++y) {
     const float* row = rgb + 3 * static_cast<std::size_t>(y) * width;
-    const int* row_subject = subject_samples + (y - y0) * kTileSize - x0;
-    for (int x = x0; x < x_end; ++x) meter.add_samples(row + 3 * x, row_subject[x], samples);
+    meter.add_samples(row + 3 * x0, static_cast<std::size_t>(x_end - x0),
+                      subject_samples + (y - y0) * kTileSize, samples);
   }
 }
 
