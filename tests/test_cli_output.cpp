@@ -427,6 +427,40 @@ TEST_F(CliTest, InfoJsonReportsSpeedsGammaDopplerAndTimeWindow) {
   EXPECT_NE(text.out.find("gamma 1.25"), std::string::npos) << text.out;
 }
 
+// Near a hole: a clock at the horizon's edge reads below c, and the shift range holds the exact
+// g of every clock's image (locate's, for their origins), not the sky's alone (1.035 everywhere
+// at the camera's r = 30M: 1 / sqrt(1 - 2/30)).
+TEST_F(CliTest, InfoNearAHoleReadsSpeedsBelowCAndTheBodiesShifts) {
+  const std::string infall = quoted(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/infall.json");
+  const CommandResult text = run_lightcone("info " + infall);
+  ASSERT_EQ(text.status, 0) << text.err;
+  // gamma 5202: 1 - beta = 1 / (2 gamma^2) = 1.85e-8.
+  EXPECT_NE(text.out.find("early                    speed 0.99999998 c, gamma 5202.07"),
+            std::string::npos)
+      << text.out;
+  const CommandResult r = run_lightcone("info " + infall + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto info = nlohmann::json::parse(r.out);
+  const double lo = info.at("doppler").at(0), hi = info.at("doppler").at(1);
+  EXPECT_EQ(info.at("black_hole").at("shift"), nlohmann::json::array({lo, hi}));
+  for (const char* clock : {"late", "middle", "early"}) {
+    const CommandResult seen =
+        run_lightcone("locate " + infall + " --object " + clock + " --point 0,0,0");
+    ASSERT_EQ(seen.status, 0) << seen.err;
+    for (const auto& image : nlohmann::json::parse(seen.out).at("images")) {
+      if (!image.at("in_view").get<bool>()) continue;
+      EXPECT_LE(lo, image.at("g").get<double>()) << clock;
+      EXPECT_GE(hi, image.at("g").get<double>()) << clock;
+    }
+  }
+  // The clock nearest the horizon is seen at g = 0.356 (its origin's primary image).
+  EXPECT_LT(lo, 0.36);
+  // The light seen left the clocks, along curved rays, after the first was let go (t = -76)
+  // and before the camera's r = 30M at least 20M away could receive it.
+  EXPECT_GT(info.at("emission_time").at(0).get<double>(), -76);
+  EXPECT_LT(info.at("emission_time").at(1).get<double>(), -20);
+}
+
 // The stars a scene draws: how many, from which catalogue, to which magnitude.
 TEST_F(CliTest, InfoCountsTheStars) {
   const CommandResult r =

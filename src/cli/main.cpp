@@ -27,6 +27,7 @@
 #include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/spelling.hpp"
+#include "lightcone/scene/speed_text.hpp"
 #include "lightcone/trace/curved_shadows.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
@@ -116,8 +117,8 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
   std::printf("%s: %dx%d pixels, %s each\n", file.c_str(), info.width, info.height,
               counted(info.samples, "sample").c_str());
   for (const BodyInfo& b : info.bodies)
-    std::printf("  %-8s %-24s speed %.6g c, gamma %.6g\n", b.kind.c_str(), b.name.c_str(), b.speed,
-                b.gamma);
+    std::printf("  %-8s %-24s speed %s c, gamma %.6g\n", b.kind.c_str(), b.name.c_str(),
+                speed_text(b.speed).c_str(), b.gamma);
   if (const auto& h = info.hole) {
     std::printf(
         "black hole: M = %.6g; horizon r = %.6g, photon sphere r = %.6g, innermost stable "

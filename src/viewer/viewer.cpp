@@ -28,6 +28,7 @@
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/gl_context.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/scene/speed_text.hpp"
 #include "viewer/flight.hpp"
 #include "viewer/frame_loop.hpp"
 #include "viewer/frame_rate.hpp"
@@ -37,8 +38,8 @@ namespace {
 
 // The caption of the split view, and of the picture alone while presenting.
 std::string caption(bool split, double speed) {
-  return fmt::format("{}   beta = {:.3f}", split ? "classical | relativistic" : "relativistic",
-                     speed);
+  return fmt::format("{}   beta = {}", split ? "classical | relativistic" : "relativistic",
+                     speed_text(speed, 3));
 }
 
 // A name for the next screenshot in the working folder that is not taken yet.
@@ -178,7 +179,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           if (key == GLFW_KEY_P) presenting = !presenting;
           if (key == GLFW_KEY_F12) screenshot = true;
           if (key == GLFW_KEY_W || key == GLFW_KEY_S || key == GLFW_KEY_SPACE)
-            std::fprintf(stderr, "lightcone: speed %.4f c\n", flight.speed);
+            std::fprintf(stderr, "lightcone: speed %s c\n", speed_text(flight.speed, 4).c_str());
         }
         const double turn = 1.2 * dt;
         if (glfwGetKey(window, GLFW_KEY_LEFT) == GLFW_PRESS) flight.turn(turn, 0);
@@ -280,7 +281,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         ImGui::SetNextWindowPos(ImVec2(10, kCaptionHeight + 4), ImGuiCond_FirstUseEver);
         ImGui::Begin("lightcone", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
         const double gamma = lorentz_gamma(flight.camera.world_line.velocity);
-        ImGui::Text("beta %.4f   gamma %.3f", flight.speed, gamma);
+        ImGui::Text("beta %s   gamma %.3f", speed_text(flight.speed, 4).c_str(), gamma);
         ImGui::Text("%.1f fps", fps);
         if (const auto measured = probe.measured())
           ImGui::Text("this machine: %.1f fps over the first %.0f s", *measured,

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/locate.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/physics/aberration.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
@@ -28,7 +31,28 @@ constexpr std::uint64_t kBvhBytesPerTriangle = 64;
 
 constexpr double kDegrees = 180 / 3.14159265358979323846;
 
-HoleInfo hole_info(const ResolvedScene& resolved, const Vec3& camera_velocity) {
+// The grid of camera rays sampled for the shifts and emission times: kRays x kRays.
+constexpr int kRays = 48;
+
+// Widens [lo, hi] (unset while `any` is false) to hold x.
+void include(double x, bool& any, double& lo, double& hi) {
+  lo = any ? std::min(lo, x) : x;
+  hi = any ? std::max(hi, x) : x;
+  any = true;
+}
+
+void add_emission_time(SceneInfo& info, double t) {
+  info.emission_time_min = std::min(info.emission_time_min.value_or(t), t);
+  info.emission_time_max = std::max(info.emission_time_max.value_or(t), t);
+}
+
+// The hole, and what the image shows near it: the shift g of every image of the sky, the disk
+// and the bodies a grid of the camera's curved rays meets (each hit solved on the true path, so
+// g is exact there), and of every image in view of each body's origin (locate's, as if
+// unoccluded: a small body between the grid's rays is not missed); the emission times of the
+// bodies met.
+HoleInfo hole_info(const Scene& scene, const ResolvedScene& resolved, const Tracer& tracer,
+                   SceneInfo& info) {
   const HoleView& hole = *resolved.hole;
   const double m = hole.mass;
   HoleInfo h;
@@ -42,23 +66,31 @@ HoleInfo hole_info(const ResolvedScene& resolved, const Vec3& camera_velocity) {
   h.shadow_static_degrees = hole.camera_radius > 2 * m
                                 ? static_shadow_angle(m, hole.camera_radius) * kDegrees
                                 : std::numeric_limits<double>::quiet_NaN();
-  h.shadow_degrees = (hole.falling ? shadow_angle(*hole.falling)
-                                   : shadow_angle_for_camera(hole, camera_velocity)) *
-                     kDegrees;
-  constexpr int kRays = 48;
+  h.shadow_degrees =
+      (hole.falling ? shadow_angle(*hole.falling)
+                    : shadow_angle_for_camera(hole, scene.camera.world_line.velocity)) *
+      kDegrees;
+  const std::unique_ptr<const CurvedBodies> bodies =
+      resolved.bodies.empty() ? nullptr : std::make_unique<CurvedBodies>(resolved, tracer);
+  const double c = scene.speed_of_light;
   double orders = 0;
   for (int j = 0; j < kRays; ++j)
     for (int i = 0; i < kRays; ++i) {
       const Vec3 u = look_direction(resolved.camera, (i + 0.5) * resolved.camera.width / kRays,
                                     (j + 0.5) * resolved.camera.height / kRays);
-      const CurvedRay ray = follow_curved_ray(hole, u);
+      const CurvedRay ray = follow_curved_ray(hole, u, bodies.get());
       orders += ray.order;
       if (ray.end == CurvedRayEnd::kHorizon) continue;
-      h.shift_min = h.any_light ? std::min(h.shift_min, ray.shift) : ray.shift;
-      h.shift_max = h.any_light ? std::max(h.shift_max, ray.shift) : ray.shift;
-      h.any_light = true;
+      include(ray.shift, h.any_light, h.shift_min, h.shift_max);
+      if (ray.end != CurvedRayEnd::kBody) continue;
+      add_emission_time(info, ray.event.t / c);
     }
   h.mean_image_order = orders / (kRays * kRays);
+  if (hole.camera_radius > 2 * m)  // locate's images need a camera outside the horizon
+    for (const ResolvedBody& b : resolved.bodies)
+      for (const LocateImage& image :
+           locate(scene, resolved, {LocateQuery::Kind::ObjectPoint, b.object->name, {}}).images)
+        if (image.in_view) include(image.shift, h.any_light, h.shift_min, h.shift_max);
   return h;
 }
 
@@ -112,36 +144,32 @@ SceneInfo scene_info(const Scene& scene) {
     info.bodies.push_back(body(l.name, "light", l.world_line.velocity));
   info.bodies.push_back(body("sky", "sky", scene.sky.velocity));
 
-  bool first = true;
-  for (const bool lit : {false, true}) {
-    const LogDopplerRange r = visible_log_doppler(resolved, lit);
-    if (r.empty) continue;
-    info.doppler_min = first ? std::exp(r.lo) : std::min(info.doppler_min, std::exp(r.lo));
-    info.doppler_max = first ? std::exp(r.hi) : std::max(info.doppler_max, std::exp(r.hi));
-    first = false;
-  }
-
+  const Tracer tracer(resolved);
   if (resolved.hole) {
-    info.hole = hole_info(resolved, scene.camera.world_line.velocity);
+    info.hole = hole_info(scene, resolved, tracer, info);
     if (info.hole->any_light) {
       info.doppler_min = info.hole->shift_min;
       info.doppler_max = info.hole->shift_max;
     }
-  }
-
-  // Emission times of what a grid of rays meets.
-  const Tracer tracer(resolved);
-  constexpr int kRays = 48;
-  for (int j = 0; j < kRays; ++j)
-    for (int i = 0; i < kRays; ++i) {
-      const Vec3 u = look_direction(resolved.camera, (i + 0.5) * info.width / kRays,
-                                    (j + 0.5) * info.height / kRays);
-      const auto hit = tracer.trace(u);
-      if (!hit) continue;
-      const double t = resolved.trace_to_world(Vec4{resolved.ray_time * hit->s, u * hit->s}).t / c;
-      info.emission_time_min = std::min(info.emission_time_min.value_or(t), t);
-      info.emission_time_max = std::max(info.emission_time_max.value_or(t), t);
+  } else {
+    bool any = false;
+    for (const bool lit : {false, true}) {
+      const LogDopplerRange r = visible_log_doppler(resolved, lit);
+      if (r.empty) continue;
+      include(std::exp(r.lo), any, info.doppler_min, info.doppler_max);
+      include(std::exp(r.hi), any, info.doppler_min, info.doppler_max);
     }
+    // Emission times of what a grid of rays meets.
+    for (int j = 0; j < kRays; ++j)
+      for (int i = 0; i < kRays; ++i) {
+        const Vec3 u = look_direction(resolved.camera, (i + 0.5) * info.width / kRays,
+                                      (j + 0.5) * info.height / kRays);
+        const auto hit = tracer.trace(u);
+        if (!hit) continue;
+        add_emission_time(
+            info, resolved.trace_to_world(Vec4{resolved.ray_time * hit->s, u * hit->s}).t / c);
+      }
+  }
 
   std::set<const Mesh*> meshes;
   std::set<const Image*> images;

@@ -27,9 +27,11 @@ struct HoleInfo {
   // The shadow's angular radius (degrees) for this camera: for its static observer Synge's
   // (1966), aberrated by the camera's velocity (aberration maps circles on the sky to circles).
   double shadow_static_degrees = 0, shadow_degrees = 0;
-  // The shift g over the image (sampled on a grid of rays; the shadow left out).
+  // The shift g over the image, exact where sampled: on a grid of curved rays, of the sky, the
+  // disk and the bodies they meet, and of every image in view of each body's origin (the
+  // shadow left out).
   double shift_min = 1, shift_max = 1;
-  bool any_light = false;  // some sampled ray sees the sky or the disk
+  bool any_light = false;  // some sampled ray or image sees the sky, the disk or a body
   double mean_image_order = 0;
 };
 
@@ -37,10 +39,10 @@ struct SceneInfo {
   std::vector<BodyInfo> bodies;  // the camera first, then objects, lights and the sky
   int width = 0, height = 0, samples = 0;
   // The range of the Doppler factor over the image's directions, for what is seen there
-  // (every body and the sky, as if unoccluded).
+  // (every body and the sky, as if unoccluded); near a hole, HoleInfo's shift.
   double doppler_min = 1, doppler_max = 1;
   // The W-times at which the light reaching the image left what it shows (sampled on a grid of
-  // rays; absent when every sampled ray sees the sky).
+  // rays, curved near a hole; absent when every sampled ray sees the sky or the disk).
   std::optional<double> emission_time_min, emission_time_max;
   double observation_time = 0;
   std::uint64_t triangles = 0;
