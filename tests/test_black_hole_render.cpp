@@ -286,8 +286,6 @@ TEST(BlackHoleCli, RefusesWhatItDoesNotDrawYetAndInfoReportsTheHole) {
   for (const Case& c : {
            Case{"render " + with_light + " -o " + test::quoted(out), "light_source_delay"},
            Case{"render " + classical + " -o " + test::quoted(out), "render.relativity"},
-           Case{"render " + plain + " --aov distance -o " + test::quoted(dir / "out.exr"),
-                "output variable distance"},
        }) {
     SCOPED_TRACE(c.arguments);
     const test::CommandResult r = test::run_lightcone(c.arguments);

@@ -56,6 +56,35 @@ def test_output_variables_equal_the_programs(tmp_path):
     assert ball.any() and np.all(ours["doppler"][ball] < 0.7)
 
 
+def test_output_variables_near_a_black_hole_equal_the_programs(tmp_path):
+    # Near a hole these were refused, and before that came back as -1, 0 or garbage.
+    scene = tmp_path / "hole.json"
+    scene.write_text(json.dumps({
+        "camera": {"position": [0, 3, 30], "time": 4, "fov": 40, "width": 64, "height": 36,
+                   "samples": 1},
+        "black_hole": {"mass": 1, "disk": {"inner": 6, "outer": 12}},
+        "objects": [{"name": "ball", "shape": {"sphere": {"radius": 2}},
+                     "position": [3, 1, -14]}]}))
+    names = ["emission_time", "distance", "depth", "normal", "object", "image_order"]
+    exr = tmp_path / "cli.exr"
+    cli("render", str(scene), "-o", str(exr), "--aov", ",".join(names), "--quiet")
+    ours = lc.render(lc.load(str(scene)), aovs=names, progress=False)
+    theirs = lc.read_image(exr)
+    for name in ["emission_time", "distance", "depth", "object", "image_order"]:
+        assert np.array_equal(ours[name], theirs[name]), name
+    for k, axis in enumerate("XYZ"):
+        assert np.array_equal(ours["normal"][..., k], theirs["normal." + axis])
+    # The ball (0), the disk (-2), the shadow (-3) and the sky (-1) are all in view.
+    code = ours["object"]
+    surface = (code == 0) | (code == -2)
+    assert all((code == c).any() for c in (0, -2, -3, -1))
+    # The camera is at rest: the distance is the light's coordinate time of flight.
+    assert np.all(ours["distance"][surface] > 0)
+    assert np.allclose(ours["emission_time"][surface], 4 - ours["distance"][surface], rtol=1e-6)
+    assert np.allclose(np.linalg.norm(ours["normal"][surface], axis=-1), 1, atol=1e-6)
+    assert np.all(np.isinf(ours["distance"][~surface]))
+
+
 def test_read_image_gives_the_exposure_an_exr_was_written_with(tmp_path):
     exr, png = tmp_path / "auto.exr", tmp_path / "auto.png"
     done = subprocess.run([BINARY, "render", TERRELL, "-o", str(png), "--exr", str(exr),

@@ -159,8 +159,8 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
   if (a.crop) options.crop = parse_crop(*a.crop, scene.camera.width, scene.camera.height);
   options.cancel = &interrupted;
   options.aovs = out.aovs;
-  // A map hatches the sky: where the rays met no object (the object variable, not written
-  // unless asked for).
+  // A map hatches the sky: where the rays met no surface, the sky or a black hole's shadow
+  // (the object variable, not written unless asked for).
   const bool sky_for_map =
       out.map && std::find(out.aovs.begin(), out.aovs.end(), Aov::kObject) == out.aovs.end();
   if (sky_for_map) options.aovs.push_back(Aov::kObject);
@@ -199,7 +199,8 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
   if (out.map)
     for (auto c = r.image.channels.begin(); c != r.image.channels.end(); ++c)
       if (c->name == aov_name(Aov::kObject)) {
-        for (const float object : c->values) r.sky.push_back(object < 0 ? 1.0f : 0.0f);
+        for (const float object : c->values)
+          r.sky.push_back(object == kObjectSky || object == kObjectShadow ? 1.0f : 0.0f);
         if (sky_for_map) r.image.channels.erase(c);
         break;
       }

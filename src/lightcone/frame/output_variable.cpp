@@ -55,8 +55,8 @@ std::vector<std::string> aov_channel_names(Aov aov) {
   return {name};
 }
 
-bool aov_near_black_hole(Aov aov) {
-  return aov == Aov::kDoppler || aov == Aov::kObject || aov == Aov::kImageOrder;
+bool aov_needs_world_time(Aov aov) {
+  return aov == Aov::kEmissionTime || aov == Aov::kDistance || aov == Aov::kDepth;
 }
 
 }  // namespace lightcone

@@ -60,12 +60,13 @@ std::optional<std::string> render_refused(const Scene& scene, const RenderReques
     return fmt::format(
         "{}: the output variable {} comes from the ray tracer alone: the raster renderer has none",
         source_of(scene), aov_name(request.aovs.front()));
-  if (scene.black_hole)
+  if (scene.black_hole && camera_inside_horizon(scene.camera.motion))
     for (const Aov aov : request.aovs)
-      if (!aov_near_black_hole(aov))
-        return refusal(scene, "black_hole",
-                       fmt::format("the output variable {} is not available near a black hole "
-                                   "yet (near one: doppler, object, image_order)",
+      if (aov_needs_world_time(aov))
+        return refusal(scene, "camera",
+                       fmt::format("the output variable {} is measured from W's time at the "
+                                   "camera, which is not defined inside the black hole's "
+                                   "horizon (from there: doppler, object, normal, image_order)",
                                    aov_name(aov)));
   return std::nullopt;
 }
