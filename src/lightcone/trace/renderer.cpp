@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/sampler.hpp"
 #include "lightcone/frame/star_field.hpp"
+#include "lightcone/frame/straight_rays.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/huge_pages.hpp"
 #include "lightcone/physics/accretion_disk.hpp"
@@ -141,12 +143,15 @@ struct Observation {
         curved_bodies(resolved.hole && !resolved.bodies.empty()
                           ? std::make_unique<CurvedBodies>(resolved, tracer)
                           : nullptr),
-        lighting(resolved, &tracer, curved_bodies.get()) {}
+        lighting(resolved, &tracer, curved_bodies.get()),
+        straight_rays(StraightRays::of(resolved)) {}
   ResolvedScene resolved;
   Tracer tracer;
   EmissionTable emission;
   std::unique_ptr<CurvedBodies> curved_bodies;  // near a black hole
   Lighting lighting;
+  // Near a black hole, the rays it leaves straight: a packet of them is traced as in flat space.
+  std::optional<StraightRays> straight_rays;
 };
 
 // Meters a finished tile's pixels [x0, x_end) x [y0, y_end) of a picture `width` pixels wide,
@@ -289,7 +294,11 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                     look_direction(resolved.camera, pixel_i[l] + ps.x, pixel_j[l] + ps.y);
                 light[l] = ps.light;
               }
-              if (resolved.hole) {
+              const bool straight = seen.straight_rays &&
+                                    std::all_of(directions, directions + lanes, [&](const Vec3& u) {
+                                      return seen.straight_rays->straight(u);
+                                    });
+              if (resolved.hole && !straight) {
                 for (std::size_t l = 0; l < lanes; ++l) {
                   const CurvedRay ray =
                       follow_curved_ray(*resolved.hole, directions[l], seen.curved_bodies.get());
