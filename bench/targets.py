@@ -50,6 +50,14 @@ Groups:
   raster   in-process: one raster frame over the pass-through baseline drawing its triangles:
            street.json at 640x360 and 1280x720 (<= 1.5), street-lit.json (<= 3); the
            1,000-body swarm at 1280x720 in frames per second (>= 5)
+  hole     bodies near a black hole (issue 55), whole `lightcone render` processes on 2 threads
+           of the scenes bench/hole_scenes.py writes, each over its flat twin: 25 lit balls, a
+           lamp and a sun, shadows, about a hole in view, over the same without the hole
+           (<= 3); scenes/infall.json and scenes/orbit.json at their own size over the same
+           bodies at rest in flat space (<= 3); scenes/terrell.json with a hole of 1e-9 units
+           of mass 866 units away over without (<= 1.5), and whether the two pictures are the
+           same (PNG files byte for byte: 0 differing); in-process, black-hole.json's sky and
+           disk at 1920x1080, 1 sample, 2 threads (BM_BlackHole, <= 0.5 s)
 
 The default run (all groups, 3 repetitions) takes some 4 minutes on 2 cores.
 
@@ -87,6 +95,7 @@ import tempfile
 import time
 
 from grid_scene import grid_scene, write_grid_scene
+from hole_scenes import write_hole_scenes
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -406,11 +415,44 @@ def measure_raster(table, build, repetitions, scratch):
               [1 / s for s in frame], 5.0, True, " fps", 1.0, 1)
 
 
+def measure_hole(table, build, repetitions, scratch):
+    folder = os.path.join(scratch, "hole")
+    paths = write_hole_scenes(folder)
+    scenes = {"lit-hole": paths["lit-balls-hole.json"], "lit-flat": paths["lit-balls-flat.json"],
+              "infall": "scenes/infall.json", "infall-flat": paths["infall-flat.json"],
+              "orbit": "scenes/orbit.json", "orbit-flat": paths["orbit-flat.json"],
+              "terrell-hole": paths["terrell-hole.json"], "terrell": "scenes/terrell.json"}
+    output = {key: os.path.join(folder, f"{key}.png") for key in scenes}
+    commands = {key: [lightcone(build), "render", scene, "-o", output[key], "--threads", "2",
+                      "--quiet"] for key, scene in scenes.items()}
+    walls = {key: [wall for wall, _ in runs]
+             for key, runs in alternate(commands, repetitions).items()}
+    for key, flat, bound, what in (
+            ("lit-hole", "lit-flat", 3.0, "25 lit balls, a lamp and a sun, shadows, a hole in "
+             "view (640x360, 1 sample)"),
+            ("infall", "infall-flat", 3.0, "scenes/infall.json (960x540, 4 samples)"),
+            ("orbit", "orbit-flat", 3.0, "scenes/orbit.json (960x540, 4 samples, lit)"),
+            ("terrell-hole", "terrell", 1.5, "scenes/terrell.json with a negligible hole "
+             "(1e-9 M, 866 units away)")):
+        table.add("hole", f"{what}, whole `render` process, 2 threads, over the same without "
+                  f"the hole ({statistics.median(walls[key]):.2f} / "
+                  f"{statistics.median(walls[flat]):.2f} s)", ratios(walls[key], walls[flat]),
+                  bound, False)
+    with open(output["terrell-hole"], "rb") as a, open(output["terrell"], "rb") as b:
+        same = a.read() == b.read()
+    table.add("hole", "scenes/terrell.json with the negligible hole: PNG files that differ from "
+              "the picture without it", [0 if same else 1], 0, False, digits=0)
+    table.add("hole", "black-hole.json sky and disk 1920x1080, 1 sample, 2 threads, in-process "
+              "(BM_BlackHole)",
+              series(bench_runs(build, r"^BM_BlackHole/", repetitions),
+                     "BM_BlackHole/iterations:5/real_time", seconds), 0.5, False, " s", 1.0)
+
+
 # Each takes the table, the build directory, the repetitions and a scratch directory.
 MEASURES = {"tracer": measure_tracer, "cli": measure_cli, "swarm": measure_swarm,
             "scaling": measure_scaling, "setup": measure_setup, "animate": measure_animate,
             "png": measure_png, "colour": measure_colour, "stars": measure_stars,
-            "raster": measure_raster}
+            "raster": measure_raster, "hole": measure_hole}
 
 
 def cpu_model():
