@@ -25,18 +25,19 @@ void ExposureMeter::Free::operator()(void* p) const {
 }
 
 ExposureMeter::ExposureMeter()
-    : count_(static_cast<std::uint32_t*>(std::calloc(kBins, sizeof(std::uint32_t)))),
+    : count_(static_cast<std::uint32_t*>(std::calloc(kBins * kLanes, sizeof(std::uint32_t)))),
       weight_(static_cast<std::uint64_t*>(std::calloc(kBins, sizeof(std::uint64_t)))) {
   if (!count_ || !weight_) throw std::bad_alloc();
 }
 
-template <class T>
-std::size_t ExposureMeter::bin_reaching(const T* histogram, double target) const {
+template <class ValueOf>
+std::size_t ExposureMeter::bin_reaching(ValueOf value_of_bin, double target) const {
   double below = 0;
   std::size_t last = 0;
   for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) {
-    if (histogram[b] == 0) continue;
-    below += static_cast<double>(histogram[b]);
+    const std::uint64_t value = value_of_bin(b);
+    if (value == 0) continue;
+    below += static_cast<double>(value);
     last = b;
     if (below >= target) break;
   }
@@ -44,10 +45,9 @@ std::size_t ExposureMeter::bin_reaching(const T* histogram, double target) const
 }
 
 void ExposureMeter::add(const ExposureMeter& other) {
-  end_run();
-  other.end_run();
   for (std::size_t b = other.first_bin_; b <= other.last_bin_ && b < kBins; ++b) {
-    count_[b] += other.count_[b];
+    for (std::size_t lane = 0; lane < kLanes; ++lane)
+      count_[b * kLanes + lane] += other.count_[b * kLanes + lane];
     weight_[b] += other.weight_[b];
   }
   first_bin_ = std::min(first_bin_, other.first_bin_);
@@ -55,9 +55,8 @@ void ExposureMeter::add(const ExposureMeter& other) {
 }
 
 std::uint64_t ExposureMeter::pixels() const {
-  end_run();
   std::uint64_t n = 0;
-  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) n += count_[b];
+  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) n += count_of(b);
   return n;
 }
 
@@ -74,7 +73,9 @@ double ExposureMeter::ev(ToneMap curve) const {
   if (n == 0) return 0;
   // The highlights: the pixel of rank 0.98 (n - 1), as nth_element would find it.
   const auto rank = static_cast<std::uint64_t>(kHighlightQuantile * static_cast<double>(n - 1));
-  const double highlights = value_of(bin_reaching(count_.get(), static_cast<double>(rank + 1)));
+  const auto counted = [this](std::size_t b) { return count_of(b); };
+  const auto weighed = [this](std::size_t b) { return weight_[b]; };
+  const double highlights = value_of(bin_reaching(counted, static_cast<double>(rank + 1)));
   if (!(highlights > 0)) return 0;
   // The subject's level: a weighted quantile of its luminance (of the whole picture's where no
   // subject is given or seen). A quantile, not a mean, so that the subject's own black parts
@@ -84,9 +85,8 @@ double ExposureMeter::ev(ToneMap curve) const {
   const bool weighted =
       static_cast<double>(total) >= kMinSubjectShare * static_cast<double>(n) * kWeightUnit;
   const double level =
-      weighted
-          ? value_of(bin_reaching(weight_.get(), kSubjectQuantile * static_cast<double>(total)))
-          : value_of(bin_reaching(count_.get(), kSubjectQuantile * static_cast<double>(n)));
+      weighted ? value_of(bin_reaching(weighed, kSubjectQuantile * static_cast<double>(total)))
+               : value_of(bin_reaching(counted, kSubjectQuantile * static_cast<double>(n)));
   const double bright_enough =
       level > 0 ? std::log2(kSubjectLevel / level) : std::numeric_limits<double>::infinity();
   return std::min(bright_enough, std::log2(display_white(curve) / highlights));
