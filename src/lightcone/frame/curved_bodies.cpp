@@ -291,7 +291,7 @@ Vec3 CurvedBodies::Body::shape_point(const WorldShapeMap& world, const Vec4& eve
 
 bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, double from,
                            double limit, Found& best) const {
-  // A ray straight through the hole's centre (b = 0) has no plane; it does not see bodies.
+  // A ray straight through the hole's centre (b = 0) has no plane: nearest_on_axis meets it.
   if (bodies_.empty() || !(path.impact > 0) || !(limit > from)) return false;
   const double m = HoleView::mass;
   const PathEvents events(start, path);
@@ -459,7 +459,9 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
                              CurvedRay& ray) const {
   const PathStart start{hole.camera_radius, scene_.observation_event.t / hole.scale};
   Found best;
-  if (!nearest(start, path, 0, limit, best)) return false;
+  const bool met =
+      path.impact > 0 ? nearest(start, path, 0, limit, best) : nearest_on_axis(start, path, best);
+  if (!met) return false;
   const double m = hole.mass;
   const Body& body = bodies_[best.body];
   ray.end = CurvedRayEnd::kBody;
