@@ -1,12 +1,14 @@
 // Bodies placed by where they are seen ("seen_at", scene/scene.hpp place_where_seen): locate
 // finds each body's origin at the pixel of a point at rest in W at seen_at, for inertial,
-// accelerated and keyframed bodies, a moving camera and a slow speed of light; the key's errors
-// name the file, line and field; and check and info warn of bodies the camera does not see.
+// accelerated and keyframed bodies, a moving camera and a slow speed of light, and near a black
+// hole on the exact ray; the key's errors name the file, line and field; and check and info warn
+// of bodies the camera does not see.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "lightcone/frame/locate.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {
@@ -57,7 +59,7 @@ TEST(SeenAt, EachBodyIsSeenWhereAPointAtRestThereIs) {
   fs::remove_all(dir);
 }
 
-TEST(SeenAt, ReplacesPositionAndTimeAndIsRefusedNearABlackHole) {
+TEST(SeenAt, ReplacesPositionAndTimeAndNearABlackHoleNeedsALine) {
   const fs::path dir = test::fresh_temp_dir("seen-at-errors");
   test::write_text(dir / "both.json", R"({
   "camera": {"position": [0, 0, 5]},
@@ -69,15 +71,72 @@ TEST(SeenAt, ReplacesPositionAndTimeAndIsRefusedNearABlackHole) {
   EXPECT_NE(r.err.find("both.json:4: objects[0].seen_at: replaces \"position\" and \"time\""),
             std::string::npos)
       << r.err;
-  test::write_text(dir / "hole.json", R"({
+  const auto near_hole = [&](const std::string& object) {
+    test::write_text(dir / "hole.json", R"({
   "black_hole": {"mass": 1},
   "camera": {"position": [0, 0, 30]},
-  "objects": [{"name": "cube", "shape": {"box": {"size": [1, 1, 1]}}, "seen_at": [0, 0, -30]}]
+  "objects": [{"name": "cube", "shape": {"box": {"size": [1, 1, 1]}}, )" +
+                                            object + R"(}]
 })");
-  r = run_lightcone("check " + quoted(dir / "hole.json"));
+    return run_lightcone("check " + quoted(dir / "hole.json"));
+  };
+  r = near_hole(R"("seen_at": [1, 0, 0.5])");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("hole.json:4: objects[0].seen_at"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("hole.json:4: objects[0].seen_at: no light leaves (1, 0, 0.5)"),
+            std::string::npos)
+      << r.err;
+  r = near_hole(R"("seen_at": [0, 0, -30], "motion": {"orbit": {"radius": 12}})");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("objects[0].seen_at: a geodesic motion"), std::string::npos) << r.err;
+  r = near_hole(R"("seen_at": [2, 0, -30])");
+  EXPECT_EQ(r.status, 0) << r.err;
   fs::remove_all(dir);
+}
+
+// Near a black hole the origin of a body at rest or on a line is seen, in its primary image,
+// where a point at rest at seen_at is: its light left seen_at itself, at the time the lens's
+// exact ray gives (the Shapiro delay in it), behind the hole as beside it.
+TEST(SeenAt, NearABlackHoleThePrimaryImageOfTheOriginIsAtSeenAt) {
+  const Scene s = test::scene_from_json(R"({
+  "black_hole": {"mass": 1},
+  "camera": {"position": [0, 0, 30], "time": 3, "velocity": [0.1, 0.05, -0.2]},
+  "objects": [
+    {"name": "behind", "shape": {"box": {"size": [1, 1, 1]}}, "seen_at": [1, 0.5, -12],
+     "velocity": [0.4, 0, 0.2]},
+    {"name": "beside", "shape": {"sphere": {"radius": 0.5}}, "seen_at": [9, 2, 4],
+     "velocity": [0, -0.3, 0]},
+    {"name": "still", "shape": {"sphere": {"radius": 0.5}}, "seen_at": [-5, 0, -6]}
+  ]})");
+  for (const auto& [name, seen] :
+       {std::pair{"behind", Vec3{1, 0.5, -12}}, std::pair{"beside", Vec3{9, 2, 4}},
+        std::pair{"still", Vec3{-5, 0, -6}}}) {
+    SCOPED_TRACE(name);
+    const LocateResult body = locate(s, {LocateQuery::Kind::ObjectPoint, name, {}});
+    const LocateResult point = locate(s, {LocateQuery::Kind::WorldPoint, {}, seen});
+    ASSERT_FALSE(body.images.empty());
+    ASSERT_FALSE(point.images.empty());
+    EXPECT_EQ(body.images[0].order, 0);
+    test::expect_vec(*body.images[0].emission_position, seen, 1e-9 * length(seen));
+    EXPECT_NEAR(*body.images[0].emission_time, *point.images[0].emission_time,
+                1e-9 * std::abs(*point.images[0].emission_time));
+    test::expect_vec(body.images[0].direction, point.images[0].direction, 1e-9);
+  }
+}
+
+// A hole of 1e-9 units far away places each body where flat spacetime does.
+TEST(SeenAt, ANegligibleHolePlacesBodiesAsFlatSpacetime) {
+  const std::string bodies = R"(
+  "camera": {"position": [0, 1, 5], "time": 2},
+  "objects": [
+    {"name": "cube", "shape": {"box": {"size": [1, 1, 1]}}, "seen_at": [2, 1, -8],
+     "velocity": [-0.45, 0, 0]},
+    {"name": "ball", "shape": {"sphere": {"radius": 0.5}}, "seen_at": [-3, 2, -6]}])";
+  const Scene flat = test::scene_from_json("{" + bodies + "}");
+  const Scene near = test::scene_from_json(
+      "{" + bodies + R"(, "black_hole": {"mass": 1e-9, "position": [500, 500, 500]}})");
+  for (std::size_t i = 0; i < flat.objects.size(); ++i)
+    test::expect_vec(near.objects[i].world_line.position, flat.objects[i].world_line.position,
+                     1e-6);
 }
 
 // check and info name each moving body the camera cannot see, and where it is seen; seen_at

@@ -298,20 +298,28 @@ Object SceneReader::read_object(const Node& n, std::size_t index) {
   if (Node t = member(n, "time"); t.value) o.world_line.time = time(t);
   if (Node v = member(n, "velocity"); v.value) o.world_line.velocity = velocity(v);
   const Node motion_node = member(n, "motion");
+  const Node seen = member(n, "seen_at");
+  if (seen.value && hole_ && geodesic_motion(motion_node))
+    fail(seen,
+         "a geodesic motion (\"orbit\" or \"fall\") says where the object is: near a "
+         "black hole \"seen_at\" places a body at rest or on a straight coordinate line");
   if (geodesic_motion(motion_node)) {
     o.motion.geodesic = geodesic(n, motion_node, "object");
   } else if (motion_node.value) {
     if (hole_) refuse_near_hole(motion_node, "motion (phases or keyframes) of an object");
     o.motion = body_motion(n, motion_node, o.world_line);
   }
-  if (Node seen = member(n, "seen_at"); seen.value) {
+  if (seen.value) {
     for (const char* key : {"position", "time"})
       if (member(n, key).value)
         fail(seen, fmt::format("replaces \"position\" and \"time\": give \"{}\" or \"seen_at\", "
                                "not both",
                                key));
-    if (hole_) refuse_near_hole(seen, "placing a body where it is seen");
-    place_where_seen(o.world_line, o.motion, observation_, vec3(seen));
+    if (!hole_)
+      place_where_seen(o.world_line, o.motion, observation_, vec3(seen));
+    else if (const auto why =
+                 place_where_seen_near_hole(o.world_line, observation_, *hole_, vec3(seen)))
+      fail(seen, *why);
   }
   if (hole_ && !o.motion.geodesic) check_line_near_hole(n, o.world_line, "object");
   if (Node r = member(n, "rotation"); r.value) o.rotation = rotation(r);

@@ -8,6 +8,7 @@
 #include "lightcone/physics/keyframe_world_line.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/physics/schwarzschild_geodesics.hpp"
+#include "lightcone/physics/schwarzschild_lens.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
@@ -229,6 +230,33 @@ void place_where_seen(WorldLine& start, BodyMotion& motion, const WorldLine& obs
   const Vec3 shift = seen - there;
   start.position = start.position + shift;
   for (Keyframe& key : motion.keyframes) key.position = key.position + shift;
+}
+
+std::optional<std::string> place_where_seen_near_hole(WorldLine& start,
+                                                      const WorldLine& observation,
+                                                      const BlackHole& hole, const Vec3& seen) {
+  // In units of M, as the lens solver measures (the scene's units' squares need not be doubles).
+  const Vec3 camera = (observation.position - hole.position) / hole.mass;
+  const Vec3 point = (seen - hole.position) / hole.mass;
+  const double r_camera = std::hypot(camera.x, camera.y, camera.z);
+  const double r_point = std::hypot(point.x, point.y, point.z);
+  if (!(r_point > 2))
+    return fmt::format(
+        "no light leaves ({}, {}, {}): it is {} from the black hole's centre, {} "
+        "its horizon r = 2M = {}",
+        seen.x, seen.y, seen.z, r_point * hole.mass, r_point == 2 ? "on" : "inside", 2 * hole.mass);
+  if (!(r_camera > 2))
+    return std::string(
+        "the camera is inside the black hole's horizon, where W's time, and so the time the "
+        "light left, is not defined");
+  const double psi = std::acos(std::clamp(dot(camera / r_camera, point / r_point), -1.0, 1.0));
+  const std::optional<RayBetween> ray = ray_between(1, r_camera, r_point, psi, 0);
+  if (!ray || !std::isfinite(ray->time))
+    return fmt::format("no primary ray of light joins ({}, {}, {}) to the camera", seen.x, seen.y,
+                       seen.z);
+  const double emitted = observation.time - ray->time * hole.mass;
+  start.position = start.position + (seen - start.position_at(emitted));
+  return std::nullopt;
 }
 
 double relative_gamma(const Vec4& observer, const Vec4& u) {

@@ -419,9 +419,19 @@ std::unique_ptr<TimelikeWorldLine> body_world_line(const WorldLine& start,
 // moved in space so that from the camera's observation event its origin is seen where a point
 // at rest in W at `seen` is seen. That light left `seen` at W time observation.time - |seen -
 // observation.position| (c = 1), so the moved origin passes through `seen` then; it works alike
-// for inertial, accelerated and keyframed motion. Not near a black hole (light bends there).
+// for inertial, accelerated and keyframed motion. Flat spacetime only.
 void place_where_seen(WorldLine& start, BodyMotion& motion, const WorldLine& observation,
                       const Vec3& seen);
+
+// The same near a black hole for a body at rest or on a straight coordinate line `start`: the
+// origin's primary image (order 0) is where a point at rest at `seen` is seen, so the light left
+// `seen` at observation.time - T_0, T_0 the closed-form coordinate time of flight on the exact
+// ray between them (ray_between, Shapiro delay included), and the moved origin passes through
+// `seen` then. Why it cannot be placed, if it cannot: `seen` or the camera at or inside the
+// horizon, or no primary ray.
+std::optional<std::string> place_where_seen_near_hole(WorldLine& start,
+                                                      const WorldLine& observation,
+                                                      const BlackHole& hole, const Vec3& seen);
 
 // The camera's observation event and velocity `later` units of its proper time after the one
 // its world_line holds: along its motion (phases or keyframes), or inertially without one.
