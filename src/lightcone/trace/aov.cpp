@@ -10,25 +10,50 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// What a ray that met no surface gives (the sky, the hole's shadow): `object` its code.
-void no_surface_values(Aov aov, float object, float* out) {
-  switch (aov) {
-    case Aov::kEmissionTime:
-      out[0] = -kInf;
-      return;
-    case Aov::kDistance:
-    case Aov::kDepth:
-      out[0] = kInf;
-      return;
-    case Aov::kObject:
-      out[0] = object;
-      return;
-    case Aov::kNormal:
-      out[0] = out[1] = out[2] = 0;
-      return;
-    case Aov::kDoppler:
-    case Aov::kImageOrder:  // the callers give these
-      return;
+// What the ray along one look direction saw, for every output variable.
+struct RaySeen {
+  double doppler = 1;
+  int order = 0;
+  bool surface = false;  // it met a body or the disk
+  float object = kObjectSky;
+  // On a surface: the event met (W), its distance in the camera's frame and the surface's
+  // normal (W's axes, facing the incoming ray).
+  Vec4 event;
+  double distance = 0;
+  Vec3 normal;
+};
+
+// The values of each of `aovs`, one after another.
+void write_values(const ResolvedScene& scene, const Vec3& u, const RaySeen& seen,
+                  std::span<const Aov> aovs, float* out) {
+  for (const Aov aov : aovs) {
+    switch (aov) {
+      case Aov::kDoppler:
+        *out++ = static_cast<float>(seen.doppler);
+        break;
+      case Aov::kImageOrder:
+        *out++ = static_cast<float>(seen.order);
+        break;
+      case Aov::kObject:
+        *out++ = seen.object;
+        break;
+      case Aov::kEmissionTime:
+        *out++ =
+            seen.surface ? static_cast<float>(seen.event.t / scene.scene->speed_of_light) : -kInf;
+        break;
+      case Aov::kDistance:
+        *out++ = seen.surface ? static_cast<float>(seen.distance) : kInf;
+        break;
+      case Aov::kDepth:
+        *out++ =
+            seen.surface ? static_cast<float>(seen.distance * dot(u, scene.camera.forward)) : kInf;
+        break;
+      case Aov::kNormal:
+        *out++ = static_cast<float>(seen.normal.x);
+        *out++ = static_cast<float>(seen.normal.y);
+        *out++ = static_cast<float>(seen.normal.z);
+        break;
+    }
   }
 }
 
@@ -38,47 +63,11 @@ Vec3 body_normal(const ResolvedBody& body, const Vec3& shape_normal) {
   return normalize(o.rotation * component_div(shape_normal, o.scale));
 }
 
-// What a ray met on a surface gives: the event met (W), its distance in the camera's frame,
-// the surface's normal (W's axes, facing the incoming ray) and the object code.
-struct SurfaceMet {
-  Vec4 event;
-  double distance = 0;
-  Vec3 normal;
-  float object = 0;
-};
-
-void surface_values(const ResolvedScene& scene, const Vec3& u, Aov aov, const SurfaceMet& met,
-                    float* out) {
-  switch (aov) {
-    case Aov::kEmissionTime:
-      out[0] = static_cast<float>(met.event.t / scene.scene->speed_of_light);
-      return;
-    case Aov::kDistance:
-      out[0] = static_cast<float>(met.distance);
-      return;
-    case Aov::kDepth:
-      out[0] = static_cast<float>(met.distance * dot(u, scene.camera.forward));
-      return;
-    case Aov::kObject:
-      out[0] = met.object;
-      return;
-    case Aov::kNormal:
-      out[0] = static_cast<float>(met.normal.x);
-      out[1] = static_cast<float>(met.normal.y);
-      out[2] = static_cast<float>(met.normal.z);
-      return;
-    case Aov::kDoppler:
-    case Aov::kImageOrder:  // the callers give these
-      return;
-  }
-}
-
-// The event where a camera ray meets the disk (ray.end kDisk), in W: after sweeping ray.phi at
-// radius ray.disk_radius, as long before the observation as the light's coordinate time on the
-// stretches of the path between (on each, r is monotonic).
-Vec4 disk_event(const ResolvedScene& scene, const Vec3& u, const CurvedRay& ray) {
+// The event where a camera ray on `path` meets the disk (ray.end kDisk), in W: after sweeping
+// ray.phi at radius ray.disk_radius, as long before the observation as the light's coordinate
+// time on the stretches of the path between (on each, r is monotonic).
+Vec4 disk_event(const ResolvedScene& scene, const CurvedPath& path, const CurvedRay& ray) {
   const HoleView& hole = *scene.hole;
-  const CurvedPath path = curved_path(hole, u);
   const double r0 = hole.camera_radius, r = ray.disk_radius, turn = path.sweep.turning_radius;
   const double delay =
       turn > 0 && ray.phi > path.sweep.angle_to_turn
@@ -88,72 +77,67 @@ Vec4 disk_event(const ResolvedScene& scene, const Vec3& u, const CurvedRay& ray)
           hole.centre + path.offset(ray.phi, r) * hole.scale};
 }
 
-// The disk's normal on the side a backward ray that crosses its plane at phi comes from: against
-// the path's direction there (its radial part lies in the plane).
-Vec3 disk_normal_met(const HoleView& hole, const Vec3& u, double phi) {
-  const CurvedPath path = curved_path(hole, u);
+// The disk's normal on the side a backward ray on `path` that crosses its plane at phi comes
+// from: against the path's direction there (its radial part lies in the plane).
+Vec3 disk_normal_met(const HoleView& hole, const CurvedPath& path, double phi) {
   const Vec3 along = path.e2 * std::cos(phi) - path.e1 * std::sin(phi);
   const Vec3& n = hole.disk->normal;
   return dot(n, along) > 0 ? n * -1.0 : n;
 }
 
-void curved_aov_values(const ResolvedScene& scene, const Vec3& u, Aov aov, float* out,
-                       const CurvedBodies* bodies) {
+RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
+                              const CurvedBodies* bodies) {
   const HoleView& hole = *scene.hole;
   const CurvedRay ray = follow_curved_ray(hole, u, bodies);
-  if (aov == Aov::kDoppler || aov == Aov::kImageOrder) {
-    out[0] = static_cast<float>(aov == Aov::kDoppler ? ray.shift : ray.order);
-    return;
+  RaySeen seen;
+  seen.doppler = ray.shift;
+  seen.order = ray.order;
+  if (ray.end == CurvedRayEnd::kSky || ray.end == CurvedRayEnd::kHorizon) {
+    seen.object = ray.end == CurvedRayEnd::kSky ? kObjectSky : kObjectShadow;
+    return seen;
   }
-  if (ray.end == CurvedRayEnd::kSky) return no_surface_values(aov, kObjectSky, out);
-  if (ray.end == CurvedRayEnd::kHorizon) return no_surface_values(aov, kObjectShadow, out);
-  SurfaceMet met;
+  seen.surface = true;
   if (ray.end == CurvedRayEnd::kDisk) {
-    met.event = disk_event(scene, u, ray);
-    met.normal = disk_normal_met(hole, u, ray.phi);
-    met.object = kObjectDisk;
+    const CurvedPath path = curved_path(hole, u);
+    seen.event = disk_event(scene, path, ray);
+    seen.normal = disk_normal_met(hole, path, ray.phi);
+    seen.object = kObjectDisk;
   } else {
-    met.event = ray.event;
-    met.normal = body_normal(scene.bodies[ray.hit.body], ray.hit.shape_normal);
-    met.object = static_cast<float>(ray.hit.body);
+    seen.event = ray.event;
+    seen.normal = body_normal(scene.bodies[ray.hit.body], ray.hit.shape_normal);
+    seen.object = static_cast<float>(ray.hit.body);
   }
   // The light's coordinate travel time in the camera's frame: times the photon's energy there
   // over the static observer's (camera_photon_energy is in units of the energy far away, the
   // static observer's 1 / lapse), as flat space takes a ray's length from W into F.
-  met.distance =
-      (scene.observation_event.t - met.event.t) * camera_photon_energy(hole, u) * hole.camera_lapse;
-  surface_values(scene, u, aov, met, out);
+  seen.distance = (scene.observation_event.t - seen.event.t) * camera_photon_energy(hole, u) *
+                  hole.camera_lapse;
+  return seen;
+}
+
+RaySeen seen_along_straight_ray(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u) {
+  RaySeen seen;
+  const auto hit = tracer.trace(u);
+  if (!hit) {
+    seen.doppler = scene.doppler(u, scene.sky_velocity);
+    return seen;
+  }
+  seen.doppler = scene.doppler(u, hit->velocity);
+  seen.surface = true;
+  seen.object = static_cast<float>(hit->body);
+  seen.event = scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s});
+  seen.distance = hit->s;
+  seen.normal = body_normal(scene.bodies[hit->body], hit->shape_normal);
+  return seen;
 }
 
 }  // namespace
 
-void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
-                float* out, const CurvedBodies* bodies) {
-  if (scene.hole) return curved_aov_values(scene, u, aov, out, bodies);
-  const auto hit = tracer.trace(u);
-  if (!hit) {
-    if (aov == Aov::kDoppler)
-      out[0] = static_cast<float>(scene.doppler(u, scene.sky_velocity));
-    else if (aov == Aov::kImageOrder)  // flat space: every image is the primary
-      out[0] = 0;
-    else
-      no_surface_values(aov, kObjectSky, out);
-    return;
-  }
-  if (aov == Aov::kDoppler) {
-    out[0] = static_cast<float>(scene.doppler(u, hit->velocity));
-    return;
-  }
-  if (aov == Aov::kImageOrder) {
-    out[0] = 0;
-    return;
-  }
-  SurfaceMet met;
-  met.event = scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s});
-  met.distance = hit->s;
-  met.normal = body_normal(scene.bodies[hit->body], hit->shape_normal);
-  met.object = static_cast<float>(hit->body);
-  surface_values(scene, u, aov, met, out);
+void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
+                std::span<const Aov> aovs, float* out, const CurvedBodies* bodies) {
+  const RaySeen seen = scene.hole ? seen_along_curved_ray(scene, u, bodies)
+                                  : seen_along_straight_ray(scene, tracer, u);
+  write_values(scene, u, seen, aovs, out);
 }
 
 }  // namespace lightcone

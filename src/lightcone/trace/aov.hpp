@@ -2,6 +2,8 @@
 // pixel, what the ray through the pixel's centre meets.
 #pragma once
 
+#include <span>
+
 #include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/output_variable.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
@@ -9,9 +11,10 @@
 
 namespace lightcone {
 
-// The values of `aov` along the look direction u (as many as its channels); near a black hole
-// along the curved ray, meeting `bodies` when given.
-void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u, Aov aov,
-                float* out, const CurvedBodies* bodies = nullptr);
+// The values of each of `aovs` along the look direction u, one after another in `out` (as many
+// as each one's channels, aov_channel_names), from one ray: near a black hole the curved ray,
+// meeting `bodies` when given.
+void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
+                std::span<const Aov> aovs, float* out, const CurvedBodies* bodies = nullptr);
 
 }  // namespace lightcone

@@ -200,14 +200,12 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const int tiles_y = (height + kTileSize - 1) / kTileSize;
   const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
   const std::size_t total = tiles * observations;
-  // The output variables' channels, and where each AOV's first channel is among them.
-  std::vector<std::size_t> aov_first, aov_count;
-  for (const Aov aov : options.aovs) {
-    aov_first.push_back(image.channels.size());
-    aov_count.push_back(aov_channel_names(aov).size());
+  // The output variables' channels, one after another from aov_start.
+  const std::size_t aov_start = image.channels.size();
+  for (const Aov aov : options.aovs)
     for (const std::string& name : aov_channel_names(aov))
       image.channels.push_back({name, std::vector<float>(pixels)});
-  }
+  const std::size_t aov_channels = image.channels.size() - aov_start;
   std::atomic<std::size_t> done{0};
   std::atomic<bool> skipped{false};
   std::atomic<std::uint64_t> image_orders{0};
@@ -259,6 +257,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         const int x_end = std::min(x0 + kTileSize, width);
         const int y_end = std::min(y0 + kTileSize, height);
         std::uint64_t tile_orders = 0;  // the image orders of its curved rays, summed
+        std::vector<float> aov_pixel(with_aovs ? aov_channels : 0);  // a pixel's, in order
         // The samples of each of the tile's pixels that met the subject, for its meter.
         int tile_subject[kTileSize * kTileSize];
         // A block's samplers, rays, hits and colours, made once a tile: made per block, their
@@ -306,6 +305,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                       curved_radiance(resolved, seen.emission, ray, &seen.lighting, light[l]);
                   tile_orders += ray.order;
                   sky_samples[l] += ray.end == CurvedRayEnd::kSky;
+                  subject_samples[l] += ray.end == CurvedRayEnd::kBody &&
+                                        resolved.bodies[ray.hit.body].moves_relative_to_camera();
                 }
               } else {
                 seen.tracer.trace(std::span(directions, lanes), std::span(hits, lanes));
@@ -339,13 +340,10 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 tile_subject[(pixel_b[l] - y0) * kTileSize + pixel_a[l] - x0] = subject_samples[l];
               if (with_aovs) {
                 const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
-                for (std::size_t a = 0; a < options.aovs.size(); ++a) {
-                  float values[3];
-                  aov_values(resolved, seen.tracer, centre, options.aovs[a], values,
-                             seen.curved_bodies.get());
-                  for (std::size_t c = 0; c < aov_count[a]; ++c)
-                    image.channels[aov_first[a] + c].values[at] = values[c];
-                }
+                aov_values(resolved, seen.tracer, centre, options.aovs, aov_pixel.data(),
+                           seen.curved_bodies.get());
+                for (std::size_t c = 0; c < aov_channels; ++c)
+                  image.channels[aov_start + c].values[at] = aov_pixel[c];
               }
             }
           }
