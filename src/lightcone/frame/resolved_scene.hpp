@@ -111,8 +111,11 @@ struct ResolvedBody {
   double radius = 0;
 
   // Whether the body moves relative to the camera (or spins): a subject of the automatic
-  // exposure (frame/tone_map.hpp), whose light carries the effects.
-  bool moves_relative_to_camera() const { return spin >= 0 || dot(velocity, velocity) > 0; }
+  // exposure (frame/tone_map.hpp), whose light carries the effects. A body on a geodesic near a
+  // black hole (an orbit, a fall) moves, which its world-line's velocity here does not hold.
+  bool moves_relative_to_camera() const {
+    return spin >= 0 || dot(velocity, velocity) > 0 || object->motion.geodesic.has_value();
+  }
   Vec3 shape_direction(const Vec3& u) const { return ray_offset + spatial * u; }
   Vec3 shape_point(const Vec4& event) const {
     return shape_origin + time_column * event.t + spatial * event.x;

@@ -385,6 +385,8 @@ void HoleBodiesPass::draw(const ResolvedScene& scene, GLuint p) const {
     }
     glUniform1i(uniform(p, "colour_row"), d.body.first_row);
     glUniform1i(uniform(p, "lit"), d.body.lit ? 1 : 0);
+    glUniform1f(uniform(p, "subject_alpha"),
+                scene.bodies[d.body.index].moves_relative_to_camera() ? 2.0f : 1.0f);
     set_pattern_uniforms(p, *scene.bodies[d.body.index].object, d.body.pattern);
     glDrawArrays(GL_TRIANGLES, d.first_vertex, d.vertex_count);
   }

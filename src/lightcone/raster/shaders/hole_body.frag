@@ -16,6 +16,9 @@ in float swept;
 
 uniform int colour_row;  // an emitter's row of the pattern's first colour
 uniform int lit;
+// The colour's alpha: 2 on a body moving relative to the camera (the automatic exposure's
+// subject), else 1, as body.frag's.
+uniform float subject_alpha;
 uniform sampler2D texture_image;
 
 layout(location = 0) out vec4 colour;
@@ -29,14 +32,15 @@ void main() {
 #endif
   if (pattern == 2 && lit == 0) {  // an unlit texture
     vec2 uv = shape_kind == 0 ? face_uv : surface_uv(shape_point);
-    colour = vec4(received_rgb(sample_bilinear(texture_image, uv, true), exp(log_shift)), 1.0);
+    colour = vec4(received_rgb(sample_bilinear(texture_image, uv, true), exp(log_shift)),
+                  subject_alpha);
     return;
   }
   int k = pattern_index(shape_point, proper_time);
   // A clock on a mesh: its dial at the face's texture coordinates, as the tracer reads it.
   if (pattern == 4 && shape_kind == 0) k = clock_index(face_uv, proper_time);
   if (lit == 1)
-    colour = vec4(k == 0 ? received_0 : received_1, 1.0);
+    colour = vec4(k == 0 ? received_0 : received_1, subject_alpha);
   else
-    colour = vec4(received_colour(colour_row + k, exp(log_shift)), 1.0);
+    colour = vec4(received_colour(colour_row + k, exp(log_shift)), subject_alpha);
 }
