@@ -15,7 +15,9 @@
 
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/sigmoid_polynomial.hpp"
+#include "lightcone/frame/request_rules.hpp"
 #include "lightcone/io/image_file.hpp"
+#include "lightcone/io/scene_file.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
 #include "support/raster_agreement.hpp"
 #include "support/test_support.hpp"
@@ -105,6 +107,48 @@ TEST(WebPage, DrawsTerrellAsTheNativeRasterRenderer) {
 
 TEST(WebPage, DrawsStreetAsTheNativeRasterRenderer) {
   expect_page_agrees(kScenes / "street.json", "street.png");
+}
+
+// The hole's lensed sky, disk and stars, and the star field: their stars are the catalogue the
+// page carries in its data (without it the page could not open either scene).
+TEST(WebPage, DrawsTheBlackHoleAsTheNativeRasterRenderer) {
+  expect_page_agrees(kScenes / "black-hole.json", "black-hole.png");
+}
+
+TEST(WebPage, DrawsTheStarsAsTheNativeRasterRenderer) {
+  expect_page_agrees(kScenes / "stars.json", "stars.png");
+}
+
+// Every bundled scene opens from its link (#scene=NAME), with no message of a failure; a link to
+// a scene the page cannot open says so in the page, and why, and shows street.
+TEST(WebPage, OpensEveryBundledSceneFromItsLink) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  ASSERT_TRUE(r.contains("opened")) << "the page's scenes are missing (see the fixture)";
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".json") continue;
+    const std::string name = entry.path().stem().string();
+    SCOPED_TRACE(name);
+    ++scenes;
+    const auto& opened = r["opened"].value(name, nlohmann::json::object());
+    EXPECT_EQ(opened.value("scene", "(not offered)"), name);
+    EXPECT_EQ(opened.value("message", "").find("cannot be opened"), std::string::npos)
+        << opened.value("message", "");
+  }
+  EXPECT_GE(scenes, 20);
+  // The hole has no classical picture: the page gives the program's reason.
+  SceneLoadReport report;
+  const auto refused = scene_refused(
+      load_scene_file(kScenes / "black-hole.json", {"render.relativity=false"}, report));
+  ASSERT_TRUE(refused);
+  const std::string message = r.value("unopened_message", "");
+  EXPECT_EQ(message.rfind("black-hole cannot be opened: ", 0), 0u) << message;
+  // (The program names the file by its path, the page by the path in its data.)
+  const std::string reason = refused->substr(refused->find("black_hole: "));
+  EXPECT_NE(message.find("/scenes/black-hole.json: " + reason), std::string::npos) << message;
+  EXPECT_NE(message.find("Showing street instead."), std::string::npos) << message;
+  EXPECT_EQ(r.value("unopened_shows", ""), "street");
 }
 
 // At its own, automatic exposure the page meters its frame as the native viewer does

@@ -24,10 +24,12 @@
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/scene_file.hpp"
+#include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/physics/lorentz.hpp"
 #include "lightcone/raster/frame_target.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/raster_renderer.hpp"
+#include "lightcone/scene/speed_text.hpp"
 #include "page_images.hpp"
 #include "viewer/flight.hpp"
 #include "viewer/frame_loop.hpp"
@@ -93,6 +95,9 @@ EMSCRIPTEN_KEEPALIVE const char* lc_start() {
   for (const char* extension : {"EXT_color_buffer_float", "OES_texture_float_linear"})
     if (!emscripten_webgl_enable_extension(p.context, extension))
       return failure(fmt::format("this browser's WebGL 2 lacks {}", extension));
+  // The star catalogue the page's data carries (web/CMakeLists.txt): the reader would look
+  // beside the program, which a page does not have.
+  set_star_catalogue_folder("/data");
   try {
     p.renderer = std::make_unique<RasterRenderer>();
     p.display = std::make_unique<DisplayPass>();
@@ -197,6 +202,7 @@ EMSCRIPTEN_KEEPALIVE const char* lc_frame(double seconds, int width, int height)
     const double beta = length(camera.world_line.velocity);
     return answer(nlohmann::json{
         {"beta", beta},
+        {"beta_text", speed_text(beta, 3)},  // never 1 below c (the program's rule)
         {"gamma", 1 / std::sqrt(std::max(0.0, 1 - beta * beta))},
         {"doppler", {seen.doppler_min, seen.doppler_max}},
         {"proper_time", p.proper_time},

@@ -107,9 +107,11 @@ createLightcone({ canvas }).then(async (lc) => {
     return true;
   };
 
-  // The switches, from the link.
+  // The switches, from the link. A scene the link names that the page cannot open is said so
+  // in the page (kept above what street's own load says), and street is shown instead.
+  let unopened = null;
   if (!bundled.includes(settings.scene)) {
-    say(`${settings.scene} is not among the page's scenes: drop its files on the page`);
+    unopened = `${settings.scene} is not among the page's scenes: drop its files on the page`;
     settings.scene = "street";
   }
   $("scene").value = settings.scene;
@@ -255,7 +257,14 @@ createLightcone({ canvas }).then(async (lc) => {
     }
   };
 
-  if (!(await load(false))) { settings.scene = "street"; await load(false); }
+  if (!(await load(false))) {
+    unopened = `${settings.scene} cannot be opened: ${$("message").textContent}`;
+    settings.scene = $("scene").value = "street";
+    await load(false);
+  }
+  if (unopened) {
+    say([`${unopened}. Showing street instead.`, $("message").textContent].join("\n").trim());
+  }
 
   let last = performance.now(), hashWritten = last;
   const times = [];  // the last frames' times, for the frame rate
@@ -282,7 +291,7 @@ createLightcone({ canvas }).then(async (lc) => {
     const shown = JSON.parse(call("lc_frame", flown, canvas.width, canvas.height));
     if (shown.error) say(shown.error);
     else {
-      $("numbers").textContent = `beta ${shown.beta.toFixed(3)}  gamma ${shown.gamma.toFixed(3)}  ` +
+      $("numbers").textContent = `beta ${shown.beta_text}  gamma ${shown.gamma.toFixed(3)}  ` +
         `D ${shown.doppler[0].toFixed(2)} to ${shown.doppler[1].toFixed(2)}  ` +
         `tau ${shown.proper_time.toFixed(2)}  EV ${shown.exposure.toFixed(2)}  ${fps.toFixed(1)} fps`;
       $("numbers").dataset.beta = shown.beta;

@@ -1,7 +1,12 @@
 // Drives the web page (build-web/) in Debian's Chromium, headless on SwiftShader, as a user
 // would, and writes what it saw into OUT for tests/test_web_page.cpp to judge:
-//   terrell.png, street.png, street-lit.png   each scene at 640x360 (exposure 0, paused at the
-//                              scene's time; street-lit's lamps and shadows by the lighting pass)
+//   terrell.png, street.png, street-lit.png, black-hole.png, stars.png   each scene at 640x360
+//                              (exposure 0, paused at the scene's time; street-lit's lamps and
+//                              shadows by the lighting pass; the last two's stars from the
+//                              catalogue in the page's data)
+//   (results.json's opened)    for every bundled scene opened from its link: the scene the link
+//                              shows then and the page's message
+//   (results.json's unopened_message)  what the page says of a link to a scene it cannot open
 //   terrell-auto.png           terrell at 640x360 at its own, automatic exposure, paused (and
 //                              results.json's terrell_auto_ev, the EV the page applied)
 //   key-before.png, key-after.png   street before and after the W key
@@ -58,11 +63,38 @@ const text = (page, id) => page.evaluate((i) => document.getElementById(i).textC
 const still = "exposure=0&paused=on";
 
 try {
-  for (const scene of ["terrell", "street", "street-lit"]) {
+  for (const scene of ["terrell", "street", "street-lit", "black-hole", "stars"]) {
     step(`${scene} at 640x360`);
     const page = await open(`scene=${scene}&${still}`);
     results.load_ms[scene] = await page.evaluate(() => Number(document.body.dataset.firstFrame));
     await shot(page, `${scene}.png`);
+    await page.close();
+  }
+
+  step("every bundled scene from its link");
+  {
+    const page = await open(`scene=street&${still}`, 1);
+    const names = await page.evaluate(() =>
+      [...document.getElementById("scene").options].map((o) => o.value));
+    await page.close();
+    results.opened = {};
+    for (const name of names) {
+      const opened = await open(`scene=${name}&paused=on`, 1);
+      results.opened[name] = {
+        scene: await opened.evaluate(() => new URLSearchParams(location.hash.slice(1)).get("scene")),
+        message: await text(opened, "message"),
+      };
+      await opened.close();
+    }
+  }
+
+  step("a link to a scene the page cannot open");
+  {
+    // The hole has no classical picture: the program refuses it, and so does the page.
+    const page = await open(`scene=black-hole&relativity=off&${still}`);
+    results.unopened_message = await text(page, "message");
+    results.unopened_shows = await page.evaluate(() =>
+      new URLSearchParams(location.hash.slice(1)).get("scene"));
     await page.close();
   }
 
