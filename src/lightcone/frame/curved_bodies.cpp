@@ -211,7 +211,29 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
   return w;
 }
 
+// A fall's radius at kFallSamples coordinate times, from its start (r0, or 10^6 M from
+// infinity) to within 10^-7 of the horizon's distance, evenly in ln(r - 2M).
+constexpr int kFallSamples = 1024;
+void tabulate_fall(const RadialFall& fall, std::vector<double>& times, std::vector<double>& radii) {
+  const double m = fall.mass();
+  const double top = fall.is_from_infinity() ? 1e6 * m : fall.at_proper_time(0).radius;
+  for (int k = 0; k < kFallSamples; ++k) {
+    const double r =
+        2 * m + (top - 2 * m) * std::pow(1e-7, static_cast<double>(k) / (kFallSamples - 1));
+    const double t = fall.at_proper_time(fall.proper_time_at_radius(r)).coordinate_time;
+    if (!times.empty() && !(t > times.back())) continue;
+    times.push_back(t);
+    radii.push_back(r);
+  }
+}
+
 }  // namespace
+
+TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b_x, double dphi,
+                             double least, double varied) {
+  const double longest = varied + std::sqrt(std::max(dot(a_x, a_x), dot(b_x, b_x))) * dphi;
+  return {a.early - longest / (1 - 2 * HoleView::mass / least), a.late - length(b_x - a_x)};
+}
 
 CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segments)
     : scene_(scene), hole_(*scene.hole), segments_(segments) {
@@ -223,6 +245,9 @@ CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segme
         {static_cast<int>(i), hole_world_line(hole_, o),
          origin_radius(o.shape, o.scale) / m * (1 + 1e-9),
          (o.rotation * Mat3::diagonal(o.scale)).inverse() * Mat3::diagonal({m, m, m})});
+    Body& body = bodies_.back();
+    if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&body.line.path()))
+      tabulate_fall(fall->fall, body.fall_times, body.fall_radii);
   }
 }
 
@@ -279,6 +304,44 @@ bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
   return segment_distance(a.x, b.x, s0.position, s1.position) <= radius + margin + bow;
 }
 
+bool CurvedBodies::Body::may_meet_between(const Vec3& a, const Vec3& b, double t0, double t1,
+                                          double margin) const {
+  if (!(t0 <= t1)) return true;  // (no bound)
+  const double reach = radius + margin;
+  if (const auto* straight = std::get_if<HoleWorldLine::Straight>(&line.path())) {
+    const auto at = [&](double t) {
+      return straight->position + straight->velocity * (t - straight->time);
+    };
+    return segment_distance(a, b, at(t0), at(t1)) <= reach;
+  }
+  if (const auto* orbit = std::get_if<HoleWorldLine::Orbit>(&line.path())) {
+    // The arc it sweeps lies within its sagitta of its chord.
+    const double omega = circular_orbit_angular_velocity(line.mass(), orbit->radius);
+    const double swept = omega * (t1 - t0);
+    if (!(swept < kPi)) return true;
+    const auto at = [&](double t) {
+      const double phi = orbit->phase + omega * t;
+      return (orbit->axis_x * std::cos(phi) + orbit->axis_y * std::sin(phi)) * orbit->radius;
+    };
+    const double bow = orbit->radius * (1 - std::cos(swept / 2));
+    return segment_distance(a, b, at(t0), at(t1)) <= reach + bow;
+  }
+  // A fall's radius does not grow with time: over [t0, t1] it lies between its radii at the
+  // sampled times just after t1 and just before t0 (the horizon's after the last, the start's,
+  // or none from infinity, before the first).
+  const auto& fall = std::get<HoleWorldLine::Fall>(line.path());
+  const double u0 = t0 - fall.time, u1 = t1 - fall.time;
+  const auto first_after = [&](double u) {
+    return std::upper_bound(fall_times.begin(), fall_times.end(), u) - fall_times.begin();
+  };
+  const auto k1 = static_cast<std::size_t>(first_after(u1)),
+             k0 = static_cast<std::size_t>(first_after(u0));
+  const double lowest = k1 < fall_times.size() ? fall_radii[k1] : 2 * line.mass();
+  if (k0 == 0 && fall.fall.is_from_infinity()) return true;
+  const double highest = k0 == 0 ? fall_radii.front() : fall_radii[k0 - 1];
+  return segment_distance(a, b, fall.direction * lowest, fall.direction * highest) <= reach;
+}
+
 Vec3 CurvedBodies::Body::shape_point(const WorldShapeMap& world, const Vec4& event,
                                      const HoleView& hole, const HoleWorldLineState* known) const {
   if (std::holds_alternative<HoleWorldLine::Straight>(line.path()))
@@ -322,9 +385,9 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
     const auto shape_of = [&](const Vec4& e, const HoleWorldLineState* state = nullptr) {
       return body.shape_point(scene_.world_maps[body.index], e, hole_, state);
     };
-    // A geodesic's chords are timed only once they come near where it ever is.
+    // A moving body's chords are timed only once they come near where it is over the times
+    // the light cone allows them.
     const bool straight = std::holds_alternative<HoleWorldLine::Straight>(body.line.path());
-    const bool timed_at_once = moving && straight;
     // The windows of this winding and the next, in order of angle: the first met is nearest.
     for (int winding = -1;; ++winding) {
       bool past = true, met = false;
@@ -338,12 +401,15 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         lo = std::max(lo, from), hi = std::min(hi, best_phi);
         if (!(lo < hi)) continue;
         double phi_a = lo, r_a;
-        Vec4 a = events.event(phi_a, timed_at_once, &r_a);
-        bool a_timed = timed_at_once;
+        Vec4 a = events.event(phi_a, moving, &r_a);
+        bool a_timed = moving;
+        // Bounds on a's time, for a moving body: its time once a is timed.
+        double a_early = a.t, a_late = a.t;
         Vec3 shape_a;
         bool shape_known = false;
-        // A geodesic body's state at a's time, once a is timed.
+        // A geodesic body's state at a's time, once known.
         HoleWorldLineState state_a, state_b;
+        bool a_state = false;
         double span_end = phi_a;
         while (phi_a < hi && !met) {
           // Past the body's reach on the way out, or inside it on the way in with no turning
@@ -367,31 +433,54 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
           // moves to b.
           double acceleration = 0;
           const auto may_meet = [&](double phi_b, double r_b, Vec4& b, double margin) {
-            bool b_timed = timed_at_once;
-            if (body.may_meet_in_space(a.x, b.x, margin)) {
-              if (!straight) {
-                if (!a_timed) a.t = events.time(phi_a, r_a), state_a = body.line.at(a.t);
-                b.t = events.time(phi_b, r_b), state_b = body.line.at(b.t);
-                a_timed = b_timed = true;
+            // b's time within the light cone's bounds from a's.
+            double b_early = 0, b_late = 0;
+            if (moving) {
+              const bool turn_between = events.turned(phi_b) && !events.turned(phi_a);
+              const double turn = events.course.turning_radius;
+              const TimeBounds bounds = light_cone_bounds(
+                  {a_early, a_late}, a.x, b.x, phi_b - phi_a,
+                  turn_between ? turn : std::min(r_a, r_b),
+                  turn_between ? (r_a - turn) + (r_b - turn) : std::abs(r_a - r_b));
+              b_early = bounds.early, b_late = bounds.late;
+            }
+            bool b_timed = false, b_state = false;
+            if (body.may_meet_in_space(a.x, b.x, margin) &&
+                (!moving || body.may_meet_between(a.x, b.x, b_early, a_late, margin))) {
+              if (moving) {
+                if (!a_timed) a.t = events.time(phi_a, r_a), a_timed = true, a_early = a_late = a.t;
+                b.t = events.time(phi_b, r_b), b_timed = true, b_early = b_late = b.t;
+                // (Its bounds first, which spare a fall's solve where they suffice.)
+                if (!body.may_meet_between(a.x, b.x, std::min(a.t, b.t), std::max(a.t, b.t),
+                                           margin)) {
+                  phi_a = phi_b, a = b, r_a = r_b, a_timed = true, shape_known = false;
+                  a_early = a_late = b.t, a_state = false;
+                  return false;
+                }
+                if (!straight) {
+                  if (!a_state) state_a = body.line.at(a.t), a_state = true;
+                  state_b = body.line.at(b.t), b_state = true;
+                }
               }
               if (body.may_meet_in_time(a, b, state_a, state_b, margin, acceleration)) return true;
             }
             phi_a = phi_b, a = b, r_a = r_b, a_timed = b_timed, shape_known = false;
-            state_a = state_b;
+            a_early = b_early, a_late = b_late;
+            state_a = state_b, a_state = b_state;
             return false;
           };
           if (phi_a >= span_end && span > step) {
             double r_c;
             const double phi_c = chord_end(std::min(phi_a + span, hi), r_c);
             if (!(phi_c > phi_a)) break;
-            Vec4 c = events.event(phi_c, timed_at_once);
+            Vec4 c = events.event(phi_c, false);
             if (!may_meet(phi_c, r_c, c, span_margin)) continue;
             span_end = phi_c;
           }
           double r_b;
           double phi_b = chord_end(std::min({phi_a + step, hi, span > step ? span_end : hi}), r_b);
           if (!(phi_b > phi_a)) break;
-          Vec4 b = events.event(phi_b, timed_at_once);
+          Vec4 b = events.event(phi_b, false);
           if (!may_meet(phi_b, r_b, b, 0)) continue;
           const double max_dt = acceleration > 0 ? std::sqrt(8 * error / acceleration) : kInfinity;
           bool halved = false;
@@ -446,7 +535,8 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
             met = true;
           }
           phi_a = phi_b, a = b, r_a = r_b, a_timed = moving, shape_a = shape_b;
-          state_a = state_b;
+          a_early = a_late = b.t;
+          state_a = state_b, a_state = moving && !straight;
         }
       }
       if (met || past || windows.delta >= kPi) break;

@@ -27,6 +27,18 @@
 
 namespace lightcone {
 
+// Bounds on the W time of the point b of a light path near the hole (lengths and times in units
+// of its mass M) reached backward from point a over the angle dphi > 0 about it, given bounds on
+// a's: the light's coordinate speed is at most 1 and at least f = 1 - 2M/r at the least radius
+// between them (`least`: the smaller end's, or the turning point's if the path turns between),
+// and its path is at least the chord |b - a| long and at most the radius's variation between
+// them (`varied`) plus the larger end's radius times dphi.
+struct TimeBounds {
+  double early = 0, late = 0;
+};
+TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b_x, double dphi,
+                             double least, double varied);
+
 class CurvedBodies : public CurvedShadowQuery {
  public:
   // The largest distance of a chord from the path, in units of the radius of the body it tests.
@@ -86,6 +98,14 @@ class CurvedBodies : public CurvedShadowQuery {
     bool may_meet_in_time(const Vec4& a, const Vec4& b, const HoleWorldLineState& state_a,
                           const HoleWorldLineState& state_b, double margin,
                           double& acceleration) const;
+    // Whether the chord between points a and b (relative to the hole) can come within the
+    // body's radius, widened by `margin`, of where its origin is at some time in [t0, t1]: a
+    // test of a chord whose times are known only within the light cone's bounds, which needs no
+    // solve of its path's times nor of the body's motion.
+    bool may_meet_between(const Vec3& a, const Vec3& b, double t0, double t1, double margin) const;
+    // A fall's radius at coordinate times (increasing; the radius decreasing with them, from the
+    // fall's start), which bound its radius over an interval of times without solving its fall.
+    std::vector<double> fall_times, fall_radii;
     // Where the body is at the event's time, in its shape's coordinates: by its resolved
     // (affine) map on a straight line, by its state then on a geodesic (`state`, if known).
     Vec3 shape_point(const WorldShapeMap& world, const Vec4& event, const HoleView& hole,

@@ -1,0 +1,82 @@
+// The light cone's bounds on the times along a light path near the hole (frame/curved_bodies.hpp,
+// light_cone_bounds), which spare the chords of a curved ray the exact time of their ends where a
+// moving body cannot be near them: against the path's exact coordinate time (Carlson's integrals,
+// physics/schwarzschild.hpp), along rays that pass close by the hole, turn, or fall in, over
+// chords short and long, and carried along many chords without a new exact time. G = c = M = 1.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lightcone/frame/curved_bodies.hpp"
+#include "lightcone/physics/schwarzschild.hpp"
+
+namespace lightcone {
+namespace {
+
+// A backward ray from r0 = 30, inward, of impact parameter b: its time after sweeping phi (0 at
+// the start, decreasing), its point, and whether it has passed its turning point.
+struct Ray {
+  PhotonOrbit orbit;
+  AngleSweep sweep;
+  double r0 = 30;
+  explicit Ray(double b) : orbit(photon_orbit(1, b)), sweep(prepare_sweep(orbit, 30, false)) {}
+  bool turned(double phi) const { return sweep.turning_radius > 0 && phi > sweep.angle_to_turn; }
+  double radius(double phi) const { return radius_after_angle(sweep, phi); }
+  double time(double phi) const {
+    const double r = radius(phi);
+    if (!turned(phi)) return -coordinate_time(orbit, r0, r);
+    return -coordinate_time(orbit, r0, sweep.turning_radius) -
+           coordinate_time(orbit, sweep.turning_radius, r);
+  }
+  Vec3 point(double phi) const { return Vec3{std::cos(phi), std::sin(phi), 0} * radius(phi); }
+};
+
+// The bounds from a to b along the ray, as curved_bodies.cpp takes them.
+TimeBounds bounds_between(const Ray& ray, const TimeBounds& at_a, double phi_a, double phi_b) {
+  const double r_a = ray.radius(phi_a), r_b = ray.radius(phi_b);
+  const bool turn_between = ray.turned(phi_b) && !ray.turned(phi_a);
+  const double turn = ray.sweep.turning_radius;
+  return light_cone_bounds(at_a, ray.point(phi_a), ray.point(phi_b), phi_b - phi_a,
+                           turn_between ? turn : std::min(r_a, r_b),
+                           turn_between ? (r_a - turn) + (r_b - turn) : std::abs(r_a - r_b));
+}
+
+TEST(LightConeBounds, HoldTheExactTimeOverOneChord) {
+  // Captured (b < 3 sqrt(3)), grazing the photon sphere, turning near and far.
+  for (const double b : {3.0, 5.3, 6.0, 10.0, 25.0}) {
+    const Ray ray(b);
+    for (const double dphi : {0.01, 0.1, 0.5}) {
+      for (double phi = 0; phi + dphi < ray.sweep.angle_total; phi += dphi) {
+        if (!(ray.radius(phi + dphi) > 2.05)) break;
+        const double t_a = ray.time(phi), t_b = ray.time(phi + dphi);
+        const TimeBounds at_b = bounds_between(ray, {t_a, t_a}, phi, phi + dphi);
+        SCOPED_TRACE(testing::Message() << "b " << b << ", phi " << phi << ", dphi " << dphi);
+        EXPECT_LE(at_b.early, t_b);
+        EXPECT_GE(at_b.late, t_b);
+        // Not loose beyond use over short chords far out: the path's length at most sqrt(2) times
+        // the chord's (its radial and angular parts added), the light's speed at least f > 0.86.
+        if (dphi <= 0.1 && ray.radius(phi) > 15 && ray.radius(phi + dphi) > 15)
+          EXPECT_LT(at_b.late - at_b.early, 0.7 * (t_a - t_b));
+      }
+    }
+  }
+}
+
+TEST(LightConeBounds, HoldTheExactTimeAlongManyChords) {
+  for (const double b : {5.3, 8.0}) {
+    const Ray ray(b);
+    TimeBounds carried{0, 0};
+    const double dphi = 0.02;
+    for (double phi = 0; phi + dphi < ray.sweep.angle_total; phi += dphi) {
+      if (!(ray.radius(phi + dphi) > 2.05)) break;
+      carried = bounds_between(ray, carried, phi, phi + dphi);
+      const double t = ray.time(phi + dphi);
+      SCOPED_TRACE(testing::Message() << "b " << b << ", phi " << phi);
+      EXPECT_LE(carried.early, t);
+      EXPECT_GE(carried.late, t);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lightcone
