@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
+#include "support/test_support.hpp"
 #include "viewer/flight.hpp"
 #include "viewer/frame_rate.hpp"
 
@@ -147,6 +149,35 @@ TEST(FrameRate, AdviceNamesWhatToLower) {
   ASSERT_TRUE(software);
   EXPECT_EQ(software->find("--tessellation"), std::string::npos);
   EXPECT_EQ(software->find("split"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lightcone
+
+namespace lightcone {
+namespace {
+
+// The viewer's clock where none is given: 1 in flat space; near a hole the scene's shortest
+// free fall from rest to r = 0, (pi/2) sqrt(r^3 / 2M), in kSceneSeconds.
+TEST(DefaultTimeScale, ShowsTheScenesShortestFreeFallInSeconds) {
+  const auto fall = [](double r) { return std::numbers::pi / 2 * std::sqrt(r * r * r / 2); };
+  EXPECT_EQ(default_time_scale(test::load_repository_scene("terrell.json")), 1);
+  // The clocks fall from 10M; the camera, at rest at 30M, would fall longer.
+  const double infall = default_time_scale(test::load_repository_scene("infall.json"));
+  EXPECT_NEAR(infall, fall(10) / kSceneSeconds, 1e-12);
+  EXPECT_NEAR(infall, 3.512, 0.001);  // 35.12M of the clocks' own time in 10 s
+  // The moon's orbit at 8M.
+  EXPECT_NEAR(default_time_scale(test::load_repository_scene("orbit.json")),
+              fall(8) / kSceneSeconds, 1e-12);
+  // The camera alone, at rest at 60M: a fall from there (F) in 10 s, not 8.6 minutes.
+  Scene hole = test::load_repository_scene("black-hole.json");
+  const Vec3 offset = hole.camera.world_line.position - hole.black_hole->position;
+  ASSERT_NEAR(length(offset), 60, 1e-3);
+  EXPECT_NEAR(default_time_scale(hole), fall(length(offset)) / kSceneSeconds, 1e-9);
+  // The hole's mass sets the scale: lengths and times twice as large, the clock twice as fast.
+  hole.black_hole->mass = 2;
+  hole.camera.world_line.position = hole.black_hole->position + offset * 2;
+  EXPECT_NEAR(default_time_scale(hole), 2 * fall(length(offset)) / kSceneSeconds, 1e-9);
 }
 
 }  // namespace

@@ -301,6 +301,55 @@ TEST_F(ViewerTest, TheSplitViewIsCaptionedAndPresentingHidesThePanel) {
   EXPECT_GT(white_in_caption(presenting_at, presenting.width), 40);
 }
 
+// R: the view as the scene starts it, however far it was flown: the camera's speed, direction
+// and clock undone. The clock runs (1 a second), so the camera, at 0.5c, has flown a unit and
+// more before R; after it, the picture is the scene's at its own time to within a frame or two.
+TEST_F(ViewerTest, RResetsTheViewToTheScenesCameraAndTime) {
+  const fs::path scene = write("scene.json", kScene);
+  start_viewer(scene, "--time-scale 1 --tessellation cpu");
+  settle();
+  key("w");
+  output_of("DISPLAY=" + display_ + " xdotool keydown --window " + window_ +
+            " Left sleep 0.4 keyup --window " + window_ + " Left");
+  settle();
+  key("F12");
+  const fs::path lost_png = wait_for_png(1);
+  ASSERT_TRUE(fs::exists(lost_png)) << test::bytes_of(dir_ / "viewer.err");
+  key("r F12");
+  const fs::path back_png = wait_for_png(2);
+  ASSERT_TRUE(fs::exists(back_png)) << test::bytes_of(dir_ / "viewer.err");
+  EXPECT_NE(test::bytes_of(dir_ / "viewer.err").find("lightcone: back at the scene's camera"),
+            std::string::npos)
+      << test::bytes_of(dir_ / "viewer.err");
+  const auto rendered = test::run_lightcone("render '" + scene.string() +
+                                            "' --renderer raster --tessellation cpu --quiet -o '" +
+                                            (dir_ / "rendered.png").string() + "'");
+  ASSERT_EQ(rendered.status, 0) << rendered.err;
+  const auto reference = load_image_file(dir_ / "rendered.png");
+  const auto lost = load_image_file(lost_png), back = load_image_file(back_png);
+  const auto reference_at = [&](int x, int y) { return png_level(*reference, x, y); };
+  const auto lost_at = [&](int x, int y) { return png_level(*lost, x, y); };
+  const auto back_at = [&](int x, int y) { return png_level(*back, x, y); };
+  const double before = fraction_different(lost_at, reference_at, 0, 0, 800, 500, 2);
+  const double after = fraction_different(back_at, reference_at, 0, 0, 800, 500, 2);
+  std::printf("differing from the scene's own picture: %.4f before R, %.4f after\n", before, after);
+  EXPECT_GT(before, 0.3);
+  EXPECT_LT(after, 0.15);  // 0.034 when written: the frame or two the clock ran since R
+}
+
+// Near a black hole the clock runs at the scene's own scale unless told: infall.json's clocks,
+// falling from 10M (35.1M of their own time), fall in 10 s.
+TEST_F(ViewerTest, NearAHoleTheClockShowsAFallInSeconds) {
+  start_viewer(fs::path(LIGHTCONE_SOURCE_DIR) / "scenes/infall.json",
+               "--width 320 --height 180 --tessellation cpu");
+  settle();
+  const std::string err = test::bytes_of(dir_ / "viewer.err");
+  EXPECT_NE(err.find("lightcone: near the black hole time runs at 3.51 of the camera's own a "
+                     "second (the scene's shortest free fall in 10 s)"),
+            std::string::npos)
+      << err;
+}
+
 TEST(ViewerBenchmark, RendersItsFramesWithoutADisplayAndPrintsOneJsonLine) {
   const fs::path dir = test::fresh_temp_dir("benchmark");
   test::write_text(dir / "scene.json", kScene);

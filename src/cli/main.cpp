@@ -33,6 +33,7 @@
 #include "lightcone/trace/scene_info.hpp"
 #include "render_command.hpp"
 #include "version.hpp"
+#include "viewer/flight.hpp"
 #include "viewer/viewer.hpp"
 
 namespace fs = std::filesystem;
@@ -204,7 +205,7 @@ struct ViewArgs {
   SceneLoadOptions scene_options;  // --allow-outside
   std::optional<int> width, height, benchmark;
   bool split = false;
-  double time_scale = 1;
+  std::optional<double> time_scale;
   std::string tessellation = "auto";
 };
 
@@ -217,7 +218,7 @@ int run_view(const ViewArgs& a) {
   for (const std::string& difference : raster_differences(scene))
     std::fprintf(stderr, "lightcone: warning: %s: the raster renderer differs here: %s\n",
                  a.scene.c_str(), difference.c_str());
-  if (!(a.time_scale >= 0 && a.time_scale <= 1e6))
+  if (a.time_scale && !(*a.time_scale >= 0 && *a.time_scale <= 1e6))
     throw InputError("--time-scale: must be from 0 to 1e6");
   try {
     if (a.benchmark) {
@@ -362,7 +363,9 @@ int main(int argc, char** argv) {
   view_cmd->add_option("--height", view.height, "Window height (default: camera.height)");
   view_cmd->add_flag("--split", view.split, "Start with the classical | relativistic split");
   view_cmd->add_option("--time-scale", view.time_scale,
-                       "Units of the camera's proper time per second (default 1)");
+                       fmt::format("Units of the camera's proper time per second (default 1; "
+                                   "near a black hole, the scene's shortest free fall in {:g} s)",
+                                   kSceneSeconds));
   view_cmd
       ->add_option("--tessellation", view.tessellation,
                    "Cut edges on the cpu, on the gpu (tessellation shaders, OpenGL 4), or auto "

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <variant>
 
 #include "lightcone/physics/accretion_disk.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -10,7 +12,20 @@ namespace lightcone {
 
 namespace {
 constexpr double kMaxSpeed = 0.999;
+
+// The proper time of a free fall from rest at r to r = 0 about a hole of mass m.
+double free_fall_time(double r, double m) {
+  return std::numbers::pi / 2 * std::sqrt(r * r * r / (2 * m));
 }
+
+// The radius at which a geodesic starts: an orbit's, a fall's from rest (or its reference radius,
+// from infinity).
+double starting_radius(const HoleGeodesic& geodesic) {
+  if (const auto* orbit = std::get_if<HoleOrbit>(&geodesic.path)) return orbit->radius;
+  const auto& fall = std::get<HoleFall>(geodesic.path);
+  return std::isfinite(fall.from) ? fall.from : fall.reference;
+}
+}  // namespace
 
 Flight::Flight(const Camera& start) : camera(start), speed(length(start.world_line.velocity)) {
   // A scene's camera on a geodesic goes on along it.
@@ -120,6 +135,17 @@ void Flight::turn(double yaw, double pitch) {
   // Never quite straight up or down, where the view's up would be undefined.
   if (std::abs(dot(pitched, up)) < 0.995) forward = pitched;
   camera.forward = forward;
+}
+
+double default_time_scale(const Scene& scene) {
+  if (!scene.black_hole) return 1;
+  const BlackHole& hole = *scene.black_hole;
+  double shortest =
+      free_fall_time(length(scene.camera.world_line.position - hole.position), hole.mass);
+  for (const Object& o : scene.objects)
+    if (o.motion.geodesic)
+      shortest = std::min(shortest, free_fall_time(starting_radius(*o.motion.geodesic), hole.mass));
+  return shortest / kSceneSeconds;
 }
 
 }  // namespace lightcone

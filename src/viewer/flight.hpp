@@ -50,4 +50,15 @@ struct Flight {
   void turn(double yaw, double pitch);
 };
 
+// The viewer's clock (units of the camera's proper time a second) where no --time-scale is
+// given: 1, and near a black hole the scene's own time shown in kSceneSeconds. That time is the
+// shortest free fall from rest to the centre, (pi/2) sqrt(r^3 / 2M) (the proper time along the
+// cycloid r = (r0 / 2)(1 + cos eta)), from where the camera is now and from where each body on a
+// geodesic starts (a fall's `from`, or its `reference` when it falls from infinity; an orbit's
+// radius): the bodies as they were set going, since what the camera sees of them left them
+// earlier. A fall from 10M (35.1M of its own time) then takes 10 s, where at 1 a second it took
+// more than half a minute, and one from 60M (516M) most of ten minutes.
+inline constexpr double kSceneSeconds = 10;
+double default_time_scale(const Scene& scene);
+
 }  // namespace lightcone

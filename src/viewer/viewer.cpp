@@ -122,7 +122,12 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
       std::fprintf(stderr,
                    "lightcone: warning: --split: a scene with a black hole has no classical "
                    "picture; the view is shown whole\n");
-    double time_scale = options.time_scale;
+    double time_scale = options.time_scale.value_or(default_time_scale(scene));
+    if (!options.time_scale && scene.black_hole)
+      std::fprintf(stderr,
+                   "lightcone: near the black hole time runs at %.3g of the camera's own a second "
+                   "(the scene's shortest free fall in %g s); --time-scale sets it\n",
+                   time_scale, kSceneSeconds);
     // The exposure: with the automatic one (a scene file's default), the EV metered on each
     // frame (auto_exposure on a sample of it), followed smoothly so that it does not pump, plus
     // the slider's offset; else the slider's EV.
@@ -174,6 +179,14 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
                            key == GLFW_KEY_O ? "orbiting" : "falling",
                            length(flight.camera.world_line.position - scene.black_hole->position) /
                                scene.black_hole->mass);
+          }
+          if (key == GLFW_KEY_R) {
+            // The view as the scene starts it: its camera, where and when it is (a view lost
+            // near a hole comes back at once); the panel's settings stay.
+            flight = Flight(scene.camera);
+            meter.reset();
+            std::fprintf(stderr, "lightcone: back at the scene's camera, at t = %.6g\n",
+                         flight.camera.world_line.time);
           }
           if (key == GLFW_KEY_H) hud = !hud;
           if (key == GLFW_KEY_P) presenting = !presenting;
@@ -329,13 +342,16 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           if (ImGui::Combo("tone map", &curve, kToneMaps, 3))
             scene.render.tonemap = kToneMapValues[curve];
           float scale = static_cast<float>(time_scale);
-          if (ImGui::SliderFloat("time scale", &scale, 0.0f, 20.0f, "%.2f")) time_scale = scale;
+          // Logarithmic: from a stopped clock through 1 to a hole's scale of hundreds a second.
+          if (ImGui::SliderFloat("time scale", &scale, 0.0f, 1000.0f, "%.3g",
+                                 ImGuiSliderFlags_Logarithmic))
+            time_scale = scale;
           if (!scene.black_hole) ImGui::Checkbox("classical | relativistic (C)", &split);
           ImGui::TextUnformatted(
               scene.black_hole ? "W/S boost, Space hover, O orbit, F fall, drag or arrows "
-                                 "look, F12 PNG, H panel, P present"
-                               : "W/S speed, Space stop, drag or arrows look, F12 PNG, H panel, "
-                                 "P present");
+                                 "look, R reset view, F12 PNG, H panel, P present"
+                               : "W/S speed, Space stop, drag or arrows look, R reset view, F12 "
+                                 "PNG, H panel, P present");
         }
         ImGui::End();
       }

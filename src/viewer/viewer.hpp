@@ -2,6 +2,7 @@
 // ImGui panel), and its offscreen benchmark.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "lightcone/raster/raster_renderer.hpp"
@@ -13,7 +14,9 @@ struct ViewerOptions {
   std::string scene_path;  // for messages and the window's title
   bool split = false;      // start with the classical | relativistic split
   bool hud = true;
-  double time_scale = 1;  // units of camera proper time per second of wall-clock time
+  // Units of camera proper time per second of wall-clock time; none: default_time_scale's
+  // (flight.hpp), said on stderr near a black hole.
+  std::optional<double> time_scale;
   RasterTessellation tessellation = RasterTessellation::kAuto;
   CurvedShadowSource curved_shadows;  // near a black hole (RasterRenderer::set_curved_shadows)
 };
