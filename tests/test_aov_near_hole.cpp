@@ -78,6 +78,7 @@ TEST(AovNearHole, ABodyBehindTheHoleIsMetWhereTheLensSendsEachImage) {
     const double t_e = *image_k.emission_time, flight = 4 - t_e;
     EXPECT_NEAR(at(image, "emission_time"), t_e, 1e-6 * std::abs(t_e));
     EXPECT_NEAR(at(image, "distance"), flight, 1e-6 * flight);
+    EXPECT_NEAR(*image_k.distance, flight, 1e-12 * flight);  // locate's, for a camera at rest
     EXPECT_NEAR(at(image, "depth"), flight, 1e-6 * flight);  // along the forward axis
     // Behind the hole: the light takes longer than the straight way (the Shapiro delay).
     EXPECT_GT(flight, length(met - Vec3{0, 0, 30}));

@@ -104,6 +104,11 @@ double camera_photon_energy(const HoleView& hole, const Vec3& u) {
   return camera_photon_energy(hole, hole.trace_to_static * Vec4{-1, u});
 }
 
+double camera_frame_distance(const HoleView& hole, const Vec3& u, double flight) {
+  // camera_photon_energy is in units of the energy far away; the static observer's is 1 / lapse.
+  return flight * camera_photon_energy(hole, u) * hole.camera_lapse;
+}
+
 double sky_photon_energy(const Vec4& in_sky) {
   return -in_sky.t;
 }

@@ -62,6 +62,13 @@ double camera_photon_energy(const HoleView& hole, const Vec4& in_static);
 // (A falling camera: its radial_observer ray's energy; 0 for light of no positive energy.)
 double camera_photon_energy(const HoleView& hole, const Vec3& u);
 
+// How far light that reaches the camera along look direction u (unit, in its rest frame F) has
+// travelled, in the camera's frame: its coordinate time of flight `flight` (W's, in W's units)
+// times the camera's Doppler factor against the static observer where it is (the photon's
+// energy at the camera over the static observer's), as flat space takes a ray's length from W
+// into F (s_F = s_W gamma (1 + beta . d_W)). The output variable distance and locate's.
+double camera_frame_distance(const HoleView& hole, const Vec3& u, double flight);
+
 // The energy the sky's rest frame measures for a photon that arrives from W's direction `far`
 // (unit, pointing away from the hole), in the same units: its flat Doppler factor far away, -t
 // for the sky-frame event (t, x) that (-1, far) becomes (`in_sky`).

@@ -234,6 +234,8 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
       out.shift = camera_photon_energy(hole, out.direction) /
                   emitter_photon_energy(hole, photon_direction_at_point(hole, *ray, r_e), r_e, {});
     }
+    if (out.emission_time)
+      out.distance = camera_frame_distance(hole, out.direction, now - *out.emission_time);
     LocateResult one;
     one.direction = out.direction;
     set_pixel(r.camera, one);
@@ -249,6 +251,7 @@ LocateResult locate_near_hole(const Scene& scene, const ResolvedScene& r,
   result.emission_time = primary.emission_time;
   result.emission_position = primary.emission_position;
   result.emission_proper_time = primary.emission_proper_time;
+  result.distance = primary.distance;
   return result;
 }
 

@@ -29,7 +29,10 @@ struct LocateImage {
   std::optional<double> emission_time;  // W (Schwarzschild coordinate) time; none at infinity
   std::optional<Vec3> emission_position;
   std::optional<double> emission_proper_time;  // an object's clock (its origin's) then
-  double shift = 1;                            // g = nu_camera / nu_emitter
+  // The light's coordinate time of flight in the camera's frame (camera_frame_distance): the
+  // output variable distance of the pixel; none at infinity.
+  std::optional<double> distance;
+  double shift = 1;  // g = nu_camera / nu_emitter
 };
 
 struct LocateResult {

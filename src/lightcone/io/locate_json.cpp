@@ -57,12 +57,14 @@ std::string locate_json(const LocateResult& r, const Scene& scene) {
                                     {"emission_time", nullptr},
                                     {"emission_position", nullptr},
                                     {"emission_proper_time", nullptr},
+                                    {"distance", nullptr},
                                     {"in_view", image.in_view},
                                     {"g", image.shift}};
       if (!image.in_view) one["pixel"] = nullptr;
       if (image.emission_time) one["emission_time"] = *image.emission_time / c;
       if (image.emission_position) one["emission_position"] = to_json(*image.emission_position);
       if (image.emission_proper_time) one["emission_proper_time"] = *image.emission_proper_time / c;
+      if (image.distance) one["distance"] = *image.distance;
       images.push_back(one);
     }
     out["images"] = images;

@@ -107,11 +107,7 @@ RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
     seen.normal = body_normal(scene.bodies[ray.hit.body], ray.hit.shape_normal);
     seen.object = static_cast<float>(ray.hit.body);
   }
-  // The light's coordinate travel time in the camera's frame: times the photon's energy there
-  // over the static observer's (camera_photon_energy is in units of the energy far away, the
-  // static observer's 1 / lapse), as flat space takes a ray's length from W into F.
-  seen.distance = (scene.observation_event.t - seen.event.t) * camera_photon_energy(hole, u) *
-                  hole.camera_lapse;
+  seen.distance = camera_frame_distance(hole, u, scene.observation_event.t - seen.event.t);
   return seen;
 }
 
