@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -130,6 +131,54 @@ TEST(BlackHoleAxis, MeetsABallFallingAlongTheAxisOnItsSurface) {
   const HoleWorldLineState at = hole_world_line(*view.resolved.hole, s.objects[0]).at(ray.event.t);
   EXPECT_GT(length(at.velocity), 0.1);  // falling by then
   EXPECT_NEAR(length(rest_offset_of(ray.event.x - at.position, at.velocity)), 1.5, 1e-9);
+}
+
+TEST(BlackHoleAxis, ABodyOnTheAxisShadesTheRadialLegToALight) {
+  // A lit point at r = 11 on the axis and a lamp at r = 25 on it: the light's leg is radial, and
+  // a ball at r = 18 on the axis blocks it, one beyond the lamp or short of it does not.
+  for (const double ball : {18.0, 30.0, 8.0}) {
+    SCOPED_TRACE(ball);
+    const Scene s = axis_scene({0, 0, -1}, {0, 0, ball}, 1);
+    const View view(s);
+    CurvedShadowRay leg;
+    leg.origin = {0, {0, 0, 11}};
+    leg.e1 = {0, 0, 1};
+    leg.e2 = {1, 0, 0};
+    leg.outward = true;
+    leg.radius_near = 11 * (1 + 1e-9);
+    leg.radius_far = 25;
+    EXPECT_EQ(view.bodies.occluded(leg), ball == 18.0);
+  }
+}
+
+TEST(BlackHoleAxis, CentrePixelOfALitBallIsShadedAlongTheAxis) {
+  // Looking down the axis at a lit ball, lit by a lamp on the axis behind the camera: a pebble
+  // between them, behind the camera too, shades the centre pixel's point (its leg to the lamp is
+  // radial) and not the next pixel's (whose leg passes the pebble 0.2 away).
+  for (const bool pebble : {true, false}) {
+    SCOPED_TRACE(pebble);
+    std::string json = R"({
+      "camera": {"position": [0, 0, 30], "fov": 30, "width": 9, "height": 9},
+      "black_hole": {"mass": 1},
+      "objects": [
+        {"name": "ball", "shape": {"sphere": {"radius": 3}}, "position": [0, 0, 10],
+         "material": {"color": [0.8, 0.8, 0.8], "unlit": false}})";
+    if (pebble)
+      json += R"(,
+        {"name": "pebble", "shape": {"sphere": {"radius": 0.1}}, "position": [0, 0, 35],
+         "material": {"color": [0.8, 0.8, 0.8]}})";
+    json += R"(],
+      "lights": [{"name": "lamp", "type": "point", "position": [0, 0, 40], "intensity": 500}],
+      "render": {"exposure": 0}
+    })";
+    const Image image = render_image(test::scene_from_json(json), {});
+    const float* c = centre_pixel(image);
+    EXPECT_GT(c[3], 0.05f);  // the next pixel: lit
+    if (pebble)
+      EXPECT_EQ(c[0], 0.0f);
+    else
+      EXPECT_GT(c[0], c[3]);  // (facing the lamp squarely)
+  }
 }
 
 }  // namespace

@@ -40,8 +40,8 @@ double outrun_radius(double m, double r0, double now, double v) {
 
 }  // namespace
 
-bool CurvedBodies::nearest_on_axis(const PathStart& start, const CurvedPath& path,
-                                   Found& best) const {
+bool CurvedBodies::nearest_on_axis(const PathStart& start, const CurvedPath& path, double from,
+                                   double to, Found& best) const {
   if (bodies_.empty()) return false;
   const double m = HoleView::mass;
   const double horizon = 2 * m * (1 + 1e-12);
@@ -51,8 +51,8 @@ bool CurvedBodies::nearest_on_axis(const PathStart& start, const CurvedPath& pat
   };
   // Whether radius a comes before b along the path.
   const auto before = [&](double a, double b) { return path.outward ? a < b : a > b; };
-  // The path ends far away or at the horizon; a body met cuts it short.
-  double end = path.outward ? kInfinity : horizon;
+  // The stretch ends at `to`, outside the horizon; a body met cuts it short.
+  double end = path.outward ? to : std::max(to, horizon);
   for (const Body& body : bodies_) {
     const HoleWorldLine& line = body.line;
     // The radii along the axis at which the path can meet the body: exactly where its ball
@@ -73,7 +73,7 @@ bool CurvedBodies::nearest_on_axis(const PathStart& start, const CurvedPath& pat
                            line.max_coordinate_speed());
     }
     // The stretch of the path over those radii, short of the nearest body met so far.
-    const double enter = path.outward ? std::max(lo, r0) : std::min(hi, r0);
+    const double enter = path.outward ? std::max(lo, from) : std::min(hi, from);
     const double leave = path.outward ? std::min(hi, end) : std::max(lo, end);
     if (!before(enter, leave)) continue;
 

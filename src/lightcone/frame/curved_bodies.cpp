@@ -549,8 +549,9 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
                              CurvedRay& ray) const {
   const PathStart start{hole.camera_radius, scene_.observation_event.t / hole.scale};
   Found best;
-  const bool met =
-      path.impact > 0 ? nearest(start, path, 0, limit, best) : nearest_on_axis(start, path, best);
+  const double end = path.outward ? std::numeric_limits<double>::infinity() : 2 * hole.mass;
+  const bool met = path.impact > 0 ? nearest(start, path, 0, limit, best)
+                                   : nearest_on_axis(start, path, start.radius, end, best);
   if (!met) return false;
   const double m = hole.mass;
   const Body& body = bodies_[best.body];
@@ -599,6 +600,8 @@ bool CurvedBodies::occluded(const CurvedShadowRay& shadow) const {
   path.orbit = photon_orbit(m, shadow.impact);
   path.sweep = prepare_sweep(path.orbit, start.radius, shadow.outward);
   Found found;
+  if (!(shadow.impact > 0))
+    return nearest_on_axis(start, path, shadow.radius_near, shadow.radius_far, found);
   return nearest(start, path, shadow.sweep_near, shadow.sweep_far, found);
 }
 

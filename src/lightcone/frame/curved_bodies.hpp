@@ -77,8 +77,10 @@ class CurvedBodies : public CurvedShadowQuery {
   bool nearest(const PathStart& start, const CurvedPath& path, double from, double limit,
                Found& found) const;
   // The same for a path along the line through the hole (b = 0, curved_axis.cpp), which sweeps
-  // no angle: the first body met from its start to its end (the horizon, or far away).
-  bool nearest_on_axis(const PathStart& start, const CurvedPath& path, Found& found) const;
+  // no angle: the first body met between radii `from` and `to` along it (to its end: infinity
+  // outward, the horizon inward).
+  bool nearest_on_axis(const PathStart& start, const CurvedPath& path, double from, double to,
+                       Found& found) const;
 
   // Its lengths and times in units of the hole's mass, as the paths'.
   struct Body {

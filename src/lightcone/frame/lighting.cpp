@@ -314,10 +314,22 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   const HoleView& hole = *scene_->hole;
   const Vec4 surface = in_hole_units(hole, surface_world);
   const Vec3& receiver = surface.x;
-  const auto shadow_along = [&](const HoleLegPath& path, double near, double far) {
-    if (settings.shadows && curved_shadows_)
-      shadow =
-          CurvedShadowRay{surface_world, path.e1, path.e2, path.impact, path.outward, near, far};
+  // The path from the surface to the light, which is at radius `light_radius` (in units of M;
+  // infinity for a plane wave), less kShadowEpsilon of it at either end.
+  const auto shadow_along = [&](const HoleLegPath& path, double near, double far,
+                                double light_radius) {
+    if (!settings.shadows || !curved_shadows_) return;
+    const double r = length(receiver), span = light_radius - r;
+    const bool finite = std::isfinite(light_radius);
+    shadow = CurvedShadowRay{surface_world,
+                             path.e1,
+                             path.e2,
+                             path.impact,
+                             path.outward,
+                             near,
+                             far,
+                             finite ? r + kShadowEpsilon * span : r * (1 + kShadowEpsilon),
+                             finite ? light_radius - kShadowEpsilon * span : light_radius};
   };
 
   if (const auto* sun = std::get_if<DirectionalLight>(&light.kind)) {
@@ -336,7 +348,8 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
     set_irradiance(out, settings.searchlight, irradiance * cos_i,
                    plane_wave_irradiance(out.doppler, irradiance, cos_i),
                    irradiance * plane_wave_spectral_factor(out.doppler, cos_i));
-    shadow_along(wave->path, kShadowEpsilon * wave->path.sweep, wave->path.sweep);
+    shadow_along(wave->path, kShadowEpsilon * wave->path.sweep, wave->path.sweep,
+                 std::numeric_limits<double>::infinity());
     return true;
   }
 
@@ -391,7 +404,8 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   set_irradiance(out, settings.searchlight, intensity * cos_i / (distance * distance),
                  point_source_irradiance(leg->leg, intensity, cos_i),
                  intensity * point_source_spectral_factor(leg->leg, cos_i));
-  shadow_along(leg->path, kShadowEpsilon * leg->path.sweep, (1 - kShadowEpsilon) * leg->path.sweep);
+  shadow_along(leg->path, kShadowEpsilon * leg->path.sweep, (1 - kShadowEpsilon) * leg->path.sweep,
+               length(state.position + offset));
   return true;
 }
 

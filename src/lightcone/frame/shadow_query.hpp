@@ -21,13 +21,16 @@ struct ShadowRay {
 // Near a black hole: the direct null geodesic from a lit surface event back to a light
 // (physics/hole_light_leg.hpp's HoleLegPath), in the plane of the hole (at `centre`, mass M), the
 // surface (along e1 from the hole) and the light (toward e2); a body blocks it if the path meets
-// one between swept angles sweep_near and sweep_far from the surface.
+// one between swept angles sweep_near and sweep_far from the surface. A radial path (impact 0,
+// the light on the line through the hole and the surface) sweeps no angle: a body blocks it
+// between radii radius_near and radius_far (in units of M; infinity for a plane wave).
 struct CurvedShadowRay {
   Vec4 origin;  // the surface event, in W
   Vec3 e1, e2;
   double impact = 0;     // in units of M
   bool outward = false;  // r grows at the surface along the path
   double sweep_near = 0, sweep_far = 0;
+  double radius_near = 0, radius_far = 0;
 };
 
 class CurvedShadowQuery {
