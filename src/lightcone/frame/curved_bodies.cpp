@@ -241,10 +241,12 @@ CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segme
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Object& o = *scene.bodies[i].object;
     // (R S)^-1 M, not (R S / M)^-1, whose determinant (M^-3) is no double for M far from 1.
-    bodies_.push_back(
-        {static_cast<int>(i), hole_world_line(hole_, o),
-         origin_radius(o.shape, o.scale) / m * (1 + 1e-9),
-         (o.rotation * Mat3::diagonal(o.scale)).inverse() * Mat3::diagonal({m, m, m})});
+    bodies_.push_back({static_cast<int>(i),
+                       hole_world_line(hole_, o),
+                       origin_radius(o.shape, o.scale) / m * (1 + 1e-9),
+                       (o.rotation * Mat3::diagonal(o.scale)).inverse() * Mat3::diagonal({m, m, m}),
+                       {},
+                       {}});
     Body& body = bodies_.back();
     if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&body.line.path()))
       tabulate_fall(fall->fall, body.fall_times, body.fall_radii);
@@ -378,10 +380,12 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
     const double error = kChordError * body.radius;
     const double r_min = std::max(floor, windows.inner);
     const double step = m > 0 ? std::sqrt(8 * error * r_min / (3 * m * path.impact)) : kTwoPi;
-    // Spans of many chords are first tested whole, as one chord widened by how far the path can
-    // stray from it: a quarter of the body's radius.
+    // Pieces of up to a span of many chords are tested whole, as one chord widened by how far
+    // the path can stray from it (a quarter of the body's radius over a span).
     const double span = step * std::sqrt(0.25 / kChordError);
-    const double span_margin = m > 0 ? 0.375 * m * path.impact * span * span / r_min : 0.0;
+    const auto piece_margin = [&](double piece) {
+      return m > 0 ? 0.375 * m * path.impact * piece * piece / r_min : 0.0;
+    };
     const auto shape_of = [&](const Vec4& e, const HoleWorldLineState* state = nullptr) {
       return body.shape_point(scene_.world_maps[body.index], e, hole_, state);
     };
@@ -410,7 +414,9 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         // A geodesic body's state at a's time, once known.
         HoleWorldLineState state_a, state_b;
         bool a_state = false;
-        double span_end = phi_a;
+        // The piece tested next: halved where it may meet the body, down to a chord; doubled,
+        // up to a span, past where it cannot.
+        double piece = span;
         while (phi_a < hi && !met) {
           // Past the body's reach on the way out, or inside it on the way in with no turning
           // point ahead (toward the horizon): nothing more to meet.
@@ -469,19 +475,23 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
             state_a = state_b, a_state = b_state;
             return false;
           };
-          if (phi_a >= span_end && span > step) {
+          if (piece > step) {
             double r_c;
-            const double phi_c = chord_end(std::min(phi_a + span, hi), r_c);
+            const double phi_c = chord_end(std::min(phi_a + piece, hi), r_c);
             if (!(phi_c > phi_a)) break;
             Vec4 c = events.event(phi_c, false);
-            if (!may_meet(phi_c, r_c, c, span_margin)) continue;
-            span_end = phi_c;
+            piece = may_meet(phi_c, r_c, c, piece_margin(piece)) ? std::max(piece / 2, step)
+                                                                 : std::min(piece * 2, span);
+            continue;
           }
           double r_b;
-          double phi_b = chord_end(std::min({phi_a + step, hi, span > step ? span_end : hi}), r_b);
+          double phi_b = chord_end(std::min(phi_a + step, hi), r_b);
           if (!(phi_b > phi_a)) break;
           Vec4 b = events.event(phi_b, false);
-          if (!may_meet(phi_b, r_b, b, 0)) continue;
+          if (!may_meet(phi_b, r_b, b, 0)) {
+            piece = std::min(2 * step, span);
+            continue;
+          }
           const double max_dt = acceleration > 0 ? std::sqrt(8 * error / acceleration) : kInfinity;
           bool halved = false;
           for (int halving = 0; halving < 64 && !(std::abs(b.t - a.t) <= max_dt); ++halving) {
