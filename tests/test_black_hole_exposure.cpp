@@ -97,6 +97,19 @@ TEST(BlackHoleExposure, BothRenderersMeterTheSameSubjectNearAHole) {
   }
 }
 
+// The raster renderer beside the negligible hole (its bodies then drawn by the hole's images, their
+// outlines within half a pixel of the flat ones): the flat raster picture's EV within 0.01.
+TEST(BlackHoleExposure, BesideANegligibleHoleTheRasterRendererMetersTheFlatSubject) {
+  Scene flat = terrell_beside_a_hole(0), near = terrell_beside_a_hole(1e-9);
+  for (Scene* s : {&flat, &near}) s->camera.width = 640, s->camera.height = 360;
+  RasterStats flat_stats, near_stats;
+  render_raster(flat, &flat_stats);
+  render_raster(near, &near_stats);
+  std::printf("raster EV %+.4f beside the negligible hole, %+.4f flat\n", near_stats.exposure,
+              flat_stats.exposure);
+  EXPECT_NEAR(near_stats.exposure, flat_stats.exposure, 0.01);
+}
+
 // The viewer's and the web page's metering of a frame (one pixel of each 4 x 4 block, weighed by
 // the bodies' alpha) beside the slight hole is the flat picture's, within what the sample allows
 // (test_raster_exposure's 0.1): it metered the whole frame, 1.6 EV brighter.
