@@ -54,19 +54,26 @@ TEST(StraightRays, EveryRayOfTheNegligibleHoleIsStraight) {
 }
 
 TEST(StraightRays, BentRaysAreNot) {
-  // A hole of mass 1e-5 at 30 units straight ahead: a ray 10 degrees off it passes at about 5
-  // units and turns by some 4M / b = 8e-6 radians, a hundredth of a pixel of 0.56 mrad: curved.
+  // A hole of mass 1e-9 at 30 units straight ahead; a pixel spans under 9.7 mrad, so a ray is
+  // straight when its bounds sum to less than 9.7e-9. 0.5 degrees off the hole a ray passes at 0.26
+  // units, 2.6e8 M, where the turning and the delay alone sum to some 2.6e-8: curved. 30 degrees
+  // off, at 15 units: 4.5e-10, straight.
   Scene s = terrell();
-  s.black_hole = BlackHole{{0, 0, -30}, 1e-5, std::nullopt};
+  s.black_hole = BlackHole{{0, 0, -30}, 1e-9, std::nullopt};
   const ResolvedScene resolved = resolve_scene(s);
   const auto rays = StraightRays::of(resolved);
   ASSERT_TRUE(rays);
-  const double off = 10 * std::numbers::pi / 180;
-  EXPECT_FALSE(rays->straight({std::sin(off), 0, -std::cos(off)}));
+  const auto off = [](double degrees) {
+    const double a = degrees * std::numbers::pi / 180;
+    return Vec3{std::sin(a), 0, -std::cos(a)};
+  };
+  EXPECT_FALSE(rays->straight(off(0.5)));
+  EXPECT_TRUE(rays->straight(off(30)));
   // Straight at the hole: no periapsis far from it.
   EXPECT_FALSE(rays->straight({0, 0, -1}));
-  // Looking away from it, the path climbs out of its well, bent by 2M / r at the camera alone.
-  EXPECT_FALSE(rays->straight({0.6, 0, 0.8}));
+  // A hole of 1e-5 at 30 units: its well at the camera alone (2M / r = 6.7e-7) is too much for any.
+  s.black_hole->mass = 1e-5;
+  EXPECT_FALSE(StraightRays::of(resolve_scene(s)));
 }
 
 TEST(StraightRays, OnlyForScenesFlatSpaceDrawsAlike) {
@@ -82,6 +89,9 @@ TEST(StraightRays, OnlyForScenesFlatSpaceDrawsAlike) {
   lit.lights.push_back(sun);
   EXPECT_FALSE(StraightRays::of(resolve_scene(lit)));
   EXPECT_FALSE(StraightRays::of(resolve_scene(terrell())));
+  // A hole whose well at the camera alone bends light by more than the tolerance: none asked.
+  EXPECT_FALSE(StraightRays::of(resolve_scene(
+      load_scene_file(std::string(LIGHTCONE_SOURCE_DIR) + "/scenes/black-hole.json", {}, report))));
 }
 
 }  // namespace

@@ -23,7 +23,12 @@ std::optional<StraightRays> StraightRays::of(const ResolvedScene& scene) {
     if (object.motion.geodesic) return std::nullopt;
     if (!object.material.unlit && !s.lights.empty()) return std::nullopt;
   }
-  return StraightRays(scene);
+  StraightRays rays(scene);
+  // Every path comes within the camera's radius of the hole, so its delay term alone is at least
+  // 2M / (r - 2M) there: where that is too much, no ray is straight.
+  const double r = scene.hole->camera_radius, m = HoleView::mass;
+  if (!(2 * m / (r - 2 * m) <= kTolerance * rays.pixel_angle_)) return std::nullopt;
+  return rays;
 }
 
 StraightRays::StraightRays(const ResolvedScene& scene) : scene_(&scene) {

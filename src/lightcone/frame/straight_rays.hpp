@@ -16,7 +16,8 @@
 // that length, so the test is independent of the length: the sum at most kTolerance
 // theta_pixel.
 //
-// Only scenes that flat space draws alike ask: light delay on, a camera not falling, every body on
+// Only scenes that flat space draws alike ask (and only where the camera is high enough in the
+// well that a ray can be straight at all): light delay on, a camera not falling, every body on
 // a straight coordinate line (none on an orbit or a fall), and no lit surface (a lit point's
 // light legs are not the camera ray's).
 #pragma once
