@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -234,6 +235,38 @@ TEST(WebPage, TheWKeyRaisesTheSpeedAndChangesThePicture) {
 
 // A drag to the left by 100 pixels turns the view by 0.4 radians to the left (as the native
 // viewer's drag), and the link says so; a finger holding the joystick up speeds the camera up.
+// R, as in the native viewer: after a boost and a turn, the scene's camera again, and its picture.
+TEST(WebPage, RGoesBackToTheScenesCamera) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  // street's camera moves at 0.8c; W took it faster.
+  EXPECT_GT(r.value("beta_before_reset", -1.0), r.value("beta_before_key", 2.0));
+  EXPECT_EQ(r.value("beta_after_reset", -1.0), r.value("beta_before_key", 2.0));
+  const std::string hash = r.value("hash_after_reset", "");
+  EXPECT_NE(hash.find("yaw=0.0000"), std::string::npos) << hash;
+  EXPECT_EQ(hash.find("beta="), std::string::npos) << hash;
+  const auto reset = seen("reset.png"), street = seen("street.png");
+  ASSERT_TRUE(reset && street);
+  EXPECT_EQ(largest_difference(*reset, *street), 0);
+}
+
+// Near a hole the page's clock is the native viewer's (viewer/flight.hpp's default_time_scale):
+// infall's clocks fall in 10 s, not in over half a minute. The proper time shown runs that much
+// faster than the frames' time (each frame's step is at most 0.1 s, so not faster than the wall).
+TEST(WebPage, NearAHoleTheClockRunsAtTheViewersScale) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  ASSERT_TRUE(r.contains("infall_clock"));
+  const auto& clock = r["infall_clock"];
+  // The clocks' fall from rest at 10M, (pi/2) sqrt(10^3 / 2) of their own time, in 10 s.
+  const double scale = std::numbers::pi / 2 * std::sqrt(1000.0 / 2) / 10;
+  EXPECT_NEAR(clock.value("time_scale", 0.0), scale, 1e-9);
+  std::printf("infall in the page: %.2f of proper time in %.2f s\n",
+              clock.value("proper_time", 0.0), clock.value("wall_seconds", 0.0));
+  EXPECT_GT(clock.value("proper_time", 0.0), 0);
+  EXPECT_LE(clock.value("proper_time", 0.0), scale * clock.value("wall_seconds", 0.0) * 1.01);
+}
+
 TEST(WebPage, ADragTurnsTheViewAndTheJoystickSpeedsUp) {
   const auto r = results();
   ASSERT_TRUE(r.is_object());

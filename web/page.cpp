@@ -110,7 +110,8 @@ EMSCRIPTEN_KEEPALIVE const char* lc_start() {
 // Reads the scene file at `path` (in the page's file system) with `overrides` ("key.path=value"
 // lines, as --set takes them). With `keep_flight`, and the same file as before, the camera
 // stays where the flight has taken it (a switch changed); else it starts at the scene's camera.
-// On failure the previous scene stays. Returns {"warnings", "differences", "beta"}; {"images"}
+// On failure the previous scene stays. Returns {"warnings", "differences", "beta", "time_scale"}
+// (the native viewer's clock for it: flight.hpp's default_time_scale); {"images"}
 // when the scene names an image the browser has not decoded yet (decode it and call again: one
 // image a call); or {"error"}.
 EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides, int keep_flight) {
@@ -137,7 +138,8 @@ EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides
     p.meter.reset();
     return answer(nlohmann::json{{"warnings", report.warnings},
                                  {"differences", raster_differences(*p.scene)},
-                                 {"beta", p.flight->speed}}
+                                 {"beta", p.flight->speed},
+                                 {"time_scale", default_time_scale(*p.scene)}}
                       .dump());
   } catch (const ImageNotDecoded& image) {
     return answer(nlohmann::json{{"images", nlohmann::json::array({image.path})}}.dump());
@@ -167,15 +169,16 @@ EMSCRIPTEN_KEEPALIVE void lc_fly(double seconds) {
   p.proper_time += seconds;
 }
 
-// Advances the flight by `seconds` of the camera's proper time and draws a frame of
-// `width` x `height` pixels into the canvas. Returns the numbers the page shows.
-EMSCRIPTEN_KEEPALIVE const char* lc_frame(double seconds, int width, int height) {
+// Advances the flight by `flown` of the camera's proper time and draws a frame of `width` x
+// `height` pixels into the canvas, `seconds` after the last (the exposure follows in those).
+// Returns the numbers the page shows.
+EMSCRIPTEN_KEEPALIVE const char* lc_frame(double flown, double seconds, int width, int height) {
   Page& p = page();
   if (!p.scene || !p.renderer) return failure("no scene");
   try {
     const BlackHole* hole = p.scene->black_hole ? &*p.scene->black_hole : nullptr;
-    p.flight->advance(seconds, hole);
-    p.proper_time += seconds;
+    p.flight->advance(flown, hole);
+    p.proper_time += flown;
     if (!p.relativistic || p.relativistic->width() != width || p.relativistic->height() != height) {
       p.relativistic = std::make_unique<FloatTarget>(width, height);
       p.classical = std::make_unique<FloatTarget>(width, height);

@@ -53,6 +53,9 @@ createLightcone({ canvas }).then(async (lc) => {
   // The camera as the link gives it: turned by yaw and pitch, boosted to beta, flown tau.
   let yaw = Number(settings.yaw || 0), pitch = Number(settings.pitch || 0);
   let tau = Number(settings.tau || 0);
+  // The camera's proper time a second: the native viewer's default for the scene (near a black
+  // hole its shortest free fall in 10 s, else 1).
+  let timeScale = 1;
 
   const overrides = () => {
     const sets = [];
@@ -97,6 +100,8 @@ createLightcone({ canvas }).then(async (lc) => {
     document.body.dataset.loads = String(Number(document.body.dataset.loads || 0) + 1);
     if (result.error) { say(result.error); return false; }
     say(result.differences.concat(result.warnings).join("\n"));
+    timeScale = result.time_scale;
+    document.body.dataset.timeScale = String(timeScale);
     if (!keep && fromLink) {
       if (yaw || pitch) run("lc_turn", yaw, pitch);
       if (settings.beta !== undefined) run("lc_set_speed", Number(settings.beta));
@@ -217,6 +222,12 @@ createLightcone({ canvas }).then(async (lc) => {
     if (e.key === "s") run("lc_change_speed", -1);
     if (e.key === " ") { run("lc_set_speed", 0); e.preventDefault(); }
     if (e.key === "c") $("split").click();
+    if (e.key === "r") {
+      // Back to the scene's camera, where and when it starts; the switches stay.
+      delete settings.beta;
+      yaw = pitch = tau = 0;
+      load(false, undefined, false);
+    }
     if (e.key.startsWith("Arrow")) e.preventDefault();
     held.add(e.key);
   });
@@ -286,9 +297,9 @@ createLightcone({ canvas }).then(async (lc) => {
       if (pad.axes.length > 3 && Math.abs(pad.axes[1]) > 0.15) turn(0, -1.2 * pad.axes[1] * dt);
       if (pad.buttons[0] && pad.buttons[0].pressed) run("lc_set_speed", 0);
     }
-    const flown = $("paused").checked ? 0 : dt;
+    const flown = $("paused").checked ? 0 : dt * timeScale;
     tau += flown;
-    const shown = JSON.parse(call("lc_frame", flown, canvas.width, canvas.height));
+    const shown = JSON.parse(call("lc_frame", flown, dt, canvas.width, canvas.height));
     if (shown.error) say(shown.error);
     else {
       $("numbers").textContent = `beta ${shown.beta_text}  gamma ${shown.gamma.toFixed(3)}  ` +
@@ -296,6 +307,7 @@ createLightcone({ canvas }).then(async (lc) => {
         `tau ${shown.proper_time.toFixed(2)}  EV ${shown.exposure.toFixed(2)}  ${fps.toFixed(1)} fps`;
       $("numbers").dataset.beta = shown.beta;
       $("numbers").dataset.exposure = shown.exposure;
+      $("numbers").dataset.properTime = shown.proper_time;
     }
     if (!document.body.dataset.firstFrame) document.body.dataset.firstFrame = String(performance.now());
     document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);

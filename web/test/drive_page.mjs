@@ -10,6 +10,9 @@
 //   terrell-auto.png           terrell at 640x360 at its own, automatic exposure, paused (and
 //                              results.json's terrell_auto_ev, the EV the page applied)
 //   key-before.png, key-after.png   street before and after the W key
+//   reset.png                  street after W, a turn and R (back at the scene's camera)
+//   (results.json's infall_clock)  the clock near a hole: the page's time scale, and the proper
+//                              time shown after some frames against the wall time flown
 //   dragged.png                street after a drag on the picture
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
 //   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
@@ -126,6 +129,39 @@ try {
     await settle(page);
     results.beta_after_key = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
     await shot(page, "key-after.png");
+    await page.close();
+  }
+
+  step("R after a flight");
+  {
+    const page = await open(`scene=street&${still}`);
+    await page.keyboard.press("w");
+    await page.keyboard.down("ArrowLeft");
+    await settle(page);
+    await page.keyboard.up("ArrowLeft");
+    results.beta_before_reset = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
+    const loads = await count(page, "loads");
+    await page.keyboard.press("r");
+    await page.waitForFunction((n) => Number(document.body.dataset.loads) > n, loads);
+    await settle(page);
+    results.beta_after_reset = Number(await page.evaluate(() => document.getElementById("numbers").dataset.beta));
+    results.hash_after_reset = await page.evaluate(() => location.hash);
+    await shot(page, "reset.png");
+    await page.close();
+  }
+
+  step("the clock near a hole");
+  {
+    const page = await open("scene=infall&exposure=0", 2);
+    const start = await page.evaluate(() => [Number(document.getElementById("numbers").dataset.properTime), performance.now()]);
+    await page.waitForTimeout(2000);
+    await settle(page, 2);
+    const end = await page.evaluate(() => [Number(document.getElementById("numbers").dataset.properTime), performance.now()]);
+    results.infall_clock = {
+      time_scale: await page.evaluate(() => Number(document.body.dataset.timeScale)),
+      proper_time: end[0] - start[0],
+      wall_seconds: (end[1] - start[1]) / 1000,
+    };
     await page.close();
   }
 
