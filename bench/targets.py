@@ -59,7 +59,8 @@ Groups:
            same (PNG files byte for byte: 0 differing); in-process, black-hole.json's sky and
            disk at 1920x1080, 1 sample, 2 threads (BM_BlackHole, <= 0.5 s)
 
-The default run (all groups, 3 repetitions) takes some 4 minutes on 2 cores.
+The default run (all groups, 3 repetitions) takes some 7 minutes on 2 cores (the hole group some
+three: infall.json near the hole takes 40 s a run).
 
 --build DIR measures any build, for instance one of an older commit:
 
