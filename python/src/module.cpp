@@ -152,7 +152,8 @@ py::dict render(const Scene& scene, const std::string& renderer,
       py::gil_scoped_release unlocked;
       try {
         // Shadows near a black hole through the tracer's Embree scenes, as the CLI casts them.
-        image = render_raster(scene, &stats, {}, seed, mode, curved_body_shadows);
+        image = render_raster(scene, &stats, {}, seed, mode, curved_body_shadows, nullptr,
+                              options.aovs);
       } catch (const GlUnavailable& e) {
         throw std::runtime_error(std::string("renderer='raster': ") + e.what() +
                                  ": the raster renderer needs OpenGL 3.3 (core profile) through "

@@ -180,7 +180,8 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
       RasterStats raster_stats;
       try {
         r.image = render_raster(scene, &raster_stats, {}, a.seed,
-                                tessellation_named(a.tessellation), curved_body_shadows);
+                                tessellation_named(a.tessellation), curved_body_shadows, nullptr,
+                                options.aovs);
       } catch (const GlUnavailable& e) {
         throw InputError(fmt::format(
             "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) through "

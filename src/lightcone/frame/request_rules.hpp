@@ -31,8 +31,8 @@ struct RenderRequest {
   std::span<const Aov> aovs;  // output variables beside the colour
 };
 
-// A render: the scene; output variables only from the ray tracer, and from a camera inside a
-// black hole's horizon only those that need no W time there (aov_needs_world_time).
+// A render: the scene; near a black hole output variables only from the ray tracer, and from a
+// camera inside its horizon only those that need no W time there (aov_needs_world_time).
 std::optional<std::string> render_refused(const Scene& scene, const RenderRequest& request);
 
 // A locate: the scene; near a black hole a camera outside the horizon (where W's time, and so

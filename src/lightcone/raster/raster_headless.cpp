@@ -47,8 +47,9 @@ void pass_sample(RasterRenderer& renderer, int k, int n, std::uint64_t seed, int
 
 Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLimits& limits,
                     std::uint64_t seed, RasterTessellation mode,
-                    const CurvedShadowSource& curved_shadows, std::vector<float>* subject_out) {
-  if (const auto refused = render_refused(scene, {.raster = true, .aovs = {}}))
+                    const CurvedShadowSource& curved_shadows, std::vector<float>* subject_out,
+                    std::span<const Aov> aovs) {
+  if (const auto refused = render_refused(scene, {.raster = true, .aovs = aovs}))
     throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;
@@ -75,6 +76,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
   const bool on_gpu = tessellate_on_gpu(mode, renderer.driver());
   std::size_t triangles = renderer.prepare(resolved, emission, limits, on_gpu).triangles;
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  Image image;
   for (int k = 0; k < n; ++k) {
     if (scene.camera.shutter > 0) {
       // Motion blur: pass k is seen from the middle of the k-th of n parts of the shutter, as
@@ -88,12 +90,13 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
           std::max(triangles, renderer.prepare(seen, seen_emission, limits, on_gpu).triangles);
       pass_sample(renderer, k, n, seed, width, height, offsets);
       target.add_to(sum, subject_sum, share);
+      if (k == 0 && !aovs.empty()) renderer.surface_variables(aovs, image);
       continue;
     }
     pass_sample(renderer, k, n, seed, width, height, offsets);
     target.add_to(sum, subject_sum, share);
+    if (k == 0 && !aovs.empty()) renderer.surface_variables(aovs, image);
   }
-  Image image;
   image.width = width;
   image.height = height;
   image.rgb.resize(3 * pixels);

@@ -61,10 +61,12 @@ GLuint RasterRenderer::Impl::body_program_for(int variant, bool gpu, int feature
   static_assert(kAllBodyFeatures < 1024);
   GLuint& program = body_program_cache[(variant * 2 + (gpu ? 1 : 0)) * 1024 + features];
   if (program) return program;
-  const std::string defines = std::string(variant == kLit        ? "#define LIGHTCONE_LIT 1\n"
-                                          : variant == kTextured ? "#define LIGHTCONE_TEXTURED 1\n"
-                                                                 : "") +
-                              body_variant_defines(features);
+  const std::string defines =
+      std::string(variant == kLit                ? "#define LIGHTCONE_LIT 1\n"
+                  : variant == kTextured         ? "#define LIGHTCONE_TEXTURED 1\n"
+                  : variant == kSurfaceVariables ? "#define LIGHTCONE_SURFACE_VARIABLES 1\n"
+                                                 : "") +
+      body_variant_defines(features);
   const std::string fragment = fragment_shader(shader_sources::body_frag,
                                                shader_sources::patterns_glsl, defines.c_str(), gpu);
   if (!gpu)
@@ -441,6 +443,19 @@ void RasterRenderer::Impl::bind_frame_state() {
   glBindVertexArray(vertex_array);
 }
 
+void RasterRenderer::Impl::bind_body_buffers() {
+  glBindBuffer(GL_ARRAY_BUFFER, gpu_tessellation ? patch_buffer : vertex_buffer);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float), nullptr);
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  if (gpu_tessellation) glPatchParameteri(GL_PATCH_VERTICES, 3);
+  // The textured meshes' texture coordinates' maps, read by their draws alone.
+  glBindBuffer(GL_ARRAY_BUFFER, face_uv_buffer);
+  for (int row = 0; row < 2; ++row)
+    glVertexAttribPointer(2 + row, 4, GL_FLOAT, GL_FALSE, kFloatsPerUvMap * sizeof(float),
+                          reinterpret_cast<const void*>(4 * row * sizeof(float)));
+}
+
 // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
 void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* offsets) {
   const ResolvedScene& resolved = *scene;
@@ -460,16 +475,7 @@ void RasterRenderer::Impl::pass(double ox, double oy, const std::vector<float>* 
   bind_frame_state();
 
   glDepthFunc(GL_LESS);
-  glBindBuffer(GL_ARRAY_BUFFER, gpu_tessellation ? patch_buffer : vertex_buffer);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float), nullptr);
-  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
-                        reinterpret_cast<const void*>(3 * sizeof(float)));
-  if (gpu_tessellation) glPatchParameteri(GL_PATCH_VERTICES, 3);
-  // The textured meshes' texture coordinates' maps, read by their draws alone.
-  glBindBuffer(GL_ARRAY_BUFFER, face_uv_buffer);
-  for (int row = 0; row < 2; ++row)
-    glVertexAttribPointer(2 + row, 4, GL_FLOAT, GL_FALSE, kFloatsPerUvMap * sizeof(float),
-                          reinterpret_cast<const void*>(4 * row * sizeof(float)));
+  bind_body_buffers();
   const int features =
       specialise ? frame_features | (offsets ? kBodySampleOffsets : 0) : kAllBodyFeatures;
   for (const Variant variant : {kEmitter, kTextured}) {

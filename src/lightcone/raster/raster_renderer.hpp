@@ -9,11 +9,13 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/output_variable.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/raster/gl_context.hpp"
@@ -97,6 +99,11 @@ class RasterRenderer {
   // framebuffer's depth buffer holds, as pass() draws it after the bodies: with BaselinePass's
   // bodies, the frame as it would be if shading its bodies cost nothing (bench/bench_raster.cpp).
   void sky_pass();
+  // The output variables `aovs` of the prepared frame, each from the nearest surface at each
+  // pixel's centre as the ray tracer gives them (frame/ray_seen.hpp): their channels
+  // (aov_channel_names) appended to `image`. Flat space (render_refused refuses them near a
+  // black hole); draws into a target of its own and leaves the bound one bound.
+  void surface_variables(std::span<const Aov> aovs, Image& image);
   // The prepared frame's bodies as tessellated on the CPU (none on the GPU path): the vertex
   // array and buffer, its vertices' size in floats (the shape point first), and each body's
   // range of vertices, for BaselinePass.
@@ -129,11 +136,13 @@ struct RasterStats {
 // pattern and shades each pixel at the ray tracer's sample k for it (pixel_sample with `seed`),
 // so that away from outlines both renderers average the same directions. Near a black hole
 // `curved_shadows` casts the shadows. `subject`, when given, receives the automatic exposure's
-// subject weight of each pixel whatever the exposure. Throws GlUnavailable without OpenGL 3.3.
+// subject weight of each pixel whatever the exposure. `aovs`: output variables, as channels
+// of the image, from the first pass's frame at the pixels' centres, as the ray tracer's come
+// from its first observation. Throws GlUnavailable without OpenGL 3.3.
 Image render_raster(const Scene& scene, RasterStats* stats = nullptr,
                     const TessellationLimits& limits = {}, std::uint64_t seed = 0,
                     RasterTessellation mode = RasterTessellation::kAuto,
                     const CurvedShadowSource& curved_shadows = {},
-                    std::vector<float>* subject = nullptr);
+                    std::vector<float>* subject = nullptr, std::span<const Aov> aovs = {});
 
 }  // namespace lightcone

@@ -54,8 +54,9 @@ inline Vec3 lit_body_velocity(const ResolvedScene& scene, const Object& object) 
 
 struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
-  // image): small programs run faster than one with every branch.
-  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2 };
+  // image): small programs run faster than one with every branch. kSurfaceVariables draws every
+  // body's surface for the output variables (surface_variables.cpp).
+  enum Variant { kEmitter = 0, kTextured = 1, kLit = 2, kSurfaceVariables = 3 };
   // And one per path (CPU or GPU tessellation) and set of features its frame uses: a frame runs
   // only the code its bodies need, since a branch on a uniform still costs a software
   // rasteriser every fragment it masks (twice the time of street.json's frame). Each is built
@@ -202,6 +203,8 @@ struct RasterRenderer::Impl {
   // What every pass draws with: the depth test, no culling or blending, the colour rows on unit
   // 0, the bodies' vertex array.
   void bind_frame_state();
+  // The bodies' vertex (or patch) buffer and texture coordinates' maps on their attributes.
+  void bind_body_buffers();
   // One pass of the prepared frame, its samples at (ox, oy) within each pixel.
   void pass(double ox, double oy, const std::vector<float>* offsets);
   // The sky and its stars, behind what the bound target's depth buffer holds.

@@ -1,61 +1,11 @@
 #include "lightcone/trace/aov.hpp"
 
-#include <limits>
-
 #include "lightcone/frame/curved_ray.hpp"
+#include "lightcone/frame/ray_seen.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
 
 namespace lightcone {
 namespace {
-
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-// What the ray along one look direction saw, for every output variable.
-struct RaySeen {
-  double doppler = 1;
-  int order = 0;
-  bool surface = false;  // it met a body or the disk
-  float object = kObjectSky;
-  // On a surface: the event met (W), its distance in the camera's frame and the surface's
-  // normal (W's axes, facing the incoming ray).
-  Vec4 event;
-  double distance = 0;
-  Vec3 normal;
-};
-
-// The values of each of `aovs`, one after another.
-void write_values(const ResolvedScene& scene, const Vec3& u, const RaySeen& seen,
-                  std::span<const Aov> aovs, float* out) {
-  for (const Aov aov : aovs) {
-    switch (aov) {
-      case Aov::kDoppler:
-        *out++ = static_cast<float>(seen.doppler);
-        break;
-      case Aov::kImageOrder:
-        *out++ = static_cast<float>(seen.order);
-        break;
-      case Aov::kObject:
-        *out++ = seen.object;
-        break;
-      case Aov::kEmissionTime:
-        *out++ =
-            seen.surface ? static_cast<float>(seen.event.t / scene.scene->speed_of_light) : -kInf;
-        break;
-      case Aov::kDistance:
-        *out++ = seen.surface ? static_cast<float>(seen.distance) : kInf;
-        break;
-      case Aov::kDepth:
-        *out++ =
-            seen.surface ? static_cast<float>(seen.distance * dot(u, scene.camera.forward)) : kInf;
-        break;
-      case Aov::kNormal:
-        *out++ = static_cast<float>(seen.normal.x);
-        *out++ = static_cast<float>(seen.normal.y);
-        *out++ = static_cast<float>(seen.normal.z);
-        break;
-    }
-  }
-}
 
 // A body's surface normal with W's axes (its rest frame's), from the shape's own.
 Vec3 body_normal(const ResolvedBody& body, const Vec3& shape_normal) {
@@ -133,7 +83,7 @@ void aov_values(const ResolvedScene& scene, const Tracer& tracer, const Vec3& u,
                 std::span<const Aov> aovs, float* out, const CurvedBodies* bodies) {
   const RaySeen seen = scene.hole ? seen_along_curved_ray(scene, u, bodies)
                                   : seen_along_straight_ray(scene, tracer, u);
-  write_values(scene, u, seen, aovs, out);
+  write_aov_values(scene, u, seen, aovs, out);
 }
 
 }  // namespace lightcone

@@ -60,6 +60,13 @@ layout(location = 2) out vec4 lit_albedo;   // the albedo, lit_code
 float lit_code(int body, int k, float alpha) {
   return float((body * 4 + k + 1) * 2 + (alpha > 1.5 ? 1 : 0) + 1);
 }
+#elif defined(LIGHTCONE_SURFACE_VARIABLES)
+// What the output variables need of the nearest surface at each pixel's centre
+// (raster/surface_variables.cpp): its normal with W's axes, facing the ray, and its light
+// travel distance s; its body's index and Doppler factor (alpha 1: a surface, 0: none).
+layout(location = 0) out vec4 surface_normal_distance;
+layout(location = 1) out vec4 surface_object_doppler;
+uniform float body_index;
 #else
 layout(location = 0) out vec4 colour;
 #endif
@@ -134,7 +141,7 @@ SpinHit spinning_hit(vec3 origin, vec3 direction, float tau0, float tau1, bool r
   return hit;
 }
 
-#if defined(LIGHTCONE_LIT)
+#if defined(LIGHTCONE_LIT) || defined(LIGHTCONE_SURFACE_VARIABLES)
 // trace/tracer.cpp: the normal at a surface point, in shape coordinates, facing the ray.
 vec3 shape_normal(vec3 p, vec3 direction) {
   vec3 n = plane.xyz;
@@ -152,8 +159,11 @@ vec3 shape_normal(vec3 p, vec3 direction) {
   return dot(n, direction) > 0.0 ? -n : n;
 }
 
-uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
 uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
+#endif
+
+#if defined(LIGHTCONE_LIT)
+uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
 uniform int relativity;
@@ -197,7 +207,14 @@ void main() {
   if (pattern == 4 && shape_kind == 0) k = clock_index(body_uv(p), proper_time);
 #endif
   // One program per kind of material (the program defines which), so that each stays small.
-#if defined(LIGHTCONE_LIT)
+#if defined(LIGHTCONE_SURFACE_VARIABLES)
+  vec3 normal = normalize(normal_to_rest * shape_normal(p, direction));
+#if !defined(LIGHTCONE_NO_SPIN)
+  if (spinning == 1) normal = turned(spin_axis, spin_angle, normal);
+#endif
+  surface_normal_distance = vec4(normal, s);
+  surface_object_doppler = vec4(body_index, d, 0.0, 1.0);
+#elif defined(LIGHTCONE_LIT)
   vec3 normal = normalize(normal_to_rest * shape_normal(p, direction));
   vec3 surface_velocity = surface_velocity_of_body;
 #if !defined(LIGHTCONE_NO_SPIN)

@@ -1,0 +1,30 @@
+// What the ray through a pixel's centre saw, and the output variables' values from it: one
+// definition of each variable for both renderers (the ray tracer's trace/aov.hpp, the raster
+// renderer's raster/surface_variables.cpp), which differ only in how they find what was seen.
+#pragma once
+
+#include <span>
+
+#include "lightcone/frame/output_variable.hpp"
+#include "lightcone/frame/resolved_scene.hpp"
+
+namespace lightcone {
+
+struct RaySeen {
+  double doppler = 1;
+  int order = 0;
+  bool surface = false;  // it met a body or the disk
+  float object = kObjectSky;
+  // On a surface: the event met (W), its distance in the camera's frame and the surface's
+  // normal (W's axes, facing the incoming ray).
+  Vec4 event;
+  double distance = 0;
+  Vec3 normal;
+};
+
+// The values of each of `aovs` for a ray of look direction u, one after another in `out` (as
+// many as each one's channels, aov_channel_names).
+void write_aov_values(const ResolvedScene& scene, const Vec3& u, const RaySeen& seen,
+                      std::span<const Aov> aovs, float* out);
+
+}  // namespace lightcone
