@@ -179,9 +179,9 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
                      a.scene.c_str(), difference.c_str());
       RasterStats raster_stats;
       try {
-        r.image = render_raster(scene, &raster_stats, {}, a.seed,
-                                tessellation_named(a.tessellation), curved_body_shadows, nullptr,
-                                options.aovs);
+        r.image =
+            render_raster(scene, &raster_stats, {}, a.seed, tessellation_named(a.tessellation),
+                          curved_body_shadows, nullptr, options.aovs);
       } catch (const GlUnavailable& e) {
         throw InputError(fmt::format(
             "--renderer raster: {}: the raster renderer needs OpenGL 3.3 (core profile) through "
