@@ -308,7 +308,7 @@ bool CurvedBodies::Body::may_meet_in_time(const Vec4& a, const Vec4& b,
 
 bool CurvedBodies::Body::may_meet_between(const Vec3& a, const Vec3& b, double t0, double t1,
                                           double margin) const {
-  if (!(t0 <= t1)) return true;  // (no bound)
+  if (!(t0 <= t1 && std::isfinite(t0) && std::isfinite(t1))) return true;  // (no bound)
   const double reach = radius + margin;
   if (const auto* straight = std::get_if<HoleWorldLine::Straight>(&line.path())) {
     const auto at = [&](double t) {
@@ -405,10 +405,20 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         lo = std::max(lo, from), hi = std::min(hi, best_phi);
         if (!(lo < hi)) continue;
         double phi_a = lo, r_a;
-        Vec4 a = events.event(phi_a, moving, &r_a);
-        bool a_timed = moving;
-        // Bounds on a's time, for a moving body: its time once a is timed.
-        double a_early = a.t, a_late = a.t;
+        Vec4 a = events.event(phi_a, false, &r_a);
+        bool a_timed = false;
+        // Bounds on a's time, for a moving body: the light cone's from the path's start (timed
+        // where a piece needs it), its time once a is timed.
+        double a_early = 0, a_late = 0;
+        if (moving) {
+          const double r0 = start.radius, turn = events.course.turning_radius;
+          const bool turn_between = events.turned(phi_a);
+          const TimeBounds bounds =
+              light_cone_bounds({start.time, start.time}, path.offset(0, r0), a.x, phi_a,
+                                turn_between ? turn : std::min(r0, r_a),
+                                turn_between ? (r0 - turn) + (r_a - turn) : std::abs(r0 - r_a));
+          a_early = bounds.early, a_late = bounds.late;
+        }
         Vec3 shape_a;
         bool shape_known = false;
         // A geodesic body's state at a's time, once known.
