@@ -40,11 +40,12 @@ def test_render_equals_the_programs_exr_bit_for_bit(tmp_path, renderer):
     assert np.array_equal(ours.view(np.uint32), theirs.view(np.uint32))
 
 
-def test_output_variables_equal_the_programs(tmp_path):
+@pytest.mark.parametrize("renderer", ["trace", "raster"])
+def test_output_variables_equal_the_programs(tmp_path, renderer):
     exr = tmp_path / "cli.exr"
     cli("render", TERRELL, "-o", str(exr), "--samples", "1", "--aov", "doppler,normal,object",
-        "--quiet", *SMALL_SET)
-    ours = lc.render(lc.load(TERRELL, overrides=SMALL), samples=1,
+        "--renderer", renderer, "--quiet", *SMALL_SET)
+    ours = lc.render(lc.load(TERRELL, overrides=SMALL), samples=1, renderer=renderer,
                      aovs=["doppler", "normal", "object"])
     theirs = lc.read_image(exr)
     assert np.array_equal(ours["doppler"], theirs["doppler"])
