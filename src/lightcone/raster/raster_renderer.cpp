@@ -287,7 +287,6 @@ void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const Bod
   glUniform3fv(uniform(p, "albedo"), 2, albedos);
   const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
   set_mat3(p, "normal_to_rest", object.rotation * Mat3::diagonal(inverse_scale));
-  glUniform1i(uniform(p, "relativity"), resolved.scene->render.relativity ? 1 : 0);
   set_vec3(p, "surface_velocity_of_body", lit_body_velocity(resolved, object));
   glUniform1i(uniform(p, "reflection_body"), draw.reflection_body);
 }
@@ -310,6 +309,7 @@ void RasterRenderer::Impl::draw_body(const ResolvedScene& resolved, const BodyDr
   set_vec3(body_program, "ray_offset", body.ray_offset);
   set_mat3(body_program, "shape_spatial", body.spatial);
   set_doppler(body_program, resolved, body.velocity);
+  glUniform1i(uniform(body_program, "relativity"), resolved.scene->render.relativity ? 1 : 0);
   glUniform1i(uniform(body_program, "colour_row"), draw.first_row);
   glUniform1f(uniform(body_program, "subject_alpha"),
               body.moves_relative_to_camera() ? 2.0f : 1.0f);

@@ -13,6 +13,15 @@ Vec3 body_normal(const ResolvedBody& body, const Vec3& shape_normal) {
   return normalize(o.rotation * component_div(shape_normal, o.scale));
 }
 
+// A straight ray's hit's normal: a spinning body's turned with its spin at the event met, as
+// its lighting takes it (frame/lighting.cpp).
+Vec3 hit_normal(const ResolvedScene& scene, const Hit& hit) {
+  const ResolvedBody& body = scene.bodies[hit.body];
+  const Vec3 normal = body_normal(body, hit.shape_normal);
+  if (body.spin < 0) return normal;
+  return Mat3::rotation(scene.spins[body.spin].axis, hit.spin_angle) * normal;
+}
+
 // The event where a camera ray on `path` meets the disk (ray.end kDisk), in W: after sweeping
 // ray.phi at radius ray.disk_radius, as long before the observation as the light's coordinate
 // time on the stretches of the path between (on each, r is monotonic).
@@ -73,7 +82,7 @@ RaySeen seen_along_straight_ray(const ResolvedScene& scene, const Tracer& tracer
   seen.object = static_cast<float>(hit->body);
   seen.event = scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s});
   seen.distance = hit->s;
-  seen.normal = body_normal(scene.bodies[hit->body], hit->shape_normal);
+  seen.normal = hit_normal(scene, *hit);
   return seen;
 }
 

@@ -45,6 +45,7 @@ uniform mat3 rest_from_shape;
 uniform mat3 shape_of_rest;
 uniform mat4 trace_from_rest;  // the linear part: 4-velocities from the rest frame to F
 uniform float sphere_radius;
+uniform int relativity;  // 0: the classical picture, where no point's motion shifts its light
 
 #if defined(LIGHTCONE_LIT)
 // A lit body writes what the lighting pass (lit_surfaces.frag) needs of its nearest surface at
@@ -166,7 +167,6 @@ uniform mat3 normal_to_rest;  // rotation * diag(1 / scale)
 uniform vec3 albedo[2];  // lit materials: the rest-frame albedo of each fixed colour
 uniform mat4 trace_to_world;  // the linear part: (t, x) in F to W
 uniform vec3 surface_velocity_of_body;  // in W (0 for the classical picture)
-uniform int relativity;
 uniform int reflection_body;  // the body's row of reflection_index
 #endif
 
@@ -187,9 +187,11 @@ void main() {
     p = surface_point(hit.shape_point);
     spin_angle = hit.angle;
     direction = shape_of_rest * turned(spin_axis, -hit.angle, rest_from_shape * direction);
-    vec4 moving = trace_from_rest * vec4(1.0, spin_rate * cross(spin_axis, hit.rest_point));
-    velocity = moving.yzw / moving.x;
-    gamma = inversesqrt(max(1.0 - dot(velocity, velocity), 1e-12));
+    if (relativity == 1) {
+      vec4 moving = trace_from_rest * vec4(1.0, spin_rate * cross(spin_axis, hit.rest_point));
+      velocity = moving.yzw / moving.x;
+      gamma = inversesqrt(max(1.0 - dot(velocity, velocity), 1e-12));
+    }
   } else
 #endif
   {
