@@ -2,13 +2,19 @@
 // light_cone_bounds), which spare the chords of a curved ray the exact time of their ends where a
 // moving body cannot be near them: against the path's exact coordinate time (Carlson's integrals,
 // physics/schwarzschild.hpp), along rays that pass close by the hole, turn, or fall in, over
-// chords short and long, and carried along many chords without a new exact time. G = c = M = 1.
+// chords short and long, and carried along many chords without a new exact time; and a falling
+// box, tested against its prism along its line of fall rather than its ball, is met wherever
+// `locate`'s independent lens solve sees it. G = c = M = 1.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "lightcone/frame/curved_bodies.hpp"
+#include "lightcone/frame/curved_ray.hpp"
+#include "lightcone/frame/locate.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
+#include "lightcone/trace/tracer.hpp"
+#include "support/test_support.hpp"
 
 namespace lightcone {
 namespace {
@@ -76,6 +82,35 @@ TEST(LightConeBounds, HoldTheExactTimeAlongManyChords) {
       EXPECT_GE(carried.late, t);
     }
   }
+}
+
+// infall.json's clocks, turned about an oblique axis so that their outlines across their lines
+// of fall are hexagons: every primary image of a point just inside a corner of each, where
+// `locate` finds one, is on the clock (a prism too tight, or not holding the contracted box,
+// would let the rays at the silhouette's corners through).
+TEST(FallingPrism, HoldsTheBoxWhereverItIsSeen) {
+  Scene s = test::load_repository_scene("infall.json");
+  for (Object& o : s.objects) o.rotation = Mat3::rotation(normalize(Vec3{1, 2, 3}), 0.7);
+  const ResolvedScene resolved = resolve_scene(s);
+  const Tracer tracer(resolved);
+  const CurvedBodies bodies(resolved, tracer);
+  int checked = 0;
+  for (std::size_t body = 0; body < s.objects.size(); ++body)
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 point =
+          Vec3{corner & 1 ? 0.79 : -0.79, corner & 2 ? 0.79 : -0.79, corner & 4 ? 0.79 : -0.79};
+      const LocateResult located =
+          locate(s, {LocateQuery::Kind::ObjectPoint, s.objects[body].name, point});
+      for (const LocateImage& image : located.images) {
+        if (image.order != 0) continue;
+        SCOPED_TRACE(testing::Message() << s.objects[body].name << ", corner " << corner);
+        const CurvedRay ray = follow_curved_ray(*resolved.hole, image.direction, &bodies);
+        EXPECT_EQ(ray.end, CurvedRayEnd::kBody);
+        EXPECT_EQ(ray.hit.body, static_cast<int>(body));
+        ++checked;
+      }
+    }
+  EXPECT_GE(checked, 12);
 }
 
 }  // namespace

@@ -227,6 +227,56 @@ void tabulate_fall(const RadialFall& fall, std::vector<double>& times, std::vect
   }
 }
 
+// A falling box's or mesh's prism along its line of fall (the unit d): its box's corners (its
+// shape's bounds), in W's axes and units of the hole's mass m, seen across d (their convex hull,
+// counter-clockwise, by Andrew's monotone chain) and along it (their extent and the origin).
+// Contraction along d moves its points toward the origin along d alone, within the prism.
+void outline_prism(const Object& o, const Vec3& d, double m,
+                   std::vector<std::array<double, 2>>& outline, Vec3& across_x, Vec3& across_y,
+                   double& along_lo, double& along_hi) {
+  Vec3 lower, upper;
+  if (const auto* box = std::get_if<Box>(&o.shape)) {
+    upper = box->size * 0.5, lower = upper * -1.0;
+  } else if (const auto* mesh = std::get_if<MeshShape>(&o.shape)) {
+    if (mesh->mesh->positions.empty()) return;
+    lower = upper = mesh->mesh->positions.front();
+    for (const Vec3& p : mesh->mesh->positions)
+      for (int k = 0; k < 3; ++k)
+        lower[k] = std::min(lower[k], p[k]), upper[k] = std::max(upper[k], p[k]);
+  } else {
+    return;  // a sphere's ball is its shape, whatever its contraction
+  }
+  across_x = any_perpendicular(d);
+  across_y = cross(d, across_x);
+  const Mat3 to_world = o.rotation * Mat3::diagonal(o.scale);
+  std::vector<std::array<double, 2>> points;
+  along_lo = along_hi = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 c{corner & 1 ? upper.x : lower.x, corner & 2 ? upper.y : lower.y,
+                 corner & 4 ? upper.z : lower.z};
+    const Vec3 w = to_world * c / m;
+    points.push_back({dot(w, across_x), dot(w, across_y)});
+    along_lo = std::min(along_lo, dot(w, d)), along_hi = std::max(along_hi, dot(w, d));
+  }
+  std::sort(points.begin(), points.end());
+  const auto turn = [](const auto& o, const auto& a, const auto& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  std::vector<std::array<double, 2>> hull(2 * points.size());
+  std::size_t k = 0;
+  for (const auto& p : points) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  // A degenerate outline (a flat box seen edge-on across the line) is no polygon: keep the ball.
+  if (hull.size() >= 3) outline = std::move(hull);
+}
+
 }  // namespace
 
 TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b_x, double dphi,
@@ -246,10 +296,18 @@ CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segme
                        origin_radius(o.shape, o.scale) / m * (1 + 1e-9),
                        (o.rotation * Mat3::diagonal(o.scale)).inverse() * Mat3::diagonal({m, m, m}),
                        {},
-                       {}});
+                       {},
+                       {},
+                       {},
+                       {},
+                       0,
+                       0});
     Body& body = bodies_.back();
-    if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&body.line.path()))
+    if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&body.line.path())) {
       tabulate_fall(fall->fall, body.fall_times, body.fall_radii);
+      outline_prism(o, fall->direction, m, body.outline, body.across_x, body.across_y,
+                    body.along_lo, body.along_hi);
+    }
   }
 }
 
@@ -341,7 +399,45 @@ bool CurvedBodies::Body::may_meet_between(const Vec3& a, const Vec3& b, double t
   const double lowest = k1 < fall_times.size() ? fall_radii[k1] : 2 * line.mass();
   if (k0 == 0 && fall.fall.is_from_infinity()) return true;
   const double highest = k0 == 0 ? fall_radii.front() : fall_radii[k0 - 1];
+  if (!outline.empty()) return prism_near(a, b, lowest, highest, margin + 1e-9 * radius);
   return segment_distance(a, b, fall.direction * lowest, fall.direction * highest) <= reach;
+}
+
+bool CurvedBodies::Body::prism_near(const Vec3& a, const Vec3& b, double lowest, double highest,
+                                    double margin) const {
+  const Vec3& d = std::get<HoleWorldLine::Fall>(line.path()).direction;
+  // The segment's part within the prism's extent along the line, widened by the margin.
+  const double za = dot(a, d), zb = dot(b, d);
+  const double lo = lowest + along_lo - margin, hi = highest + along_hi + margin;
+  double s0 = 0, s1 = 1;
+  if (za != zb) {
+    const double u = (lo - za) / (zb - za), v = (hi - za) / (zb - za);
+    s0 = std::max(s0, std::min(u, v)), s1 = std::min(s1, std::max(u, v));
+  } else if (za < lo || za > hi) {
+    return false;
+  }
+  if (!(s0 <= s1)) return false;
+  // Across the line: that part against the outline (a convex polygon, counter-clockwise).
+  const auto across = [&](double s) {
+    const Vec3 p = a + (b - a) * s;
+    return Vec3{dot(p, across_x), dot(p, across_y), 0};
+  };
+  const Vec3 p0 = across(s0), p1 = across(s1);
+  const auto inside = [&](const Vec3& p) {
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      const auto& e0 = outline[i];
+      const auto& e1 = outline[(i + 1) % outline.size()];
+      if ((e1[0] - e0[0]) * (p.y - e0[1]) - (e1[1] - e0[1]) * (p.x - e0[0]) < 0) return false;
+    }
+    return true;
+  };
+  if (inside(p0) || inside(p1)) return true;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const auto& e0 = outline[i];
+    const auto& e1 = outline[(i + 1) % outline.size()];
+    if (segment_distance(p0, p1, {e0[0], e0[1], 0}, {e1[0], e1[1], 0}) <= margin) return true;
+  }
+  return false;
 }
 
 Vec3 CurvedBodies::Body::shape_point(const WorldShapeMap& world, const Vec4& event,

@@ -16,6 +16,7 @@
 // path, so its time includes the Shapiro delay.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -108,6 +109,16 @@ class CurvedBodies : public CurvedShadowQuery {
     // A fall's radius at coordinate times (increasing; the radius decreasing with them, from the
     // fall's start), which bound its radius over an interval of times without solving its fall.
     std::vector<double> fall_times, fall_radii;
+    // A falling box's or mesh's prism along its line of fall (its box's outline across the line,
+    // convex, in the axes across, and its extent along it, the origin's included), which holds
+    // it whatever its contraction along the line: tighter than its ball. Empty: its ball.
+    std::vector<std::array<double, 2>> outline;
+    Vec3 across_x, across_y;
+    double along_lo = 0, along_hi = 0;
+    // Whether the segment from a to b comes within `margin` of the prism with its origin at
+    // radii in [lowest, highest] on its line.
+    bool prism_near(const Vec3& a, const Vec3& b, double lowest, double highest,
+                    double margin) const;
     // Where the body is at the event's time, in its shape's coordinates: by its resolved
     // (affine) map on a straight line, by its state then on a geodesic (`state`, if known).
     Vec3 shape_point(const WorldShapeMap& world, const Vec4& event, const HoleView& hole,
