@@ -4,7 +4,8 @@
 // physics/schwarzschild.hpp), along rays that pass close by the hole, turn, or fall in, over
 // chords short and long, and carried along many chords without a new exact time; and a falling
 // box, tested against its prism along its line of fall rather than its ball, is met wherever
-// `locate`'s independent lens solve sees it. G = c = M = 1.
+// `locate`'s independent lens solve sees it, its state solved on its fall's t(r) in closed form.
+// G = c = M = 1.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/locate.hpp"
 #include "lightcone/physics/schwarzschild.hpp"
+#include "lightcone/physics/schwarzschild_geodesics.hpp"
 #include "lightcone/trace/tracer.hpp"
 #include "support/test_support.hpp"
 
@@ -82,6 +84,20 @@ TEST(LightConeBounds, HoldTheExactTimeAlongManyChords) {
       EXPECT_GE(carried.late, t);
     }
   }
+}
+
+// A fall's point at a radius in closed form (what a falling body's state near a hole is solved
+// on) is the point at its proper time there, which finds its cycloid's parameter by a root.
+TEST(RadialFall, AtRadiusIsThePointAtItsProperTime) {
+  for (const RadialFall& fall : {RadialFall::from_rest(1, 10), RadialFall::from_infinity(1, 12)})
+    for (const double r : {9.5, 6.0, 3.0, 2.1, 2.0001}) {
+      const RadialFallPoint p = fall.at_radius(r);
+      const RadialFallPoint q = fall.at_proper_time(fall.proper_time_at_radius(r));
+      SCOPED_TRACE(r);
+      EXPECT_NEAR(p.coordinate_time, q.coordinate_time, 1e-12 * (1 + std::abs(q.coordinate_time)));
+      EXPECT_NEAR(p.local_velocity, q.local_velocity, 1e-12);
+      EXPECT_NEAR(q.radius, r, 1e-12 * r);
+    }
 }
 
 // infall.json's clocks, turned about an oblique axis so that their outlines across their lines

@@ -158,9 +158,10 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
   if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path())) {
     // The tube along the line of fall (r >= 2M) cuts the plane, at radii rho >= 2M, where
     // rho^2 (1 - p^2 cos^2(theta - theta_d)) <= R^2, p the length of the direction's projection.
-    const double now = length(line.at(start_time).position) + radius;
+    // (Where it is now, which costs the solve of its fall, matters from infinity alone.)
     const double reach = fall->fall.is_from_infinity()
-                             ? moving_reach(m, start.radius, line.max_coordinate_speed(), now)
+                             ? moving_reach(m, start.radius, line.max_coordinate_speed(),
+                                            length(line.at(start_time).position) + radius)
                              : line.farthest() + radius;
     if (!(radius < 2 * m)) return everywhere(2 * m, reach);
     const Vec3 in_plane = fall->direction - n * dot(fall->direction, n);
@@ -189,7 +190,7 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
   } else {
     const double vn = dot(v, n), speed = length(v);
     // How far out the ray can meet it: past where the body cannot keep up with the ray.
-    const double now = length(line.at(start_time).position) + radius;
+    const double now = length(p + v * (start_time - straight.time)) + radius;
     const double reach = moving_reach(m, start.radius, speed, now);
     // How far in: its line's closest approach.
     const double near = line.nearest() - radius;
@@ -440,13 +441,43 @@ bool CurvedBodies::Body::prism_near(const Vec3& a, const Vec3& b, double lowest,
   return false;
 }
 
+HoleWorldLineState CurvedBodies::Body::state_at(double t) const {
+  const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path());
+  if (!fall) return line.at(t);
+  // Between the sampled times about t, its radius is the root of t(r) - t, t(r) in closed form
+  // and decreasing: bracketed by their radii. Before the first (held at r0, or from farther than
+  // the samples) and after the last, the world-line's own solve.
+  const double u = t - fall->time;
+  const auto k = static_cast<std::size_t>(
+      std::upper_bound(fall_times.begin(), fall_times.end(), u) - fall_times.begin());
+  if (k == 0 || k == fall_times.size()) return line.at(t);
+  const RadialFall& radial = fall->fall;
+  const auto miss = [&](double r) { return radial.at_radius(r).coordinate_time - u; };
+  const double lo = fall_radii[k], hi = fall_radii[k - 1];
+  const double miss_lo = miss(lo), miss_hi = miss(hi);
+  double r = miss_lo == 0 ? lo : hi;
+  if (miss_lo > 0 && miss_hi < 0) {
+    std::uintmax_t iterations = 100;
+    const auto [r0, r1] = boost::math::tools::toms748_solve(
+        miss, lo, hi, miss_lo, miss_hi, boost::math::tools::eps_tolerance<double>(), iterations,
+        MathPolicy());
+    r = (r0 + r1) / 2;
+  } else if (miss_lo != 0 && miss_hi != 0) {
+    return line.at(t);  // (rounding unbracketed it)
+  }
+  const RadialFallPoint p = radial.at_radius(r);
+  const double f = 1 - 2 * line.mass() / r;
+  const Vec3& d = fall->direction;
+  return {d * r, d * (f * p.local_velocity), d * p.local_velocity, radial.proper_time_at_radius(r)};
+}
+
 Vec3 CurvedBodies::Body::shape_point(const WorldShapeMap& world, const Vec4& event,
                                      const HoleView& hole, const HoleWorldLineState* known) const {
   if (std::holds_alternative<HoleWorldLine::Straight>(line.path()))
     return world.shape_point(in_world(hole, event));
   // Its rest frame's coordinates of a point simultaneous in W with its origin at offset d:
   // d stretched by gamma along its velocity.
-  const HoleWorldLineState state = known ? *known : line.at(event.t);
+  const HoleWorldLineState state = known ? *known : state_at(event.t);
   return to_shape * rest_offset_of(event.x - state.position, state.velocity);
 }
 
@@ -570,8 +601,8 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
                   return false;
                 }
                 if (!straight) {
-                  if (!a_state) state_a = body.line.at(a.t), a_state = true;
-                  state_b = body.line.at(b.t), b_state = true;
+                  if (!a_state) state_a = body.state_at(a.t), a_state = true;
+                  state_b = body.state_at(b.t), b_state = true;
                 }
               }
               if (body.may_meet_in_time(a, b, state_a, state_b, margin, acceleration)) return true;
@@ -608,7 +639,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
           // No chord short enough in time (a path that cannot be resolved at this angle): give
           // up on this window rather than stand still.
           if (!(phi_b > phi_a)) break;
-          if (!straight && halved) state_b = body.line.at(b.t);
+          if (!straight && halved) state_b = body.state_at(b.t);
           if (!shape_known) shape_a = shape_of(a, straight ? nullptr : &state_a);
           const Vec3 shape_b = shape_of(b, straight ? nullptr : &state_b);
           shape_known = true;
@@ -680,7 +711,7 @@ bool CurvedBodies::first_hit(const HoleView& hole, const CurvedPath& path, doubl
   ray.hit.shape_point = best.shape_point;
   complete_surface_hit(scene_, best.incoming, ray.hit, best.prim);
   // The body's clock (its origin's) and velocity when it emitted.
-  const HoleWorldLineState state = body.line.at(best.event.t);
+  const HoleWorldLineState state = body.state_at(best.event.t);
   ray.hit.velocity = state.velocity;
   ray.hit.proper_time = state.proper_time * hole.scale;
   // The shift: the energy the point measures for the photon, against the camera's. In the

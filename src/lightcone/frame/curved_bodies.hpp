@@ -119,6 +119,9 @@ class CurvedBodies : public CurvedShadowQuery {
     // radii in [lowest, highest] on its line.
     bool prism_near(const Vec3& a, const Vec3& b, double lowest, double highest,
                     double margin) const;
+    // Its origin's state at time t: on a fall, its radius solved on t(r) in closed form within
+    // the bracket of its sampled times (fall_times) about t, else its world-line's.
+    HoleWorldLineState state_at(double t) const;
     // Where the body is at the event's time, in its shape's coordinates: by its resolved
     // (affine) map on a straight line, by its state then on a geodesic (`state`, if known).
     Vec3 shape_point(const WorldShapeMap& world, const Vec4& event, const HoleView& hole,

@@ -146,6 +146,15 @@ double RadialFall::proper_time_at_radius(double r) const {
   return 2.0 / 3 * reference_ * one_minus_s * (1 + s + s * s) / e_;
 }
 
+RadialFallPoint RadialFall::at_radius(double r) const {
+  const double tau = proper_time_at_radius(r);
+  if (!is_from_infinity()) {
+    const double eta = 2 * std::atan(std::sqrt((r0_ - r) / r));
+    return {r, cycloid_time(eta, tau), -std::tan(eta / 2) * e_ / energy_};
+  }
+  return {r, infinity_time(tau), -e_ / std::sqrt(r / reference_)};
+}
+
 double RadialFall::proper_time_at_coordinate_time(double t) const {
   if (t == 0) return 0;
   const double horizon = horizon_proper_time();

@@ -64,6 +64,9 @@ class RadialFall {
   // The proper time at which the falling body is at r, 0 <= r (<= r0 from rest at r0), on its
   // way in (>= 0 from rest at r0).
   double proper_time_at_radius(double r) const;
+  // The point at r > 2M (<= r0 from rest at r0) on its way in, in closed form: eta (or tau, from
+  // infinity) from r, then t and v as at_proper_time gives them (which finds eta from tau).
+  RadialFallPoint at_radius(double r) const;
   // The proper time at which it reaches the horizon, r = 2M.
   double horizon_proper_time() const { return proper_time_at_radius(2 * mass_); }
 
