@@ -131,7 +131,7 @@ py::dict render(const Scene& scene, const std::string& renderer,
   for (const std::string& name : aovs) options.aovs.push_back(*aov_from_name(name));
   throw_if_refused(renderer_refused(renderer));
   throw_if_refused(tessellation_refused(tessellation));
-  throw_if_refused(render_refused(scene, {.raster = renderer == "raster", .aovs = options.aovs}));
+  throw_if_refused(render_refused(scene, {.aovs = options.aovs}));
   Image image;
   double exposure = 0, seconds = 0;
   bool cancelled = false;

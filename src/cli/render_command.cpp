@@ -137,7 +137,7 @@ Scene render_scene(const RenderArgs& a, const RenderOutputs& out) {
   }
   if (a.scale) scale_image_size(scene.camera, *a.scale);
   if (a.preview) scale_image_size(scene.camera, 0.25);  // a quarter of the size, the same view
-  throw_if_refused(render_refused(scene, {.raster = out.raster, .aovs = out.aovs}));
+  throw_if_refused(render_refused(scene, {.aovs = out.aovs}));
   return scene;
 }
 

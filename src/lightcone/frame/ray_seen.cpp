@@ -1,8 +1,67 @@
 #include "lightcone/frame/ray_seen.hpp"
 
+#include <cmath>
 #include <limits>
 
+#include "lightcone/physics/schwarzschild.hpp"
+
 namespace lightcone {
+namespace {
+
+// The event where a camera ray on `path` meets the disk (ray.end kDisk), in W: after sweeping
+// ray.phi at radius ray.disk_radius, as long before the observation as the light's coordinate
+// time on the stretches of the path between (on each, r is monotonic).
+Vec4 disk_event(const ResolvedScene& scene, const CurvedPath& path, const CurvedRay& ray) {
+  const HoleView& hole = *scene.hole;
+  const double r0 = hole.camera_radius, r = ray.disk_radius, turn = path.sweep.turning_radius;
+  const double delay =
+      turn > 0 && ray.phi > path.sweep.angle_to_turn
+          ? coordinate_time(path.orbit, r0, turn) + coordinate_time(path.orbit, turn, r)
+          : coordinate_time(path.orbit, r0, r);
+  return {scene.observation_event.t - delay * hole.scale,
+          hole.centre + path.offset(ray.phi, r) * hole.scale};
+}
+
+// The disk's normal on the side a backward ray on `path` that crosses its plane at phi comes
+// from: against the path's direction there (its radial part lies in the plane).
+Vec3 disk_normal_met(const HoleView& hole, const CurvedPath& path, double phi) {
+  const Vec3 along = path.e2 * std::cos(phi) - path.e1 * std::sin(phi);
+  const Vec3& n = hole.disk->normal;
+  return dot(n, along) > 0 ? n * -1.0 : n;
+}
+
+}  // namespace
+
+Vec3 body_normal(const ResolvedBody& body, const Vec3& shape_normal) {
+  const Object& o = *body.object;
+  return normalize(o.rotation * component_div(shape_normal, o.scale));
+}
+
+RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
+                              const CurvedBodies* bodies) {
+  const HoleView& hole = *scene.hole;
+  const CurvedRay ray = follow_curved_ray(hole, u, bodies);
+  RaySeen seen;
+  seen.doppler = ray.shift;
+  seen.order = ray.order;
+  if (ray.end == CurvedRayEnd::kSky || ray.end == CurvedRayEnd::kHorizon) {
+    seen.object = ray.end == CurvedRayEnd::kSky ? kObjectSky : kObjectShadow;
+    return seen;
+  }
+  seen.surface = true;
+  if (ray.end == CurvedRayEnd::kDisk) {
+    const CurvedPath path = curved_path(hole, u);
+    seen.event = disk_event(scene, path, ray);
+    seen.normal = disk_normal_met(hole, path, ray.phi);
+    seen.object = kObjectDisk;
+  } else {
+    seen.event = ray.event;
+    seen.normal = body_normal(scene.bodies[ray.hit.body], ray.hit.shape_normal);
+    seen.object = static_cast<float>(ray.hit.body);
+  }
+  seen.distance = camera_frame_distance(hole, u, scene.observation_event.t - seen.event.t);
+  return seen;
+}
 
 void write_aov_values(const ResolvedScene& scene, const Vec3& u, const RaySeen& seen,
                       std::span<const Aov> aovs, float* out) {

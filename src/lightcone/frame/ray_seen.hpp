@@ -5,6 +5,7 @@
 
 #include <span>
 
+#include "lightcone/frame/curved_ray.hpp"
 #include "lightcone/frame/output_variable.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 
@@ -21,6 +22,14 @@ struct RaySeen {
   double distance = 0;
   Vec3 normal;
 };
+
+// A body's surface normal with W's axes (its rest frame's), from the shape's own.
+Vec3 body_normal(const ResolvedBody& body, const Vec3& shape_normal);
+
+// What the curved ray of look direction u near a black hole (scene.hole) meets: a body of
+// `bodies` when given, the disk, the shadow or the sky.
+RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
+                              const CurvedBodies* bodies = nullptr);
 
 // The values of each of `aovs` for a ray of look direction u, one after another in `out` (as
 // many as each one's channels, aov_channel_names).

@@ -56,12 +56,6 @@ std::optional<std::string> renderer_refused(std::string_view name) {
 
 std::optional<std::string> render_refused(const Scene& scene, const RenderRequest& request) {
   if (auto refused = scene_refused(scene)) return refused;
-  if (request.raster && scene.black_hole && !request.aovs.empty())
-    return refusal(scene, "black_hole",
-                   fmt::format("the output variable {} near a black hole comes from the ray "
-                               "tracer alone: the raster renderer gives output variables in "
-                               "flat space (render with --renderer trace)",
-                               aov_name(request.aovs.front())));
   if (scene.black_hole && camera_inside_horizon(scene.camera.motion))
     for (const Aov aov : request.aovs)
       if (aov_needs_world_time(aov))

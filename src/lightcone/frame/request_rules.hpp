@@ -25,14 +25,14 @@ std::optional<std::string> scene_refused(const Scene& scene);
 // "raster" (the real-time renderer). Why another name is refused, or nothing.
 std::optional<std::string> renderer_refused(std::string_view name);
 
-// What a render is asked for beside the scene.
+// What a render is asked for beside the scene, by either renderer (both give every output
+// variable).
 struct RenderRequest {
-  bool raster = false;        // by the real-time renderer (else the ray tracer)
   std::span<const Aov> aovs;  // output variables beside the colour
 };
 
-// A render: the scene; near a black hole output variables only from the ray tracer, and from a
-// camera inside its horizon only those that need no W time there (aov_needs_world_time).
+// A render: the scene; from a camera inside a black hole's horizon only the output variables
+// that need no W time there (aov_needs_world_time).
 std::optional<std::string> render_refused(const Scene& scene, const RenderRequest& request);
 
 // A locate: the scene; near a black hole a camera outside the horizon (where W's time, and so

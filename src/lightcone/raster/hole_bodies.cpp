@@ -292,19 +292,21 @@ HoleBodiesPass::HoleBodiesPass() {
 HoleBodiesPass::~HoleBodiesPass() {
   glDeleteBuffers(1, &vertex_buffer_);
   glDeleteVertexArrays(1, &vertex_array_);
-  for (GLuint p : programs_)
-    if (p) glDeleteProgram(p);
+  for (const auto& programs : programs_)
+    for (GLuint p : programs)
+      if (p) glDeleteProgram(p);
 }
 
-GLuint HoleBodiesPass::program(bool disk) {
-  GLuint& p = programs_[disk ? 1 : 0];
-  if (!p)
-    p = link_program(vertex_shader(shader_sources::hole_body_vert),
-                     fragment_shader(shader_sources::hole_body_frag,
-                                     std::string(shader_sources::patterns_glsl) +
-                                         (disk ? shader_sources::black_hole_glsl : ""),
-                                     disk ? "#define LIGHTCONE_DISK_HIDES_BODIES 1\n" : ""));
-  return p;
+GLuint HoleBodiesPass::program(bool disk, bool surface_variables) {
+  GLuint& p = programs_[disk ? 1 : 0][surface_variables ? 1 : 0];
+  if (p) return p;
+  const std::string defines = std::string(disk ? "#define LIGHTCONE_DISK_HIDES_BODIES 1\n" : "") +
+                              (surface_variables ? "#define LIGHTCONE_SURFACE_VARIABLES 1\n" : "");
+  return p = link_program(vertex_shader(shader_sources::hole_body_vert, false, defines),
+                          fragment_shader(shader_sources::hole_body_frag,
+                                          std::string(shader_sources::patterns_glsl) +
+                                              (disk ? shader_sources::black_hole_glsl : ""),
+                                          defines.c_str()));
 }
 
 std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
@@ -384,6 +386,7 @@ void HoleBodiesPass::draw(const ResolvedScene& scene, GLuint p) const {
       glActiveTexture(GL_TEXTURE0);
     }
     glUniform1i(uniform(p, "colour_row"), d.body.first_row);
+    glUniform1f(uniform(p, "body_index"), static_cast<float>(d.body.index));
     glUniform1i(uniform(p, "lit"), d.body.lit ? 1 : 0);
     glUniform1f(uniform(p, "subject_alpha"),
                 scene.bodies[d.body.index].moves_relative_to_camera() ? 2.0f : 1.0f);

@@ -85,8 +85,9 @@ class HoleBodiesPass {
 
   // Its program, built with the first frame that needs it: with `disk`, each fragment also
   // follows its pixel's ray to the accretion disk (shaders/black_hole.glsl) and is left out
-  // where the disk is crossed first.
-  GLuint program(bool disk);
+  // where the disk is crossed first; with `surface_variables`, the fragments write what the
+  // output variables need instead of a colour (raster/surface_variables.cpp).
+  GLuint program(bool disk, bool surface_variables = false);
   // Tessellates each body's images of orders 0 and 1 (in parallel) and uploads them; returns
   // the number of triangles. The meshes, `emission` and `lighting` need only last the call.
   std::size_t prepare(const ResolvedScene& scene, const std::vector<Body>& bodies,
@@ -104,7 +105,7 @@ class HoleBodiesPass {
     GLint first_vertex = 0;
     GLsizei vertex_count = 0;
   };
-  GLuint programs_[2] = {0, 0};
+  GLuint programs_[2][2] = {{0, 0}, {0, 0}};
   GLuint vertex_array_ = 0, vertex_buffer_ = 0;
   std::vector<Draw> draws_;
   std::optional<LogShiftRange> log_shift_range_;

@@ -49,7 +49,7 @@ Image render_raster(const Scene& scene, RasterStats* stats, const TessellationLi
                     std::uint64_t seed, RasterTessellation mode,
                     const CurvedShadowSource& curved_shadows, std::vector<float>* subject_out,
                     std::span<const Aov> aovs) {
-  if (const auto refused = render_refused(scene, {.raster = true, .aovs = aovs}))
+  if (const auto refused = render_refused(scene, {.aovs = aovs}))
     throw std::invalid_argument(*refused);
   const auto start = std::chrono::steady_clock::now();
   const HeadlessGlContext context;

@@ -1,12 +1,16 @@
 // The raster renderer's output variables: every body's nearest surface at each pixel's centre,
 // met exactly by the fragment's own ray (body.frag, LIGHTCONE_SURFACE_VARIABLES), into two
 // float targets; each pixel's values then follow from that surface by the ray tracer's own
-// definitions (frame/ray_seen.hpp).
+// definitions (frame/ray_seen.hpp). Near a black hole the bodies' images of orders 0 and 1 are
+// drawn as the colour pass draws them (hole_body.frag: their normal, time of flight, shift and
+// order interpolated between exact vertices), and a pixel that shows none takes the disk, the
+// shadow or the sky its curved ray meets (seen_along_curved_ray), as the sky pass draws them.
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 #include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/ray_seen.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/raster_renderer_impl.hpp"
@@ -64,6 +68,30 @@ class SurfaceTarget {
   GLuint framebuffer_ = 0, colours_[2] = {0, 0}, depth_ = 0;
 };
 
+// rotation * diag(1 / scale): a body's normals from shape coordinates to W's axes.
+Mat3 normal_to_rest(const Object& object) {
+  const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
+  return object.rotation * Mat3::diagonal(inverse_scale);
+}
+
+// Near a black hole, what a pixel whose centre shows a body's image saw, from hole_body.frag's
+// two targets there: the shape normal and the light's coordinate time of flight `nf`; the body,
+// ln g and the image's order `os`.
+RaySeen hole_image_seen(const ResolvedScene& scene, const Vec3& u, const float* nf,
+                        const float* os) {
+  RaySeen seen;
+  const auto body = static_cast<std::size_t>(os[0]);
+  seen.surface = true;
+  seen.object = os[0];
+  seen.doppler = std::exp(static_cast<double>(os[1]));
+  seen.order = static_cast<int>(os[2]);
+  // The vertices' time of flight is counted from the camera's time (hole_bodies.cpp).
+  seen.event.t = scene.scene->camera.world_line.time - nf[3];
+  seen.distance = camera_frame_distance(*scene.hole, u, scene.observation_event.t - seen.event.t);
+  seen.normal = normalize(normal_to_rest(*scene.bodies[body].object) * Vec3{nf[0], nf[1], nf[2]});
+  return seen;
+}
+
 }  // namespace
 
 void RasterRenderer::surface_variables(std::span<const Aov> aovs, Image& image) {
@@ -90,12 +118,21 @@ void RasterRenderer::surface_variables(std::span<const Aov> aovs, Image& image) 
   glUniform2f(uniform(program, "depth_range"), std::log(kDepthNear), std::log(kDepthFar));
   for (const Impl::BodyDraw& draw : frame.draws) {
     const Object& object = *resolved.bodies[draw.body].object;
-    const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
-    set_mat3(program, "normal_to_rest", object.rotation * Mat3::diagonal(inverse_scale));
+    set_mat3(program, "normal_to_rest", normal_to_rest(object));
     glUniform1f(uniform(program, "body_index"), static_cast<float>(draw.body));
     frame.draw_body(resolved, draw, false);
   }
   skip_faces(HiddenFaces::kNone);
+  if (resolved.hole && !frame.hole_body_list.empty()) {
+    const bool disk = resolved.hole->disk.has_value();
+    const GLuint hole_program = frame.hole_bodies->program(disk, true);
+    glUseProgram(hole_program);
+    frame.set_common(hole_program, resolved, frame.first_log_doppler, 0.5, 0.5);
+    if (disk)
+      frame.black_hole->set_uniforms(hole_program, *resolved.hole, frame.disk_floor, frame.disk_row,
+                                     resolved.scene->render);
+    frame.hole_bodies->draw(resolved, hole_program);
+  }
   check_gl("drawing the output variables");
   const std::vector<float> normal_distance = target.read(0), object_doppler = target.read(1);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(bound_draw));
@@ -115,7 +152,10 @@ void RasterRenderer::surface_variables(std::span<const Aov> aovs, Image& image) 
       const float* od = &object_doppler[gl_at];
       const Vec3 u = look_direction(resolved.camera, x + 0.5, y + 0.5);
       RaySeen seen;
-      if (od[3] > 0) {
+      if (resolved.hole) {
+        seen =
+            od[3] > 0 ? hole_image_seen(resolved, u, nd, od) : seen_along_curved_ray(resolved, u);
+      } else if (od[3] > 0) {
         const double s = nd[3];
         seen.surface = true;
         seen.object = od[0];

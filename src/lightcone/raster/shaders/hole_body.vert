@@ -21,6 +21,9 @@ out vec3 received_0;
 out vec3 received_1;
 out vec2 face_uv;
 out float swept;
+#if defined(LIGHTCONE_SURFACE_VARIABLES)
+out float flight;  // the light's coordinate time of flight, its apparent position's length
+#endif
 
 void main() {
   gl_Position = clip_of(vec4(apparent_position, length(apparent_position)));
@@ -31,4 +34,7 @@ void main() {
   received_1 = lit_colour_1;
   face_uv = face_texture_uv;
   swept = swept_angle;
+#if defined(LIGHTCONE_SURFACE_VARIABLES)
+  flight = length(apparent_position);
+#endif
 }
