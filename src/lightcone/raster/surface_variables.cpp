@@ -12,6 +12,7 @@
 #include "lightcone/frame/camera_model.hpp"
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/ray_seen.hpp"
+#include "lightcone/portable.hpp"
 #include "lightcone/raster/gl.hpp"
 #include "lightcone/raster/raster_renderer_impl.hpp"
 #include "lightcone/raster/shader_build.hpp"
@@ -143,8 +144,11 @@ void RasterRenderer::surface_variables(std::span<const Aov> aovs, Image& image) 
   for (const Aov aov : aovs)
     for (const std::string& name : aov_channel_names(aov))
       image.channels.push_back({name, std::vector<float>(pixels)});
-  std::vector<float> values(image.channels.size() - first);
-  for (int y = 0; y < height; ++y)
+  const std::size_t channels = image.channels.size() - first;
+  // A row at a time on the thread pool (near a black hole each pixel without a body follows its
+  // curved ray).
+  parallel_for(0, height, [&](int y) {
+    std::vector<float> values(channels);
     for (int x = 0; x < width; ++x) {
       // GL's rows run from the bottom up.
       const std::size_t gl_at = 4 * (static_cast<std::size_t>(height - 1 - y) * width + x);
@@ -168,9 +172,9 @@ void RasterRenderer::surface_variables(std::span<const Aov> aovs, Image& image) 
       }
       write_aov_values(resolved, u, seen, aovs, values.data());
       const std::size_t at = static_cast<std::size_t>(y) * width + x;
-      for (std::size_t c = 0; c < values.size(); ++c)
-        image.channels[first + c].values[at] = values[c];
+      for (std::size_t c = 0; c < channels; ++c) image.channels[first + c].values[at] = values[c];
     }
+  });
 }
 
 }  // namespace lightcone
