@@ -285,8 +285,7 @@ void RasterRenderer::Impl::set_lit_body(const ResolvedScene& resolved, const Bod
   const float albedos[6] = {albedo[0].r, albedo[0].g, albedo[0].b,
                             albedo[1].r, albedo[1].g, albedo[1].b};
   glUniform3fv(uniform(p, "albedo"), 2, albedos);
-  const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
-  set_mat3(p, "normal_to_rest", object.rotation * Mat3::diagonal(inverse_scale));
+  set_mat3(p, "normal_to_rest", normal_to_rest(object));
   set_vec3(p, "surface_velocity_of_body", lit_body_velocity(resolved, object));
   glUniform1i(uniform(p, "reflection_body"), draw.reflection_body);
 }

@@ -52,6 +52,13 @@ inline Vec3 lit_body_velocity(const ResolvedScene& scene, const Object& object) 
   return scene.scene->render.relativity ? object.world_line.velocity : Vec3{};
 }
 
+// rotation * diag(1 / scale): a body's normals from shape coordinates to W's axes (its rest
+// frame's).
+inline Mat3 normal_to_rest(const Object& object) {
+  const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
+  return object.rotation * Mat3::diagonal(inverse_scale);
+}
+
 struct RasterRenderer::Impl {
   // One program per kind of material (kEmitter, kTextured, kLit) and of sky (plain or grid, and
   // image): small programs run faster than one with every branch. kSurfaceVariables draws every

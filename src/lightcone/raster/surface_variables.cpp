@@ -69,12 +69,6 @@ class SurfaceTarget {
   GLuint framebuffer_ = 0, colours_[2] = {0, 0}, depth_ = 0;
 };
 
-// rotation * diag(1 / scale): a body's normals from shape coordinates to W's axes.
-Mat3 normal_to_rest(const Object& object) {
-  const Vec3 inverse_scale{1 / object.scale.x, 1 / object.scale.y, 1 / object.scale.z};
-  return object.rotation * Mat3::diagonal(inverse_scale);
-}
-
 // Near a black hole, what a pixel whose centre shows a body's image saw, from hole_body.frag's
 // two targets there: the shape normal and the light's coordinate time of flight `nf`; the body,
 // ln g and the image's order `os`.
