@@ -296,7 +296,11 @@ TEST(AutomaticExposure, ReadsWhatSortingFinds) {
 
 // The program's automatic EV on each bundled scene (its other settings at their defaults, at
 // 320x180 and 1 sample) is the one the sort-based rule gave, within half a meter's bin:
-// recorded with it, before the meter replaced it (the issue asks for 0.01 EV).
+// recorded with it, before the meter replaced it (the issue asks for 0.01 EV). infall.json's and
+// orbit.json's were recorded again, from the meter, when their subject changed (bodies near a
+// black hole became the subject, as in flat space, and infall.json's first clock a lamp): the
+// rule's input changed there, not the meter, which the other scenes and ReadsWhatSortingFinds
+// hold to the sort.
 using AutomaticExposureOfScenes = test::TempDirTest;
 TEST_F(AutomaticExposureOfScenes, IsWhatTheSortBasedRuleGave) {
   const std::map<std::string, double> recorded = {
@@ -304,10 +308,10 @@ TEST_F(AutomaticExposureOfScenes, IsWhatTheSortBasedRuleGave) {
       {"cubes.json", -3.343049023149224},
       {"doppler-swatches.json", -0.9989273626127232},
       {"headlight.json", 3.4100665361079137},
-      {"infall.json", 2.200916128758555},
+      {"infall.json", 0.10064386800686985},
       {"interceptor.json", 3.720117873536755},
       {"lensed-clock.json", 1.2863973746154793},
-      {"orbit.json", 2.4656121007099965},
+      {"orbit.json", -1.3901673540619475},
       {"plunge.json", -3.0391264205852315},
       {"rainbow.json", 0.7027769992981585},
       {"rocket.json", -1.5943364625085998},
