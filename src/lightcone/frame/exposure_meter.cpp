@@ -34,29 +34,32 @@ template <class ValueOf>
 std::size_t ExposureMeter::bin_reaching(ValueOf value_of_bin, double target) const {
   double below = 0;
   std::size_t last = 0;
-  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) {
+  scan([&](std::size_t b) {
     const std::uint64_t value = value_of_bin(b);
-    if (value == 0) continue;
+    if (value == 0) return true;
     below += static_cast<double>(value);
     last = b;
-    if (below >= target) break;
-  }
+    return below < target;
+  });
   return last;
 }
 
 void ExposureMeter::add(const ExposureMeter& other) {
-  for (std::size_t b = other.first_bin_; b <= other.last_bin_ && b < kBins; ++b) {
+  other.scan([&](std::size_t b) {
     for (std::size_t lane = 0; lane < kLanes; ++lane)
       count_[b * kLanes + lane] += other.count_[b * kLanes + lane];
     weight_[b] += other.weight_[b];
-  }
-  first_bin_ = std::min(first_bin_, other.first_bin_);
-  last_bin_ = std::max(last_bin_, other.last_bin_);
+    return true;
+  });
+  for (std::size_t group = 0; group < kGroups; ++group) occupied_[group] |= other.occupied_[group];
 }
 
 std::uint64_t ExposureMeter::pixels() const {
   std::uint64_t n = 0;
-  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) n += count_of(b);
+  scan([&](std::size_t b) {
+    n += count_of(b);
+    return true;
+  });
   return n;
 }
 
@@ -81,7 +84,10 @@ double ExposureMeter::ev(ToneMap curve) const {
   // subject is given or seen). A quantile, not a mean, so that the subject's own black parts
   // (a pattern's dark checks shifted out of the visible) and a few bright pixels do not move it.
   std::uint64_t total = 0;
-  for (std::size_t b = first_bin_; b <= last_bin_ && b < kBins; ++b) total += weight_[b];
+  scan([&](std::size_t b) {
+    total += weight_[b];
+    return true;
+  });
   const bool weighted =
       static_cast<double>(total) >= kMinSubjectShare * static_cast<double>(n) * kWeightUnit;
   const double level =

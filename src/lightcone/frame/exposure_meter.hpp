@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -59,6 +60,10 @@ class ExposureMeter {
   // The same for pixels `subject_samples[i]` of whose `samples` met the subject: a share of
   // float(subject_samples[i]) / samples, as a renderer's subject weights hold it.
   void add_samples(const float* rgb, std::size_t pixels, const int* subject_samples, int samples) {
+    // (Most rows meet no subject: they are counted without asking each pixel.)
+    int any = 0;
+    for (std::size_t i = 0; i < pixels; ++i) any |= subject_samples[i];
+    if (any == 0) return add(rgb, pixels);
     count(rgb, pixels, [&](std::size_t i) {
       return subject_samples[i] > 0 ? weight_units(static_cast<float>(subject_samples[i]) / samples)
                                     : std::uint64_t{0};
@@ -78,11 +83,11 @@ class ExposureMeter {
   // line: neighbours of one bin (a flat sky) then increment different counters, and none waits
   // on the store of the one before, as one counter would; nor is there a branch to mispredict
   // on a noisy picture, as counting runs of a bin had. The bins of a few pixels are found first,
-  // in a loop of their own, which the compiler vectorises.
+  // in a loop of their own, which the compiler vectorises. Each pixel marks its bin's group
+  // occupied, a store that waits on nothing, so that readers scan only the groups counted in.
   template <class WeightOf>
   void count(const float* rgb, std::size_t pixels, WeightOf weight_of) {
     constexpr std::size_t kChunk = 16;
-    std::size_t first = first_bin_, last = last_bin_;
     for (std::size_t start = 0; start < pixels; start += kChunk) {
       const std::size_t n = std::min(kChunk, pixels - start);
       std::uint32_t bins[kChunk];
@@ -91,13 +96,10 @@ class ExposureMeter {
       for (std::size_t i = 0; i < n; ++i) {
         const std::size_t bin = bins[i];
         ++count_[bin * kLanes + i % kLanes];
-        first = std::min(first, bin);
-        last = std::max(last, bin);
+        occupied_[bin >> kGroupShift] = 1;
         if (const std::uint64_t weight = weight_of(start + i)) weight_[bin] += weight;
       }
     }
-    first_bin_ = first;
-    last_bin_ = last;
   }
   // The pixels counted in a bin.
   std::uint64_t count_of(std::size_t bin) const {
@@ -109,6 +111,15 @@ class ExposureMeter {
   // bin if none does, as a sort's last element would stand in).
   template <class ValueOf>
   std::size_t bin_reaching(ValueOf value_of_bin, double target) const;
+  // Calls f(bin) for every bin of the occupied groups, in order, until it returns false.
+  template <class F>
+  void scan(F f) const {
+    for (std::size_t group = 0; group < kGroups; ++group) {
+      if (!occupied_[group]) continue;
+      for (std::size_t bin = group << kGroupShift; bin < (group + 1) << kGroupShift; ++bin)
+        if (!f(bin)) return;
+    }
+  }
 
   struct Free {
     void operator()(void* p) const;
@@ -116,7 +127,9 @@ class ExposureMeter {
   static constexpr std::size_t kLanes = 4;
   std::unique_ptr<std::uint32_t[], Free> count_;  // (a picture has at most 2^27 pixels)
   std::unique_ptr<std::uint64_t[], Free> weight_;
-  std::size_t first_bin_ = kBins, last_bin_ = 0;  // the bins counted in lie between
+  // Groups of 256 bins (an octave), and whether a pixel has been counted in each.
+  static constexpr std::size_t kGroupShift = 8, kGroups = kBins >> kGroupShift;
+  std::array<std::uint8_t, kGroups> occupied_{};
 };
 
 }  // namespace lightcone

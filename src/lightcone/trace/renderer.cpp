@@ -155,15 +155,18 @@ struct Observation {
 };
 
 // Meters a finished tile's pixels [x0, x_end) x [y0, y_end) of a picture `width` pixels wide,
-// `subject_samples` of whose `samples` each (kTileSize a row) met the subject: in a loop of its
-// own, over pixels still in the cache, which runs faster than metering each pixel among the
-// render's work.
+// `subject_samples` of whose `samples` each (kTileSize a row) met the subject (null: none did):
+// in a loop of its own, over pixels still in the cache, which runs faster than metering each
+// pixel among the render's work.
 void meter_tile(ExposureMeter& meter, const float* rgb, int width, int x0, int y0, int x_end,
                 int y_end, const int* subject_samples, int samples) {
   for (int y = y0; y < y_end; ++y) {
-    const float* row = rgb + 3 * static_cast<std::size_t>(y) * width;
-    meter.add_samples(row + 3 * x0, static_cast<std::size_t>(x_end - x0),
-                      subject_samples + (y - y0) * kTileSize, samples);
+    const float* row = rgb + 3 * (static_cast<std::size_t>(y) * width + x0);
+    const auto pixels = static_cast<std::size_t>(x_end - x0);
+    if (subject_samples)
+      meter.add_samples(row, pixels, subject_samples + (y - y0) * kTileSize, samples);
+    else
+      meter.add(row, pixels);
   }
 }
 
@@ -259,7 +262,9 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         std::uint64_t tile_orders = 0;  // the image orders of its curved rays, summed
         std::vector<float> aov_pixel(with_aovs ? aov_channels : 0);  // a pixel's, in order
         // The samples of each of the tile's pixels that met the subject, for its meter.
+        // (zeroed when the tile's first sample meets the subject: most tiles' never do)
         int tile_subject[kTileSize * kTileSize];
+        bool tile_met_subject = false;
         // A block's samplers, rays, hits and colours, made once a tile: made per block, their
         // 2.9 KB were zeroed for every 8 pixels. Constructed in place: a sampler built aside and
         // copied in was a store-forwarding stall per pixel (a twentieth of a black-hole render).
@@ -336,8 +341,6 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
               }
               if (with_stars) sky_coverage[at] = static_cast<float>(sky_samples[l]) / count;
               if (with_subject) subject[at] += static_cast<float>(subject_samples[l]) / n;
-              if (metered_in_pass)
-                tile_subject[(pixel_b[l] - y0) * kTileSize + pixel_a[l] - x0] = subject_samples[l];
               if (with_aovs) {
                 const Vec3 centre = look_direction(resolved.camera, i + 0.5, j + 0.5);
                 aov_values(resolved, seen.tracer, centre, options.aovs, aov_pixel.data(),
@@ -346,10 +349,23 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                   image.channels[aov_start + c].values[at] = aov_pixel[c];
               }
             }
+            // The block's samples that met the subject, for the tile's meter.
+            if (metered_in_pass) {
+              int met = 0;
+              for (std::size_t l = 0; l < lanes; ++l) met |= subject_samples[l];
+              if (met != 0) {
+                if (!tile_met_subject)
+                  std::fill(std::begin(tile_subject), std::end(tile_subject), 0);
+                tile_met_subject = true;
+                for (std::size_t l = 0; l < lanes; ++l)
+                  tile_subject[(pixel_b[l] - y0) * kTileSize + pixel_a[l] - x0] =
+                      subject_samples[l];
+              }
+            }
           }
         if (metered_in_pass)
-          meter_tile(meters.local(), image.rgb.data(), width, x0, y0, x_end, y_end, tile_subject,
-                     n);
+          meter_tile(meters.local(), image.rgb.data(), width, x0, y0, x_end, y_end,
+                     tile_met_subject ? tile_subject : nullptr, n);
         if (tile_orders) image_orders += tile_orders;
         const std::size_t now = ++done;
         if (options.progress) options.progress(now, total);
