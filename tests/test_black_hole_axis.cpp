@@ -44,13 +44,15 @@ const float* centre_pixel(const Image& image) {
   return &image.rgb[3 * (4 * 9 + 4)];
 }
 
-// The camera's view with the scene's bodies, and its look straight along `forward`.
+// The camera's view with the scene's bodies, and its look straight along `forward`; it keeps
+// its copy of the scene, to which the resolved scene points.
 struct View {
   explicit View(const Scene& s)
-      : resolved(resolve_scene(s)), tracer(resolved), bodies(resolved, tracer) {}
+      : scene(s), resolved(resolve_scene(scene)), tracer(resolved), bodies(resolved, tracer) {}
   CurvedRay axis_ray() const {
     return follow_curved_ray(*resolved.hole, resolved.scene->camera.forward, &bodies);
   }
+  Scene scene;
   ResolvedScene resolved;
   Tracer tracer;
   CurvedBodies bodies;

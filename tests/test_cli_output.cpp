@@ -447,7 +447,8 @@ TEST_F(CliTest, InfoNearAHoleReadsSpeedsBelowCAndTheBodiesShifts) {
     const CommandResult seen =
         run_lightcone("locate " + infall + " --object " + clock + " --point 0,0,0");
     ASSERT_EQ(seen.status, 0) << seen.err;
-    for (const auto& image : nlohmann::json::parse(seen.out).at("images")) {
+    const auto located = nlohmann::json::parse(seen.out);
+    for (const auto& image : located.at("images")) {
       if (!image.at("in_view").get<bool>()) continue;
       EXPECT_LE(lo, image.at("g").get<double>()) << clock;
       EXPECT_GE(hi, image.at("g").get<double>()) << clock;

@@ -45,7 +45,8 @@ TEST(StraightRays, NegligibleHoleGivesTheFlatPicture) {
 }
 
 TEST(StraightRays, EveryRayOfTheNegligibleHoleIsStraight) {
-  const ResolvedScene resolved = resolve_scene(with_negligible_hole(terrell()));
+  const Scene scene = with_negligible_hole(terrell());  // (the resolved scene points to it)
+  const ResolvedScene resolved = resolve_scene(scene);
   const auto rays = StraightRays::of(resolved);
   ASSERT_TRUE(rays);
   for (int j = 0; j < 90; j += 7)
