@@ -19,13 +19,7 @@ namespace {
 
 using test::make_object;
 
-const NamedChannel& channel(const Image& image, const std::string& name) {
-  for (const NamedChannel& c : image.channels)
-    if (c.name == name) return c;
-  ADD_FAILURE() << "no channel " << name;
-  static const NamedChannel none;
-  return none;
-}
+using test::channel;
 
 float at(const NamedChannel& c, int width, int x, int y) {
   return c.values[static_cast<std::size_t>(y) * width + x];

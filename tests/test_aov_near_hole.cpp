@@ -17,13 +17,7 @@ namespace {
 
 constexpr int kSide = 15, kCentre = 7;  // the centre pixel's ray is the camera's forward axis
 
-const NamedChannel& channel(const Image& image, const std::string& name) {
-  for (const NamedChannel& c : image.channels)
-    if (c.name == name) return c;
-  ADD_FAILURE() << "no channel " << name;
-  static const NamedChannel none;
-  return none;
-}
+using test::channel;
 
 float at(const Image& image, const std::string& name, int x = kCentre, int y = kCentre) {
   const NamedChannel& c = channel(image, name);

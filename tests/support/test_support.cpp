@@ -249,4 +249,12 @@ std::string base64(const std::string& data) {
   return out;
 }
 
+const NamedChannel& channel(const Image& image, const std::string& name) {
+  for (const NamedChannel& c : image.channels)
+    if (c.name == name) return c;
+  ADD_FAILURE() << "no channel " << name;
+  static const NamedChannel none;
+  return none;
+}
+
 }  // namespace lightcone::test

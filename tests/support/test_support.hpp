@@ -97,4 +97,7 @@ CommandResult run_lightcone(const std::string& arguments, const std::string& env
 // terminal's width (else the pseudo-terminal reports none).
 CommandResult run_lightcone_on_terminal(const std::string& arguments, int columns = 0);
 
+// The image's output-variable channel by name (a test failure, and an empty channel, if none).
+const NamedChannel& channel(const Image& image, const std::string& name);
+
 }  // namespace lightcone::test

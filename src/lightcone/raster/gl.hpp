@@ -53,6 +53,12 @@ std::string gl_renderer();
 // Face culling for the triangles drawn next: none, or the hidden ones.
 void skip_faces(HiddenFaces hidden);
 
+// Attaches to the bound framebuffer a new width x height RGBA float texture (sampled nearest) at
+// colour attachment `index`, and returns it.
+GLuint attach_float_colour(int index, int width, int height);
+// Attaches to the bound framebuffer a new 32-bit float depth buffer, and returns it.
+GLuint attach_float_depth(int width, int height);
+
 // Uniforms of `program` (in use) by name, from double-precision values.
 GLint uniform(GLuint program, const char* name);
 void set_vec3(GLuint program, const char* name, const Vec3& v);
