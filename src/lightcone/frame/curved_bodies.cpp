@@ -554,6 +554,11 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         // The piece tested next: halved where it may meet the body, down to a chord; doubled,
         // up to a span, past where it cannot.
         double piece = span;
+        // The angle a chord sweeps: `step`, or less where the light's coordinate time over a
+        // step exceeds what the body's motion allows (a ray near the line through the hole
+        // sweeps little angle over a long time): the last chord's, doubled back toward `step`
+        // where it took less than half that time.
+        double chord = step;
         while (phi_a < hi && !met) {
           // Past the body's reach on the way out, or inside it on the way in with no turning
           // point ahead (toward the horizon): nothing more to meet.
@@ -612,21 +617,21 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
             state_a = state_b, a_state = b_state;
             return false;
           };
-          if (piece > step) {
+          if (piece > chord) {
             double r_c;
             const double phi_c = chord_end(std::min(phi_a + piece, hi), r_c);
             if (!(phi_c > phi_a)) break;
             Vec4 c = events.event(phi_c, false);
-            piece = may_meet(phi_c, r_c, c, piece_margin(piece)) ? std::max(piece / 2, step)
+            piece = may_meet(phi_c, r_c, c, piece_margin(piece)) ? std::max(piece / 2, chord)
                                                                  : std::min(piece * 2, span);
             continue;
           }
           double r_b;
-          double phi_b = chord_end(std::min(phi_a + step, hi), r_b);
+          double phi_b = chord_end(std::min(phi_a + chord, hi), r_b);
           if (!(phi_b > phi_a)) break;
           Vec4 b = events.event(phi_b, false);
           if (!may_meet(phi_b, r_b, b, 0)) {
-            piece = std::min(2 * step, span);
+            piece = std::min(2 * chord, span);
             continue;
           }
           const double max_dt = acceleration > 0 ? std::sqrt(8 * error / acceleration) : kInfinity;
@@ -639,6 +644,11 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
           // No chord short enough in time (a path that cannot be resolved at this angle): give
           // up on this window rather than stand still.
           if (!(phi_b > phi_a)) break;
+          if (halved) {
+            chord = phi_b - phi_a;
+          } else if (2 * std::abs(b.t - a.t) <= max_dt) {
+            chord = std::min(2 * chord, step);
+          }
           if (!straight && halved) state_b = body.state_at(b.t);
           if (!shape_known) shape_a = shape_of(a, straight ? nullptr : &state_a);
           const Vec3 shape_b = shape_of(b, straight ? nullptr : &state_b);
