@@ -218,6 +218,25 @@ TEST(ExposureMeter, BinsByLogLuminance) {
   EXPECT_EQ(ExposureMeter::value_of(0), 0.0);
 }
 
+// Four pixels' bins found at once are each pixel's own, whatever its luminance (every octave a
+// float holds, black, negative, NaN, infinite) and wherever among the four it lies.
+TEST(ExposureMeter, FindsFourBinsAtOnceAsOneByOne) {
+  std::mt19937 random(4);
+  std::uniform_real_distribution<double> octave(-149, 128), unit(0, 1);
+  const float odd[] = {0.0f, -0.0f, -1.0f, NAN, -NAN, INFINITY, -INFINITY, 1e-45f, 3.4e38f};
+  std::vector<float> rgb(3 * 4 * 20000);
+  for (float& v : rgb) {
+    const double pick = unit(random);
+    v = pick < 0.05 ? odd[static_cast<std::size_t>(unit(random) * std::size(odd))]
+                    : static_cast<float>((pick < 0.1 ? -1 : 1) * std::exp2(octave(random)));
+  }
+  for (std::size_t p = 0; p < rgb.size() / 3; p += 4) {
+    const auto four = ExposureMeter::bins_of_four(&rgb[3 * p]);
+    for (std::size_t k = 0; k < 4; ++k)
+      ASSERT_EQ(four[k], ExposureMeter::bin_of(&rgb[3 * (p + k)])) << p + k;
+  }
+}
+
 // A meter's EV does not depend on how its pixels were shared among meters (threads): its sums
 // are integers.
 TEST(ExposureMeter, IsTheSameHoweverThePixelsAreShared) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 
 #include "lightcone/portable.hpp"
@@ -38,6 +39,14 @@ class ExposureMeter {
     const auto bits =
         bit_cast<std::uint32_t>(0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2]);
     return bits < kInfinityBits ? bits >> kShift : 0;
+  }
+  // bin_of of each of 4 consecutive pixels (12 floats), computed 4 at a time: the same
+  // products and sums in the same order, so the same bins.
+  static std::array<std::uint32_t, 4> bins_of_four(const float* rgb) {
+    const Bins4 bins = four_bins(rgb);
+    std::array<std::uint32_t, 4> out;
+    std::memcpy(out.data(), &bins, sizeof bins);
+    return out;
   }
   // The luminance that stands for a bin: the geometric middle of its range (0 for bin 0).
   static double value_of(std::size_t bin);
@@ -79,27 +88,54 @@ class ExposureMeter {
   double ev(ToneMap curve) const;
 
  private:
+  // Four floats and four bins, as vectors of the compiler's (SSE on x86, SIMD128 in the browser).
+  using Floats4 = float __attribute__((vector_size(16)));
+  using Bins4 = std::uint32_t __attribute__((vector_size(16)));
+  // The bins of 4 pixels: their channels gathered from r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3
+  // (shuffles of two vectors each, as x86's shufps takes them), then bin_of's arithmetic on 4
+  // luminances at once.
+  static Bins4 four_bins(const float* rgb) {
+    Floats4 a, b, c;
+    std::memcpy(&a, rgb, sizeof a);
+    std::memcpy(&b, rgb + 4, sizeof b);
+    std::memcpy(&c, rgb + 8, sizeof c);
+    const Floats4 red =
+        __builtin_shufflevector(a, __builtin_shufflevector(b, c, 2, 2, 5, 5), 0, 3, 4, 6);
+    const Floats4 green =
+        __builtin_shufflevector(__builtin_shufflevector(a, b, 1, 1, 4, 4),
+                                __builtin_shufflevector(b, c, 3, 3, 6, 6), 0, 2, 4, 6);
+    const Floats4 blue =
+        __builtin_shufflevector(__builtin_shufflevector(a, b, 2, 2, 5, 5), c, 0, 2, 4, 7);
+    const Floats4 y = 0.2126f * red + 0.7152f * green + 0.0722f * blue;
+    Bins4 bits;
+    std::memcpy(&bits, &y, sizeof bits);
+    return (bits >> kShift) & static_cast<Bins4>(bits < kInfinityBits);
+  }
   // Counts pixels, each in one of kLanes copies of its bin's counter, side by side in a cache
   // line: neighbours of one bin (a flat sky) then increment different counters, and none waits
   // on the store of the one before, as one counter would; nor is there a branch to mispredict
-  // on a noisy picture, as counting runs of a bin had. The bins of a few pixels are found first,
-  // in a loop of their own, which the compiler vectorises. Each pixel marks its bin's group
-  // occupied, a store that waits on nothing, so that readers scan only the groups counted in.
+  // on a noisy picture, as counting runs of a bin had. Four pixels' counters are found at once
+  // (four_bins); a row's last pixels, fewer than four, one by one. Each pixel marks its bin's
+  // group occupied, a store that waits on nothing, so that readers scan only the groups counted
+  // in.
   template <class WeightOf>
   void count(const float* rgb, std::size_t pixels, WeightOf weight_of) {
-    constexpr std::size_t kChunk = 16;
-    for (std::size_t start = 0; start < pixels; start += kChunk) {
-      const std::size_t n = std::min(kChunk, pixels - start);
-      std::uint32_t bins[kChunk];
-      for (std::size_t i = 0; i < n; ++i)
-        bins[i] = static_cast<std::uint32_t>(bin_of(rgb + 3 * (start + i)));
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t bin = bins[i];
-        ++count_[bin * kLanes + i % kLanes];
-        occupied_[bin >> kGroupShift] = 1;
-        if (const std::uint64_t weight = weight_of(start + i)) weight_[bin] += weight;
-      }
+    static_assert(kLanes == 4);
+    std::uint32_t* const counts = count_.get();
+    const auto one = [&](std::size_t i, std::uint32_t counter) {
+      ++counts[counter];
+      occupied_[counter / kLanes >> kGroupShift] = 1;
+      if (const std::uint64_t weight = weight_of(i)) weight_[counter / kLanes] += weight;
+    };
+    std::size_t i = 0;
+    for (; i + 4 <= pixels; i += 4) {
+      const Bins4 counters = (four_bins(rgb + 3 * i) << 2) | Bins4{0, 1, 2, 3};
+      std::uint32_t at[4];
+      std::memcpy(at, &counters, sizeof at);
+      for (std::size_t k = 0; k < 4; ++k) one(i + k, at[k]);
     }
+    for (; i < pixels; ++i)
+      one(i, static_cast<std::uint32_t>(bin_of(rgb + 3 * i) * kLanes + i % kLanes));
   }
   // The pixels counted in a bin.
   std::uint64_t count_of(std::size_t bin) const {
