@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "lightcone/physics/hole_light_leg.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -135,6 +136,99 @@ TEST(RayBetween, RadialBundleHasItsClosedForm) {
       EXPECT_NEAR(ray->time, std::abs(tortoise_coordinate(m, r_b) - tortoise_coordinate(m, r_a)),
                   1e-9 * std::sqrt(d2));
     }
+}
+
+TEST(RayBetween, StartedFromAnotherSolveIsTheSameRay) {
+  // Starts from a neighbouring ray, from other cases' rays (far off, on the other stretch or
+  // with the ends swapped), and from look angles at the stretch's ends with rates far off.
+  std::vector<RayBetweenStart> starts;
+  for (const Case& c : kCases)
+    for (int order = 0; order <= 1; ++order) {
+      RayBetweenStart start;
+      if (ray_between(1, c.r_a, c.r_b, c.psi, order, &start)) starts.push_back(start);
+    }
+  ASSERT_GT(starts.size(), 20u);
+  for (const double alpha : {1e-9, 0.5, 1.5, 3.0})
+    for (const double rate : {1e-6, 1.0, 1e6}) starts.push_back({alpha, rate, true, false});
+  for (const Case& c : kCases)
+    for (int order = 0; order <= 1; ++order) {
+      SCOPED_TRACE(testing::Message() << c.r_a << " " << c.r_b << " " << c.psi << " " << order);
+      const auto cold = ray_between(1, c.r_a, c.r_b, c.psi, order);
+      ASSERT_TRUE(cold);
+      RayBetweenStart near;
+      ASSERT_TRUE(ray_between(1, c.r_a * 1.01, c.r_b, c.psi * 0.99, order, &near));
+      starts.push_back(near);
+      for (const RayBetweenStart& from : starts) {
+        RayBetweenStart start = from;
+        const auto warm = ray_between(1, c.r_a, c.r_b, c.psi, order, &start);
+        ASSERT_TRUE(warm);
+        // The same root to the sweep's own rounding, which near the radial ray and inside the
+        // photon sphere is some 1e-14 of the impact parameter.
+        EXPECT_NEAR(warm->impact, cold->impact, 1e-13 * cold->impact);
+        EXPECT_NEAR(warm->time, cold->time, 1e-12 * cold->time);
+        EXPECT_NEAR(warm->cos_a, cold->cos_a, 1e-14);
+        EXPECT_NEAR(warm->sin_b, cold->sin_b, 1e-14);
+        EXPECT_NEAR(warm->spread_b_to_a, cold->spread_b_to_a, 1e-8 * cold->spread_b_to_a);
+        // The start is now this ray's.
+        EXPECT_NEAR(start.rate, cold->sweep_rate, 1e-8 * cold->sweep_rate);
+      }
+      starts.pop_back();
+    }
+}
+
+TEST(HoleLightLeg, IsNoneOnlyWhereItLightsTheBackOfAStaticSurface) {
+  // Surfaces round a ball beside the hole, facing every way, lit by a lamp and a plane wave,
+  // their legs solved one after another from the last (as a picture's neighbouring points are):
+  // the same legs as solved alone, none only where the light arrives from behind the surface.
+  const double m = 1;
+  const Vec3 lamp{-14, 10, 6}, propagation = normalize(Vec3{-1, -0.3, -0.2});
+  const Vec3 centres[] = {{7, 0, 0}, {-9.5, 1.2, 0.9}, {-1, -0.2, 13.5}, {15, 8, 5}};
+  const Vec3 moving{0.3, 0, -0.2};
+  RayBetweenStart lamp_starts[2], wave_starts[2];
+  int lit = 0, dark = 0, culled = 0, wave_lit = 0, wave_dark = 0, wave_culled = 0;
+  for (const Vec3& centre : centres)
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 32; ++j) {
+        const double theta = kPi * (i + 0.5) / 16, phi = 2 * kPi * j / 32;
+        const Vec3 normal{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta)};
+        const Vec3 surface = centre + normal;
+        // A moving surface's light is turned by aberration: it is never culled.
+        for (const Vec3& w : {Vec3{}, moving})
+          for (int order = 0; order <= 1; ++order) {
+            SCOPED_TRACE(testing::Message() << i << " " << j << " " << order);
+            const auto alone = hole_light_leg(m, lamp, {}, surface, w, order);
+            const auto leg =
+                hole_light_leg(m, lamp, {}, surface, w, order, &lamp_starts[order], &normal);
+            const auto wave_alone = hole_plane_wave(m, surface, w, propagation, order);
+            const auto wave =
+                hole_plane_wave(m, surface, w, propagation, order, &wave_starts[order], &normal);
+            ASSERT_TRUE(alone && wave_alone);
+            const bool behind = dot(normal, alone->leg.direction) > 0;
+            const bool wave_behind = dot(normal, wave_alone->direction) > 0;
+            // None only from behind a static surface, and then mostly.
+            if (!leg) ASSERT_TRUE(behind && dot(w, w) == 0);
+            if (!wave) ASSERT_TRUE(wave_behind && dot(w, w) == 0);
+            const bool still = dot(w, w) == 0;
+            lit += !behind, dark += behind && still, culled += !leg;
+            wave_lit += !wave_behind, wave_dark += wave_behind && still, wave_culled += !wave;
+            if (leg) {
+              EXPECT_NEAR(leg->leg.distance, alone->leg.distance, 1e-8 * alone->leg.distance);
+              EXPECT_NEAR(leg->leg.doppler, alone->leg.doppler, 1e-13);
+              EXPECT_LT(length(leg->leg.direction - alone->leg.direction), 1e-13);
+              EXPECT_NEAR(leg->time, alone->time, 1e-13 * alone->time);
+            }
+            if (wave) {
+              EXPECT_NEAR(wave->focusing, wave_alone->focusing, 1e-8 * wave_alone->focusing);
+              EXPECT_LT(length(wave->direction - wave_alone->direction), 1e-13);
+            }
+          }
+      }
+  EXPECT_GT(lit, 1000);
+  EXPECT_GT(wave_lit, 1000);
+  // (a bracket may still hold directions on both sides when its root is found)
+  EXPECT_GT(culled, 0.8 * dark);
+  EXPECT_GT(wave_culled, 0.8 * wave_dark);
 }
 
 TEST(HoleLightLeg, StaticEndsSeeTheGravitationalShift) {

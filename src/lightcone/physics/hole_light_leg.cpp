@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "lightcone/physics/lorentz.hpp"
-#include "lightcone/physics/schwarzschild_lens.hpp"
 
 namespace lightcone {
 namespace {
@@ -40,6 +39,14 @@ Measured measured(const Vec3& n, const Vec3& w) {
   return {k.t, k.x / k.t};
 }
 
+// The side a receiver at rest against its static observer faces (its normal `lit_side`), in the
+// leg's plane; none for a moving receiver, whose light is turned by aberration.
+std::optional<FacingSide> facing_side(const LegPlane& plane, const Vec3& w_r,
+                                      const Vec3* lit_side) {
+  if (!lit_side || dot(w_r, w_r) != 0) return std::nullopt;
+  return FacingSide{dot(*lit_side, plane.e1), dot(*lit_side, plane.e2)};
+}
+
 HoleLegPath leg_path(const LegPlane& plane, const RayBetween& ray) {
   // Back from the receiver (end a) the path leaves toward the emitter: r grows along it where
   // that direction points outward.
@@ -49,11 +56,14 @@ HoleLegPath leg_path(const LegPlane& plane, const RayBetween& ray) {
 }  // namespace
 
 std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
-                                      const Vec3& receiver, const Vec3& w_r, int order) {
+                                      const Vec3& receiver, const Vec3& w_r, int order,
+                                      RayBetweenStart* warm_start, const Vec3* lit_side) {
   const double r_e = length(emitter), r_r = length(receiver);
   const LegPlane plane = leg_plane(receiver, emitter, order);
   if (plane.psi == 0 && r_e == r_r) return std::nullopt;
-  const std::optional<RayBetween> ray = ray_between(mass, r_r, r_e, plane.psi, order);
+  const std::optional<FacingSide> facing = facing_side(plane, w_r, lit_side);
+  const std::optional<RayBetween> ray =
+      ray_between(mass, r_r, r_e, plane.psi, order, warm_start, facing ? &*facing : nullptr);
   if (!ray || !(ray->spread_b_to_a > 0)) return std::nullopt;
   // In the static frames: the receiver sees the light arrive from the direction in which the
   // path leaves it; the emitter, at angle `sweep` round from e1 toward e2, sends it back round
@@ -80,12 +90,15 @@ std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Ve
 }
 
 std::optional<HolePlaneWave> hole_plane_wave(double mass, const Vec3& receiver, const Vec3& w_r,
-                                             const Vec3& propagation, int order) {
+                                             const Vec3& propagation, int order,
+                                             RayBetweenStart* warm_start, const Vec3* lit_side) {
   const double r_r = length(receiver);
   // The wave comes from far away along -propagation.
   const LegPlane plane = leg_plane(receiver, propagation * -1.0, order);
+  const std::optional<FacingSide> facing = facing_side(plane, w_r, lit_side);
   const std::optional<RayBetween> ray =
-      ray_between(mass, r_r, std::numeric_limits<double>::infinity(), plane.psi, order);
+      ray_between(mass, r_r, std::numeric_limits<double>::infinity(), plane.psi, order, warm_start,
+                  facing ? &*facing : nullptr);
   if (!ray || !(ray->focusing > 0) || !std::isfinite(ray->focusing)) return std::nullopt;
   const Vec3 travel = (plane.e1 * ray->cos_a + plane.e2 * ray->sin_a) * -1.0;
   const Measured at_r = measured(travel, w_r);

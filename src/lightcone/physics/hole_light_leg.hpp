@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "lightcone/physics/light_path.hpp"
+#include "lightcone/physics/schwarzschild_lens.hpp"
 #include "lightcone/physics/vec.hpp"
 
 namespace lightcone {
@@ -42,21 +43,30 @@ struct HoleLeg {
 // observer, to one at `receiver` (r > 2M) moving with w_r, along the ray of image order
 // `order` (0 direct, 1 round the far side). None where that ray carries no light: the two
 // points coincide, or the receiver lies on a caustic (the two points exactly in line through
-// the hole), where a point's light is focused without bound.
+// the hole), where a point's light is focused without bound. `warm_start`, where given, starts
+// the ray's solve (ray_between) from an earlier leg's between ends nearby and is then set to
+// this leg's; the leg is the same whatever it holds. `lit_side`, where given, is the normal of
+// a receiver at rest against its static observer that takes no light on its back: none then
+// where the light arrives from behind it (found before the ray is solved to the last bits).
 std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
-                                      const Vec3& receiver, const Vec3& w_r, int order = 0);
+                                      const Vec3& receiver, const Vec3& w_r, int order = 0,
+                                      RayBetweenStart* warm_start = nullptr,
+                                      const Vec3* lit_side = nullptr);
 
 // A plane wave: light that far away travels along the unit `propagation` (in W), received at
 // `receiver` (r > 2M) moving with w_r. doppler is nu_receiver / nu far away (in W), direction
 // the propagation direction in the receiver's frame, and focusing the ratio of the areas across
 // the rays far away and at the receiver (1 in flat space): the irradiance there is D^2 E
 // focusing cos, E the wave's irradiance far away, D this doppler times the wave's own there.
+// `warm_start` and `lit_side` as for hole_light_leg.
 struct HolePlaneWave {
   double doppler = 1, focusing = 1;
   Vec3 direction;
   HoleLegPath path;
 };
 std::optional<HolePlaneWave> hole_plane_wave(double mass, const Vec3& receiver, const Vec3& w_r,
-                                             const Vec3& propagation, int order = 0);
+                                             const Vec3& propagation, int order = 0,
+                                             RayBetweenStart* warm_start = nullptr,
+                                             const Vec3* lit_side = nullptr);
 
 }  // namespace lightcone

@@ -22,7 +22,8 @@ double image_sweep(double psi, int order) {
   return order % 2 == 0 ? psi + order * kPi : (order + 1) * kPi - psi;
 }
 
-std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order) {
+std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order,
+                                      RayBetweenStart* warm_start, const FacingSide* facing) {
   const double target = image_sweep(psi, order);
   const bool a_inner = r_a <= r_b;
   const double rho = a_inner ? r_a : r_b, outer = a_inner ? r_b : r_a;
@@ -53,10 +54,71 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
     if (std::cos(alpha) >= 0) return swept_angle(o, rho, outer);
     return swept_angle(o, rho, o.periapsis) + swept_angle(o, o.periapsis, outer);
   };
+  // The root of miss, bracketed by x_a and x_b (either order) where it takes m_a and m_b.
+  const auto root_between = [](const auto& miss, double x_a, double x_b, double m_a, double m_b) {
+    if (x_a > x_b) std::swap(x_a, x_b), std::swap(m_a, m_b);
+    std::uintmax_t iterations = 200;
+    const auto [lo, up] = boost::math::tools::toms748_solve(
+        miss, x_a, x_b, m_a, m_b, boost::math::tools::eps_tolerance<double>(), iterations,
+        MathPolicy());
+    return (lo + up) / 2;
+  };
+  // Whether every direction at end a with look angle in [x_a, x_b] at the inner end falls on the
+  // back of `facing` (by more than rounding: the caller's cos(incidence) from the root is then
+  // negative too). The look angles lie in [0, pi], and a sinusoid whose peak lies within a
+  // stretch under pi long is not negative at one end of it at least: the ends decide.
+  const auto unwanted_between = [&](double x_a, double x_b) {
+    if (!facing || !a_inner) return false;
+    const auto along = [&](double x) {
+      return facing->outward * std::cos(x) + facing->round * std::sin(x);
+    };
+    return along(x_a) < -1e-12 && along(x_b) < -1e-12;
+  };
+  bool unwanted = false;
+  // From an earlier solve's look angle, where it lies on this stretch: a Newton step on its rate,
+  // a twentieth too long so that the root usually falls short of it, then steps doubling
+  // (halfway to the stretch's end where one would leave it) until the miss changes sign. False
+  // where that finds no bracket in a few steps (or the light is unwanted: then `unwanted`).
+  const auto solve_from = [&](const auto& miss, double start, double end, bool turned,
+                              double& alpha) {
+    if (!warm_start || warm_start->inner_is_a != a_inner || warm_start->turned_inside != turned ||
+        !(warm_start->rate > 0) || !(std::min(start, end) < warm_start->alpha) ||
+        !(warm_start->alpha < std::max(start, end)))
+      return false;
+    const double x0 = warm_start->alpha, m0 = miss(x0);
+    if (std::isnan(m0)) return false;
+    if (m0 == 0) return alpha = x0, true;
+    // The miss grows from `start` toward `end`.
+    const double toward = m0 < 0 ? end : start;
+    const double direction = toward > x0 ? 1.0 : -1.0;
+    double step = 1.05 * std::abs(m0) / warm_start->rate;
+    double x = x0, m = m0;
+    for (int k = 0; k < 6; ++k, step *= 2) {
+      if (unwanted_between(x, toward)) return unwanted = true, false;
+      double next = x + direction * step;
+      if (!((next - x) * (toward - next) > 0)) next = (x + toward) / 2;
+      const double m_next = miss(next);
+      if (std::isnan(m_next)) return false;
+      if (m_next == 0) return alpha = next, true;
+      if ((m_next > 0) != (m0 > 0)) {
+        if (unwanted_between(x, next)) {
+          // The next solve starts where the secant through the bracket's ends puts the root.
+          warm_start->alpha = x - m * (next - x) / (m_next - m);
+          return unwanted = true, false;
+        }
+        return alpha = root_between(miss, x, next, m, m_next), true;
+      }
+      x = next, m = m_next;
+    }
+    return false;
+  };
   // The root on the stretch from `start` (sweep below psi) toward `end` (where it diverges).
   bool turned_inside = false;
   const auto solve = [&](double start, double end, bool turned, double& alpha) {
+    if (unwanted_between(start, end)) return unwanted = true, false;
     const auto miss = [&](double x) { return sweep(x, turned) - target; };
+    if (solve_from(miss, start, end, turned, alpha)) return true;
+    if (unwanted) return false;
     const double value_start = miss(start);
     if (value_start == 0) return alpha = start, true;
     double hi = start, value_hi = value_start;
@@ -67,13 +129,8 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
     }
     if (!(value_hi >= 0)) return false;  // M = 0: no second image, nor a ray through the centre
     if (value_hi == 0) return alpha = hi, true;
-    std::uintmax_t iterations = 200;
-    const bool rising = start < hi;  // (the second stretch is solved from its upper end down)
-    const auto [lo, up] = boost::math::tools::toms748_solve(
-        miss, rising ? start : hi, rising ? hi : start, rising ? value_start : value_hi,
-        rising ? value_hi : value_start, boost::math::tools::eps_tolerance<double>(), iterations,
-        MathPolicy());
-    alpha = (lo + up) / 2;
+    if (unwanted_between(start, hi)) return unwanted = true, false;
+    alpha = root_between(miss, start, hi, value_start, value_hi);
     return true;
   };
   double alpha = 0, stretch_lo = 0, stretch_hi = alpha_max;  // (the second: from alpha_critical)
@@ -125,6 +182,7 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
   // sweep is accurate only to some 1e-14 absolutely.
   const double ratio = target > 1e-6 ? std::sin(psi) / sin_inner : rate;
   ray.sweep_rate = rate;
+  if (warm_start) *warm_start = {alpha, rate, a_inner, turned_inside};
   if (std::isinf(outer)) {
     ray.focusing = ratio > 0 ? 1 / (f_rho * ratio * rate) : 0.0;
     return ray;

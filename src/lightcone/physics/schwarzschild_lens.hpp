@@ -14,6 +14,21 @@ namespace lightcone {
 // (k + 1) pi - psi for odd k (round the other side): 0 the primary image, 1 the secondary.
 double image_sweep(double psi, int order);
 
+// Where a solve of ray_between for ends near those of an earlier one starts: that one's look
+// angle at its inner end, on its stretch (turned at r_3 inside the photon sphere or not), with
+// |dsweep / dalpha| there. A rate of 0 starts nothing.
+struct RayBetweenStart {
+  double alpha = 0, rate = 0;
+  bool inner_is_a = true, turned_inside = false;
+};
+
+// The side that a static surface at end a faces, for a caller that wants no light on its back:
+// its normal's components along the outward radial direction there and across it, toward the
+// way the ray goes round (the plane's e2 of hole_light_leg.hpp).
+struct FacingSide {
+  double outward = 0, round = 0;
+};
+
 // The ray of image order k between two points at radii r_a and r_b (> 2M; r_b may be
 // infinity, a direction far away), psi in [0, pi] apart about the hole: the image of order k of
 // the point at b seen from a (locate), or the light that lights a surface from a lamp, directly
@@ -23,6 +38,16 @@ double image_sweep(double psi, int order);
 // monotonically from 0 (radially outward) to infinity (the critical angle, b -> b_c: inward for
 // an inner point outside the photon sphere, outward inside it), so one bracket holds the one
 // root of sweep = image_sweep(psi, k); TOMS 748 on the exact swept_angle.
+//
+// Neighbouring lit points have rays a little apart. With `warm_start` (an earlier solve's, for
+// ends nearby; set to this one's), the bracket is found from its look angle by a Newton step on
+// its rate, a twentieth too long, then steps doubling toward the root: some six evaluations of
+// the sweep fewer. The root is the same whatever the start (to the sweep's own rounding, some
+// 1e-14 of the impact parameter at worst), solved in a bracket whose ends are evaluated (a start
+// that brackets nothing in six steps gives way to the bracket found from the stretch's start). With
+// `facing` (end a the inner end), the solve stops and gives none once its bracket holds only
+// directions at a on the surface's back, where the light would bring nothing; `warm_start` then
+// moves to the secant's root in that bracket.
 struct RayBetween {
   double impact = 0;
   double sweep = 0;  // image_sweep(psi, order)
@@ -47,7 +72,9 @@ struct RayBetween {
   // |dsweep / dalpha| at the inner end.
   double sweep_rate = 0;
 };
-std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order);
+std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order,
+                                      RayBetweenStart* warm_start = nullptr,
+                                      const FacingSide* facing = nullptr);
 
 // The images of directions far away seen by the static observer at radius r0 (> 2M), orders 0
 // to orders - 1, for many directions: ray_between's look angle alpha_k(psi) tabulated at `nodes`
