@@ -306,7 +306,8 @@ bool Lighting::incoming(const ResolvedLight& rl, const Vec4& surface_world,
 bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_world,
                                   const Vec3& surface_velocity, const Vec3& normal,
                                   const std::array<double, 2>& light_sample, int order,
-                                  Incoming& out, std::optional<CurvedShadowRay>& shadow) const {
+                                  Incoming& out, std::optional<CurvedShadowRay>& shadow,
+                                  RayBetweenStart* warm_start) const {
   shadow.reset();
   const Light& light = *rl.light;
   const RenderSettings& settings = scene_->scene->render;
@@ -337,8 +338,8 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
     // hole bends, focuses and blueshifts it on the way in.
     const Vec4 k_light{1.0, normalize(sun->direction)};
     const Vec4 k_world = boost(-light.world_line.velocity) * k_light;
-    const auto wave =
-        hole_plane_wave(hole.mass, receiver, surface_velocity, k_world.x / k_world.t, order);
+    const auto wave = hole_plane_wave(hole.mass, receiver, surface_velocity, k_world.x / k_world.t,
+                                      order, warm_start, &normal);
     if (!wave) return false;
     out.direction_to_light = -wave->direction;
     out.doppler = wave->doppler * k_world.t / k_light.t;
@@ -364,15 +365,16 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   // The light that reaches the surface event left at t_e with t_s - t_e the coordinate time of
   // the direct ray from where the light then was: exact for a light at rest; on a moving line
   // the root of that equation (physics/emission_root.hpp).
+  // A light at rest lights only the side it faces (one on a line may face it from where it was).
   HoleWorldLineState state = line.at(surface.t);
   auto leg = hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
-                            surface_velocity, order);
+                            surface_velocity, order, warm_start, line.still() ? &normal : nullptr);
   if (!leg) return false;
   if (!line.still()) {
     const auto leg_at = [&](double t) {
       state = line.at(t);
       return hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
-                            surface_velocity, order);
+                            surface_velocity, order, warm_start);
     };
     const auto late = [&](double t) {
       const auto l = leg_at(t);
@@ -598,10 +600,12 @@ void Lighting::received(std::span<const LitPoint> points, std::span<LinearRgb> o
           for (const int order : {0, 1}) {
             if (!same_surface) {
               std::optional<CurvedShadowRay> curved;
+              HoleLegStarts* starts = point.near_hole->leg_starts;
               leg_arrives[order] =
                   incoming_near_hole(lights_[l], shading[p].surface_world,
                                      shading[p].surface_velocity, shading[p].normal,
-                                     point.light_sample, order, legs[order], curved) &&
+                                     point.light_sample, order, legs[order], curved,
+                                     starts ? &starts->at(point.hit->body, l, order) : nullptr) &&
                   !(curved && curved_shadows_->occluded(*curved));
             }
             if (leg_arrives[order]) add_light(l, legs[order], shading[p]);

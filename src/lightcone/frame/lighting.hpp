@@ -12,6 +12,7 @@
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/spectrum.hpp"
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/hole_leg_starts.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/shadow_query.hpp"
 #include "lightcone/frame/surface_hit.hpp"
@@ -41,9 +42,11 @@ class Lighting {
   // static observer's frame there the direction in which its light leaves toward the camera
   // and the surface's velocity. Each light arrives along two null geodesics, directly and round
   // the far side (physics/hole_light_leg.hpp; docs/design/black-hole.md, "Lights").
+  // Where given, leg_starts starts each light's legs from the last ones solved to that body.
   struct HoleSurface {
     Vec4 event;
     Vec3 to_camera, local_velocity;
+    HoleLegStarts* leg_starts = nullptr;
   };
 
   // Linear sRGB received at the camera from the lit surface point of `hit`, seen along look
@@ -134,11 +137,13 @@ class Lighting {
                 const Vec3& normal, const std::array<double, 2>& light_sample, Incoming& out,
                 std::optional<ShadowRay>& shadow) const;
   // The same near a black hole, along the ray of image order `order` (0 direct, 1 round the
-  // far side), surface_velocity against the static observer there, the shadow path curved.
+  // far side), surface_velocity against the static observer there, the shadow path curved;
+  // the leg's solve starts from warm_start where given (HoleLegStarts).
   bool incoming_near_hole(const ResolvedLight& light, const Vec4& surface_world,
                           const Vec3& surface_velocity, const Vec3& normal,
                           const std::array<double, 2>& light_sample, int order, Incoming& out,
-                          std::optional<CurvedShadowRay>& shadow) const;
+                          std::optional<CurvedShadowRay>& shadow,
+                          RayBetweenStart* warm_start) const;
   // One lit point's state while its lights are summed.
   struct Shading;
   void prepare(const LitPoint& point, Shading& shading) const;

@@ -106,7 +106,7 @@ void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
 
 LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emission,
                           const CurvedRay& ray, const Lighting* lighting,
-                          const std::array<double, 2>& light_sample) {
+                          const std::array<double, 2>& light_sample, HoleLegStarts* leg_starts) {
   const RenderSettings& settings = scene.scene->render;
   switch (ray.end) {
     case CurvedRayEnd::kSky:
@@ -120,7 +120,7 @@ LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emiss
       if (scene.scene->objects[ray.hit.body].material.unlit)
         return received_colour(surface, ray.shift, settings);
       if (!lighting) break;
-      const Lighting::HoleSurface at{ray.event, ray.to_camera, ray.local_velocity};
+      const Lighting::HoleSurface at{ray.event, ray.to_camera, ray.local_velocity, leg_starts};
       Lighting::LitPoint point{&ray.hit, {}, ray.shift, surface, light_sample, &at};
       LinearRgb out;
       lighting->received(std::span(&point, 1), std::span(&out, 1));
@@ -248,7 +248,11 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     // The output variables come from the first observation's ray through each pixel's centre.
     const bool with_aovs = o == 0 && !options.aovs.empty();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles, 1), [&](const auto& range) {
+      // Near a hole, each tile's lit points start their lights' legs from the tile's last ones.
+      HoleLegStarts leg_starts(resolved.hole ? resolved.bodies.size() : 0,
+                               resolved.scene->lights.size());
       for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
+        leg_starts.clear();
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
           skipped = true;
           continue;
@@ -306,8 +310,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                 for (std::size_t l = 0; l < lanes; ++l) {
                   const CurvedRay ray =
                       follow_curved_ray(*resolved.hole, directions[l], seen.curved_bodies.get());
-                  colours[l] =
-                      curved_radiance(resolved, seen.emission, ray, &seen.lighting, light[l]);
+                  colours[l] = curved_radiance(resolved, seen.emission, ray, &seen.lighting,
+                                               light[l], &leg_starts);
                   tile_orders += ray.order;
                   sky_samples[l] += ray.end == CurvedRayEnd::kSky;
                   subject_samples[l] += ray.end == CurvedRayEnd::kBody &&

@@ -76,10 +76,11 @@ void radiance_of(const ResolvedScene& scene, const EmissionTable& emission,
 // The radiance arriving along a curved camera ray near the scene's black hole: the sky, the
 // disk and emitting bodies seen with the ray's shift g, through the same colour laws as every
 // emitter; lit bodies as `lighting` shades them (black without it), light_sample picking points
-// on sphere lights.
+// on sphere lights, leg_starts (where given) starting the lights' legs from the last ones.
 LinearRgb curved_radiance(const ResolvedScene& scene, const EmissionTable& emission,
                           const CurvedRay& ray, const Lighting* lighting = nullptr,
-                          const std::array<double, 2>& light_sample = {0.5, 0.5});
+                          const std::array<double, 2>& light_sample = {0.5, 0.5},
+                          HoleLegStarts* leg_starts = nullptr);
 
 // Renders the scene: linear radiance times 2^exposure (or the automatic exposure), one RGB
 // triple per pixel. `stats->exposure` reports the EV used.
