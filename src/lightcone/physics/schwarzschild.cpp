@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <boost/math/tools/precision.hpp>
 #include <cmath>
-#include <iterator>
 #include <limits>
 #include <numbers>
 
@@ -200,43 +200,74 @@ double ray_time(const PhotonOrbit& o, double r_lo, double r_hi, bool inner, bool
 // k_1' = 2 sqrt(k') / (1 + k'), and from the functions of (y = x / (1 + k_1), k_1), with
 // N = 1 + k_1 sn^2,
 //   sn(x, k) = (1 + k_1) sn / N,  cn(x, k) = cn dn / N,  dn(x, k) = (cn^2 + (1 - k_1) sn^2) / N
-// (the last is (1 - k_1 sn^2) / N without cancellation). Three steps: k'^2 = 1e-17 gives k_3'^2
-// ~ 0.1, so the rebuilt k_3' loses about 1e-15 and the phase no more (these are the first steps
-// of the arithmetic-geometric mean that Boost runs anyway, only started from the exact k').
+// (the last is (1 - k_1 sn^2) / N without cancellation). The steps go on from the exact k' down to
+// a modulus small enough for sin and cos with their terms in k^2 (jacobi_modulus), which are
+// Boost's own last steps: the moduli are the arithmetic-geometric mean that Boost would run on
+// every call, here once per orbit, and each evaluation is one sine and cosine and a division or
+// so per step, where Boost's takes a sine and an arcsine per level.
 
-// Jacobi's functions, from Boost.Math in double, without exceptions (math_policy.hpp).
-struct Jacobi {
-  double sn, cn, dn;
-};
-Jacobi jacobi(double k, double x) {
-  Jacobi j{};
-  j.sn = boost::math::jacobi_elliptic(k, x, &j.cn, &j.dn, MathPolicy());
-  return j;
-}
 // One Landen step up: from the functions of modulus k_1 (1 - k_1 = c_1) at x / (1 + k_1) to those
 // of k at x.
-Jacobi landen_up(const Jacobi& j, double k1, double c1) {
+JacobiValues landen_up(const JacobiValues& j, double k1, double c1) {
   const double s2 = j.sn * j.sn, n = 1 + k1 * s2;
   return {(1 + k1) * j.sn / n, j.cn * j.dn / n, (j.cn * j.cn + c1 * s2) / n};
 }
 
-// The orbit's Landen moduli from k^2, k'^2 (both computed without cancellation), and Boost's
-// argument rate from that of the functions of modulus k per radian.
-void set_jacobi(PhotonOrbit& o, double k2, double kc2, double rate) {
-  o.jacobi_kc2 = kc2;
-  double kc = std::sqrt(kc2);
-  for (int i = 0; i < PhotonOrbit::kLandenSteps; ++i) {
-    const double inv = 1 / (1 + kc);
-    o.jacobi_k[i] = k2 * inv * inv;  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
-    o.jacobi_c[i] = 2 * kc * inv;
-    rate *= (1 + kc) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
-    k2 = o.jacobi_k[i] * o.jacobi_k[i];
-    kc = 2 * std::sqrt(kc) * inv;  // k_i'
-  }
-  o.jacobi_rate = rate;
-}
+// At least this many Landen steps, though a modulus far from 1 needs fewer: radius_after_angle
+// took three before Boost's jacobi_elliptic at the third modulus, and so its values stay the same
+// to the bit wherever Boost took its asymptotic form there.
+constexpr int kMinLandenSteps = 3;
+
+// Below this modulus Boost's jacobi_elliptic takes sin and cos with their terms in k^2 (A&S 16.13).
+const double kAsymptoticModulus = boost::math::tools::forth_root_epsilon<double>();
 
 }  // namespace
+
+JacobiModulus jacobi_modulus(double k2, double kc2, double rate) {
+  JacobiModulus m;
+  m.unit = kc2 == 0;
+  m.k2 = k2, m.kc2 = kc2;
+  double kc = std::sqrt(kc2);
+  do {
+    const double inv = 1 / (1 + kc);
+    m.k[m.steps] = k2 * inv * inv;  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
+    m.c[m.steps] = 2 * kc * inv;
+    rate *= (1 + kc) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
+    k2 = m.k[m.steps] * m.k[m.steps];
+    kc = 2 * std::sqrt(kc) * inv;  // k_i'
+    ++m.steps;
+  } while (m.steps < kMinLandenSteps || (!m.unit && m.k[m.steps - 1] >= kAsymptoticModulus &&
+                                         m.steps < JacobiModulus::kMaxSteps));
+  m.rate = rate;
+  return m;
+}
+
+JacobiValues jacobi_functions(const JacobiModulus& m, double y) {
+  JacobiValues j;
+  const double last = m.k[m.steps - 1];
+  if (m.unit) {
+    j.sn = std::tanh(y);
+    j.cn = j.dn = 1 / std::cosh(y);
+  } else if (last >= kAsymptoticModulus) {  // k'^2 below some 1e-20 (see kMaxSteps)
+    j.sn = boost::math::jacobi_elliptic(last, y, &j.cn, &j.dn, MathPolicy());
+  } else {
+    // Boost's asymptotic form (A&S 16.13), operation for operation.
+    const double q = last * last, s = std::sin(y), c = std::cos(y);
+    j.dn = 1 - q * s * s / 2;
+    j.cn = c + q * (y - s * c) * s / 4;
+    j.sn = s - q * (y - s * c) * c / 4;
+  }
+  for (int i = m.steps - 1; i >= 0; --i) j = landen_up(j, m.k[i], m.c[i]);
+  if (m.steps > kMinLandenSteps) {
+    // Where cn and dn are near 1 each step up adds their errors (cn dn / N), doubling them, while
+    // sn's stay a fraction of an ulp; past three steps cn and dn are taken from sn instead,
+    // cn^2 = (1 - sn)(1 + sn) (exact factors) unless cn is so small that sn's error would
+    // dominate, and dn^2 = k'^2 + k^2 cn^2, terms that cannot cancel.
+    if (j.sn * j.sn <= 0.99) j.cn = std::copysign(std::sqrt((1 - j.sn) * (1 + j.sn)), j.cn);
+    j.dn = std::sqrt(m.kc2 + m.k2 * j.cn * j.cn);
+  }
+  return j;
+}
 
 double critical_impact_parameter(double mass) {
   return 3 * kSqrt3 * mass;
@@ -269,8 +300,8 @@ PhotonOrbit photon_orbit(double mass, double impact) {
     // radius_after_angle: k^2 = (w_2 - w_1) / (w_3 - w_1), k'^2 = (w_3 - w_2) / (w_3 - w_1), the
     // argument's rate sqrt((M/b)(w_3 - w_1) / 2) (schwarzschild.cpp, "The path r(phi)").
     const double spread = 1 + o.w_neg * v3;  // (w_3 - w_1) / w_3
-    set_jacobi(o, (1 / o.v_pos + o.w_neg) * v3 / spread, o.v_gap / o.v_pos / spread,
-               std::sqrt(o.scale * spread) / 2);
+    o.jacobi = jacobi_modulus((1 / o.v_pos + o.w_neg) * v3 / spread, o.v_gap / o.v_pos / spread,
+                              std::sqrt(o.scale * spread) / 2);
     return o;
   }
   // One real root v_1 = -(2/sqrt 3) cosh(h), 3h = arccosh(b_c / b) = 2 asinh(sqrt(-gap / 2)),
@@ -287,7 +318,8 @@ PhotonOrbit photon_orbit(double mass, double impact) {
   o.modulus_c2 = n * n / (2 * o.quad_a * (o.quad_a + c));  // (A - c') / 2A, no cancellation
   // radius_after_angle: k^2 = (A + c) / 2A, and the argument of Byrd & Friedman 239.00 is
   // sqrt(2 (M/b) A) per radian.
-  set_jacobi(o, (o.quad_a + c) / (2 * o.quad_a), o.modulus_c2, std::sqrt(o.scale * o.quad_a));
+  o.jacobi =
+      jacobi_modulus((o.quad_a + c) / (2 * o.quad_a), o.modulus_c2, std::sqrt(o.scale * o.quad_a));
   return o;
 }
 
@@ -493,10 +525,9 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
     a.form = AngleSweep::Form::kAt;
     return a;
   }
-  std::copy(std::begin(o.jacobi_k), std::end(o.jacobi_k), a.k);
-  std::copy(std::begin(o.jacobi_c), std::end(o.jacobi_c), a.c);
+  a.jacobi = o.jacobi;
   a.impact = o.impact, a.w_neg = o.w_neg;
-  const double rate = o.jacobi_rate;
+  const double rate = o.jacobi.rate;
   if (o.turning) {
     // The argument is the angle from the far end (w = w_1 outside, r = 0 inside) times the rate;
     // it grows as w grows outside (inward), and as w falls inside (outward).
@@ -543,9 +574,7 @@ double radius_after_angle(const AngleSweep& a, double phi) {
   if (a.form == Form::kInvalid || !(phi >= 0)) return kNaN;
   if (phi == 0) return a.r0;
   if (phi >= a.angle_total) return a.end;  // kAt: angle_total is 0
-  constexpr int kSteps = PhotonOrbit::kLandenSteps;
-  Jacobi j = jacobi(a.k[kSteps - 1], a.phase + a.rate * phi);
-  for (int i = kSteps - 1; i >= 0; --i) j = landen_up(j, a.k[i], a.c[i]);
+  const JacobiValues j = jacobi_functions(a.jacobi, a.phase + a.rate * phi);
   const double s2 = j.sn * j.sn, c2 = j.cn * j.cn;
   double r = 0;
   switch (a.form) {

@@ -9,6 +9,36 @@
 
 namespace lightcone {
 
+// Jacobi's elliptic functions sn, cn, dn of one modulus k at many arguments. Descending Landen
+// (Gauss) transformations k -> k_1 -> k_2 ..., k_{i+1} = (1 - k_i') / (1 + k_i') (DLMF 22.7.1-4),
+// taken from k' so that k -> 1 loses no digits, at least three and on (up to kMaxSteps) until the
+// modulus is below Boost.Math's threshold for its asymptotic form (A&S 16.13: sin, cos and 1 with
+// their terms in k^2); then one evaluation is a sine and a cosine there and a division or so per
+// step back up, where Boost's jacobi_elliptic would run its arithmetic-geometric mean with a sine
+// and an arcsine per level on every call. Where three steps reach the threshold (k'^2 above 0.3:
+// rays that turn beyond b = 5.8 M) the values are Boost's at k_3 to the bit.
+struct JacobiModulus {
+  // k'^2 down to some 1e-20 takes at most 7 steps, and no orbit but b = b_c has a smaller one (its
+  // k'^2 is of order 1 - b_c / b or its square root); below, Boost evaluates the seventh modulus.
+  static constexpr int kMaxSteps = 7;
+  int steps = 0;
+  double k[kMaxSteps] = {};  // k_1, k_2, ...
+  double c[kMaxSteps] = {};  // 1 - k_1, 1 - k_2, ... (without cancellation)
+  bool unit = false;         // k = 1 exactly (k' = 0): every k_i is 1
+  double k2 = 0, kc2 = 0;    // k^2 and k'^2
+  // The last modulus's argument per unit of the caller's: the caller's rate of k's argument
+  // times the product of 1 / (1 + k_i), multiplied in that order.
+  double rate = 1;
+};
+// From k^2 and k'^2 = 1 - k^2, both computed without cancellation, and k's argument per unit of
+// the caller's.
+JacobiModulus jacobi_modulus(double k2, double kc2, double rate = 1);
+struct JacobiValues {
+  double sn, cn, dn;
+};
+// sn, cn, dn of modulus k at argument y / modulus.rate: y is the argument of the last modulus.
+JacobiValues jacobi_functions(const JacobiModulus& modulus, double y);
+
 // b_c = 3 sqrt(3) M: rays with b < b_c that come from outside the photon sphere r = 3M fall
 // into the hole; rays with b > b_c turn at a periapsis outside it.
 double critical_impact_parameter(double mass);
@@ -38,14 +68,10 @@ struct PhotonOrbit {
   // b <= b_c: with z = w - w_1 the cubic is scale z ((z - pair_c)^2 + pair_n^2).
   double pair_c = 0, pair_n = 0;
   // The path r(phi) in Jacobi elliptic functions of modulus k (radius_after_angle), taken through
-  // three descending Landen steps k -> k_1 -> k_2 -> k_3, k_1 = (1 - k') / (1 + k'), with k' from
-  // the gaps above, so that k -> 1 (b -> b_c) loses no digits: Boost evaluates modulus k_3 at an
-  // argument that advances by jacobi_rate per radian swept. All 0 for b = 0.
-  static constexpr int kLandenSteps = 3;
-  double jacobi_kc2 = 0;               // k'^2
-  double jacobi_k[kLandenSteps] = {};  // k_1, k_2, k_3
-  double jacobi_c[kLandenSteps] = {};  // 1 - k_1, 1 - k_2, 1 - k_3
-  double jacobi_rate = 0;
+  // descending Landen steps from k' computed from the gaps above, so that k -> 1 (b -> b_c) loses
+  // no digits: the argument at the last modulus advances by jacobi.rate per radian swept. No
+  // steps for b = 0.
+  JacobiModulus jacobi;
 };
 
 PhotonOrbit photon_orbit(double mass, double impact);
@@ -118,8 +144,8 @@ double radius_after_angle(const PhotonOrbit& orbit, double r0, bool outward, dou
 
 // The same, prepared once per ray (orbit, r0, direction) for many angles: prepare_sweep costs
 // ray_course and one more of Carlson's R_F; radius_after_angle(sweep, phi) one Jacobi evaluation
-// (Boost's arithmetic-geometric mean) and a few flops, no allocation. The function above is these
-// two composed.
+// (jacobi_functions: a sine and a cosine) and a few flops, no allocation. The function above is
+// these two composed.
 struct AngleSweep {
   // Each form measures its argument from an end of the orbit equation's interval that the ray
   // never reaches (schwarzschild.cpp, "The path r(phi)").
@@ -138,10 +164,9 @@ struct AngleSweep {
   double angle_to_turn = 0;    // ray_course's
   double end = 0;              // the radius past angle_total: infinity, 2M (3M for b = b_c exactly)
   double horizon = 0;          // 2M
-  double phase = 0, rate = 0;  // Boost's argument at phi: phase + rate phi
-  double k[PhotonOrbit::kLandenSteps] = {};  // the orbit's Landen moduli
-  double c[PhotonOrbit::kLandenSteps] = {};  // and their complements 1 - k_i
-  double scale = 0, coef = 0;                // the form's constants (schwarzschild.cpp)
+  double phase = 0, rate = 0;  // the last modulus's argument at phi: phase + rate phi
+  JacobiModulus jacobi;        // the orbit's
+  double scale = 0, coef = 0;  // the form's constants (schwarzschild.cpp)
   double impact = 0, w_neg = 0;
 };
 AngleSweep prepare_sweep(const PhotonOrbit& orbit, double r0, bool outward);
