@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/curved_ray.hpp"
@@ -115,6 +116,28 @@ TEST(RadialFall, AtRadiusIsThePointAtItsProperTime) {
       EXPECT_NEAR(p.local_velocity, q.local_velocity, 1e-12);
       EXPECT_NEAR(q.radius, r, 1e-12 * r);
     }
+}
+
+// A falling body's state at a time near the hole is solved by Newton's method on t(r) within a
+// bracket of two radii (its sampled fall): the point it gives is the one at that time, to the
+// last bits, from brackets wide and narrow, one ending where it is at rest (dt/dr infinite)
+// and one close to the horizon.
+TEST(RadialFall, AtCoordinateTimeBetweenIsThePointAtThatTime) {
+  for (const RadialFall& fall : {RadialFall::from_rest(1, 10), RadialFall::from_infinity(1, 12)}) {
+    const double top = fall.is_from_infinity() ? 40.0 : 10.0;
+    const std::pair<double, double> brackets[] = {
+        {9.0, top}, {2.5, top}, {6.0, 6.2}, {2.0 + 1e-6, 2.0 + 2e-6}, {2.0 + 1e-9, 3.0}};
+    for (const auto& [lo, hi] : brackets)
+      for (const double w : {0.0, 0.1, 0.5, 0.97}) {
+        const double r = lo + (hi - lo) * w;
+        const double t = fall.at_radius(r).coordinate_time;
+        const RadialFallPoint p = fall.at_coordinate_time_between(
+            t, lo, fall.at_radius(lo).coordinate_time, hi, fall.at_radius(hi).coordinate_time);
+        SCOPED_TRACE(testing::Message() << "bracket " << lo << " to " << hi << ", r " << r);
+        EXPECT_NEAR(p.radius, r, 1e-14 * r + 1e-14 * (r - 2));
+        EXPECT_NEAR(p.coordinate_time, t, 1e-13 * (1 + std::abs(t)));
+      }
+  }
 }
 
 // infall.json's clocks, turned about an oblique axis so that their outlines across their lines

@@ -221,7 +221,7 @@ void tabulate_fall(const RadialFall& fall, std::vector<double>& times, std::vect
   for (int k = 0; k < kFallSamples; ++k) {
     const double r =
         2 * m + (top - 2 * m) * std::pow(1e-7, static_cast<double>(k) / (kFallSamples - 1));
-    const double t = fall.at_proper_time(fall.proper_time_at_radius(r)).coordinate_time;
+    const double t = fall.at_radius(r).coordinate_time;
     if (!times.empty() && !(t > times.back())) continue;
     times.push_back(t);
     radii.push_back(r);
@@ -461,27 +461,17 @@ HoleWorldLineState CurvedBodies::Body::state_at(double t) const {
   const auto* fall = std::get_if<HoleWorldLine::Fall>(&line.path());
   if (!fall) return line.at(t);
   // Between the sampled times about t, its radius is the root of t(r) - t, t(r) in closed form
-  // and decreasing: bracketed by their radii. Before the first (held at r0, or from farther than
-  // the samples) and after the last, the world-line's own solve.
+  // and decreasing: bracketed by their radii, found by Newton's method on t(r). Before the first
+  // (held at r0, or from farther than the samples) and after the last, the world-line's own
+  // solve.
   const double u = t - fall->time;
   const auto k = static_cast<std::size_t>(
       std::upper_bound(fall_times.begin(), fall_times.end(), u) - fall_times.begin());
   if (k == 0 || k == fall_times.size()) return line.at(t);
   const RadialFall& radial = fall->fall;
-  const auto miss = [&](double r) { return radial.at_radius(r).coordinate_time - u; };
-  const double lo = fall_radii[k], hi = fall_radii[k - 1];
-  const double miss_lo = miss(lo), miss_hi = miss(hi);
-  double r = miss_lo == 0 ? lo : hi;
-  if (miss_lo > 0 && miss_hi < 0) {
-    std::uintmax_t iterations = 100;
-    const auto [r0, r1] = boost::math::tools::toms748_solve(
-        miss, lo, hi, miss_lo, miss_hi, boost::math::tools::eps_tolerance<double>(), iterations,
-        MathPolicy());
-    r = (r0 + r1) / 2;
-  } else if (miss_lo != 0 && miss_hi != 0) {
-    return line.at(t);  // (rounding unbracketed it)
-  }
-  const RadialFallPoint p = radial.at_radius(r);
+  const RadialFallPoint p = radial.at_coordinate_time_between(u, fall_radii[k], fall_times[k],
+                                                              fall_radii[k - 1], fall_times[k - 1]);
+  const double r = p.radius;
   const double f = 1 - 2 * line.mass() / r;
   const Vec3& d = fall->direction;
   return {d * r, d * (f * p.local_velocity), d * p.local_velocity, radial.proper_time_at_radius(r)};

@@ -100,8 +100,7 @@ double HoleWorldLine::nearest() const {
 double HoleWorldLine::farthest() const {
   if (const auto* s = std::get_if<Straight>(&path_)) return still() ? length(s->position) : kInf;
   if (const auto* o = std::get_if<Orbit>(&path_)) return o->radius;
-  const RadialFall& fall = std::get<Fall>(path_).fall;
-  return fall.is_from_infinity() ? kInf : fall.at_proper_time(0).radius;
+  return std::get<Fall>(path_).fall.start_radius();
 }
 
 double HoleWorldLine::max_coordinate_speed() const {

@@ -155,6 +155,30 @@ RadialFallPoint RadialFall::at_radius(double r) const {
   return {r, infinity_time(tau), -e_ / std::sqrt(r / reference_)};
 }
 
+RadialFallPoint RadialFall::at_coordinate_time_between(double t, double lo, double t_lo, double hi,
+                                                       double t_hi) const {
+  double r = t_lo > t_hi ? hi + (lo - hi) * ((t - t_hi) / (t_lo - t_hi)) : lo;
+  if (!(r >= lo && r <= hi)) r = (lo + hi) / 2;
+  const double tolerance = 4 * std::numeric_limits<double>::epsilon() * hi;
+  RadialFallPoint p;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    p = at_radius(r);
+    const double miss = p.coordinate_time - t;
+    if (miss == 0) break;
+    (miss > 0 ? lo : hi) = r;  // t(r) decreases: a later time is a radius too small
+    // -dr/dt, 0 at rest (r0), where a step is no step: the midpoint then.
+    const double f = 1 - 2 * mass_ / r, rate = f * std::sqrt(energy_ * energy_ - f) / energy_;
+    const double next = r + miss * rate;
+    if (rate > 0 && std::abs(next - r) <= tolerance && next >= lo && next <= hi) break;
+    r = next > lo && next < hi ? next : (lo + hi) / 2;
+    if (!(hi - lo > tolerance)) {
+      p = at_radius(r);
+      break;
+    }
+  }
+  return p;
+}
+
 double RadialFall::proper_time_at_coordinate_time(double t) const {
   if (t == 0) return 0;
   const double horizon = horizon_proper_time();

@@ -67,8 +67,17 @@ class RadialFall {
   // The point at r > 2M (<= r0 from rest at r0) on its way in, in closed form: eta (or tau, from
   // infinity) from r, then t and v as at_proper_time gives them (which finds eta from tau).
   RadialFallPoint at_radius(double r) const;
+  // The point at coordinate time t on its way in, given radii lo < hi (> 2M, <= r0 from rest at
+  // r0) at which its times t_lo >= t >= t_hi bracket t: Newton's method on the closed-form t(r)
+  // with its derivative dt/dr = -E / (f sqrt(E^2 - f)), from the bracket's linear interpolation,
+  // a step that leaves the bracket (which each point's side of t narrows) replaced by its
+  // midpoint, to where the step is within a few units in the last place of r.
+  RadialFallPoint at_coordinate_time_between(double t, double lo, double t_lo, double hi,
+                                             double t_hi) const;
   // The proper time at which it reaches the horizon, r = 2M.
   double horizon_proper_time() const { return proper_time_at_radius(2 * mass_); }
+  // Where it is at rest: r0, infinity for a fall from infinity.
+  double start_radius() const { return r0_; }
 
   // The proper time at which the body's coordinate time is t (finite). t(tau) is increasing
   // and goes to +infinity at the horizon (and, from rest at r0, to -infinity at the past
