@@ -12,7 +12,9 @@
 namespace lightcone::carlson {
 
 // Boost's R_F, R_D, R_J and R_C in double precision, without exceptions (math_policy.hpp): NaN
-// for a NaN argument or one outside their domain, 0 (their limit) for an infinite one.
+// for a NaN argument or one outside their domain, 0 (their limit) for an infinite one. R_J is
+// Boost's duplication with the small R_C terms of its steps summed as a series (within a few
+// ulps of Boost's, without an arctangent or logarithm for each).
 double rf(double x, double y, double z);
 double rd(double x, double y, double z);
 double rj(double x, double y, double z, double p);
