@@ -63,16 +63,36 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
         MathPolicy());
     return (lo + up) / 2;
   };
-  // Whether every direction at end a with look angle in [x_a, x_b] at the inner end falls on the
-  // back of `facing` (by more than rounding: the caller's cos(incidence) from the root is then
-  // negative too). The look angles lie in [0, pi], and a sinusoid whose peak lies within a
-  // stretch under pi long is not negative at one end of it at least: the ends decide.
-  const auto unwanted_between = [&](double x_a, double x_b) {
-    if (!facing || !a_inner) return false;
-    const auto along = [&](double x) {
-      return facing->outward * std::cos(x) + facing->round * std::sin(x);
+  // At the outer end the ray moves outward (it escapes), or inward after turning inside the
+  // photon sphere; the direction toward the inner end is the opposite, at sin = b sqrt(f) / R.
+  const double f_outer = std::isinf(outer) ? 1.0 : 1 - 2 * mass / outer;
+  const auto outer_direction = [&](double impact, bool turned, double& cos_outer,
+                                   double& sin_outer) {
+    sin_outer = std::isinf(outer) ? 0.0 : impact * std::sqrt(f_outer) / outer;
+    cos_outer = (turned ? 1 : -1) * std::sqrt(std::max(0.0, (1 - sin_outer) * (1 + sin_outer)));
+  };
+  // Whether every ray with look angle in [x_a, x_b] at the inner end leaves end a on the back
+  // of `facing` (by more than rounding: the caller's cos(incidence) from the root is then
+  // negative too). Those directions span an arc under pi long, from the look angles at its ends
+  // (end a inner) or from the least and the greatest impact parameter over them (end a outer;
+  // b grows with sin(alpha)); a sinusoid whose peak lies within such an arc is not negative at
+  // one end of it at least: the arc's ends decide.
+  const auto unwanted_between = [&](double x_a, double x_b, bool turned) {
+    if (!facing) return false;
+    const auto behind = [&](double cos_x, double sin_x) {
+      return facing->outward * cos_x + facing->round * sin_x < -1e-12;
     };
-    return along(x_a) < -1e-12 && along(x_b) < -1e-12;
+    if (a_inner)
+      return behind(std::cos(x_a), std::sin(x_a)) && behind(std::cos(x_b), std::sin(x_b));
+    const double lo = std::min(x_a, x_b), hi = std::max(x_a, x_b);
+    const double sin_least = std::min(std::sin(lo), std::sin(hi));
+    const double sin_most =
+        lo <= kPi / 2 && kPi / 2 <= hi ? 1.0 : std::max(std::sin(lo), std::sin(hi));
+    double cos_least, sin_least_outer, cos_most, sin_most_outer;
+    outer_direction(static_impact_parameter(mass, rho, sin_least), turned, cos_least,
+                    sin_least_outer);
+    outer_direction(static_impact_parameter(mass, rho, sin_most), turned, cos_most, sin_most_outer);
+    return behind(cos_least, sin_least_outer) && behind(cos_most, sin_most_outer);
   };
   bool unwanted = false;
   // From an earlier solve's look angle, where it lies on this stretch: a Newton step on its rate,
@@ -94,14 +114,14 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
     double step = 1.05 * std::abs(m0) / warm_start->rate;
     double x = x0, m = m0;
     for (int k = 0; k < 6; ++k, step *= 2) {
-      if (unwanted_between(x, toward)) return unwanted = true, false;
+      if (unwanted_between(x, toward, turned)) return unwanted = true, false;
       double next = x + direction * step;
       if (!((next - x) * (toward - next) > 0)) next = (x + toward) / 2;
       const double m_next = miss(next);
       if (std::isnan(m_next)) return false;
       if (m_next == 0) return alpha = next, true;
       if ((m_next > 0) != (m0 > 0)) {
-        if (unwanted_between(x, next)) {
+        if (unwanted_between(x, next, turned)) {
           // The next solve starts where the secant through the bracket's ends puts the root.
           warm_start->alpha = x - m * (next - x) / (m_next - m);
           return unwanted = true, false;
@@ -115,7 +135,7 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
   // The root on the stretch from `start` (sweep below psi) toward `end` (where it diverges).
   bool turned_inside = false;
   const auto solve = [&](double start, double end, bool turned, double& alpha) {
-    if (unwanted_between(start, end)) return unwanted = true, false;
+    if (unwanted_between(start, end, turned)) return unwanted = true, false;
     const auto miss = [&](double x) { return sweep(x, turned) - target; };
     if (solve_from(miss, start, end, turned, alpha)) return true;
     if (unwanted) return false;
@@ -129,7 +149,7 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
     }
     if (!(value_hi >= 0)) return false;  // M = 0: no second image, nor a ray through the centre
     if (value_hi == 0) return alpha = hi, true;
-    if (unwanted_between(start, hi)) return unwanted = true, false;
+    if (unwanted_between(start, hi, turned)) return unwanted = true, false;
     alpha = root_between(miss, start, hi, value_start, value_hi);
     return true;
   };
@@ -148,12 +168,8 @@ std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, doubl
   RayBetween ray;
   ray.impact = o.impact;
   ray.sweep = target;
-  // At the outer end the ray moves outward (it escapes), or inward after turning inside the
-  // photon sphere; the direction toward the inner end is the opposite.
-  const double f_outer = std::isinf(outer) ? 1.0 : 1 - 2 * mass / outer;
-  const double sin_outer = std::isinf(outer) ? 0.0 : o.impact * std::sqrt(f_outer) / outer;
-  const double cos_outer =
-      (turned_inside ? 1 : -1) * std::sqrt(std::max(0.0, (1 - sin_outer) * (1 + sin_outer)));
+  double cos_outer, sin_outer;
+  outer_direction(o.impact, turned_inside, cos_outer, sin_outer);
   const double sin_inner = std::sin(alpha), cos_inner = std::cos(alpha);
   if (a_inner) {
     ray.cos_a = cos_inner, ray.sin_a = sin_inner, ray.cos_b = cos_outer, ray.sin_b = sin_outer;

@@ -43,10 +43,10 @@ struct FacingSide {
 // ends nearby; set to this one's), the bracket is found from its look angle by a Newton step on
 // its rate, a twentieth too long, then steps doubling toward the root: some six evaluations of
 // the sweep fewer. The root is the same whatever the start (to the sweep's own rounding, some
-// 1e-14 of the impact parameter at worst), solved in a bracket whose ends are evaluated (a start
-// that brackets nothing in six steps gives way to the bracket found from the stretch's start). With
-// `facing` (end a the inner end), the solve stops and gives none once its bracket holds only
-// directions at a on the surface's back, where the light would bring nothing; `warm_start` then
+// 1e-14 of the impact parameter at worst), solved in a bracket whose ends are evaluated (a
+// start that brackets nothing in six steps gives way to the bracket found from the stretch's
+// start). With `facing`, the solve stops and gives none once its bracket holds only rays that
+// leave end a on the surface's back, where the light would bring nothing; `warm_start` then
 // moves to the secant's root in that bracket.
 struct RayBetween {
   double impact = 0;
