@@ -273,5 +273,64 @@ TEST(BlackHoleGeodesicBodies, InfallSceneLoadsAndItsClocksRedden) {
   EXPECT_LT(sum[2] / count[2], 0.5);
 }
 
+// A turned box on an orbit and one on a straight coordinate line are met on their shapes, not
+// their balls: every primary image of a point just inside a corner, where `locate` finds one, is
+// on the box, and a ray toward a point beside the box but within its ball (a face's centre moved
+// out by 0.3 of the half-size: the ball reaches sqrt(3) of it) meets no box there: nothing, or
+// the box's own surface (in front of the point or behind it).
+TEST(BlackHoleGeodesicBodies, MovingBoxesAreMetOnTheirShapesNotTheirBalls) {
+  Scene s = hole_scene();
+  const double half = 0.6;
+  Object orbiting = geodesic_ball(s, half, {{}, 1, HoleOrbit{8, {1, 0, 0}, {0, 0, -1}, 2.0}});
+  orbiting.name = "orbiting";
+  Object straight = test::make_object("straight", Sphere{half}, {-5, 1, 4}, {0, 0.05, 0.3},
+                                      test::solid({1, 1, 1}));
+  for (Object* o : {&orbiting, &straight}) {
+    o->shape = Box{{2 * half, 2 * half, 2 * half}};
+    o->rotation = Mat3::rotation(normalize(Vec3{1, 2, 3}), 0.7);
+  }
+  s.objects = {orbiting, straight};
+  const View view(s);
+  int inside = 0, beside = 0, passed = 0;
+  for (int body = 0; body < 2; ++body) {
+    SCOPED_TRACE(s.objects[body].name);
+    LocateQuery q;
+    q.kind = LocateQuery::Kind::ObjectPoint;
+    q.object = s.objects[body].name;
+    for (int corner = 0; corner < 8; ++corner) {
+      q.value = Vec3{corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0} *
+                (0.98 * half);
+      for (const LocateImage& image : locate(s, q).images) {
+        if (image.order != 0) continue;
+        const CurvedRay ray = view.ray_along(image.direction);
+        EXPECT_EQ(ray.end, CurvedRayEnd::kBody) << "corner " << corner;
+        EXPECT_EQ(ray.hit.body, body) << "corner " << corner;
+        ++inside;
+      }
+    }
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double side : {-1.0, 1.0}) {
+        Vec3 point;
+        point[axis] = side * 1.3 * half;
+        q.value = point;
+        for (const LocateImage& image : locate(s, q).images) {
+          if (image.order != 0) continue;
+          const CurvedRay ray = view.ray_along(image.direction);
+          ++beside;
+          if (ray.end != CurvedRayEnd::kBody || ray.hit.body != body) {
+            ++passed;
+            continue;
+          }
+          SCOPED_TRACE(testing::Message() << "axis " << axis << ", side " << side);
+          const Vec3& met = ray.hit.shape_point;
+          EXPECT_NEAR(std::max({std::abs(met.x), std::abs(met.y), std::abs(met.z)}), half, 1e-6);
+        }
+      }
+  }
+  EXPECT_GE(inside, 12);
+  EXPECT_GE(passed, 4);
+  EXPECT_GE(beside, 10);
+}
+
 }  // namespace
 }  // namespace lightcone
