@@ -291,7 +291,8 @@ TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b
                              double turn) {
   const double r_a = length(a_x), r_b = length(b_x);
   const double least = turn > 0 ? turn : std::min(r_a, r_b);
-  const double star_a = tortoise(r_a), star_b = tortoise(r_b), star_turn = tortoise(least);
+  const double star_a = tortoise(r_a), star_b = tortoise(r_b),
+               star_turn = turn > 0 ? tortoise(turn) : 0.0;
   const double radial =
       turn > 0 ? (star_a - star_turn) + (star_b - star_turn) : std::abs(star_a - star_b);
   // (The tortoise coordinates' rounding, which the difference keeps where the path is nearly
