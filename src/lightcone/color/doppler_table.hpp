@@ -94,7 +94,10 @@ inline double grid_log(double d) {
   const auto k = static_cast<int>((bits >> 42) & 0x3ff);
   const double m =
       lightcone::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
-  const double x = (m - (1 + k * (1.0 / 1024))) * detail::grid_log_table.inverse_node[k];
+  // m_k = 1 + k / 1024 exactly: m's top 10 mantissa bits alone (no conversion on the path).
+  const double m_k =
+      lightcone::bit_cast<double>((bits & 0x000ffc0000000000ULL) | 0x3ff0000000000000ULL);
+  const double x = (m - m_k) * detail::grid_log_table.inverse_node[k];
   const double series = x * (1 - x * (0.5 - x * (1.0 / 3 - x * 0.25)));
   return e * 0.6931471805599453 + detail::grid_log_table.log_node[k] + series;
 }
@@ -112,10 +115,11 @@ inline GridPosition grid_position(const DopplerGrid& grid, double d) {
   const double top = grid.size() - 2;
   if (!(t >= 1 - kRounding && t <= top + kRounding)) [[unlikely]]
     return grid_position_outside(grid, d);
-  // Truncation is floor for t >= 1; the clamp takes the end intervals up to their ends.
+  // Truncation is floor for t >= 1; the clamp takes the end intervals up to their ends (held
+  // <= size - 3, so first <= size - 4).
   const double held = std::clamp(t, 1.0, top - 1);
   GridPosition p;
-  p.first = std::min(static_cast<int>(held) - 1, grid.size() - 4);
+  p.first = static_cast<int>(held) - 1;
   p.fraction = t - (p.first + 1);
   return p;
 }

@@ -46,6 +46,10 @@ struct PointEmission {
   LinearRgb rgb_seen_with_doppler(double d) const {
     if (table_count == 0) return {};
     const GridPosition position = grid_position(tables[0]->grid(), d);
+    if (table_count == 1) {  // (most colours: a table of their own, weight 1)
+      const LinearRgb c = tables[0]->rgb(position);
+      return {weights[0] * c.r, weights[0] * c.g, weights[0] * c.b};
+    }
     LinearRgb sum;
     for (int k = 0; k < table_count; ++k) {
       const LinearRgb c = tables[k]->rgb(position);

@@ -11,44 +11,10 @@ LinearRgb scaled(const LinearRgb& c, double k) {
 
 }  // namespace
 
-double spectral_searchlight(double d, SearchlightModel model) {
-  switch (model) {
-    case SearchlightModel::kPhysical:
-      return d * d * d * d * d;
-    case SearchlightModel::kChang1996:
-      return d;
-    case SearchlightModel::kOff:
-      break;
-  }
-  return 1.0;
-}
-
-double integrated_searchlight(double d, SearchlightModel model) {
-  switch (model) {
-    case SearchlightModel::kPhysical:
-      return d * d * d * d;
-    case SearchlightModel::kChang1996:
-      return d;
-    case SearchlightModel::kOff:
-      break;
-  }
-  return 1.0;
-}
-
-LinearRgb received_colour(const PointEmission& e, double d, const RenderSettings& settings) {
-  switch (settings.doppler) {
-    case DopplerModel::kOff:
-      return scaled(e.rest_rgb, integrated_searchlight(d, settings.searchlight));
-    case DopplerModel::kRgb3:
-      return rgb3_shift(e.rest_rgb, d, integrated_searchlight(d, settings.searchlight));
-    case DopplerModel::kHue:
-      return scaled(hue_shift(e.rest_rgb, d, settings.hue_loop),
-                    integrated_searchlight(d, settings.searchlight));
-    case DopplerModel::kSpectral:
-      break;
-  }
-  if (d == 1 || e.table_count == 0) return e.rest_rgb;
-  return scaled(e.rgb_seen_with_doppler(d), spectral_searchlight(d, settings.searchlight));
+LinearRgb received_shifted_rgb(const PointEmission& e, double d, const RenderSettings& settings) {
+  const double searchlight = integrated_searchlight(d, settings.searchlight);
+  if (settings.doppler == DopplerModel::kRgb3) return rgb3_shift(e.rest_rgb, d, searchlight);
+  return scaled(hue_shift(e.rest_rgb, d, settings.hue_loop), searchlight);
 }
 
 LinearRgb received_thermal_colour(const ThermalEmission& thermal, double tau, double d,

@@ -8,14 +8,56 @@
 namespace lightcone {
 
 // The factor on spectral radiance (D^5 physical, D for Chang et al. 1996, 1 off).
-double spectral_searchlight(double d, SearchlightModel model);
+inline double spectral_searchlight(double d, SearchlightModel model) {
+  switch (model) {
+    case SearchlightModel::kPhysical:
+      return d * d * d * d * d;
+    case SearchlightModel::kChang1996:
+      return d;
+    case SearchlightModel::kOff:
+      break;
+  }
+  return 1.0;
+}
 // The factor on radiance integrated over wavelength (D^4 physical, D, 1).
-double integrated_searchlight(double d, SearchlightModel model);
+inline double integrated_searchlight(double d, SearchlightModel model) {
+  switch (model) {
+    case SearchlightModel::kPhysical:
+      return d * d * d * d;
+    case SearchlightModel::kChang1996:
+      return d;
+    case SearchlightModel::kOff:
+      break;
+  }
+  return 1.0;
+}
+
+// received_colour under the models that shift the rest colour's RGB (rgb3, hue).
+LinearRgb received_shifted_rgb(const PointEmission& emission, double d,
+                               const RenderSettings& settings);
 
 // Linear sRGB received. For the spectral model: the emission's tabulated colour at D (the
 // deterministic quadrature of L_E(D lambda) against the CIE observer) times the spectral
-// searchlight factor; at D = 1 exactly, the rest colour with no spectral work.
-LinearRgb received_colour(const PointEmission& emission, double d, const RenderSettings& settings);
+// searchlight factor; at D = 1 exactly, the rest colour with no spectral work. (Inline: it is
+// looked up once per camera ray, where a call's own cost was a tenth of the spectral model's.)
+inline LinearRgb received_colour(const PointEmission& emission, double d,
+                                 const RenderSettings& settings) {
+  const auto scaled = [](const LinearRgb& c, double k) -> LinearRgb {
+    return {c.r * k, c.g * k, c.b * k};
+  };
+  switch (settings.doppler) {
+    case DopplerModel::kSpectral:
+      if (d == 1 || emission.table_count == 0) return emission.rest_rgb;
+      return scaled(emission.rgb_seen_with_doppler(d),
+                    spectral_searchlight(d, settings.searchlight));
+    case DopplerModel::kOff:
+      return scaled(emission.rest_rgb, integrated_searchlight(d, settings.searchlight));
+    case DopplerModel::kRgb3:
+    case DopplerModel::kHue:
+      break;
+  }
+  return received_shifted_rgb(emission, d, settings);
+}
 
 // The colour received from a blackbody at tau times the temperature of `thermal`'s hottest part,
 // seen with factor d. Planck's law scales: B_lambda(lambda; tau T) = tau^5 B_lambda(tau lambda; T),
