@@ -8,6 +8,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <utility>
 
 #include "lightcone/physics/math_policy.hpp"
 
@@ -50,14 +51,27 @@ double rc_one_plus_small(double e) {
 
 // Boost's algorithm for double (ellint_rj_imp: the duplication theorem until 4^-n Q < A_n, then
 // its series), operation for operation but for rc_one_plus_small, for four distinct positive
-// finite arguments; Boost itself for the rest (a zero, equal arguments, p < 0).
+// finite arguments, and its Cauchy principal value for p < 0 from one of them; Boost itself for
+// the rest (a zero, equal arguments).
 double rj(double x, double y, double z, double p) {
   double value;
   if (settled({x, y, z, p}, value)) return value;
-  const bool general = x > 0 && y > 0 && z > 0 && p > 0 && std::isfinite(x) && std::isfinite(y) &&
-                       std::isfinite(z) && std::isfinite(p) && x != y && x != z && x != p &&
-                       y != z && y != p && z != p;
-  if (!general) return boost::math::ellint_rj(x, y, z, p, MathPolicy());
+  const bool positive = x > 0 && y > 0 && z > 0 && std::isfinite(x) && std::isfinite(y) &&
+                        std::isfinite(z) && std::isfinite(p) && x != y && x != z && y != z;
+  if (positive && p < 0) {
+    // Boost's (DLMF 19.20.14) with x < y < z: R_J at p' = (z (x + y + q) - x y) / (z + q) > 0,
+    // q = -p.
+    if (x > y) std::swap(x, y);
+    if (y > z) std::swap(y, z);
+    if (x > y) std::swap(x, y);
+    const double q = -p, pp = (z * (x + y + q) - x * y) / (z + q);
+    return ((pp - z) * rj(x, y, z, pp) - 3 * rf(x, y, z) +
+            3 * std::sqrt((x * y * z) / (x * y + pp * q)) * rc(x * y + pp * q, pp * q)) /
+           (z + q);
+  }
+  if (!(positive && p > 0 && x != p && y != p && z != p)) {
+    return boost::math::ellint_rj(x, y, z, p, MathPolicy());
+  }
   static const double kTolerance = std::pow(std::numeric_limits<double>::epsilon() / 5, -1.0 / 8);
   double xn = x, yn = y, zn = z, pn = p;
   double an = (x + y + z + 2 * p) / 5;
