@@ -193,5 +193,22 @@ TEST(BlackHoleLights, LightComesDirectlyAndRoundTheFarSideAndEachIsShadowedOnIts
   EXPECT_EQ(LitEvent(lamp_scene(lamp, intensity, lamp * 1.5)).radiance(event, normal), open);
 }
 
+TEST(HoleLegStarts, KeepEachBodysLastLegWithinATileAndForgetThemAtTheNext) {
+  // A picture's tile starts each body's legs from that body's last, per light and order, and
+  // the next tile from nothing (whichever thread rendered the tiles before it).
+  HoleLegStarts starts(2);
+  for (std::size_t body = 0; body < 10; ++body)
+    for (std::size_t light = 0; light < 2; ++light)
+      for (int order = 0; order <= 1; ++order)
+        starts.at(body, light, order) = {0.1 * body + 0.01 * light + 0.001 * order, 1.0, true,
+                                         false};
+  for (std::size_t body = 0; body < 10; ++body)
+    for (std::size_t light = 0; light < 2; ++light)
+      for (int order = 0; order <= 1; ++order)
+        EXPECT_EQ(starts.at(body, light, order).alpha, 0.1 * body + 0.01 * light + 0.001 * order);
+  starts.next_tile();
+  for (std::size_t body = 0; body < 10; ++body) EXPECT_EQ(starts.at(body, 1, 0).rate, 0);
+}
+
 }  // namespace
 }  // namespace lightcone

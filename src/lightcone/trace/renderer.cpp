@@ -249,10 +249,9 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     const bool with_aovs = o == 0 && !options.aovs.empty();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles, 1), [&](const auto& range) {
       // Near a hole, each tile's lit points start their lights' legs from the tile's last ones.
-      HoleLegStarts leg_starts(resolved.hole ? resolved.bodies.size() : 0,
-                               resolved.scene->lights.size());
+      HoleLegStarts leg_starts(resolved.scene->lights.size());
       for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
-        leg_starts.clear();
+        leg_starts.next_tile();
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
           skipped = true;
           continue;
