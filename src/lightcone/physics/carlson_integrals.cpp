@@ -54,6 +54,10 @@ double rc_one_plus_small(double e) {
 // finite arguments, and its Cauchy principal value for p < 0 from one of them; Boost itself for
 // the rest (a zero, equal arguments).
 double rj(double x, double y, double z, double p) {
+  return rj(x, y, z, p, std::numeric_limits<double>::quiet_NaN());
+}
+
+double rj(double x, double y, double z, double p, double rf_xyz) {
   double value;
   if (settled({x, y, z, p}, value)) return value;
   const bool positive = x > 0 && y > 0 && z > 0 && std::isfinite(x) && std::isfinite(y) &&
@@ -65,7 +69,8 @@ double rj(double x, double y, double z, double p) {
     if (y > z) std::swap(y, z);
     if (x > y) std::swap(x, y);
     const double q = -p, pp = (z * (x + y + q) - x * y) / (z + q);
-    return ((pp - z) * rj(x, y, z, pp) - 3 * rf(x, y, z) +
+    if (std::isnan(rf_xyz)) rf_xyz = rf(x, y, z);
+    return ((pp - z) * rj(x, y, z, pp) - 3 * rf_xyz +
             3 * std::sqrt((x * y * z) / (x * y + pp * q)) * rc(x * y + pp * q, pp * q)) /
            (z + q);
   }
@@ -228,7 +233,7 @@ double third_kind(const RealCubic& c, const Pole& p, bool regular) {
   const double w2 = c.u1s - p.b4 * c.d12 * c.d13 / p.d14;
   const double x1y1s = c.x.s1 * c.x.s1 * c.y.s1 * c.y.s1;
   const double i3 = pole_rc(w2, p.l4x, p.l4y, x1y1s, p.b4 * p.d24 * p.d34 / p.d14, regular) -
-                    2 * c.b1 * c.d12 * c.d13 / (3 * p.d14) * rj(c.u3s, c.u2s, c.u1s, w2);
+                    2 * c.b1 * c.d12 * c.d13 / (3 * p.d14) * rj(c.u3s, c.u2s, c.u1s, w2, c.rf);
   return (p.b4 * i3 - c.b1 * first_kind(c)) / p.d14;
 }
 
@@ -281,8 +286,8 @@ double third_kind(const QuadraticCubic& k, double a4, double b4, double l4x, dou
   const double w2 = k.u * k.u - c11 * c11 * b4 / (2 * d14);
   const double x1y1s = k.x1 * k.x1 * k.y1 * k.y1;
   const double i3 = 2 * c11 / (3 * c44) *
-                        (-4 / d14 * (c14s + c11 * c44) * rj(k.m2, k.lm2, k.lp2, wp2) - 6 * k.rf +
-                         3 * rc(k.u * k.u, w2)) +
+                        (-4 / d14 * (c14s + c11 * c44) * rj(k.m2, k.lm2, k.lp2, wp2, k.rf) -
+                         6 * k.rf + 3 * rc(k.u * k.u, w2)) +
                     pole_rc(w2, l4x, l4y, x1y1s, c44 * c44 * b4 / (2 * d14), regular);
   return (b4 * i3 - first_kind(k)) / d14;
 }

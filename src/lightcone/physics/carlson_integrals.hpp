@@ -18,6 +18,9 @@ namespace lightcone::carlson {
 double rf(double x, double y, double z);
 double rd(double x, double y, double z);
 double rj(double x, double y, double z, double p);
+// The same given R_F(x, y, z), which R_J's Cauchy principal value for p < 0 takes (DLMF 19.20.14),
+// where the caller has it already.
+double rj(double x, double y, double z, double p, double rf_xyz);
 double rc(double x, double y);
 
 // Up to kMaxBatch of R_F at once, equal to rf's to the bit: run side by side, the independent
