@@ -114,13 +114,13 @@ class ExposureMeter {
   // Counts pixels, each in one of kLanes copies of its bin's counter, side by side in a cache
   // line: neighbours of one bin (a flat sky) then increment different counters, and none waits
   // on the store of the one before, as one counter would; nor is there a branch to mispredict
-  // on a noisy picture, as counting runs of a bin had. Four pixels' counters are found at once
-  // (four_bins); a row's last pixels, fewer than four, one by one. Each pixel marks its bin's
-  // group occupied, a store that waits on nothing, so that readers scan only the groups counted
-  // in.
+  // on a noisy picture, as counting runs of a bin had. The counters of 16 pixels are found
+  // first, four at a time (four_bins), then counted (which ran faster than counting each four as
+  // found); a row's last pixels, fewer than 16, one by one. Each pixel marks its bin's group
+  // occupied, a store that waits on nothing, so that readers scan only the groups counted in.
   template <class WeightOf>
   void count(const float* rgb, std::size_t pixels, WeightOf weight_of) {
-    static_assert(kLanes == 4);
+    static_assert(kLanes == 4);  // a pixel's lane is its place among four
     std::uint32_t* const counts = count_.get();
     const auto one = [&](std::size_t i, std::uint32_t counter) {
       ++counts[counter];
@@ -128,11 +128,13 @@ class ExposureMeter {
       if (const std::uint64_t weight = weight_of(i)) weight_[counter / kLanes] += weight;
     };
     std::size_t i = 0;
-    for (; i + 4 <= pixels; i += 4) {
-      const Bins4 counters = (four_bins(rgb + 3 * i) << 2) | Bins4{0, 1, 2, 3};
-      std::uint32_t at[4];
-      std::memcpy(at, &counters, sizeof at);
-      for (std::size_t k = 0; k < 4; ++k) one(i + k, at[k]);
+    for (; i + 16 <= pixels; i += 16) {
+      std::uint32_t at[16];
+      for (std::size_t k = 0; k < 16; k += 4) {
+        const Bins4 counters = (four_bins(rgb + 3 * (i + k)) << 2) | Bins4{0, 1, 2, 3};
+        std::memcpy(at + k, &counters, sizeof counters);
+      }
+      for (std::size_t k = 0; k < 16; ++k) one(i + k, at[k]);
     }
     for (; i < pixels; ++i)
       one(i, static_cast<std::uint32_t>(bin_of(rgb + 3 * i) * kLanes + i % kLanes));
