@@ -30,7 +30,8 @@ Groups:
            setup among 10,000 bodies over 100 covering the same 30 % of the picture, unlit and
            lit (<= 2)
   scaling  `lightcone render scenes/street.json` at 1920x1080 as its file says, the whole
-           process on 1 thread over 2, at 1 and 4 samples (>= 1.8)
+           process on 1 thread over 2, at 1 and 4 samples (>= 1.8); each repetition of these
+           times two runs of each, the runs alternated
   setup    the whole process of a 16x16 render of 100,000 plain-colour moving spheres read from
            a scene file at its defaults, less that of one sphere, per sphere (<= 10 us); the
            peak memory of an in-process render of 100,000 spheres of distinct colours at a fixed
@@ -286,9 +287,12 @@ def measure_scaling(table, build, repetitions, scratch):
                       "--height", "1080", "--samples", str(samples), "--threads", str(threads),
                       "--quiet"]
             for threads in (1, 2)}
-        walls = alternate(commands, repetitions)
-        one = [w for w, _ in walls[1]]
-        two = [w for w, _ in walls[2]]
+        # A quarter to two seconds each, against a margin of a few per cent: two runs a
+        # repetition.
+        rounds = 2
+        walls = alternate(commands, repetitions, rounds)
+        one = [w / rounds for w, _ in walls[1]]
+        two = [w / rounds for w, _ in walls[2]]
         table.add("scaling", f"street.json 1920x1080 as its file says, {samples} "
                   f"sample{'s' * (samples > 1)}, whole `render` process, 1 thread over 2 "
                   f"({statistics.median(one):.2f} / "
