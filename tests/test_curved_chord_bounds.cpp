@@ -44,7 +44,7 @@ struct Ray {
 TimeBounds bounds_between(const Ray& ray, const TimeBounds& at_a, double phi_a, double phi_b) {
   const bool turn_between = ray.turned(phi_b) && !ray.turned(phi_a);
   return light_cone_bounds(at_a, ray.point(phi_a), ray.point(phi_b), phi_b - phi_a,
-                           turn_between ? ray.sweep.turning_radius : 0.0);
+                           turn_between ? ray.sweep.turning_radius : 0.0, ray.orbit.impact);
 }
 
 TEST(LightConeBounds, HoldTheExactTimeOverOneChord) {
@@ -102,6 +102,26 @@ TEST(LightConeBounds, TightAlongANearlyRadialPath) {
     EXPECT_LT(carried.late - carried.early, 0.1 * -t);
   }
   EXPECT_GT(checked, 100);
+}
+
+// From far out toward a turning point, most of the angle is swept near the turning point: the
+// path's tangential part bounded by the larger radius times the angle would spread the bounds by
+// some 30 M from r = 30 to 12 (b = 8, in one piece); the slope of the time in the radius,
+// 1 / (f sqrt(1 - b^2 f / r^2)) at most where b^2 f / r^2 is greatest, holds them within a
+// fifth of the time elapsed.
+TEST(LightConeBounds, TightOnAPieceTowardTheTurningPoint) {
+  const Ray ray(8);
+  int checked = 0;
+  for (double phi = 0.05; phi < ray.sweep.angle_to_turn && ray.radius(phi) > 12; phi += 0.05) {
+    const TimeBounds at = bounds_between(ray, {0, 0}, 0, phi);
+    const double t = ray.time(phi);
+    SCOPED_TRACE(testing::Message() << "phi " << phi << ", r " << ray.radius(phi));
+    EXPECT_LE(at.early, t);
+    EXPECT_GE(at.late, t);
+    EXPECT_LT(at.late - at.early, 0.2 * -t);
+    ++checked;
+  }
+  EXPECT_GT(checked, 5);
 }
 
 // A fall's point at a radius in closed form (what a falling body's state near a hole is solved

@@ -288,7 +288,8 @@ double tortoise(double r) {
 }  // namespace
 
 TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b_x, double dphi,
-                             double turn) {
+                             double turn, double impact) {
+  const double m = HoleView::mass;
   const double r_a = length(a_x), r_b = length(b_x);
   const double least = turn > 0 ? turn : std::min(r_a, r_b);
   const double star_a = tortoise(r_a), star_b = tortoise(r_b),
@@ -298,9 +299,19 @@ TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b
   // (The tortoise coordinates' rounding, which the difference keeps where the path is nearly
   // radial and its time nearly the radial part alone.)
   const double rounding = 1e-13 * (std::abs(star_a) + std::abs(star_b) + 2 * std::abs(star_turn));
-  const double across = std::max(r_a, r_b) * dphi / std::sqrt(1 - 2 * HoleView::mass / least);
-  return {a.early - (radial + rounding + across),
-          a.late - std::max(length(b_x - a_x), radial - rounding)};
+  const double across = std::max(r_a, r_b) * dphi / std::sqrt(1 - 2 * m / least);
+  double longest = radial + rounding + across, shortest = radial - rounding;
+  if (!(turn > 0)) {
+    // Where r is monotone between them, dt/|dr| = 1 / (f sqrt(1 - q)), q = b^2 (r - 2M) / r^3,
+    // which is greatest at r = 3M and least at an end. (Not where q nears 1, at a turning point,
+    // whose rounding the relative 1e-12 would not cover.)
+    const auto q = [&](double r) { return impact * impact * (r - 2 * m) / (r * r * r); };
+    const double q_most = q(std::clamp(3 * m, std::min(r_a, r_b), std::max(r_a, r_b)));
+    if (q_most < 1 - 1e-3)
+      longest = std::min(longest, (radial + rounding) / std::sqrt(1 - q_most) * (1 + 1e-12));
+    shortest = shortest / std::sqrt(1 - std::min(q(r_a), q(r_b))) * (1 - 1e-12);
+  }
+  return {a.early - longest, a.late - std::max(length(b_x - a_x), shortest)};
 }
 
 CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segments)
@@ -546,9 +557,9 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         // where a piece needs it), its time once a is timed.
         double a_early = 0, a_late = 0;
         if (moving) {
-          const TimeBounds bounds =
-              light_cone_bounds({start.time, start.time}, path.offset(0, start.radius), a.x, phi_a,
-                                events.turned(phi_a) ? events.course.turning_radius : 0.0);
+          const TimeBounds bounds = light_cone_bounds(
+              {start.time, start.time}, path.offset(0, start.radius), a.x, phi_a,
+              events.turned(phi_a) ? events.course.turning_radius : 0.0, path.impact);
           a_early = bounds.early, a_late = bounds.late;
         }
         Vec3 shape_a;
@@ -592,7 +603,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
               const bool turn_between = events.turned(phi_b) && !events.turned(phi_a);
               const TimeBounds bounds =
                   light_cone_bounds({a_early, a_late}, a.x, b.x, phi_b - phi_a,
-                                    turn_between ? events.course.turning_radius : 0.0);
+                                    turn_between ? events.course.turning_radius : 0.0, path.impact);
               b_early = bounds.early, b_late = bounds.late;
             }
             bool b_timed = false, b_state = false;

@@ -31,17 +31,20 @@ namespace lightcone {
 // Bounds on the W time of the point b of a light path near the hole (positions relative to it,
 // lengths and times in units of its mass M) reached backward from point a over the angle
 // dphi > 0 about it, given bounds on a's; `turn` is the path's turning radius if it turns
-// between them, else 0. Along a null path f dt^2 = dr^2 / f + r^2 dphi^2 (f = 1 - 2M/r), so
-// |dr| / f <= dt <= |dr| / f + r dphi / sqrt(f), and dt is at least the coordinate length
-// sqrt(dr^2 + r^2 dphi^2) (f <= 1). The integral of |dr| / f is the variation of the tortoise
-// coordinate r* = r + 2M ln(r / 2M - 1) over the stretches where r is monotone: the time taken
-// is at least that and the chord |b - a|, and at most that plus the larger radius times dphi
-// over sqrt(f) at the least radius between them.
+// between them, else 0, and `impact` its impact parameter b. Along a null path
+// f dt^2 = dr^2 / f + r^2 dphi^2 (f = 1 - 2M/r), so |dr| / f <= dt <= |dr| / f + r dphi / sqrt(f),
+// and dt is at least the coordinate length sqrt(dr^2 + r^2 dphi^2) (f <= 1). The integral of
+// |dr| / f is the variation D of the tortoise coordinate r* = r + 2M ln(r / 2M - 1) over the
+// stretches where r is monotone: the time taken is at least D and the chord |b - a|, and at most
+// D plus the larger radius times dphi over sqrt(f) at the least radius between them. Where r is
+// monotone between them, dt / |dr| = 1 / (f sqrt(1 - q)) with q = b^2 f / r^2 (the orbit
+// equation), which is greatest at r = 3M and least at an end: the time lies within
+// [D / sqrt(1 - q_least), D / sqrt(1 - q_most)] too.
 struct TimeBounds {
   double early = 0, late = 0;
 };
 TimeBounds light_cone_bounds(const TimeBounds& a, const Vec3& a_x, const Vec3& b_x, double dphi,
-                             double turn);
+                             double turn, double impact);
 
 class CurvedBodies : public CurvedShadowQuery {
  public:
