@@ -234,8 +234,7 @@ void tabulate_fall(const RadialFall& fall, std::vector<double>& times, std::vect
 // Contraction along d moves its points toward the origin along d alone, within the prism.
 void outline_prism(const Object& o, const Vec3& d, double m,
                    std::vector<std::array<double, 2>>& outline, Vec3& across_x, Vec3& across_y,
-                   double& along_lo, double& along_hi) {
-  Vec3 lower, upper;
+                   double& along_lo, double& along_hi, Vec3& lower, Vec3& upper) {
   if (const auto* box = std::get_if<Box>(&o.shape)) {
     upper = box->size * 0.5, lower = upper * -1.0;
   } else if (const auto* mesh = std::get_if<MeshShape>(&o.shape)) {
@@ -330,12 +329,14 @@ CurvedBodies::CurvedBodies(const ResolvedScene& scene, const BodySegments& segme
                        {},
                        {},
                        0,
-                       0});
+                       0,
+                       {},
+                       {}});
     Body& body = bodies_.back();
     if (const auto* fall = std::get_if<HoleWorldLine::Fall>(&body.line.path())) {
       tabulate_fall(fall->fall, body.fall_times, body.fall_radii);
       outline_prism(o, fall->direction, m, body.outline, body.across_x, body.across_y,
-                    body.along_lo, body.along_hi);
+                    body.along_lo, body.along_hi, body.shape_lower, body.shape_upper);
     }
   }
 }
@@ -428,7 +429,9 @@ bool CurvedBodies::Body::may_meet_between(const Vec3& a, const Vec3& b, double t
   const double lowest = k1 < fall_times.size() ? fall_radii[k1] : 2 * line.mass();
   if (k0 == 0 && fall.fall.is_from_infinity()) return true;
   const double highest = k0 == 0 ? fall_radii.front() : fall_radii[k0 - 1];
-  if (!outline.empty()) return prism_near(a, b, lowest, highest, margin + 1e-9 * radius);
+  if (!outline.empty())
+    return prism_near(a, b, lowest, highest, margin + 1e-9 * radius) &&
+           swept_box_near(a, b, lowest, highest, margin);
   return segment_distance(a, b, fall.direction * lowest, fall.direction * highest) <= reach;
 }
 
@@ -467,6 +470,58 @@ bool CurvedBodies::Body::prism_near(const Vec3& a, const Vec3& b, double lowest,
     if (segment_distance(p0, p1, {e0[0], e0[1], 0}, {e1[0], e1[1], 0}) <= margin) return true;
   }
   return false;
+}
+
+bool CurvedBodies::Body::swept_box_near(const Vec3& a, const Vec3& b, double lowest, double highest,
+                                        double margin) const {
+  const auto& fall = std::get<HoleWorldLine::Fall>(line.path());
+  const Vec3& d = fall.direction;
+  const double m = line.mass(), e = fall.fall.energy();
+  // Its coordinate speed f sqrt(E^2 - f) / E over those radii (f increasing with r): least at an
+  // end, greatest at f = 2E^2 / 3 or the end nearest it; its contraction 1 / gamma of that.
+  const auto speed = [&](double f) { return f * std::sqrt(std::max(0.0, e * e - f)) / e; };
+  const double f_lo = 1 - 2 * m / lowest, f_hi = 1 - 2 * m / highest;
+  const double slowest = std::min(speed(f_lo), speed(f_hi));
+  const double fastest = speed(std::clamp(2 * e * e / 3, f_lo, f_hi));
+  const double gamma_lo = 1 / std::sqrt(1 - slowest * slowest),
+               gamma_hi = 1 / std::sqrt(1 - fastest * fastest);
+  // A point p, its origin at z d and its contraction 1 / gamma, has the shape coordinates
+  // to_shape (p - (d . p) d + lambda d), lambda = gamma (d . p - z): along the segment
+  // (p = a + s (b - a)) lambda is bilinear in gamma and in (s, z), so it lies between its values
+  // at the corners of s in [0, 1], z in [lowest, highest], gamma in [gamma_lo, gamma_hi].
+  const double za = dot(a, d), zb = dot(b, d);
+  double least = kInfinity, most = -kInfinity;
+  for (const double z_p : {za, zb})
+    for (const double z : {lowest, highest})
+      for (const double gamma : {gamma_lo, gamma_hi}) {
+        least = std::min(least, gamma * (z_p - z));
+        most = std::max(most, gamma * (z_p - z));
+      }
+  const Vec3 along = to_shape * d;
+  const Vec3 origin = to_shape * (a - d * za) + along * least;
+  const Vec3 e1 = to_shape * ((b - d * zb) - (a - d * za)), e2 = along * (most - least);
+  // The margin in shape coordinates: at most stretched by gamma and by to_shape's norm; and its
+  // rounding, as the ball's.
+  double norm = 0;
+  for (const auto& row : to_shape.m)
+    for (const double x : row) norm += x * x;
+  const Vec3 size = shape_upper - shape_lower;
+  const double widen = margin * gamma_hi * std::sqrt(norm) + 1e-9 * length(size);
+  const Vec3 centre = (shape_lower + shape_upper) * 0.5 - (origin + (e1 + e2) * 0.5);
+  const Vec3 half = size * 0.5 + Vec3{widen, widen, widen};
+  // Separating axes of a parallelogram and a box: the box's axes, the parallelogram's normal,
+  // and each box axis across each of its edges.
+  const auto separates = [&](const Vec3& axis) {
+    const double reach = 0.5 * (std::abs(dot(axis, e1)) + std::abs(dot(axis, e2))) +
+                         std::abs(axis.x) * half.x + std::abs(axis.y) * half.y +
+                         std::abs(axis.z) * half.z;
+    return std::abs(dot(axis, centre)) > reach;
+  };
+  const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  if (separates(cross(e1, e2))) return false;
+  for (const Vec3& axis : axes)
+    if (separates(axis) || separates(cross(axis, e1)) || separates(cross(axis, e2))) return false;
+  return true;
 }
 
 HoleWorldLineState CurvedBodies::Body::state_at(double t) const {

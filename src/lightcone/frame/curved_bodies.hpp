@@ -121,10 +121,18 @@ class CurvedBodies : public CurvedShadowQuery {
     std::vector<std::array<double, 2>> outline;
     Vec3 across_x, across_y;
     double along_lo = 0, along_hi = 0;
+    // Its box in its shape's coordinates (a mesh's bounds), with the prism.
+    Vec3 shape_lower, shape_upper;
     // Whether the segment from a to b comes within `margin` of the prism with its origin at
     // radii in [lowest, highest] on its line.
     bool prism_near(const Vec3& a, const Vec3& b, double lowest, double highest,
                     double margin) const;
+    // Whether the segment from a to b can come within `margin` of the box itself with its
+    // origin at radii in [lowest, highest] on its line, whatever its contraction there: a
+    // segment's shape coordinates over those radii and contractions lie in a parallelogram
+    // (docs/design/black-hole.md, "Bodies"), tested against the box by separating axes.
+    bool swept_box_near(const Vec3& a, const Vec3& b, double lowest, double highest,
+                        double margin) const;
     // Its origin's state at time t: on a fall, its radius solved on t(r) in closed form within
     // the bracket of its sampled times (fall_times) about t, else its world-line's.
     HoleWorldLineState state_at(double t) const;
