@@ -196,7 +196,8 @@ TEST(BlackHoleLights, LightComesDirectlyAndRoundTheFarSideAndEachIsShadowedOnIts
 TEST(HoleLegStarts, KeepEachBodysLastLegWithinATileAndForgetThemAtTheNext) {
   // A picture's tile starts each body's legs from that body's last, per light and order, and
   // the next tile from nothing (whichever thread rendered the tiles before it).
-  HoleLegStarts starts(2);
+  HoleLegStarts starts;
+  starts.begin_tile(7);
   for (std::size_t body = 0; body < 10; ++body)
     for (std::size_t light = 0; light < 2; ++light)
       for (int order = 0; order <= 1; ++order)
@@ -206,7 +207,7 @@ TEST(HoleLegStarts, KeepEachBodysLastLegWithinATileAndForgetThemAtTheNext) {
     for (std::size_t light = 0; light < 2; ++light)
       for (int order = 0; order <= 1; ++order)
         EXPECT_EQ(starts.at(body, light, order).alpha, 0.1 * body + 0.01 * light + 0.001 * order);
-  starts.next_tile();
+  starts.begin_tile(8);
   for (std::size_t body = 0; body < 10; ++body) EXPECT_EQ(starts.at(body, 1, 0).rate, 0);
 }
 

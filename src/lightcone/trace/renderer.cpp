@@ -231,6 +231,8 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const bool with_subject = (scene.render.auto_exposure && !metered_in_pass) || options.subject;
   std::vector<float> subject(with_subject ? pixels : 0, 0.0f);
   PerThread<ExposureMeter> meters;
+  // Near a hole, each tile's lit points start their lights' legs from the tile's last ones.
+  PerThread<HoleLegStarts> thread_leg_starts;
 
   double setup_seconds = 0, stars_seconds = 0;
   for (int o = 0; o < observations; ++o) {
@@ -248,10 +250,9 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
     // The output variables come from the first observation's ray through each pixel's centre.
     const bool with_aovs = o == 0 && !options.aovs.empty();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles, 1), [&](const auto& range) {
-      // Near a hole, each tile's lit points start their lights' legs from the tile's last ones.
-      HoleLegStarts leg_starts(resolved.scene->lights.size());
+      HoleLegStarts& leg_starts = thread_leg_starts.local();
       for (std::size_t tile = range.begin(); tile != range.end(); ++tile) {
-        leg_starts.next_tile();
+        leg_starts.begin_tile(o * tiles + tile + 1);
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
           skipped = true;
           continue;
