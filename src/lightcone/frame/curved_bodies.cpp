@@ -500,13 +500,14 @@ bool CurvedBodies::Body::swept_box_near(const Vec3& a, const Vec3& b, double low
   const Vec3 along = to_shape * d;
   const Vec3 origin = to_shape * (a - d * za) + along * least;
   const Vec3 e1 = to_shape * ((b - d * zb) - (a - d * za)), e2 = along * (most - least);
-  // The margin in shape coordinates: at most stretched by gamma and by to_shape's norm; and its
-  // rounding, as the ball's.
+  // The margin in shape coordinates: at most stretched by gamma and by to_shape's norm (at most
+  // the sum of its entries' sizes, which no square underflows for a hole far lighter than its
+  // bodies); and its rounding, as the ball's.
   double norm = 0;
   for (const auto& row : to_shape.m)
-    for (const double x : row) norm += x * x;
+    for (const double x : row) norm += std::abs(x);
   const Vec3 size = shape_upper - shape_lower;
-  const double widen = margin * gamma_hi * std::sqrt(norm) + 1e-9 * length(size);
+  const double widen = margin * gamma_hi * norm + 1e-9 * length(size);
   const Vec3 centre = (shape_lower + shape_upper) * 0.5 - (origin + (e1 + e2) * 0.5);
   const Vec3 half = size * 0.5 + Vec3{widen, widen, widen};
   // Separating axes of a parallelogram and a box: the box's axes, the parallelogram's normal,
