@@ -86,8 +86,9 @@ TEST(LatticeRender, EqualsTheWholeRendersPixelsExactly) {
     EXPECT_EQ(lattice_subject, every_fourth(whole_subject, whole.width, whole.height, 1)) << name;
     // Something to compare: light, and (flat space) a subject.
     EXPECT_GT(*std::max_element(lattice.rgb.begin(), lattice.rgb.end()), 0.0f) << name;
-    if (std::string(c.scene) == "terrell.json")
+    if (std::string(c.scene) == "terrell.json") {
       EXPECT_GT(*std::max_element(lattice_subject.begin(), lattice_subject.end()), 0.0f) << name;
+    }
   }
 }
 

@@ -69,7 +69,9 @@ TEST(BlackHoleExposure, BesideAHoleOfNoConsequenceTheTracerMetersTheFlatSubject)
     // Only where a tenth of a pixel moves an outline across a pixel's centre.
     EXPECT_LT(weights_differing(near.subject, flat.subject), 40u);
     // The negligible hole's picture is the flat one (the other's light is shifted by its depth).
-    if (mass < 1e-6) EXPECT_LT(test::fraction_differing(near.image, flat.image), 1e-3);
+    if (mass < 1e-6) {
+      EXPECT_LT(test::fraction_differing(near.image, flat.image), 1e-3);
+    }
   }
 }
 

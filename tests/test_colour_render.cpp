@@ -546,7 +546,9 @@ TEST(ColourRender, TheSkyIsReceivedWithItsOwnDopplerFactorInEveryDirection) {
         const bool varies = std::any_of(seen.begin(), seen.end(), [&](const LinearRgb& c) {
           return c.r != seen[0].r || c.g != seen[0].g || c.b != seen[0].b;
         });
-        if (!grid) EXPECT_EQ(varies, camera_speed > 0);
+        if (!grid) {
+          EXPECT_EQ(varies, camera_speed > 0);
+        }
       }
 }
 

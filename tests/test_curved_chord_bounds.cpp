@@ -61,8 +61,9 @@ TEST(LightConeBounds, HoldTheExactTimeOverOneChord) {
         EXPECT_GE(at_b.late, t_b);
         // Not loose beyond use over short chords far out: the path's length at most sqrt(2) times
         // the chord's (its radial and angular parts added), the light's speed at least f > 0.86.
-        if (dphi <= 0.1 && ray.radius(phi) > 15 && ray.radius(phi + dphi) > 15)
+        if (dphi <= 0.1 && ray.radius(phi) > 15 && ray.radius(phi + dphi) > 15) {
           EXPECT_LT(at_b.late - at_b.early, 0.7 * (t_a - t_b));
+        }
       }
     }
   }

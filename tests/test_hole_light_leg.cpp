@@ -208,8 +208,12 @@ TEST(HoleLightLeg, IsNoneOnlyWhereItLightsTheBackOfAStaticSurface) {
             const bool behind = dot(normal, alone->leg.direction) > 0;
             const bool wave_behind = dot(normal, wave_alone->direction) > 0;
             // None only from behind a static surface, and then mostly.
-            if (!leg) ASSERT_TRUE(behind && dot(w, w) == 0);
-            if (!wave) ASSERT_TRUE(wave_behind && dot(w, w) == 0);
+            if (!leg) {
+              ASSERT_TRUE(behind && dot(w, w) == 0);
+            }
+            if (!wave) {
+              ASSERT_TRUE(wave_behind && dot(w, w) == 0);
+            }
             const bool still = dot(w, w) == 0;
             lit += !behind, dark += behind && still, culled += !leg;
             wave_lit += !wave_behind, wave_dark += wave_behind && still, wave_culled += !wave;
