@@ -89,7 +89,8 @@ class CurvedBodies : public CurvedShadowQuery {
   bool nearest_on_axis(const PathStart& start, const CurvedPath& path, double from, double to,
                        Found& found) const;
 
-  // Its lengths and times in units of the hole's mass, as the paths'.
+  // Its lengths and times in units of the hole's mass, as the paths'. (Its motion's tests are
+  // curved_body_motion.cpp's; the walk along a ray is curved_bodies.cpp's.)
   struct Body {
     int index = 0;
     HoleWorldLine line;  // of its origin
