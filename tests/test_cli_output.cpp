@@ -224,6 +224,30 @@ TEST_F(CliTest, NonFiniteRendersAreErrorsAndWriteNothing) {
   expect_nothing_written();
 }
 
+// A PNG written alone is exposed in its tone map's pass, not one of its own: the same file as
+// one written beside the EXR (which keeps the exposed picture), at the automatic exposure and a
+// fixed one, and refused as that one is where the exposure takes values past a float's range.
+TEST_F(CliTest, APngAloneIsThePngBesideAnExr) {
+  const fs::path scene = write_scene(kScene);
+  for (const std::string exposure : {"", " --set render.exposure=1.5"}) {
+    ASSERT_EQ(render(scene, "--quiet" + exposure).status, 0);
+    const fs::path alone = out_ / "alone.png";
+    ASSERT_EQ(
+        run_lightcone("render " + quoted(scene) + " -o " + quoted(alone) + " --quiet" + exposure)
+            .status,
+        0);
+    EXPECT_EQ(test::bytes_of(alone), test::bytes_of(png())) << exposure;
+    fs::remove(alone);
+    fs::remove(png());
+    fs::remove(exr());
+  }
+  const CommandResult r = run_lightcone("render " + quoted(scene) + " -o " + quoted(png()) +
+                                        " --set render.exposure=1e308");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("non-finite values"), std::string::npos) << r.err;
+  expect_nothing_written();
+}
+
 TEST_F(CliTest, DashWritesThePngToStandardOutput) {
   const fs::path scene = write_scene(kScene);
   const CommandResult r = run_lightcone("render " + quoted(scene) + " -o - --quiet");

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -105,6 +107,35 @@ const double kMetered = 0.5 * std::log2(1 + 1.0 / 256);
 
 // The automatic exposure shows the subject's upper quartile at 0.5, unless the brightest 2 %
 // of the picture would then pass the luminance the curve shows as 0.9.
+// The program exposes a picture only shown in its tone map's pass: the same display values, and
+// the same count of values not finite, as exposing it first.
+TEST(ToneMap, ExposingInTheToneMapsPassIsExposingFirst) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> octaves(-30.0f, 30.0f);
+  Image picture;
+  picture.width = 97;  // not a multiple of any piece's size
+  picture.height = 61;
+  for (int v = 0; v < picture.width * picture.height * 3; ++v)
+    picture.rgb.push_back(std::exp2(octaves(random)));
+  picture.rgb[5] = std::numeric_limits<float>::quiet_NaN();
+  picture.rgb[40] = std::numeric_limits<float>::infinity();
+  picture.rgb[41] = -1.0f;
+  picture.rgb[300] = 3e38f;  // finite, but not once exposed at +2 EV
+  for (const ToneMap curve : {ToneMap::kClamp, ToneMap::kReinhard, ToneMap::kFilmic})
+    for (const double ev : {0.0, -3.25, 2.0}) {
+      Image exposed = picture;
+      const std::size_t expected_non_finite = expose(exposed, ev);
+      const Image expected = tone_map(exposed, curve);
+      std::size_t non_finite = 0;
+      const Image fused = expose_and_tone_map(Image(picture), ev, curve, non_finite);
+      EXPECT_EQ(non_finite, expected_non_finite) << ev;
+      EXPECT_EQ(non_finite, ev == 2.0 ? 3u : 2u) << ev;
+      ASSERT_EQ(fused.rgb.size(), expected.rgb.size());
+      EXPECT_EQ(std::memcmp(fused.rgb.data(), expected.rgb.data(), 4 * fused.rgb.size()), 0)
+          << static_cast<int>(curve) << " at EV " << ev;
+    }
+}
+
 TEST(AutomaticExposure, ShowsTheSubjectUnlessTheHighlightsWouldClip) {
   EXPECT_NEAR(filmic_curve(display_white(ToneMap::kFilmic)), 0.9, 1e-12);
   EXPECT_EQ(display_white(ToneMap::kClamp), 0.9);

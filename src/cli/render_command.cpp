@@ -147,8 +147,14 @@ struct Rendered {
   std::size_t raster_triangles = 0;
   bool stopped = false;  // by a signal: the finished tiles only
   std::size_t tiles_done = 0, tiles_total = 0;
-  std::vector<float> sky;  // for --map: 1 where the pixel's centre ray met the sky
+  std::vector<float> sky;          // for --map: 1 where the pixel's centre ray met the sky
+  bool exposure_deferred = false;  // the image is at EV 0; stats.exposure is still to apply
 };
+
+// Only an EXR holds the linear picture; the other files show it tone-mapped.
+bool keeps_linear(const RenderArgs& a, const RenderOutputs& out) {
+  return a.exr.has_value() || (!out.to_stdout && *out.format == ImageFormat::kExr);
+}
 
 // The render, by either renderer, with a progress bar on a terminal.
 Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const RenderOutputs& out) {
@@ -194,6 +200,8 @@ Rendered render_with_progress(const RenderArgs& a, const Scene& scene, const Ren
       r.stats.rays =
           static_cast<std::uint64_t>(r.image.width) * r.image.height * scene.camera.samples;
     } else {
+      // A picture only shown is exposed in the tone map's pass (display_of), not one of its own.
+      options.defer_exposure = r.exposure_deferred = !out.map && !keeps_linear(a, out);
       r.image = render_image(scene, options, &r.stats);
     }
   }
@@ -221,6 +229,15 @@ Image display_of(Rendered& r, const Scene& scene, const RenderOutputs& out, bool
                                       [&](const NamedChannel& c) { return c.name == names[0]; });
     return false_colour(*channel, r.image.width, r.image.height, aov_map_label(*out.map), r.sky);
   }
+  if (r.exposure_deferred) {
+    std::size_t non_finite = 0;
+    Image display =
+        expose_and_tone_map(std::move(r.image), r.stats.exposure, scene.render.tonemap, non_finite);
+    // As render_image refuses a picture it exposed itself.
+    if (const auto refused = picture_refused(scene, non_finite, r.stats.exposure))
+      throw std::runtime_error(*refused);
+    return display;
+  }
   return keep_linear ? tone_map(r.image, scene.render.tonemap)
                      : tone_map(std::move(r.image), scene.render.tonemap);
 }
@@ -228,9 +245,7 @@ Image display_of(Rendered& r, const Scene& scene, const RenderOutputs& out, bool
 // The files (or standard output), the summary line and --stats; a stopped render's files go
 // beside their targets.
 int write_rendered(const RenderArgs& a, const Scene& scene, const RenderOutputs& out, Rendered& r) {
-  // Only an EXR holds the linear picture.
-  const bool keep_linear =
-      a.exr.has_value() || (!out.to_stdout && *out.format == ImageFormat::kExr);
+  const bool keep_linear = keeps_linear(a, out);
   // The EXR's header says by what the radiance was scaled.
   r.image.exposure = r.stats.exposure;
   const Image display = display_of(r, scene, out, keep_linear);

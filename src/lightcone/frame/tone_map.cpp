@@ -71,8 +71,12 @@ double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> 
   return meters.combined().ev(curve);
 }
 
+float exposure_scale(double ev) {
+  return static_cast<float>(std::exp2(ev));
+}
+
 std::size_t expose(Image& linear, double ev) {
-  const auto scale = static_cast<float>(std::exp2(ev));
+  const float scale = exposure_scale(ev);
   std::atomic<std::size_t> non_finite{0};
   // In parallel: on one thread, a 1080p frame's scaling is a few ms, a visible share of a render.
   parallel_for_pieces(std::size_t{0}, linear.rgb.size(), std::size_t{1} << 16,
@@ -98,21 +102,26 @@ AppliedExposure apply_exposure(Image& linear, const RenderSettings& settings,
 
 namespace {
 
-// out[i] = the curve on in[i], pixel by pixel (in may be out): in parallel, off the critical
-// path of an animation's next frame and of a render's last steps.
-void tone_map_pixels(const float* in, float* out, std::size_t pixels, ToneMap curve) {
+// out[i] = the curve on in[i] times `scale`, pixel by pixel (in may be out), and how many of the
+// scaled values are not finite: in parallel, off the critical path of an animation's next frame
+// and of a render's last steps.
+std::size_t tone_map_pixels(const float* in, float* out, std::size_t pixels, float scale,
+                            ToneMap curve) {
+  std::atomic<std::size_t> non_finite{0};
   parallel_for_pieces(std::size_t{0}, pixels, std::size_t{4096},
                       [&](std::size_t begin, std::size_t end) {
+                        std::size_t found = 0;
                         for (std::size_t p = 3 * begin; p < 3 * end; p += 3) {
                           float* c = &out[p];
-                          for (int k = 0; k < 3; ++k) c[k] = in[p + k];
+                          for (int k = 0; k < 3; ++k)
+                            found += !std::isfinite(c[k] = in[p + k] * scale);
                           switch (curve) {
                             case ToneMap::kClamp:
                               for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k]);
                               break;
                             case ToneMap::kReinhard: {
-                              const double scale = 1.0 / (1.0 + std::max(0.0, luminance(c)));
-                              for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k] * scale);
+                              const double s = 1.0 / (1.0 + std::max(0.0, luminance(c)));
+                              for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k] * s);
                               break;
                             }
                             case ToneMap::kFilmic:
@@ -120,7 +129,9 @@ void tone_map_pixels(const float* in, float* out, std::size_t pixels, ToneMap cu
                               break;
                           }
                         }
+                        if (found) non_finite += found;
                       });
+  return non_finite;
 }
 
 }  // namespace
@@ -130,7 +141,7 @@ Image tone_map(const Image& linear, ToneMap curve) {
   out.width = linear.width;
   out.height = linear.height;
   out.rgb.resize(linear.rgb.size());
-  tone_map_pixels(linear.rgb.data(), out.rgb.data(), out.rgb.size() / 3, curve);
+  tone_map_pixels(linear.rgb.data(), out.rgb.data(), out.rgb.size() / 3, 1.0f, curve);
   return out;
 }
 
@@ -139,7 +150,17 @@ Image tone_map(Image&& linear, ToneMap curve) {
   out.width = linear.width;
   out.height = linear.height;
   out.rgb = std::move(linear.rgb);
-  tone_map_pixels(out.rgb.data(), out.rgb.data(), out.rgb.size() / 3, curve);
+  tone_map_pixels(out.rgb.data(), out.rgb.data(), out.rgb.size() / 3, 1.0f, curve);
+  return out;
+}
+
+Image expose_and_tone_map(Image&& linear, double ev, ToneMap curve, std::size_t& non_finite) {
+  Image out;
+  out.width = linear.width;
+  out.height = linear.height;
+  out.rgb = std::move(linear.rgb);
+  non_finite = tone_map_pixels(out.rgb.data(), out.rgb.data(), out.rgb.size() / 3,
+                               exposure_scale(ev), curve);
   return out;
 }
 

@@ -20,6 +20,9 @@ double display_white(ToneMap curve);
 // parallel pass; a renderer that fills the meter as it draws gets the same EV without it.
 double auto_exposure(const Image& linear, ToneMap curve, std::span<const float> subject = {});
 
+// The factor an exposure of `ev` scales radiance by, 2^EV, in single precision.
+float exposure_scale(double ev);
+
 // Scales a rendered image by 2^EV (nothing to scale at EV 0) and returns how many of its
 // values are then not finite: counted in the same pass, so that a renderer's check of its
 // picture (request_rules' picture_refused) does not read it again.
@@ -42,6 +45,10 @@ AppliedExposure apply_exposure(Image& linear, const RenderSettings& settings,
 // second form maps the picture in place, without a new one to fill.
 Image tone_map(const Image& linear, ToneMap curve);
 Image tone_map(Image&& linear, ToneMap curve);
+// expose() then tone_map() in one pass over the picture, in place, for a picture only a display
+// will show (a renderer's left at EV 0 by RenderOptions::defer_exposure): the same values as the
+// two passes, and `non_finite` what expose() would return.
+Image expose_and_tone_map(Image&& linear, double ev, ToneMap curve, std::size_t& non_finite);
 
 // The ACES filmic fit of Narkowicz (2015), y (2.51 y + 0.03) / (y (2.43 y + 0.59) + 0.14), at
 // most 1 (the fit itself tends to 1.033).

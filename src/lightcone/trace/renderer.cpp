@@ -393,7 +393,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
   const double ev = !scene.render.auto_exposure ? scene.render.exposure
                     : metered_in_pass           ? meters.combined().ev(scene.render.tonemap)
                                       : auto_exposure(image, scene.render.tonemap, subject);
-  const std::size_t non_finite = expose(image, ev);
+  const std::size_t non_finite = options.defer_exposure ? 0 : expose(image, ev);
   if (options.subject) *options.subject = std::move(subject);
 
   if (stats) {

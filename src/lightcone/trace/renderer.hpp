@@ -45,6 +45,10 @@ struct RenderOptions {
   // Output variables to add to the image as named channels (Image::channels), each from the
   // ray through the pixel's centre.
   std::vector<Aov> aovs;
+  // When set, the picture is left at EV 0 and RenderStats::exposure holds the EV to apply, for
+  // a caller that only shows it: expose_and_tone_map (tone_map.hpp) then exposes and maps it in
+  // one pass, and the caller refuses it (request_rules' picture_refused) as render_image would.
+  bool defer_exposure = false;
 };
 
 struct RenderStats {
