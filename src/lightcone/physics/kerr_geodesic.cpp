@@ -1,0 +1,446 @@
+#include "lightcone/physics/kerr_geodesic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+
+#include "lightcone/physics/carlson_integrals.hpp"
+
+namespace lightcone::kerr {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = std::numbers::pi;
+
+// Legendre's integrals of parameter m (= k^2) at an amplitude in [-pi/2, pi/2], from its sine s
+// and cosine squared c2, in Carlson's forms (DLMF 19.25.5, 19.25.7, 19.25.14):
+//   F = s R_F(c2, 1 - m s^2, 1),  Pi(n) = F + (n/3) s^3 R_J(c2, 1 - m s^2, 1, 1 - n s^2),
+// and (F - E) / m = (1/3) s^3 R_D(c2, 1 - m s^2, 1) = int sn^2, without cancellation as m -> 0.
+double legendre_f(double s, double c2, double m) {
+  return s * carlson::rf(c2, 1 - m * s * s, 1);
+}
+double legendre_d(double s, double c2, double m) {
+  return s * s * s * carlson::rd(c2, 1 - m * s * s, 1) / 3;
+}
+double legendre_pi(double s, double c2, double m, double n) {
+  const double y = 1 - m * s * s;
+  return s * carlson::rf(c2, y, 1) + n * s * s * s * carlson::rj(c2, y, 1, 1 - n * s * s) / 3;
+}
+int sense_of(int sign) {
+  return sign < 0 ? -1 : 1;
+}
+
+// A Jacobi argument w = 2jK + w', w' in [-K, K], with sn, cn of w' (cn >= 0): where the
+// integrals over w are 2j times their complete value plus their principal value at w'.
+struct Reduced {
+  double periods, s, c2;
+};
+Reduced reduce(const JacobiModulus& jacobi, double quarter, double w) {
+  const double j = std::nearbyint(w / (2 * quarter));
+  const JacobiValues v = jacobi_functions(jacobi, (w - 2 * j * quarter) * jacobi.rate);
+  return {j, v.sn, v.cn * v.cn};
+}
+
+// ---- The polar motion. With x = cos(theta), (dx/dtau)^2 = a^2 (u_+ - x^2)(x^2 - u_-):
+// ordinary (u_- < 0 < u_+): x = sqrt(u_+) cn(w | m), m = u_+ / (u_+ - u_-),
+//   dw/dtau = a sqrt(u_+ - u_-) = (B^2 + 4 a^2 eta)^(1/4), B = eta + lambda^2 - a^2;
+// vortical (0 < u_- < u_+): x = h sqrt(u_+) dn(w | m), m = (u_+ - u_-) / u_+, dw/dtau = a
+//   sqrt(u_+).
+// Both: 1 - x^2 = (1 - u_+)(1 - n sn^2), so int dtau / sin^2 theta = Pi(n; w) / ((1 - u_+) rate),
+// and a^2 int x^2 dtau = a^2 u_+ int cn^2 (or dn^2) dw / rate.
+
+double polar_phi_antiderivative(const PolarMotion& p, double w) {
+  const Reduced r = reduce(p.jacobi, p.quarter, w);
+  const double complete = legendre_pi(1, 0, p.m, p.pi_n);
+  return p.pi_scale * (2 * r.periods * complete +
+                       std::copysign(1.0, r.s) * legendre_pi(std::abs(r.s), r.c2, p.m, p.pi_n));
+}
+
+double polar_t_antiderivative(const PolarMotion& p, double w) {
+  const Reduced r = reduce(p.jacobi, p.quarter, w);
+  const double d = 2 * r.periods * legendre_d(1, 0, p.m) + legendre_d(r.s, r.c2, p.m);
+  // int cn^2 dw = w - int sn^2 dw; int dn^2 dw = w - m int sn^2 dw.
+  return p.a2 * p.u_plus * (w - (p.vortical ? p.m : 1) * d) / p.rate;
+}
+
+PolarMotion polar_motion(double a, const PhotonConstants& c, double x, int sign_theta) {
+  PolarMotion p;
+  p.lambda = c.lambda, p.a2 = a * a;
+  const double b = c.eta + c.lambda * c.lambda - p.a2;
+  const double spread = std::sqrt(b * b + 4 * p.a2 * c.eta);  // a^2 (u_+ - u_-)
+  double kc2;
+  if (c.eta >= 0) {
+    p.u_plus = b > 0 ? 2 * c.eta / (b + spread) : (spread - b) / (2 * p.a2);
+    const double a2_u_minus = p.u_plus > 0 ? -c.eta / p.u_plus : -spread;
+    p.rate = std::sqrt(spread);
+    p.m = p.a2 * p.u_plus / spread;
+    kc2 = -a2_u_minus / spread;
+    p.jacobi = jacobi_modulus(p.m, kc2);
+    p.quarter = carlson::rf(0, kc2, 1);
+    const double ratio = p.u_plus > 0 ? std::clamp(x / std::sqrt(p.u_plus), -1.0, 1.0) : 0.0;
+    const double s = std::sqrt((1 - ratio) * (1 + ratio));
+    const double f = legendre_f(s, ratio * ratio, p.m);
+    p.w_source = sense_of(sign_theta) * (ratio >= 0 ? f : 2 * p.quarter - f);
+    p.pi_n = -p.u_plus / (1 - p.u_plus);
+  } else {
+    p.vortical = true;
+    p.u_plus = (spread - b) / (2 * p.a2);
+    const double u_minus = -c.eta / (p.a2 * p.u_plus);
+    p.rate = std::sqrt(p.a2 * p.u_plus);
+    p.m = spread / (p.a2 * p.u_plus);
+    kc2 = u_minus / p.u_plus;
+    p.jacobi = jacobi_modulus(p.m, kc2);
+    p.quarter = carlson::rf(0, kc2, 1);
+    p.hemisphere = x < 0 ? -1 : 1;
+    const double s2 = std::clamp((p.u_plus - x * x) * p.a2 / spread, 0.0, 1.0);
+    const double f = legendre_f(std::sqrt(s2), 1 - s2, p.m);
+    p.w_source = sense_of(sign_theta) * p.hemisphere * f;
+    p.pi_n = -p.u_plus * p.m / (1 - p.u_plus);
+  }
+  p.pi_scale = 1 / ((1 - p.u_plus) * p.rate);
+  p.g_phi_source = c.lambda == 0 ? 0.0 : polar_phi_antiderivative(p, p.w_source);
+  p.g_t_source = polar_t_antiderivative(p, p.w_source);
+  return p;
+}
+
+double polar_cos_theta(const PolarMotion& p, double w) {
+  const JacobiValues v = jacobi_functions(p.jacobi, w * p.jacobi.rate);
+  return p.vortical ? p.hemisphere * std::sqrt(p.u_plus) * v.dn : std::sqrt(p.u_plus) * v.cn;
+}
+
+// ---- The radial motion, four real roots (r >= r4): with n = (r4 - r1) / (r3 - r1),
+// m = (r3 - r2)(r4 - r1) / ((r3 - r1)(r4 - r2)), r = r3 + (r4 - r3) / (1 - n sn^2(X | m)) and
+// dX/dtau = sqrt((r3 - r1)(r4 - r2)) / 2; sn^2 = (r - r4)(r3 - r1) / ((r - r3)(r4 - r1)).
+// The integrals of r, r^2 and 1 / (r - r_+-) over tau are then those of 1 / (1 - n sn^2) (Pi),
+// its square (V2 below) and 1 / (1 - n_+- sn^2), n_+- = n (r3 - r_+-) / (r4 - r_+-).
+
+struct Amplitude {
+  double s2, c2;
+};
+Amplitude four_real_amplitude(const double* r, double radius) {
+  if (std::isinf(radius)) return {(r[2] - r[0]) / (r[3] - r[0]), (r[3] - r[2]) / (r[3] - r[0])};
+  const double d = (radius - r[2]) * (r[3] - r[0]);
+  return {std::max((radius - r[3]) * (r[2] - r[0]) / d, 0.0), (radius - r[0]) * (r[3] - r[2]) / d};
+}
+
+// int dX / (1 - n sn^2)^2 (Byrd & Friedman 1971, 336.02), from Pi(n; X), E(X), sn, cn, dn.
+double pi_squared(double n, double m, double x, double s, double cn, double dn, double pi,
+                  double e) {
+  return (n * n * s * cn * dn / (1 - n * s * s) + (n * n - 2 * n - 2 * m * n + 3 * m) * pi +
+          (n - m) * x - n * e) /
+         (2 * (n - 1) * (n - m));
+}
+
+struct FourRealSums {
+  double pi, pi_plus, pi_minus, v2;
+};
+FourRealSums four_real_sums(const RadialMotion& m, double x, double s, double cn, double dn) {
+  const double c2 = cn * cn;
+  FourRealSums f;
+  f.pi = legendre_pi(s, c2, m.m, m.n);
+  f.pi_plus = legendre_pi(s, c2, m.m, m.n_plus);
+  f.pi_minus = legendre_pi(s, c2, m.m, m.n_minus);
+  const double e = x - m.m * legendre_d(s, c2, m.m);
+  f.v2 = pi_squared(m.n, m.m, x, s, cn, dn, f.pi, e);
+  return f;
+}
+
+// ---- Two real roots r1 < r2 and a pair u +- iv: z = (r - r2) / (r - r1) in [0, 1) maps the
+// quartic to a cubic, dr / sqrt(R) = dz / sqrt(z Q(z)), Q = h ((z - c)^2 + n^2), which
+// carlson::quadratic_cubic integrates; and z = A (1 - cn) / (1 + cn) with A^2 = c^2 + n^2,
+// k^2 = (A + c) / (2A), int_0^z dz / sqrt(z ((z - c)^2 + n^2)) = F(phi | k^2) / sqrt(A)
+// (Byrd & Friedman 1971, 239.00), cos(phi) = (A - z) / (A + z).
+
+double two_real_argument(const RadialMotion& m, double quarter, double z) {
+  const double cos_phi = (m.big_a - z) / (m.big_a + z);
+  const double sin_phi = 2 * std::sqrt(m.big_a * z) / (m.big_a + z);
+  const double f = legendre_f(sin_phi, cos_phi * cos_phi, m.m);
+  return cos_phi >= 0 ? f : 2 * quarter - f;
+}
+double z_of(const RadialRoots& roots, double r) {
+  return std::isinf(r) ? 1.0 : (r - roots.r[1]) / (r - roots.r[0]);
+}
+
+// ---- No real root: pairs u1 +- i v1 and u2 +- i v2. x = (r - u1) / v1 turns pair 1 into +-i;
+// the rotation x = (s + h) / (1 - h s), which keeps 1 + x^2 a multiple of 1 + s^2, is chosen to
+// take pair 2 to +-i g; then dr / sqrt(R) = sqrt(1 + h^2) / sqrt(C) ds / sqrt((1 + s^2)(s^2 +
+// g^2)), and with G = max(1, g), g' = min(1, g), s = g' sc(u | 1 - g'^2 / G^2) and u = G times
+// that integral (Byrd & Friedman 1971, 221.00).
+
+double none_real_argument(const RadialMotion& m, double quarter, double r) {
+  const RadialRoots& q = m.roots;
+  const double x = std::isinf(r) ? 0.0 : (r - q.pair_re) / q.pair_im;
+  const double phi = std::isinf(r) ? std::atan2(1.0, m.g_small * m.rot_h)
+                                   : std::atan2(x - m.rot_h, m.g_small * (1 + m.rot_h * x));
+  const double j = std::nearbyint(phi / kPi), rest = phi - j * kPi;
+  const double s = std::sin(rest), c = std::cos(rest);
+  return 2 * j * quarter + legendre_f(s, c * c, m.m);
+}
+
+RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int sign_r) {
+  RadialMotion m;
+  m.roots = radial_roots(a, c);
+  m.r_source = r_s;
+  const double r_plus = outer_horizon(a), r_minus = inner_horizon(a);
+  const RadialRoots& q = m.roots;
+  if (q.kind == RadialCase::FourReal) {
+    const double* r = q.r;
+    m.n = (r[3] - r[0]) / (r[2] - r[0]);
+    const double d = (r[2] - r[0]) * (r[3] - r[1]);
+    m.m = (r[2] - r[1]) * (r[3] - r[0]) / d;
+    m.jacobi = jacobi_modulus(m.m, (r[1] - r[0]) * (r[3] - r[2]) / d);
+    m.rate = std::sqrt(d) / 2;
+    m.n_plus = m.n * (r[2] - r_plus) / (r[3] - r_plus);
+    m.n_minus = m.n * (r[2] - r_minus) / (r[3] - r_minus);
+    const Amplitude source = four_real_amplitude(r, r_s);
+    const double s = sense_of(sign_r) * std::sqrt(source.s2);
+    m.x_source = legendre_f(s, source.c2, m.m);
+    const Amplitude far = four_real_amplitude(r, kInf);
+    m.x_end = legendre_f(std::sqrt(far.s2), far.c2, m.m);
+    if (r[3] < r_plus && sign_r < 0) {
+      const Amplitude h = four_real_amplitude(r, r_plus);
+      m.x_end = -legendre_f(std::sqrt(h.s2), h.c2, m.m);
+    }
+    const FourRealSums f =
+        four_real_sums(m, m.x_source, s, std::sqrt(source.c2), std::sqrt(1 - m.m * source.s2));
+    m.pi_source = f.pi, m.pi_plus_source = f.pi_plus, m.pi_minus_source = f.pi_minus;
+    m.v2_source = f.v2;
+    return m;
+  }
+  m.sense = sense_of(sign_r);
+  if (q.kind == RadialCase::TwoReal) {
+    const double u = q.pair_re, v = q.pair_im, r1 = q.r[0], r2 = q.r[1];
+    m.quad_h = (r1 - u) * (r1 - u) + v * v;
+    m.quad_c = ((r2 - u) * (r1 - u) + v * v) / m.quad_h;
+    m.quad_n = v * (r2 - r1) / m.quad_h;
+    m.big_a = std::hypot(m.quad_c, m.quad_n);
+    const double n2 = m.quad_n * m.quad_n;
+    double kc2;
+    if (m.quad_c >= 0) {
+      m.m = (m.big_a + m.quad_c) / (2 * m.big_a);
+      kc2 = n2 / (2 * m.big_a * (m.big_a + m.quad_c));
+    } else {
+      kc2 = (m.big_a - m.quad_c) / (2 * m.big_a);
+      m.m = n2 / (2 * m.big_a * (m.big_a - m.quad_c));
+    }
+    m.jacobi = jacobi_modulus(m.m, kc2);
+    m.rate = std::sqrt(m.big_a * m.quad_h);
+    const double quarter = carlson::rf(0, kc2, 1);
+    m.z_source = z_of(q, r_s);
+    m.x_source = two_real_argument(m, quarter, m.z_source);
+    m.x_end = two_real_argument(m, quarter, z_of(q, m.sense > 0 ? kInf : r_plus));
+    return m;
+  }
+  const double p = (q.pair2_re - q.pair_re) / q.pair_im, s = q.pair2_im / q.pair_im;
+  const double big_p = p * p + s * s - 1, root = std::hypot(big_p, 2 * p);
+  m.rot_h = p == 0 ? 0.0 : big_p >= 0 ? -2 * p / (big_p + root) : 2 * p / (root - big_p);
+  const double h = m.rot_h;
+  const double g = s * (1 + h * h) / ((1 + h * p) * (1 + h * p) + h * h * s * s);
+  m.g_big = std::max(1.0, g), m.g_small = std::min(1.0, g);
+  const double r0 = q.pair_re + q.pair_im * h - q.pair2_re;
+  const double big_c = (r0 * r0 + q.pair2_im * q.pair2_im) / (g * g);
+  const double kc2 = m.g_small * m.g_small / (m.g_big * m.g_big);
+  m.m = (m.g_big - m.g_small) * (m.g_big + m.g_small) / (m.g_big * m.g_big);
+  m.jacobi = jacobi_modulus(m.m, kc2);
+  m.rate = m.g_big * std::sqrt(big_c / (1 + h * h));
+  const double quarter = carlson::rf(0, kc2, 1);
+  m.x_source = none_real_argument(m, quarter, r_s);
+  m.x_end = none_real_argument(m, quarter, m.sense > 0 ? kInf : r_plus);
+  return m;
+}
+
+double radial_radius(const RadialMotion& m, double x) {
+  const RadialRoots& q = m.roots;
+  const JacobiValues v = jacobi_functions(m.jacobi, x * m.jacobi.rate);
+  switch (q.kind) {
+    case RadialCase::FourReal:
+      return q.r[2] + (q.r[3] - q.r[2]) / (1 - m.n * v.sn * v.sn);
+    case RadialCase::TwoReal: {
+      const double z = m.big_a * (1 - v.cn) / (1 + v.cn);
+      return (q.r[1] - q.r[0] * z) / (1 - z);
+    }
+    case RadialCase::NoneReal:
+      return q.pair_re +
+             q.pair_im * (m.g_small * v.sn + m.rot_h * v.cn) / (v.cn - m.rot_h * m.g_small * v.sn);
+  }
+  return kNaN;
+}
+
+// The integrals over the ray's Mino time tau of r, r^2 and 1 / (r - r_+-) (Gralla & Lupsasca's
+// I_1, I_2, I_+-).
+struct RadialIntegrals {
+  double i1, i2, i_plus, i_minus;
+};
+
+RadialIntegrals four_real_integrals(const RadialMotion& m, double x, double tau, double r_plus,
+                                    double r_minus) {
+  const double* r = m.roots.r;
+  const JacobiValues v = jacobi_functions(m.jacobi, x * m.jacobi.rate);
+  const FourRealSums f = four_real_sums(m, x, v.sn, v.cn, v.dn);
+  const double dpi = (f.pi - m.pi_source) / m.rate, gap = r[3] - r[2];
+  RadialIntegrals i;
+  i.i1 = r[2] * tau + gap * dpi;
+  i.i2 = r[2] * r[2] * tau + 2 * r[2] * gap * dpi + gap * gap * (f.v2 - m.v2_source) / m.rate;
+  const auto pole = [&](double n_pole, double sum, double sum_source, double r_pole) {
+    const double ratio = m.n / n_pole;
+    return (ratio * tau + (1 - ratio) * (sum - sum_source) / m.rate) / (r[3] - r_pole);
+  };
+  i.i_plus = pole(m.n_plus, f.pi_plus, m.pi_plus_source, r_plus);
+  i.i_minus = pole(m.n_minus, f.pi_minus, m.pi_minus_source, r_minus);
+  return i;
+}
+
+RadialIntegrals two_real_integrals(const RadialMotion& m, double z, double r_plus, double r_minus) {
+  const RadialRoots& q = m.roots;
+  const double r1 = q.r[0], r2 = q.r[1];
+  const double hi = std::max(z, m.z_source), lo = std::min(z, m.z_source);
+  const carlson::QuadraticCubic k = carlson::quadratic_cubic(hi, lo, m.quad_c, m.quad_n);
+  const double j0 = carlson::first_kind(k);
+  const double j1 = carlson::third_kind(k, 1, -1, 1 - hi, 1 - lo, false);
+  const auto quad = [&](double w) { return (w - m.quad_c) * (w - m.quad_c) + m.quad_n * m.quad_n; };
+  const double a2 = m.big_a * m.big_a;
+  // int z dz / sqrt(z q) = A^2 int z^(-3/2) q^(-1/2) dz + 2 [sqrt(q / z)], from
+  // d sqrt(q / z) / dz = (z^2 - A^2) / (2 z^(3/2) sqrt(q)).
+  const double jz =
+      a2 * carlson::second_kind(k) + 2 * (std::sqrt(quad(hi) / hi) - std::sqrt(quad(lo) / lo));
+  // int dz / ((1 - z)^2 sqrt(P)), P = z q: d(sqrt(P) / (1 - z)) / dz = N / (2 (1 - z)^2 sqrt(P)),
+  // N = 2 q(1) - (3 + A^2 - 4c)(1 - z) + (1 - z)^3.
+  const auto lifted = [&](double w) { return std::sqrt(w * quad(w)) / (1 - w); };
+  const double j2 =
+      (2 * (lifted(hi) - lifted(lo)) + (3 + a2 - 4 * m.quad_c) * j1 - (j0 - jz)) / (2 * quad(1));
+  const double scale = 1 / std::sqrt(m.quad_h), gap = r2 - r1;
+  RadialIntegrals i;
+  i.i1 = scale * (r1 * j0 + gap * j1);
+  i.i2 = scale * (r1 * r1 * j0 + 2 * r1 * gap * j1 + gap * gap * j2);
+  const auto pole = [&](double r_pole) {
+    const double b4 = r_pole - r1;  // L = (r2 - r_pole) + (r_pole - r1) z > 0 outside it
+    const double jp = carlson::third_kind(k, r2 - r_pole, b4, r2 - r_pole + b4 * hi,
+                                          r2 - r_pole + b4 * lo, false);
+    return scale * (j0 - gap * jp) / (r1 - r_pole);
+  };
+  i.i_plus = pole(r_plus);
+  i.i_minus = pole(r_minus);
+  return i;
+}
+
+}  // namespace
+
+RadialRoots radial_roots(double a, const PhotonConstants& c) {
+  const double big_a = a * a - c.eta - c.lambda * c.lambda;
+  const double big_b = 2 * (c.eta + (c.lambda - a) * (c.lambda - a));
+  const double big_c = -a * a * c.eta;
+  const double p = -big_a * big_a / 12 - big_c;
+  const double q = -big_a / 3 * ((big_a / 6) * (big_a / 6) - big_c) - big_b * big_b / 8;
+  const double disc = (p / 3) * (p / 3) * (p / 3) + (q / 2) * (q / 2);
+  double omegas;  // omega_+ + omega_-
+  if (disc >= 0) {
+    const double root = std::sqrt(disc);
+    omegas = std::cbrt(-q / 2 + root) + std::cbrt(-q / 2 - root);
+  } else {
+    omegas = 2 * std::pow(std::complex<double>(-q / 2, std::sqrt(-disc)), 1.0 / 3).real();
+  }
+  const double z = std::sqrt(std::max(omegas / 2 - big_a / 6, 0.0));
+  const double base = -big_a / 2 - z * z, tilt = big_b / (4 * z);
+  const double q12 = base + tilt, q34 = base - tilt;
+  RadialRoots roots;
+  if (q34 < 0 && q12 < 0) {
+    roots.kind = RadialCase::NoneReal;
+    roots.pair_re = z, roots.pair_im = std::sqrt(-q34);
+    roots.pair2_re = -z, roots.pair2_im = std::sqrt(-q12);
+    return roots;
+  }
+  // r1 and r2 (simple roots) polished by Newton's method on R, and the other two from the sum
+  // and the sum of pairwise products of all four (0 and A): r3 + r4 = -(r1 + r2), r3 r4 =
+  // A - r1 r2 + (r1 + r2)^2, which keeps a pair that nearly coincides (a ray near the critical
+  // curve) as accurate as r1 and r2.
+  const auto polish = [&](double r) {
+    for (int i = 0; i < 2; ++i) {
+      const double value = ((r * r + big_a) * r + big_b) * r + big_c;
+      const double slope = (4 * r * r + 2 * big_a) * r + big_b;
+      if (slope != 0) r -= value / slope;
+    }
+    return r;
+  };
+  const double s12 = std::sqrt(std::max(q12, 0.0));
+  roots.r[0] = polish(-z - s12), roots.r[1] = polish(-z + s12);
+  const double sum = roots.r[0] + roots.r[1];
+  const double centre = -sum / 2, product = big_a - roots.r[0] * roots.r[1] + sum * sum;
+  const double half_gap2 = centre * centre - product;
+  if (q34 >= 0) {
+    roots.kind = RadialCase::FourReal;
+    const double half_gap = std::sqrt(std::max(half_gap2, 0.0));
+    roots.r[2] = centre - half_gap, roots.r[3] = centre + half_gap;
+    std::sort(roots.r, roots.r + 4);
+  } else {
+    roots.kind = RadialCase::TwoReal;
+    roots.pair_re = centre, roots.pair_im = std::sqrt(std::max(-half_gap2, 0.0));
+  }
+  return roots;
+}
+
+KerrRay kerr_ray(double a, const PhotonConstants& c, double r_source, double cos_theta_source,
+                 int sign_r, int sign_theta) {
+  KerrRay ray;
+  ray.a = a;
+  ray.constants = c;
+  ray.polar = polar_motion(a, c, cos_theta_source, sign_theta);
+  ray.radial = radial_motion(a, c, r_source, sign_r);
+  const RadialMotion& m = ray.radial;
+  ray.mino_time_limit = m.sense * (m.x_end - m.x_source) / m.rate;
+  return ray;
+}
+
+double radius_after(const KerrRay& ray, double tau) {
+  const RadialMotion& m = ray.radial;
+  return radial_radius(m, m.x_source + m.sense * m.rate * tau);
+}
+
+double cos_theta_after(const KerrRay& ray, double tau) {
+  const PolarMotion& p = ray.polar;
+  return polar_cos_theta(p, p.w_source + p.rate * tau);
+}
+
+KerrPoint point_after(const KerrRay& ray, double tau) {
+  const RadialMotion& m = ray.radial;
+  const PolarMotion& p = ray.polar;
+  const double a = ray.a, lambda = ray.constants.lambda;
+  const double x = m.x_source + m.sense * m.rate * tau, w = p.w_source + p.rate * tau;
+  KerrPoint point;
+  point.r = tau == 0 ? m.r_source : radial_radius(m, x);
+  point.cos_theta = polar_cos_theta(p, w);
+  if (tau == 0) return point;
+  const double r_plus = outer_horizon(a), r_minus = inner_horizon(a);
+  RadialIntegrals i;
+  if (m.roots.kind == RadialCase::FourReal) {
+    i = four_real_integrals(m, x, tau, r_plus, r_minus);
+  } else if (m.roots.kind == RadialCase::TwoReal) {
+    i = two_real_integrals(m, z_of(m.roots, point.r), r_plus, r_minus);
+  } else {
+    point.phi = point.t = kNaN;
+    return point;
+  }
+  // dphi/dtau = a (2r - a lambda) / Delta + lambda / sin^2 theta, and dt/dtau = r^2 + 2r + 4 +
+  // (2 r_+ (2 r_+ - a lambda) / (r - r_+) - 2 r_- (2 r_- - a lambda) / (r - r_-)) / (r_+ - r_-)
+  // + a^2 cos^2 theta (partial fractions of PHYSICS.md's forms, M = 1).
+  const double wp = 2 * r_plus - a * lambda, wm = 2 * r_minus - a * lambda;
+  const double gap = r_plus - r_minus;
+  const double g_phi =
+      lambda == 0 ? 0.0 : lambda * (polar_phi_antiderivative(p, w) - p.g_phi_source);
+  point.phi = a * (wp * i.i_plus - wm * i.i_minus) / gap + g_phi;
+  point.t = i.i2 + 2 * i.i1 + 4 * tau +
+            2 * (r_plus * wp * i.i_plus - r_minus * wm * i.i_minus) / gap +
+            polar_t_antiderivative(p, w) - p.g_t_source;
+  return point;
+}
+
+double mino_time_to_equator(const KerrRay& ray, int crossing) {
+  const PolarMotion& p = ray.polar;
+  if (p.vortical || p.u_plus == 0) return kInf;
+  const double i = std::floor((p.w_source / p.quarter - 1) / 2) + crossing;
+  return ((2 * i + 1) * p.quarter - p.w_source) / p.rate;
+}
+
+}  // namespace lightcone::kerr
