@@ -222,3 +222,106 @@ TEST(KerrGeodesic, VorticalRaysAgree) {
 
 }  // namespace
 }  // namespace lightcone::kerr
+
+namespace lightcone::kerr {
+namespace {
+
+// The n-th crossing is on the equator, the motion between crossings stays on one side, and
+// point_at_equator (complete polar integrals) is point_after at the crossing's Mino time.
+TEST(KerrGeodesic, EquatorCrossings) {
+  std::mt19937 rng(9);
+  int checked = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Source src = random_source(rng, 0.94);
+    const KerrRay ray = kerr_ray(src.a, src.ray.constants, src.r, std::cos(src.theta),
+                                 src.ray.sign_r, src.ray.sign_theta);
+    if (ray.polar.vortical) continue;
+    double before = 0;
+    for (int n = 1; n <= 3; ++n) {
+      const double tau = mino_time_to_equator(ray, n);
+      if (!(tau < ray.mino_time_limit)) break;
+      ++checked;
+      EXPECT_GT(tau, before);
+      EXPECT_NEAR(cos_theta_after(ray, tau), 0, 1e-12);
+      // Halfway from the last crossing (or the source) cos(theta) has the sign it had leaving it.
+      const double mid = cos_theta_after(ray, (before + tau) / 2);
+      const double after = cos_theta_after(ray, tau * (1 + 1e-9) + 1e-12);
+      EXPECT_LT(mid * after, 0) << n;
+      const KerrPoint want = point_after(ray, tau), got = point_at_equator(ray, n);
+      if (ray.radial.roots.kind == RadialCase::NoneReal) continue;
+      EXPECT_NEAR(got.r, want.r, 1e-12 * want.r);
+      EXPECT_EQ(got.cos_theta, 0);
+      EXPECT_NEAR(got.phi, want.phi, 1e-10 * (1 + std::abs(want.phi)));
+      EXPECT_NEAR(got.t, want.t, 1e-10 * (1 + std::abs(want.t)));
+      before = tau;
+    }
+  }
+  EXPECT_GT(checked, 150);
+}
+
+// At spin 1e-12 a ray is the Schwarzschild kernel's of impact parameter b = sqrt(eta + lambda^2)
+// in its own plane: the angle it sweeps there is b times its Mino time (dpsi = b dtau, as
+// d(affine) = r^2 dtau), its radius radius_after_angle's, its time coordinate_time's.
+TEST(KerrGeodesic, SmallSpinIsSchwarzschild) {
+  std::mt19937 rng(12);
+  int turning = 0, falling = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Source src = random_source(rng, 1e-12);
+    if (src.ray.sign_r > 0) continue;
+    const PhotonConstants& c = src.ray.constants;
+    const KerrRay ray = kerr_ray(src.a, c, src.r, std::cos(src.theta), -1, src.ray.sign_theta);
+    const double b = std::sqrt(c.eta + c.lambda * c.lambda);
+    const PhotonOrbit orbit = photon_orbit(1, b);
+    (orbit.turning ? turning : falling)++;
+    for (int k = 1; k <= 6; ++k) {
+      const double tau = ray.mino_time_limit * k / 7;
+      const KerrPoint p = point_after(ray, tau);
+      EXPECT_NEAR(p.r, radius_after_angle(orbit, src.r, false, b * tau), 1e-9 * p.r);
+      // The time along the monotonic stretches: in to the periapsis, then out.
+      const bool past = orbit.turning && radius_after(ray, tau * (1 + 1e-6)) > p.r;
+      const double t = past ? coordinate_time(orbit, orbit.periapsis, src.r) +
+                                  coordinate_time(orbit, orbit.periapsis, p.r)
+                            : coordinate_time(orbit, p.r, src.r);
+      EXPECT_NEAR(p.t, t, 1e-9 * (1 + t)) << "b " << b << " r_s " << src.r << " r " << p.r;
+      if (HasFailure()) return;
+    }
+  }
+  EXPECT_GT(turning, 20);
+  EXPECT_GT(falling, 10);
+}
+
+// The Mino-time speeds of a ray's closed form (central differences) obey its potentials:
+// (dr/dtau)^2 = R(r) and (dcos(theta)/dtau)^2 = sin^2(theta) Theta(theta); and its phi and t grow
+// at PHYSICS.md's rates.
+TEST(KerrGeodesic, ConstantsOfMotionHoldAlongRays) {
+  std::mt19937 rng(21);
+  for (int i = 0; i < 100; ++i) {
+    const Source src = random_source(rng, 0.94);
+    const PhotonConstants& c = src.ray.constants;
+    const KerrRay ray =
+        kerr_ray(src.a, c, src.r, std::cos(src.theta), src.ray.sign_r, src.ray.sign_theta);
+    if (ray.radial.roots.kind == RadialCase::NoneReal) continue;
+    const double a = src.a;
+    for (int k = 1; k <= 5; ++k) {
+      const double tau = ray.mino_time_limit * k / 6, h = 1e-5 * ray.mino_time_limit;
+      const KerrPoint lo = point_after(ray, tau - h), mid = point_after(ray, tau),
+                      hi = point_after(ray, tau + h);
+      const double dr = (hi.r - lo.r) / (2 * h), dx = (hi.cos_theta - lo.cos_theta) / (2 * h);
+      const double dphi = (hi.phi - lo.phi) / (2 * h), dt = (hi.t - lo.t) / (2 * h);
+      const double x = mid.cos_theta, s2 = 1 - x * x, r = mid.r;
+      const double big_r = radial_potential(a, c, r);
+      EXPECT_NEAR(dr * dr, big_r, 1e-6 * (1 + big_r));
+      const double theta_speed2 = s2 * polar_potential(a, c, x, std::sqrt(s2));
+      EXPECT_NEAR(dx * dx, theta_speed2, 1e-6 * (1 + theta_speed2));
+      const double p = r * r + a * a - a * c.lambda, delta = r * r - 2 * r + a * a;
+      const double want_phi = a * p / delta + c.lambda / s2 - a;
+      const double want_t = (r * r + a * a) * p / delta + a * (c.lambda - a * s2);
+      EXPECT_NEAR(dphi, want_phi, 1e-6 * (1 + std::abs(want_phi)));
+      EXPECT_NEAR(dt, want_t, 1e-6 * (1 + std::abs(want_t)));
+    }
+    if (HasFailure()) return;
+  }
+}
+
+}  // namespace
+}  // namespace lightcone::kerr

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <limits>
 #include <numbers>
 
@@ -25,23 +24,23 @@ double legendre_f(double s, double c2, double m) {
 double legendre_d(double s, double c2, double m) {
   return s * s * s * carlson::rd(c2, 1 - m * s * s, 1) / 3;
 }
-double legendre_pi(double s, double c2, double m, double n) {
+// Several integrals at one amplitude share R_F.
+struct Amplitude {
+  double s, c2, y, rf;  // y = 1 - m s^2
+};
+Amplitude amplitude(double s, double c2, double m) {
   const double y = 1 - m * s * s;
-  return s * carlson::rf(c2, y, 1) + n * s * s * s * carlson::rj(c2, y, 1, 1 - n * s * s) / 3;
+  return {s, c2, y, carlson::rf(c2, y, 1)};
+}
+double legendre_pi(const Amplitude& a, double n) {
+  const double s3 = a.s * a.s * a.s;
+  return a.s * a.rf + n * s3 * carlson::rj(a.c2, a.y, 1, 1 - n * a.s * a.s, a.rf) / 3;
+}
+double legendre_d(const Amplitude& a) {
+  return a.s * a.s * a.s * carlson::rd(a.c2, a.y, 1) / 3;
 }
 int sense_of(int sign) {
   return sign < 0 ? -1 : 1;
-}
-
-// A Jacobi argument w = 2jK + w', w' in [-K, K], with sn, cn of w' (cn >= 0): where the
-// integrals over w are 2j times their complete value plus their principal value at w'.
-struct Reduced {
-  double periods, s, c2;
-};
-Reduced reduce(const JacobiModulus& jacobi, double quarter, double w) {
-  const double j = std::nearbyint(w / (2 * quarter));
-  const JacobiValues v = jacobi_functions(jacobi, (w - 2 * j * quarter) * jacobi.rate);
-  return {j, v.sn, v.cn * v.cn};
 }
 
 // ---- The polar motion. With x = cos(theta), (dx/dtau)^2 = a^2 (u_+ - x^2)(x^2 - u_-):
@@ -50,20 +49,26 @@ Reduced reduce(const JacobiModulus& jacobi, double quarter, double w) {
 // vortical (0 < u_- < u_+): x = h sqrt(u_+) dn(w | m), m = (u_+ - u_-) / u_+, dw/dtau = a
 //   sqrt(u_+).
 // Both: 1 - x^2 = (1 - u_+)(1 - n sn^2), so int dtau / sin^2 theta = Pi(n; w) / ((1 - u_+) rate),
-// and a^2 int x^2 dtau = a^2 u_+ int cn^2 (or dn^2) dw / rate.
+// and a^2 int x^2 dtau = a^2 u_+ int cn^2 (or dn^2) dw / rate. Over w = 2jK + w', w' in [-K, K],
+// each integral is 2j times its complete value plus its principal value at w'.
 
-double polar_phi_antiderivative(const PolarMotion& p, double w) {
-  const Reduced r = reduce(p.jacobi, p.quarter, w);
-  const double complete = legendre_pi(1, 0, p.m, p.pi_n);
-  return p.pi_scale * (2 * r.periods * complete +
-                       std::copysign(1.0, r.s) * legendre_pi(std::abs(r.s), r.c2, p.m, p.pi_n));
-}
-
-double polar_t_antiderivative(const PolarMotion& p, double w) {
-  const Reduced r = reduce(p.jacobi, p.quarter, w);
-  const double d = 2 * r.periods * legendre_d(1, 0, p.m) + legendre_d(r.s, r.c2, p.m);
+struct PolarState {
+  double cos_theta, g_phi, g_t;  // g_*: the antiderivatives in Mino time
+};
+PolarState polar_state(const PolarMotion& p, double w, bool integrals) {
+  const double j = std::nearbyint(w / (2 * p.quarter));
+  const JacobiValues v = jacobi_functions(p.jacobi, (w - 2 * j * p.quarter) * p.jacobi.rate);
+  const double odd = std::fmod(j, 2.0) == 0 ? 1 : -1;  // cn(w) = (-1)^j cn(w')
+  PolarState state;
+  state.cos_theta =
+      p.vortical ? p.hemisphere * std::sqrt(p.u_plus) * v.dn : std::sqrt(p.u_plus) * odd * v.cn;
+  if (!integrals) return state;
+  const Amplitude a = amplitude(v.sn, v.cn * v.cn, p.m);
+  state.g_phi = p.lambda == 0 ? 0.0 : p.pi_scale * (2 * j * p.complete_pi + legendre_pi(a, p.pi_n));
+  const double d = 2 * j * p.complete_d + legendre_d(a);
   // int cn^2 dw = w - int sn^2 dw; int dn^2 dw = w - m int sn^2 dw.
-  return p.a2 * p.u_plus * (w - (p.vortical ? p.m : 1) * d) / p.rate;
+  state.g_t = p.a2 * p.u_plus * (w - (p.vortical ? p.m : 1) * d) / p.rate;
+  return state;
 }
 
 PolarMotion polar_motion(double a, const PhotonConstants& c, double x, int sign_theta) {
@@ -101,14 +106,12 @@ PolarMotion polar_motion(double a, const PhotonConstants& c, double x, int sign_
     p.pi_n = -p.u_plus * p.m / (1 - p.u_plus);
   }
   p.pi_scale = 1 / ((1 - p.u_plus) * p.rate);
-  p.g_phi_source = c.lambda == 0 ? 0.0 : polar_phi_antiderivative(p, p.w_source);
-  p.g_t_source = polar_t_antiderivative(p, p.w_source);
+  const Amplitude complete = amplitude(1, 0, p.m);
+  p.complete_pi = legendre_pi(complete, p.pi_n);
+  p.complete_d = legendre_d(complete);
+  const PolarState source = polar_state(p, p.w_source, true);
+  p.g_phi_source = source.g_phi, p.g_t_source = source.g_t;
   return p;
-}
-
-double polar_cos_theta(const PolarMotion& p, double w) {
-  const JacobiValues v = jacobi_functions(p.jacobi, w * p.jacobi.rate);
-  return p.vortical ? p.hemisphere * std::sqrt(p.u_plus) * v.dn : std::sqrt(p.u_plus) * v.cn;
 }
 
 // ---- The radial motion, four real roots (r >= r4): with n = (r4 - r1) / (r3 - r1),
@@ -117,10 +120,10 @@ double polar_cos_theta(const PolarMotion& p, double w) {
 // The integrals of r, r^2 and 1 / (r - r_+-) over tau are then those of 1 / (1 - n sn^2) (Pi),
 // its square (V2 below) and 1 / (1 - n_+- sn^2), n_+- = n (r3 - r_+-) / (r4 - r_+-).
 
-struct Amplitude {
+struct SquaredAmplitude {
   double s2, c2;
 };
-Amplitude four_real_amplitude(const double* r, double radius) {
+SquaredAmplitude four_real_amplitude(const double* r, double radius) {
   if (std::isinf(radius)) return {(r[2] - r[0]) / (r[3] - r[0]), (r[3] - r[2]) / (r[3] - r[0])};
   const double d = (radius - r[2]) * (r[3] - r[0]);
   return {std::max((radius - r[3]) * (r[2] - r[0]) / d, 0.0), (radius - r[0]) * (r[3] - r[2]) / d};
@@ -138,12 +141,12 @@ struct FourRealSums {
   double pi, pi_plus, pi_minus, v2;
 };
 FourRealSums four_real_sums(const RadialMotion& m, double x, double s, double cn, double dn) {
-  const double c2 = cn * cn;
+  const Amplitude a = amplitude(s, cn * cn, m.m);
   FourRealSums f;
-  f.pi = legendre_pi(s, c2, m.m, m.n);
-  f.pi_plus = legendre_pi(s, c2, m.m, m.n_plus);
-  f.pi_minus = legendre_pi(s, c2, m.m, m.n_minus);
-  const double e = x - m.m * legendre_d(s, c2, m.m);
+  f.pi = legendre_pi(a, m.n);
+  f.pi_plus = legendre_pi(a, m.n_plus);
+  f.pi_minus = legendre_pi(a, m.n_minus);
+  const double e = x - m.m * legendre_d(a);
   f.v2 = pi_squared(m.n, m.m, x, s, cn, dn, f.pi, e);
   return f;
 }
@@ -195,13 +198,13 @@ RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int s
     m.rate = std::sqrt(d) / 2;
     m.n_plus = m.n * (r[2] - r_plus) / (r[3] - r_plus);
     m.n_minus = m.n * (r[2] - r_minus) / (r[3] - r_minus);
-    const Amplitude source = four_real_amplitude(r, r_s);
+    const SquaredAmplitude source = four_real_amplitude(r, r_s);
     const double s = sense_of(sign_r) * std::sqrt(source.s2);
     m.x_source = legendre_f(s, source.c2, m.m);
-    const Amplitude far = four_real_amplitude(r, kInf);
+    const SquaredAmplitude far = four_real_amplitude(r, kInf);
     m.x_end = legendre_f(std::sqrt(far.s2), far.c2, m.m);
     if (r[3] < r_plus && sign_r < 0) {
-      const Amplitude h = four_real_amplitude(r, r_plus);
+      const SquaredAmplitude h = four_real_amplitude(r, r_plus);
       m.x_end = -legendre_f(std::sqrt(h.s2), h.c2, m.m);
     }
     const FourRealSums f =
@@ -252,9 +255,8 @@ RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int s
   return m;
 }
 
-double radial_radius(const RadialMotion& m, double x) {
+double radial_radius(const RadialMotion& m, const JacobiValues& v) {
   const RadialRoots& q = m.roots;
-  const JacobiValues v = jacobi_functions(m.jacobi, x * m.jacobi.rate);
   switch (q.kind) {
     case RadialCase::FourReal:
       return q.r[2] + (q.r[3] - q.r[2]) / (1 - m.n * v.sn * v.sn);
@@ -275,10 +277,10 @@ struct RadialIntegrals {
   double i1, i2, i_plus, i_minus;
 };
 
-RadialIntegrals four_real_integrals(const RadialMotion& m, double x, double tau, double r_plus,
-                                    double r_minus) {
+// r_minus < 0: I_- is not needed (see point_with_polar) and left 0.
+RadialIntegrals four_real_integrals(const RadialMotion& m, double x, const JacobiValues& v,
+                                    double tau, double r_plus, double r_minus) {
   const double* r = m.roots.r;
-  const JacobiValues v = jacobi_functions(m.jacobi, x * m.jacobi.rate);
   const FourRealSums f = four_real_sums(m, x, v.sn, v.cn, v.dn);
   const double dpi = (f.pi - m.pi_source) / m.rate, gap = r[3] - r[2];
   RadialIntegrals i;
@@ -289,7 +291,7 @@ RadialIntegrals four_real_integrals(const RadialMotion& m, double x, double tau,
     return (ratio * tau + (1 - ratio) * (sum - sum_source) / m.rate) / (r[3] - r_pole);
   };
   i.i_plus = pole(m.n_plus, f.pi_plus, m.pi_plus_source, r_plus);
-  i.i_minus = pole(m.n_minus, f.pi_minus, m.pi_minus_source, r_minus);
+  i.i_minus = r_minus < 0 ? 0.0 : pole(m.n_minus, f.pi_minus, m.pi_minus_source, r_minus);
   return i;
 }
 
@@ -322,7 +324,7 @@ RadialIntegrals two_real_integrals(const RadialMotion& m, double z, double r_plu
     return scale * (j0 - gap * jp) / (r1 - r_pole);
   };
   i.i_plus = pole(r_plus);
-  i.i_minus = pole(r_minus);
+  i.i_minus = r_minus < 0 ? 0.0 : pole(r_minus);
   return i;
 }
 
@@ -340,7 +342,8 @@ RadialRoots radial_roots(double a, const PhotonConstants& c) {
     const double root = std::sqrt(disc);
     omegas = std::cbrt(-q / 2 + root) + std::cbrt(-q / 2 - root);
   } else {
-    omegas = 2 * std::pow(std::complex<double>(-q / 2, std::sqrt(-disc)), 1.0 / 3).real();
+    // The principal cube roots of the conjugates -q/2 +- i sqrt(-disc), of modulus (-p/3)^(3/2).
+    omegas = 2 * std::sqrt(-p / 3) * std::cos(std::atan2(std::sqrt(-disc), -q / 2) / 3);
   }
   const double z = std::sqrt(std::max(omegas / 2 - big_a / 6, 0.0));
   const double base = -big_a / 2 - z * z, tilt = big_b / (4 * z);
@@ -395,29 +398,39 @@ KerrRay kerr_ray(double a, const PhotonConstants& c, double r_source, double cos
 
 double radius_after(const KerrRay& ray, double tau) {
   const RadialMotion& m = ray.radial;
-  return radial_radius(m, m.x_source + m.sense * m.rate * tau);
+  const double x = m.x_source + m.sense * m.rate * tau;
+  return radial_radius(m, jacobi_functions(m.jacobi, x * m.jacobi.rate));
 }
 
 double cos_theta_after(const KerrRay& ray, double tau) {
   const PolarMotion& p = ray.polar;
-  return polar_cos_theta(p, p.w_source + p.rate * tau);
+  return polar_state(p, p.w_source + p.rate * tau, false).cos_theta;
 }
 
-KerrPoint point_after(const KerrRay& ray, double tau) {
+namespace {
+
+// The point at Mino time tau, given the polar motion's state there.
+KerrPoint point_with_polar(const KerrRay& ray, double tau, const PolarState& polar) {
   const RadialMotion& m = ray.radial;
   const PolarMotion& p = ray.polar;
   const double a = ray.a, lambda = ray.constants.lambda;
-  const double x = m.x_source + m.sense * m.rate * tau, w = p.w_source + p.rate * tau;
+  const double x = m.x_source + m.sense * m.rate * tau;
+  const JacobiValues v = jacobi_functions(m.jacobi, x * m.jacobi.rate);
   KerrPoint point;
-  point.r = tau == 0 ? m.r_source : radial_radius(m, x);
-  point.cos_theta = polar_cos_theta(p, w);
+  point.r = tau == 0 ? m.r_source : radial_radius(m, v);
+  point.cos_theta = polar.cos_theta;
   if (tau == 0) return point;
   const double r_plus = outer_horizon(a), r_minus = inner_horizon(a);
+  const double wp = 2 * r_plus - a * lambda, wm = 2 * r_minus - a * lambda;
+  // The inner horizon's terms carry a (2 r_- - a lambda), of order a^2 lambda, and I_- is at
+  // most tau / (r_+ - r_-): below 1e-17 they are under the rounding of what they add to, and at
+  // spins of 1e-12 its integral's pole at r_- ~ a^2 / 2 would underflow (NaN); so are left out.
+  const bool inner = std::abs(a * wm) >= 1e-17;
   RadialIntegrals i;
   if (m.roots.kind == RadialCase::FourReal) {
-    i = four_real_integrals(m, x, tau, r_plus, r_minus);
+    i = four_real_integrals(m, x, v, tau, r_plus, inner ? r_minus : -1);
   } else if (m.roots.kind == RadialCase::TwoReal) {
-    i = two_real_integrals(m, z_of(m.roots, point.r), r_plus, r_minus);
+    i = two_real_integrals(m, z_of(m.roots, point.r), r_plus, inner ? r_minus : -1);
   } else {
     point.phi = point.t = kNaN;
     return point;
@@ -425,22 +438,41 @@ KerrPoint point_after(const KerrRay& ray, double tau) {
   // dphi/dtau = a (2r - a lambda) / Delta + lambda / sin^2 theta, and dt/dtau = r^2 + 2r + 4 +
   // (2 r_+ (2 r_+ - a lambda) / (r - r_+) - 2 r_- (2 r_- - a lambda) / (r - r_-)) / (r_+ - r_-)
   // + a^2 cos^2 theta (partial fractions of PHYSICS.md's forms, M = 1).
-  const double wp = 2 * r_plus - a * lambda, wm = 2 * r_minus - a * lambda;
   const double gap = r_plus - r_minus;
-  const double g_phi =
-      lambda == 0 ? 0.0 : lambda * (polar_phi_antiderivative(p, w) - p.g_phi_source);
-  point.phi = a * (wp * i.i_plus - wm * i.i_minus) / gap + g_phi;
+  point.phi = a * (wp * i.i_plus - wm * i.i_minus) / gap + lambda * (polar.g_phi - p.g_phi_source);
   point.t = i.i2 + 2 * i.i1 + 4 * tau +
-            2 * (r_plus * wp * i.i_plus - r_minus * wm * i.i_minus) / gap +
-            polar_t_antiderivative(p, w) - p.g_t_source;
+            2 * (r_plus * wp * i.i_plus - r_minus * wm * i.i_minus) / gap + polar.g_t -
+            p.g_t_source;
   return point;
+}
+
+// The crossing's Jacobi argument w = (2i + 1) K, i = the index returned.
+double equator_index(const PolarMotion& p, int crossing) {
+  return std::floor((p.w_source / p.quarter - 1) / 2) + crossing;
+}
+
+}  // namespace
+
+KerrPoint point_after(const KerrRay& ray, double tau) {
+  const PolarMotion& p = ray.polar;
+  const bool integrals = tau != 0 && ray.radial.roots.kind != RadialCase::NoneReal;
+  return point_with_polar(ray, tau, polar_state(p, p.w_source + p.rate * tau, integrals));
+}
+
+KerrPoint point_at_equator(const KerrRay& ray, int crossing) {
+  const PolarMotion& p = ray.polar;
+  if (p.vortical || p.u_plus == 0) return {kNaN, kNaN, kNaN, kNaN};
+  // At w = (2i + 1) K each polar integral is 2i + 1 times its complete value.
+  const double odd = 2 * equator_index(p, crossing) + 1, w = odd * p.quarter;
+  PolarState polar{0, p.lambda == 0 ? 0.0 : p.pi_scale * odd * p.complete_pi, 0};
+  polar.g_t = p.a2 * p.u_plus * (w - odd * p.complete_d) / p.rate;
+  return point_with_polar(ray, (w - p.w_source) / p.rate, polar);
 }
 
 double mino_time_to_equator(const KerrRay& ray, int crossing) {
   const PolarMotion& p = ray.polar;
   if (p.vortical || p.u_plus == 0) return kInf;
-  const double i = std::floor((p.w_source / p.quarter - 1) / 2) + crossing;
-  return ((2 * i + 1) * p.quarter - p.w_source) / p.rate;
+  return ((2 * equator_index(p, crossing) + 1) * p.quarter - p.w_source) / p.rate;
 }
 
 }  // namespace lightcone::kerr

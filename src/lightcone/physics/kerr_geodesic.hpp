@@ -47,7 +47,8 @@ struct PolarMotion {
   JacobiModulus jacobi;           // parameter m (see kerr_geodesic.cpp)
   double m = 0, quarter = 0;      // m and K(m)
   double pi_n = 0, pi_scale = 0;  // Pi's characteristic and 1 / ((1 - u_+) rate)
-  double w_source = 0;            // w at the source
+  double complete_pi = 0, complete_d = 0;   // Pi(n | m) and (K - E) / m
+  double w_source = 0;                      // w at the source
   double g_phi_source = 0, g_t_source = 0;  // the antiderivatives below at w_source
   double lambda = 0, a2 = 0;
 };
@@ -99,5 +100,8 @@ double cos_theta_after(const KerrRay& ray, double tau);
 // The Mino time of the ray's n-th crossing (n >= 1) of the equatorial plane after its source;
 // infinity for a vortical ray (which never crosses) or one in the plane (eta = 0 there).
 double mino_time_to_equator(const KerrRay& ray, int crossing);
+// The point of that crossing (cos(theta) = 0 exactly), its polar integrals complete ones: less
+// work than point_after at that Mino time. NaN where there is no crossing.
+KerrPoint point_at_equator(const KerrRay& ray, int crossing);
 
 }  // namespace lightcone::kerr
