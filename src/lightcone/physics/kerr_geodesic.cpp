@@ -77,6 +77,10 @@ PolarMotion polar_motion(double a, const PhotonConstants& c, double x, int sign_
   const double b = c.eta + c.lambda * c.lambda - p.a2;
   const double spread = std::sqrt(b * b + 4 * p.a2 * c.eta);  // a^2 (u_+ - u_-)
   double kc2;
+  // The source's amplitude: w_s = sign f there, or sign (2K - f) where turned.
+  Amplitude source;
+  bool turned = false;
+  double sign = 1;
   if (c.eta >= 0) {
     p.u_plus = b > 0 ? 2 * c.eta / (b + spread) : (spread - b) / (2 * p.a2);
     const double a2_u_minus = p.u_plus > 0 ? -c.eta / p.u_plus : -spread;
@@ -86,9 +90,9 @@ PolarMotion polar_motion(double a, const PhotonConstants& c, double x, int sign_
     p.jacobi = jacobi_modulus(p.m, kc2);
     p.quarter = carlson::rf(0, kc2, 1);
     const double ratio = p.u_plus > 0 ? std::clamp(x / std::sqrt(p.u_plus), -1.0, 1.0) : 0.0;
-    const double s = std::sqrt((1 - ratio) * (1 + ratio));
-    const double f = legendre_f(s, ratio * ratio, p.m);
-    p.w_source = sense_of(sign_theta) * (ratio >= 0 ? f : 2 * p.quarter - f);
+    source = amplitude(std::sqrt((1 - ratio) * (1 + ratio)), ratio * ratio, p.m);
+    turned = ratio < 0;  // w_s = +-(2K - f)
+    sign = sense_of(sign_theta);
     p.pi_n = -p.u_plus / (1 - p.u_plus);
   } else {
     p.vortical = true;
@@ -101,16 +105,22 @@ PolarMotion polar_motion(double a, const PhotonConstants& c, double x, int sign_
     p.quarter = carlson::rf(0, kc2, 1);
     p.hemisphere = x < 0 ? -1 : 1;
     const double s2 = std::clamp((p.u_plus - x * x) * p.a2 / spread, 0.0, 1.0);
-    const double f = legendre_f(std::sqrt(s2), 1 - s2, p.m);
-    p.w_source = sense_of(sign_theta) * p.hemisphere * f;
+    source = amplitude(std::sqrt(s2), 1 - s2, p.m);
+    sign = sense_of(sign_theta) * p.hemisphere;
     p.pi_n = -p.u_plus * p.m / (1 - p.u_plus);
   }
   p.pi_scale = 1 / ((1 - p.u_plus) * p.rate);
-  const Amplitude complete = amplitude(1, 0, p.m);
+  const Amplitude complete{1, 0, kc2, p.quarter};
   p.complete_pi = legendre_pi(complete, p.pi_n);
   p.complete_d = legendre_d(complete);
-  const PolarState source = polar_state(p, p.w_source, true);
-  p.g_phi_source = source.g_phi, p.g_t_source = source.g_t;
+  const auto at_source = [&](double principal, double whole) {
+    return sign * (turned ? 2 * whole - principal : principal);
+  };
+  p.w_source = at_source(source.s * source.rf, p.quarter);
+  const double pi = at_source(legendre_pi(source, p.pi_n), p.complete_pi);
+  const double d = at_source(legendre_d(source), p.complete_d);
+  p.g_phi_source = c.lambda == 0 ? 0.0 : p.pi_scale * pi;
+  p.g_t_source = p.a2 * p.u_plus * (p.w_source - (p.vortical ? p.m : 1) * d) / p.rate;
   return p;
 }
 
@@ -140,8 +150,9 @@ double pi_squared(double n, double m, double x, double s, double cn, double dn, 
 struct FourRealSums {
   double pi, pi_plus, pi_minus, v2;
 };
-FourRealSums four_real_sums(const RadialMotion& m, double x, double s, double cn, double dn) {
-  const Amplitude a = amplitude(s, cn * cn, m.m);
+FourRealSums four_real_sums(const RadialMotion& m, double x, const Amplitude& a, double cn,
+                            double dn) {
+  const double s = a.s;
   FourRealSums f;
   f.pi = legendre_pi(a, m.n);
   f.pi_plus = legendre_pi(a, m.n_plus);
@@ -199,16 +210,15 @@ RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int s
     m.n_plus = m.n * (r[2] - r_plus) / (r[3] - r_plus);
     m.n_minus = m.n * (r[2] - r_minus) / (r[3] - r_minus);
     const SquaredAmplitude source = four_real_amplitude(r, r_s);
-    const double s = sense_of(sign_r) * std::sqrt(source.s2);
-    m.x_source = legendre_f(s, source.c2, m.m);
+    const Amplitude at = amplitude(sense_of(sign_r) * std::sqrt(source.s2), source.c2, m.m);
+    m.x_source = at.s * at.rf;
     const SquaredAmplitude far = four_real_amplitude(r, kInf);
     m.x_end = legendre_f(std::sqrt(far.s2), far.c2, m.m);
     if (r[3] < r_plus && sign_r < 0) {
       const SquaredAmplitude h = four_real_amplitude(r, r_plus);
       m.x_end = -legendre_f(std::sqrt(h.s2), h.c2, m.m);
     }
-    const FourRealSums f =
-        four_real_sums(m, m.x_source, s, std::sqrt(source.c2), std::sqrt(1 - m.m * source.s2));
+    const FourRealSums f = four_real_sums(m, m.x_source, at, std::sqrt(source.c2), std::sqrt(at.y));
     m.pi_source = f.pi, m.pi_plus_source = f.pi_plus, m.pi_minus_source = f.pi_minus;
     m.v2_source = f.v2;
     return m;
@@ -281,7 +291,7 @@ struct RadialIntegrals {
 RadialIntegrals four_real_integrals(const RadialMotion& m, double x, const JacobiValues& v,
                                     double tau, double r_plus, double r_minus) {
   const double* r = m.roots.r;
-  const FourRealSums f = four_real_sums(m, x, v.sn, v.cn, v.dn);
+  const FourRealSums f = four_real_sums(m, x, amplitude(v.sn, v.cn * v.cn, m.m), v.cn, v.dn);
   const double dpi = (f.pi - m.pi_source) / m.rate, gap = r[3] - r[2];
   RadialIntegrals i;
   i.i1 = r[2] * tau + gap * dpi;
