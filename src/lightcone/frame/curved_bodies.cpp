@@ -27,15 +27,19 @@ struct PathEvents {
   const AngleSweep& course;  // its turning point (prepare_sweep keeps ray_course's)
 
   PathEvents(const PathStart& s, const CurvedPath& p) : start(s), path(p), course(p.sweep) {}
+  mutable bool turn_timed = false;
+  mutable double to_turn = 0;
 
   bool turned(double phi) const { return course.turning_radius > 0 && phi > course.angle_to_turn; }
   double radius(double phi) const { return radius_after_angle(path.sweep, phi); }
-  // The coordinate time from the point at phi (radius r) to the start, on the stretches between.
+  // The coordinate time from the point at phi (radius r) to the start, on the stretches between:
+  // the one from the start to the turning point taken once a ray, at its first point past it.
   double delay(double phi, double r) const {
     const double r0 = start.radius;
     if (!turned(phi)) return coordinate_time(path.orbit, r0, r);
     const double turn = course.turning_radius;
-    return coordinate_time(path.orbit, r0, turn) + coordinate_time(path.orbit, turn, r);
+    if (!turn_timed) to_turn = coordinate_time(path.orbit, r0, turn), turn_timed = true;
+    return to_turn + coordinate_time(path.orbit, turn, r);
   }
   double time(double phi, double r) const { return start.time - delay(phi, r); }
   // The event at phi; its time only when `timed` (a body at rest needs none to be met).
