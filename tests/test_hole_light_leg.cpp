@@ -176,6 +176,33 @@ TEST(RayBetween, StartedFromAnotherSolveIsTheSameRay) {
     }
 }
 
+TEST(RayBetween, UntimedIsTheSameRayWithoutItsTime) {
+  // A lamp at rest asks no time: the ray is the one solved with it, to the bit, its time NaN.
+  for (const Case& c : kCases)
+    for (int order = 0; order <= 1; ++order) {
+      SCOPED_TRACE(testing::Message() << c.r_a << " " << c.r_b << " " << c.psi << " " << order);
+      const auto timed = ray_between(1, c.r_a, c.r_b, c.psi, order);
+      const auto untimed = ray_between(1, c.r_a, c.r_b, c.psi, order, nullptr, nullptr, false);
+      ASSERT_TRUE(timed && untimed);
+      EXPECT_TRUE(std::isfinite(timed->time));
+      EXPECT_TRUE(std::isnan(untimed->time));
+      EXPECT_EQ(untimed->impact, timed->impact);
+      EXPECT_EQ(untimed->cos_a, timed->cos_a);
+      EXPECT_EQ(untimed->sin_b, timed->sin_b);
+      EXPECT_EQ(untimed->spread_b_to_a, timed->spread_b_to_a);
+      EXPECT_EQ(untimed->sweep_rate, timed->sweep_rate);
+      const Vec3 lamp{c.r_b * std::cos(c.psi), c.r_b * std::sin(c.psi), 0}, surface{c.r_a, 0, 0};
+      const auto leg = hole_light_leg(1, lamp, {}, surface, {}, order);
+      const auto untimed_leg =
+          hole_light_leg(1, lamp, {}, surface, {}, order, nullptr, nullptr, false);
+      ASSERT_TRUE(leg && untimed_leg);
+      EXPECT_TRUE(std::isnan(untimed_leg->time));
+      EXPECT_NEAR(leg->time, timed->time, 1e-12 * timed->time);
+      EXPECT_EQ(untimed_leg->leg.distance, leg->leg.distance);
+      EXPECT_EQ(untimed_leg->leg.doppler, leg->leg.doppler);
+    }
+}
+
 TEST(HoleLightLeg, IsNoneOnlyWhereItLightsTheBackOfAStaticSurface) {
   // Surfaces round balls beside the hole (nearer the hole than the lamp and, the last, farther),
   // facing every way, lit by a lamp and a plane wave,

@@ -365,12 +365,14 @@ bool Lighting::incoming_near_hole(const ResolvedLight& rl, const Vec4& surface_w
   // The light that reaches the surface event left at t_e with t_s - t_e the coordinate time of
   // the direct ray from where the light then was: exact for a light at rest; on a moving line
   // the root of that equation (physics/emission_root.hpp).
-  // A light at rest lights only the side it faces (one on a line may face it from where it was).
+  // A light at rest lights only the side it faces (one on a line may face it from where it was),
+  // and from where it always is: its leg's time is not needed.
   HoleWorldLineState state = line.at(surface.t);
+  const bool still = line.still();
   auto leg = hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,
-                            surface_velocity, order, warm_start, line.still() ? &normal : nullptr);
+                            surface_velocity, order, warm_start, still ? &normal : nullptr, !still);
   if (!leg) return false;
-  if (!line.still()) {
+  if (!still) {
     const auto leg_at = [&](double t) {
       state = line.at(t);
       return hole_light_leg(hole.mass, state.position + offset, state.local_velocity, receiver,

@@ -57,13 +57,14 @@ HoleLegPath leg_path(const LegPlane& plane, const RayBetween& ray) {
 
 std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
                                       const Vec3& receiver, const Vec3& w_r, int order,
-                                      RayBetweenStart* warm_start, const Vec3* lit_side) {
+                                      RayBetweenStart* warm_start, const Vec3* lit_side,
+                                      bool timed) {
   const double r_e = length(emitter), r_r = length(receiver);
   const LegPlane plane = leg_plane(receiver, emitter, order);
   if (plane.psi == 0 && r_e == r_r) return std::nullopt;
   const std::optional<FacingSide> facing = facing_side(plane, w_r, lit_side);
   const std::optional<RayBetween> ray =
-      ray_between(mass, r_r, r_e, plane.psi, order, warm_start, facing ? &*facing : nullptr);
+      ray_between(mass, r_r, r_e, plane.psi, order, warm_start, facing ? &*facing : nullptr, timed);
   if (!ray || !(ray->spread_b_to_a > 0)) return std::nullopt;
   // In the static frames: the receiver sees the light arrive from the direction in which the
   // path leaves it; the emitter, at angle `sweep` round from e1 toward e2, sends it back round

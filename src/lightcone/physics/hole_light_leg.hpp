@@ -35,7 +35,7 @@ struct HoleLeg {
   // receiver per unit solid angle its static observer sends (the receiver-frame distance in flat
   // space). direction and emitted_direction in the receiver's and the emitter's rest frames.
   ReceivedLeg leg;
-  double time = 0;  // the coordinate time the light takes
+  double time = 0;  // the coordinate time the light takes (NaN where not `timed`)
   HoleLegPath path;
 };
 
@@ -48,10 +48,11 @@ struct HoleLeg {
 // this leg's; the leg is the same whatever it holds. `lit_side`, where given, is the normal of
 // a receiver at rest against its static observer that takes no light on its back: none then
 // where the light arrives from behind it (found before the ray is solved to the last bits).
+// Without `timed`, its `time` is NaN, not taken (a lamp at rest lights every event alike).
 std::optional<HoleLeg> hole_light_leg(double mass, const Vec3& emitter, const Vec3& w_e,
                                       const Vec3& receiver, const Vec3& w_r, int order = 0,
                                       RayBetweenStart* warm_start = nullptr,
-                                      const Vec3* lit_side = nullptr);
+                                      const Vec3* lit_side = nullptr, bool timed = true);
 
 // A plane wave: light that far away travels along the unit `propagation` (in W), received at
 // `receiver` (r > 2M) moving with w_r. doppler is nu_receiver / nu far away (in W), direction

@@ -47,7 +47,8 @@ struct FacingSide {
 // start that brackets nothing in six steps gives way to the bracket found from the stretch's
 // start). With `facing`, the solve stops and gives none once its bracket holds only rays that
 // leave end a on the surface's back, where the light would bring nothing; `warm_start` then
-// moves to the secant's root in that bracket.
+// moves to the secant's root in that bracket. Without `timed`, the coordinate time between the
+// ends (elliptic integrals of all three kinds) is not taken: a lamp at rest needs none.
 struct RayBetween {
   double impact = 0;
   double sweep = 0;  // image_sweep(psi, order)
@@ -56,7 +57,8 @@ struct RayBetween {
   // way the ray goes round (toward the other end for even orders, away from it for odd ones;
   // sin >= 0).
   double cos_a = 0, sin_a = 0, cos_b = 0, sin_b = 0;
-  double time = 0;  // the coordinate time between the ends (infinity for r_b = infinity)
+  // The coordinate time between the ends (infinity for r_b = infinity; NaN where not `timed`).
+  double time = 0;
   // The bundle's cross-section at one end per unit solid angle at the other, both in the
   // static observers' frames: dA_b / dOmega_a (light sent from a) and dA_a / dOmega_b (from b;
   // Etherington's reciprocity: f_a / f_b times the first). With the outer end at R, the inner
@@ -74,7 +76,7 @@ struct RayBetween {
 };
 std::optional<RayBetween> ray_between(double mass, double r_a, double r_b, double psi, int order,
                                       RayBetweenStart* warm_start = nullptr,
-                                      const FacingSide* facing = nullptr);
+                                      const FacingSide* facing = nullptr, bool timed = true);
 
 // The images of directions far away seen by the static observer at radius r0 (> 2M), orders 0
 // to orders - 1, for many directions: ray_between's look angle alpha_k(psi) tabulated at `nodes`
