@@ -241,6 +241,59 @@ TEST_F(CliTest, LocateObjectPointLandsOnTheRenderedBall) {
   EXPECT_NEAR(at(centre, "pixel", 1), 24, 1e-9);
 }
 
+// locate --pixel: what the render shows at a pixel. Each pixel of the moving ball's picture that
+// is black is the ball, met on its surface at a point whose --point gives that pixel back; each
+// red one is the sky. Its JSON has the contract's keys in order.
+TEST_F(CliTest, LocatePixelSaysWhatThePictureShows) {
+  const fs::path scene = write_scene(moving_black_ball());
+  ASSERT_EQ(render(scene).status, 0);
+  const auto image = read_png();
+  int balls = 0, skies = 0;
+  for (int y = 2; y < 48; y += 7)
+    for (int x = 1; x < 64; x += 5) {
+      SCOPED_TRACE(fmt::format("pixel {}, {}", x, y));
+      const CommandResult r = locate(scene, fmt::format("--pixel {}.5,{}.5", x, y));
+      ASSERT_EQ(r.status, 0) << r.err;
+      const auto probe = nlohmann::ordered_json::parse(r.out);
+      std::vector<std::string> keys;
+      for (const auto& item : probe.items()) keys.push_back(item.key());
+      EXPECT_EQ(keys, (std::vector<std::string>{"pixel", "direction", "meets", "object", "point",
+                                                "sky", "disk", "emission_time", "emission_position",
+                                                "emission_proper_time", "distance", "doppler"}));
+      const bool black = png_byte(image->texel(x, y).r) == 0;
+      if (probe["meets"] == "sky") {
+        EXPECT_FALSE(black);
+        EXPECT_TRUE(probe["emission_time"].is_null());
+        ++skies;
+        continue;
+      }
+      ASSERT_EQ(probe["meets"], "object");
+      EXPECT_EQ(probe["object"], "ball");
+      // (Pixels on the outline can go either way: their centre ray and the render's samples
+      // differ.)
+      const std::string point = fmt::format("{},{},{}", at(probe, "point", 0),
+                                            at(probe, "point", 1), at(probe, "point", 2));
+      const auto back = locate_output(locate(scene, "--object ball --point " + point));
+      ASSERT_FALSE(back.empty());
+      EXPECT_NEAR(at(back, "pixel", 0), x + 0.5, 1e-9);
+      EXPECT_NEAR(at(back, "pixel", 1), y + 0.5, 1e-9);
+      EXPECT_NEAR(back["emission_time"].get<double>(), probe["emission_time"].get<double>(), 1e-9);
+      EXPECT_NEAR(back["doppler"].get<double>(), probe["doppler"].get<double>(), 1e-9);
+      ++balls;
+    }
+  EXPECT_GT(balls, 10);
+  EXPECT_GT(skies, 10);
+}
+
+TEST_F(CliTest, LocatePixelRefusesPointsOffThePicture) {
+  const fs::path scene = write_scene(moving_black_ball());  // 64 x 48
+  for (const char* pixel : {"64,1", "1,48", "-0.5,3"})
+    expect_rejected(locate(scene, std::string("--pixel ") + pixel),
+                    scene.string() + ": pixel: ", {"is not in the 64 x 48 picture"});
+  expect_rejected(locate(scene, "--pixel 1,2,3"), "--pixel 1,2,3: expected two numbers x,y");
+  expect_rejected(locate(scene, "--pixel 1,2 --object ball"), "locate: --pixel takes no --object");
+}
+
 // A big sphere at rest 1e7 away in direction d and the direction d itself land on the same
 // pixel for a camera at 0.9c.
 TEST_F(CliTest, LocateFarBodyAndDirectionAgree) {

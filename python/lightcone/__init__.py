@@ -291,6 +291,17 @@ def tonemap(image, exposure: float = 0.0, curve: str = "filmic") -> _np.ndarray:
     return _lightcone.tonemap(array, exposure, curve)
 
 
+def _pair(name: str, value) -> list:
+    """Two numbers, as given: whether they lie in the picture is the library's rule."""
+    try:
+        array = _np.asarray(value, dtype=_np.float64)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"locate: {name} must be two numbers x, y, got {_shown(value)}") from None
+    if array.shape != (2,):
+        raise ValueError(f"locate: {name} must be two numbers x, y, got shape {array.shape}")
+    return array.tolist()
+
+
 def _triple(name: str, value) -> list:
     try:
         array = _np.asarray(value, dtype=_np.float64)
@@ -306,14 +317,23 @@ def _triple(name: str, value) -> list:
 
 
 def locate(scene: Scene, object: Optional[str] = None, point=None, world_point=None,
-           direction=None) -> dict:
+           direction=None, pixel=None) -> dict:
     """Where a point or direction appears in the picture: the fields of ``lightcone locate``'s
     JSON (pixel, direction, emission event, distance, in_view, doppler; near a black hole every
     image). Give exactly one of point (in the object's own coordinates, with object),
-    world_point (at rest in the scene's frame) or direction (of the sky)."""
-    given = [v is not None for v in (point, world_point, direction)]
+    world_point (at rest in the scene's frame) or direction (of the sky); or pixel=(x, y), a
+    point of the picture (pixel (i, j) covers [i, i+1) x [j, j+1)), for what is seen there: the
+    fields of ``lightcone locate --pixel`` (meets, object and point, sky or disk, the emission
+    event, doppler; near a black hole the image order)."""
+    given = [v is not None for v in (point, world_point, direction, pixel)]
     if sum(given) != 1:
-        raise ValueError("locate: give exactly one of point (with object), world_point, direction")
+        raise ValueError("locate: give exactly one of point (with object), world_point, "
+                         "direction, pixel")
+    if pixel is not None:
+        if object is not None:
+            raise ValueError("locate: pixel takes no object: it finds what is seen")
+        x, y = _pair("pixel", pixel)
+        return _json.loads(_lightcone.probe(scene, x, y))
     if point is not None:
         if not isinstance(object, str):
             raise ValueError("locate: point needs object=NAME")

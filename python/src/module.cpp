@@ -27,6 +27,7 @@
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/locate_json.hpp"
+#include "lightcone/trace/probe_pixel.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/raster/gl_context.hpp"
@@ -283,6 +284,11 @@ std::string located(const Scene& scene, const std::string& kind, const std::stri
   return locate_json(r, scene);
 }
 
+std::string probed(const Scene& scene, double x, double y) {
+  throw_if_refused(probe_refused(scene, x, y));
+  return probe_json(probe_pixel(scene, x, y), scene);
+}
+
 // "FILE:LINE: FIELD: what", "<dict>: FIELD: what" or "--set FIELD: what" into SceneError's
 // attributes, each as the message shows it (printable). Read without std::regex, whose matching
 // recurses once a character: a message of megabytes would overflow the stack.
@@ -395,6 +401,7 @@ PYBIND11_MODULE(_lightcone, m) {
       },
       py::arg("image"), py::arg("exposure"), py::arg("curve"));
   m.def("locate", &located, py::arg("scene"), py::arg("kind"), py::arg("object"), py::arg("value"));
+  m.def("probe", &probed, py::arg("scene"), py::arg("x"), py::arg("y"));
   m.def("aov_names", [] {
     std::vector<std::string> names;
     for (int i = 0; i <= static_cast<int>(Aov::kImageOrder); ++i)

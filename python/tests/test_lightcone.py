@@ -120,6 +120,17 @@ def test_locate_equals_the_programs_json():
     assert lc.locate(lc.load(TERRELL), direction=[0, 0, -2]) == theirs
 
 
+def test_locate_pixel_equals_the_programs_json():
+    theirs = json.loads(cli("locate", TERRELL, "--pixel", "699.25,256.5"))
+    ours = lc.locate(lc.load(TERRELL), pixel=(699.25, 256.5))
+    assert ours == theirs
+    assert ours["meets"] == "object" and ours["object"] == "crate"
+    with pytest.raises(lc.SceneError, match=r"pixel: \(960, 1\) is not in the 960 x 540 picture"):
+        lc.locate(lc.load(TERRELL), pixel=(960, 1))
+    with pytest.raises(ValueError, match="pixel must be two numbers"):
+        lc.locate(lc.load(TERRELL), pixel=(1, 2, 3))
+
+
 def test_a_scene_with_an_error_raises_scene_error_with_its_line(tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_text('{\n  "camera": {"fov": 60},\n  "objectz": []\n}\n')

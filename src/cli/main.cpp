@@ -29,6 +29,7 @@
 #include "lightcone/io/spelling.hpp"
 #include "lightcone/scene/speed_text.hpp"
 #include "lightcone/trace/curved_shadows.hpp"
+#include "lightcone/trace/probe_pixel.hpp"
 #include "lightcone/trace/renderer.hpp"
 #include "lightcone/trace/scene_info.hpp"
 #include "render_command.hpp"
@@ -157,17 +158,27 @@ int run_info(const std::string& file, const std::vector<std::string>& overrides,
 
 struct LocateArgs {
   std::string scene;
-  std::optional<std::string> object, point, world_point, direction;
+  std::optional<std::string> object, point, world_point, direction, pixel;
   std::vector<std::string> overrides;
   SceneLoadOptions scene_options;  // --allow-outside
 };
 
 int run_locate(const LocateArgs& a) {
   LocateQuery query;
-  const int given = (a.point ? 1 : 0) + (a.world_point ? 1 : 0) + (a.direction ? 1 : 0);
+  const int given =
+      (a.point ? 1 : 0) + (a.world_point ? 1 : 0) + (a.direction ? 1 : 0) + (a.pixel ? 1 : 0);
   if (given != 1)
     throw InputError(
-        "locate: give exactly one of --point (with --object), --world-point, --direction");
+        "locate: give exactly one of --point (with --object), --world-point, --direction, "
+        "--pixel");
+  if (a.pixel) {
+    if (a.object) throw InputError("locate: --pixel takes no --object: it finds what is seen");
+    const std::vector<double> xy = parse_numbers("--pixel", *a.pixel, 2, false, "two numbers x,y");
+    const Scene scene = load(a.scene, a.overrides, a.scene_options);
+    throw_if_refused(probe_refused(scene, xy[0], xy[1]));
+    std::printf("%s\n", probe_json(probe_pixel(scene, xy[0], xy[1]), scene).c_str());
+    return 0;
+  }
   if (a.point) {
     if (!a.object) throw InputError("locate: --point needs --object NAME");
     query.kind = LocateQuery::Kind::ObjectPoint;
@@ -323,11 +334,16 @@ int main(int argc, char** argv) {
 
   LocateArgs loc;
   CLI::App* locate_cmd =
-      app.add_subcommand("locate", "Where a point or direction appears in the image (JSON)");
+      app.add_subcommand("locate",
+                         "Where a point or direction appears in the image, or what a pixel shows "
+                         "(JSON)");
   locate_cmd->add_option("scene", loc.scene, "Scene file (JSON)")->required();
   locate_cmd->add_option("--object", loc.object, "Object whose point is located");
   locate_cmd->add_option("--point", loc.point, "x,y,z in the object's own coordinates");
   locate_cmd->add_option("--world-point", loc.world_point, "x,y,z of a point at rest in W");
+  locate_cmd->add_option("--pixel", loc.pixel,
+                         "x,y of a point of the picture (pixel (i, j) covers [i, i+1) x [j, j+1)): "
+                         "what is seen there");
   locate_cmd->add_option("--direction", loc.direction,
                          "x,y,z of a direction at infinity, in the sky's rest frame");
   locate_cmd->add_option("--set", loc.overrides, "Override a scene value: key.path=value");

@@ -37,10 +37,29 @@ Vec3 body_normal(const ResolvedBody& body, const Vec3& shape_normal) {
   return normalize(o.rotation * component_div(shape_normal, o.scale));
 }
 
-RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
-                              const CurvedBodies* bodies) {
+RaySeen seen_on_straight_ray(const ResolvedScene& scene, const Vec3& u,
+                             const std::optional<Hit>& hit) {
+  RaySeen seen;
+  if (!hit) {
+    seen.doppler = scene.doppler(u, scene.sky_velocity);
+    return seen;
+  }
+  const ResolvedBody& body = scene.bodies[hit->body];
+  seen.doppler = scene.doppler(u, hit->velocity);
+  seen.surface = true;
+  seen.object = static_cast<float>(hit->body);
+  seen.event = scene.trace_to_world(Vec4{scene.ray_time * hit->s, u * hit->s});
+  seen.distance = hit->s;
+  // A spinning body's normal turned with its spin at the event met, as its lighting takes it
+  // (lighting.cpp).
+  seen.normal = body_normal(body, hit->shape_normal);
+  if (body.spin >= 0)
+    seen.normal = Mat3::rotation(scene.spins[body.spin].axis, hit->spin_angle) * seen.normal;
+  return seen;
+}
+
+RaySeen seen_on_curved_ray(const ResolvedScene& scene, const Vec3& u, const CurvedRay& ray) {
   const HoleView& hole = *scene.hole;
-  const CurvedRay ray = follow_curved_ray(hole, u, bodies);
   RaySeen seen;
   seen.doppler = ray.shift;
   seen.order = ray.order;
@@ -61,6 +80,11 @@ RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
   }
   seen.distance = camera_frame_distance(hole, u, scene.observation_event.t - seen.event.t);
   return seen;
+}
+
+RaySeen seen_along_curved_ray(const ResolvedScene& scene, const Vec3& u,
+                              const CurvedBodies* bodies) {
+  return seen_on_curved_ray(scene, u, follow_curved_ray(*scene.hole, u, bodies));
 }
 
 void write_aov_values(const ResolvedScene& scene, const Vec3& u, const RaySeen& seen,

@@ -17,6 +17,14 @@ std::string refusal(const Scene& scene, const std::string& field, const std::str
   return fmt::format("{}: {}: {}", source_of(scene), field, why);
 }
 
+// Near a black hole: locate measures from W's time at the camera, which is not defined inside
+// the horizon.
+std::optional<std::string> locate_inside_horizon_refused(const Scene& scene) {
+  if (!camera_inside_horizon(scene.camera.motion)) return std::nullopt;
+  return refusal(scene, "camera",
+                 "locate does not answer for a camera inside the black hole's horizon yet");
+}
+
 }  // namespace
 
 std::optional<std::string> scene_refused(const Scene& scene) {
@@ -70,9 +78,7 @@ std::optional<std::string> render_refused(const Scene& scene, const RenderReques
 std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery& query) {
   if (auto refused = scene_refused(scene)) return refused;
   if (!scene.black_hole) return std::nullopt;
-  if (camera_inside_horizon(scene.camera.motion))
-    return refusal(scene, "camera",
-                   "locate does not answer for a camera inside the black hole's horizon yet");
+  if (auto refused = locate_inside_horizon_refused(scene)) return refused;
   if (query.kind == LocateQuery::Kind::WorldPoint) {
     const BlackHole& hole = *scene.black_hole;
     // In units of M, as the kernels measure (the scene's units' squares overflow or underflow
@@ -88,6 +94,17 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
                       horizon));
   }
   return std::nullopt;
+}
+
+std::optional<std::string> probe_refused(const Scene& scene, double x, double y) {
+  if (auto refused = scene_refused(scene)) return refused;
+  const Camera& c = scene.camera;
+  if (!(x >= 0 && x < c.width && y >= 0 && y < c.height))
+    return refusal(scene, "pixel",
+                   fmt::format("({}, {}) is not in the {} x {} picture: x must be from 0 to under "
+                               "{} and y from 0 to under {}",
+                               x, y, c.width, c.height, c.width, c.height));
+  return scene.black_hole ? locate_inside_horizon_refused(scene) : std::nullopt;
 }
 
 std::optional<std::string> picture_refused(const Scene& scene, std::size_t non_finite,

@@ -40,6 +40,10 @@ std::optional<std::string> render_refused(const Scene& scene, const RenderReques
 // leave.
 std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery& query);
 
+// A probe of image point (x, y) (`locate --pixel`): the scene; a finite point of the picture,
+// 0 <= x < width and 0 <= y < height; near a black hole a camera outside the horizon, as locate.
+std::optional<std::string> probe_refused(const Scene& scene, double x, double y);
+
 // A rendered picture the library may hand out: every value finite. A non-finite one is wrong,
 // not merely dark or bright (an exposure or an emitter's luminance beyond float's range), and
 // none is ever returned; `exposure` is the EV the render applied.

@@ -72,4 +72,37 @@ std::string locate_json(const LocateResult& r, const Scene& scene) {
   return out.dump();
 }
 
+std::string probe_json(const PixelProbe& p, const Scene& scene) {
+  const char* meets = p.meets == ProbeMeets::kObject ? "object"
+                      : p.meets == ProbeMeets::kSky  ? "sky"
+                      : p.meets == ProbeMeets::kDisk ? "disk"
+                                                     : "shadow";
+  nlohmann::ordered_json out = {{"pixel", {p.pixel_x, p.pixel_y}},
+                                {"direction", to_json(p.direction)},
+                                {"meets", meets},
+                                {"object", nullptr},
+                                {"point", nullptr},
+                                {"sky", nullptr},
+                                {"disk", nullptr},
+                                {"emission_time", nullptr},
+                                {"emission_position", nullptr},
+                                {"emission_proper_time", nullptr},
+                                {"distance", nullptr},
+                                {"doppler", p.doppler}};
+  if (p.meets == ProbeMeets::kObject) {
+    out["object"] = scene.objects[p.object].name;
+    out["point"] = to_json(p.point);
+  }
+  if (p.meets == ProbeMeets::kSky) out["sky"] = {{"direction", to_json(p.sky_direction)}};
+  if (p.meets == ProbeMeets::kDisk) out["disk"] = {{"radius", p.disk_radius}};
+  // Times in the scene's units (the model's are c t).
+  const double c = scene.speed_of_light;
+  if (p.emission_time) out["emission_time"] = *p.emission_time / c;
+  if (p.emission_position) out["emission_position"] = to_json(*p.emission_position);
+  if (p.emission_proper_time) out["emission_proper_time"] = *p.emission_proper_time / c;
+  if (p.distance) out["distance"] = *p.distance;
+  if (scene.black_hole) out["order"] = p.order;
+  return out.dump();
+}
+
 }  // namespace lightcone

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/pixel_probe.hpp"
 #include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
@@ -17,5 +18,12 @@ bool locate_result_is_finite(const LocateResult& r);
 // (none, and direction and doppler null, where no light from the point reaches the camera).
 // One line, the fields in that order.
 std::string locate_json(const LocateResult& r, const Scene& scene);
+
+// The fields of docs/guide.md's "What is seen at a pixel" (`locate --pixel`): pixel, direction,
+// meets ("object", "sky", "disk" or "shadow") and what it met (object and point, sky, disk),
+// the emission event (times in the scene's units), distance, doppler (g near a black hole) and
+// near a black hole the image order. One line, the fields in that order; null where a field
+// does not apply.
+std::string probe_json(const PixelProbe& p, const Scene& scene);
 
 }  // namespace lightcone
