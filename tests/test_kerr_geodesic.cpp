@@ -121,7 +121,6 @@ bool compare(const Source& src, Counts& counts, double tolerance = 1e-8) {
   std::vector<double> times;
   for (int i = 1; i <= 8; ++i) times.push_back(end * i / 8);
   const std::vector<State> want = integrate(src, times);
-  const bool exact_phi_t = roots.kind != RadialCase::NoneReal;
   for (size_t i = 0; i < times.size(); ++i) {
     const KerrPoint got = point_after(ray, times[i]);
     const std::array<double, 4> w{double(want[i][0]), double(want[i][1]), double(want[i][2]),
@@ -130,12 +129,8 @@ bool compare(const Source& src, Counts& counts, double tolerance = 1e-8) {
     EXPECT_NEAR(got.cos_theta, std::cos(w[1]), tolerance);
     EXPECT_EQ(radius_after(ray, times[i]), got.r);
     EXPECT_EQ(cos_theta_after(ray, times[i]), got.cos_theta);
-    if (exact_phi_t) {
-      EXPECT_NEAR(got.phi, w[2], tolerance * (1 + std::abs(w[2]))) << "tau " << times[i];
-      EXPECT_NEAR(got.t, w[3], tolerance * (1 + std::abs(w[3]))) << "tau " << times[i];
-    } else {
-      EXPECT_TRUE(std::isnan(got.phi) && std::isnan(got.t));
-    }
+    EXPECT_NEAR(got.phi, w[2], tolerance * (1 + std::abs(w[2]))) << "tau " << times[i];
+    EXPECT_NEAR(got.t, w[3], tolerance * (1 + std::abs(w[3]))) << "tau " << times[i];
   }
   if (::testing::Test::HasFailure()) {
     ADD_FAILURE() << "a " << src.a << " r " << src.r << " theta " << src.theta << " lambda "
@@ -201,8 +196,8 @@ TEST(KerrGeodesic, RaysNearTheCriticalCurveAgree) {
   EXPECT_GT(counts.many_crossings, 40);
 }
 
-// Rays sent from near the axis nearly along it: lambda^2 < a^2 and eta < 0, so they stay in
-// their hemisphere (vortical motion), and many have no real radial root.
+// Rays sent from near the axis nearly along it, in and out: lambda^2 < a^2 and eta < 0, so they
+// stay in their hemisphere (vortical motion), and many have no real radial root.
 TEST(KerrGeodesic, VorticalRaysAgree) {
   Counts counts;
   std::mt19937 rng(3);
@@ -210,14 +205,14 @@ TEST(KerrGeodesic, VorticalRaysAgree) {
   for (double a : {0.5, 0.94, 0.999}) {
     for (int i = 0; i < 40 && !HasFailure(); ++i) {
       const double theta = i % 2 ? 0.2 + 0.1 * unit(rng) : kPi - 0.2 + 0.1 * unit(rng);
-      compare(
-          zamo_source(a, 3 + 10 * std::abs(unit(rng)), theta, -1, 0.1 * unit(rng), 0.1 * unit(rng)),
-          counts);
+      compare(zamo_source(a, 3 + 10 * std::abs(unit(rng)), theta, i % 4 < 2 ? -1 : 1,
+                          0.1 * unit(rng), 0.1 * unit(rng)),
+              counts);
     }
   }
   print(counts);
   EXPECT_GT(counts.vortical, 40);
-  EXPECT_GT(counts.none_real, 10);
+  EXPECT_GT(counts.none_real, 40);
 }
 
 }  // namespace
@@ -248,7 +243,6 @@ TEST(KerrGeodesic, EquatorCrossings) {
       const double after = cos_theta_after(ray, tau * (1 + 1e-9) + 1e-12);
       EXPECT_LT(mid * after, 0) << n;
       const KerrPoint want = point_after(ray, tau), got = point_at_equator(ray, n);
-      if (ray.radial.roots.kind == RadialCase::NoneReal) continue;
       EXPECT_NEAR(got.r, want.r, 1e-12 * want.r);
       EXPECT_EQ(got.cos_theta, 0);
       EXPECT_NEAR(got.phi, want.phi, 1e-10 * (1 + std::abs(want.phi)));
@@ -300,7 +294,6 @@ TEST(KerrGeodesic, ConstantsOfMotionHoldAlongRays) {
     const PhotonConstants& c = src.ray.constants;
     const KerrRay ray =
         kerr_ray(src.a, c, src.r, std::cos(src.theta), src.ray.sign_r, src.ray.sign_theta);
-    if (ray.radial.roots.kind == RadialCase::NoneReal) continue;
     const double a = src.a;
     for (int k = 1; k <= 5; ++k) {
       const double tau = ray.mino_time_limit * k / 6, h = 1e-5 * ray.mino_time_limit;

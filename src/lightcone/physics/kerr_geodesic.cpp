@@ -194,6 +194,71 @@ double none_real_argument(const RadialMotion& m, double quarter, double r) {
   return 2 * j * quarter + legendre_f(s, c * c, m.m);
 }
 
+// The integrals over the ray's Mino time tau of r, r^2 and 1 / (r - r_+-) (Gralla & Lupsasca's
+// I_1, I_2, I_+-).
+struct RadialIntegrals {
+  double i1, i2, i_plus, i_minus;
+};
+
+// The integrals over w of r, r^2 and 1 / (r - r_+-) then come from, with t = sc(w) = tan(phi),
+// phi = am(w), N = 1 + kappa^2, y = sin^2 phi, Delta = dn(w) = sqrt(1 - m y):
+//   T1(kappa) = int t dw / (1 + kappa t) = H / 2 - kappa (Pi(N; w) - w) / N,
+//   H = int sin(2 phi) dphi / ((1 - N y) Delta) = -2 L, L = int dDelta / (N Delta^2 - (N - m))
+//     = ln|(sqrt(N) Delta - sqrt(N - m)) / (sqrt(N) Delta + sqrt(N - m))| / (2 sqrt(N (N - m))),
+// (multiplying t / (1 + kappa t) by cos(phi) - kappa sin(phi) over itself), and
+//   T2(gamma) = int t^2 dw / (1 + gamma t)^2 = -dT1/dgamma,
+// with dPi/dN = (V2 - Pi) / N (V2 = int dw / (1 - N sn^2)^2, pi_squared) and
+// dH/dN = (1/N + 1/(N - m)) L + Delta / (N (N - m)(1 - N y)). Where the path passes 1 - N y = 0
+// (t = 1/kappa, where 1 + kappa t does not vanish) Pi is a Cauchy principal value (N > 1) and L's
+// logarithm is singular too, cancelling it. So int r dw = c0 w + c1 T1(gamma), int r^2 dw = c0^2 w
+// + 2 c0 c1 T1(gamma) + c1^2 T2(gamma), int dw / (r - rho) = (w - c1 / (c0 - rho) T1(kappa)) / (c0
+// - rho).
+struct NoneRealSums {
+  double t[4];  // T1(gamma), T2(gamma), T1(kappa_+), T1(kappa_-)
+};
+NoneRealSums none_real_sums(const RadialMotion& m, double w, const JacobiValues& at, bool inner) {
+  const double j = std::nearbyint(w / (2 * m.quarter));
+  const double odd = std::fmod(j, 2.0) == 0 ? 1 : -1;  // sn, cn at w' = w - 2jK
+  const Amplitude a = amplitude(odd * at.sn, at.cn * at.cn, m.m);
+  const double y = at.sn * at.sn, delta = at.dn;
+  const double e = w - m.m * (2 * j * m.complete_d + legendre_d(a));
+  NoneRealSums sums{};
+  for (int i = 0; i < 3; ++i) {
+    if (i == 2 && !inner) continue;
+    const double kappa = m.kappa[i], n = 1 + kappa * kappa, d = n - m.m;
+    const double pi = 2 * j * m.complete_pi[i] + legendre_pi(a, n);
+    const double sn_root = std::sqrt(n) * delta, sd = std::sqrt(d);
+    const double l = std::log(std::abs((sn_root - sd) / (sn_root + sd))) / (2 * std::sqrt(n * d));
+    const double t1 = -l - kappa * (pi - w) / n;
+    sums.t[i == 0 ? 0 : i + 1] = t1;
+    if (i > 0) continue;
+    const double v2 = pi_squared(n, m.m, w, at.sn, at.cn, at.dn, pi, e);
+    const double dpi = (v2 - pi) / n;
+    const double dh = (1 / n + 1 / d) * l + delta / (n * d * (1 - n * y));
+    const double k2 = kappa * kappa;
+    sums.t[1] = -(kappa * dh - (pi - w) / n - 2 * k2 / n * dpi + 2 * k2 / (n * n) * (pi - w));
+  }
+  return sums;
+}
+
+RadialIntegrals none_real_integrals(const RadialMotion& m, double w, const JacobiValues& at,
+                                    double r_plus, double r_minus) {
+  const NoneRealSums f = none_real_sums(m, w, at, r_minus >= 0);
+  const double scale = m.sense / m.rate, dw = w - m.x_source;
+  double d[4];
+  for (int i = 0; i < 4; ++i) d[i] = f.t[i] - m.none_real_source[i];
+  RadialIntegrals i;
+  i.i1 = scale * (m.c0 * dw + m.c1 * d[0]);
+  i.i2 = scale * (m.c0 * m.c0 * dw + 2 * m.c0 * m.c1 * d[0] + m.c1 * m.c1 * d[1]);
+  const auto pole = [&](double rho, double dt1) {
+    const double gap = m.c0 - rho;
+    return scale * (dw - m.c1 / gap * dt1) / gap;
+  };
+  i.i_plus = pole(r_plus, d[2]);
+  i.i_minus = r_minus < 0 ? 0.0 : pole(r_minus, d[3]);
+  return i;
+}
+
 RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int sign_r) {
   RadialMotion m;
   m.roots = radial_roots(a, c);
@@ -260,8 +325,22 @@ RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int s
   m.jacobi = jacobi_modulus(m.m, kc2);
   m.rate = m.g_big * std::sqrt(big_c / (1 + h * h));
   const double quarter = carlson::rf(0, kc2, 1);
+  m.quarter = quarter;
   m.x_source = none_real_argument(m, quarter, r_s);
   m.x_end = none_real_argument(m, quarter, m.sense > 0 ? kInf : r_plus);
+  // (s + h) / (1 - h s) = h + g'(1 + h^2) t / (1 + gamma t), gamma = -h g'; r - rho =
+  // (c0 - rho)(1 + kappa t) / (1 + gamma t), kappa = gamma + c1 / (c0 - rho).
+  m.c0 = q.pair_re + q.pair_im * h;
+  m.c1 = q.pair_im * m.g_small * (1 + h * h);
+  m.kappa[0] = -h * m.g_small;
+  m.kappa[1] = m.kappa[0] + m.c1 / (m.c0 - r_plus);
+  m.kappa[2] = m.kappa[0] + m.c1 / (m.c0 - r_minus);
+  const Amplitude complete{1, 0, kc2, quarter};
+  m.complete_d = legendre_d(complete);
+  for (int i = 0; i < 3; ++i) m.complete_pi[i] = legendre_pi(complete, 1 + m.kappa[i] * m.kappa[i]);
+  const NoneRealSums source =
+      none_real_sums(m, m.x_source, jacobi_functions(m.jacobi, m.x_source * m.jacobi.rate), true);
+  std::copy(source.t, source.t + 4, m.none_real_source);
   return m;
 }
 
@@ -280,12 +359,6 @@ double radial_radius(const RadialMotion& m, const JacobiValues& v) {
   }
   return kNaN;
 }
-
-// The integrals over the ray's Mino time tau of r, r^2 and 1 / (r - r_+-) (Gralla & Lupsasca's
-// I_1, I_2, I_+-).
-struct RadialIntegrals {
-  double i1, i2, i_plus, i_minus;
-};
 
 // r_minus < 0: I_- is not needed (see point_with_polar) and left 0.
 RadialIntegrals four_real_integrals(const RadialMotion& m, double x, const JacobiValues& v,
@@ -442,8 +515,7 @@ KerrPoint point_with_polar(const KerrRay& ray, double tau, const PolarState& pol
   } else if (m.roots.kind == RadialCase::TwoReal) {
     i = two_real_integrals(m, z_of(m.roots, point.r), r_plus, inner ? r_minus : -1);
   } else {
-    point.phi = point.t = kNaN;
-    return point;
+    i = none_real_integrals(m, x, v, r_plus, inner ? r_minus : -1);
   }
   // dphi/dtau = a (2r - a lambda) / Delta + lambda / sin^2 theta, and dt/dtau = r^2 + 2r + 4 +
   // (2 r_+ (2 r_+ - a lambda) / (r - r_+) - 2 r_- (2 r_- - a lambda) / (r - r_-)) / (r_+ - r_-)
@@ -465,8 +537,7 @@ double equator_index(const PolarMotion& p, int crossing) {
 
 KerrPoint point_after(const KerrRay& ray, double tau) {
   const PolarMotion& p = ray.polar;
-  const bool integrals = tau != 0 && ray.radial.roots.kind != RadialCase::NoneReal;
-  return point_with_polar(ray, tau, polar_state(p, p.w_source + p.rate * tau, integrals));
+  return point_with_polar(ray, tau, polar_state(p, p.w_source + p.rate * tau, tau != 0));
 }
 
 KerrPoint point_at_equator(const KerrRay& ray, int crossing) {

@@ -12,10 +12,9 @@
 // The radial motion has three cases, by the roots r1..r4 of R (Gralla & Lupsasca's order):
 //   four real roots: the ray lives on r >= r4, turning there if r4 > r_+ (it scatters), else
 //                    falling through the horizon;
-//   two real roots r1 < r2 <= r_- and a complex pair: no turning point outside the horizon;
+//   two real roots r1 < r2 (inside the horizon) and a complex pair: no turning point outside it;
 //   no real root: the same.
-// phi and t are exact in the first two; in the third only r, theta and the Mino time are (see
-// docs/design/kerr.md, "Not covered yet"). The polar motion is ordinary (eta > 0: the ray
+// Every coordinate is exact in all three. The polar motion is ordinary (eta > 0: the ray
 // oscillates about the equator between theta_+- = arccos(+-sqrt(u_+))) or vortical (eta < 0:
 // it stays in one hemisphere, between arccos(sqrt(u_+)) and arccos(sqrt(u_-))).
 #pragma once
@@ -69,6 +68,11 @@ struct RadialMotion {
   double big_a = 0, quad_c = 0, quad_n = 0, quad_h = 0;
   // NoneReal: r = u + v (s + h) / (1 - h s), s = g_small sc(g_big w) (see kerr_geodesic.cpp).
   double rot_h = 0, g_small = 0, g_big = 0;
+  // NoneReal: r = c0 + c1 t / (1 + gamma t), t = sc(w), and 1 / (r - r_+-) by kappa_+- (see
+  // kerr_geodesic.cpp); K, the complete (K - E) / m and Pi(1 + kappa^2) for gamma, kappa_+-, and
+  // the integrals T1(gamma), T2(gamma), T1(kappa_+), T1(kappa_-) at the source.
+  double c0 = 0, c1 = 0, kappa[3] = {}, quarter = 0, complete_d = 0, complete_pi[3] = {};
+  double none_real_source[4] = {};
   double r_source = 0;
   // The antiderivatives of the phi and t integrals at the source (FourReal: of the Jacobi
   // argument; TwoReal: the source's z, from which they are taken between limits).
@@ -88,7 +92,7 @@ KerrRay kerr_ray(double a, const PhotonConstants& c, double r_source, double cos
                  int sign_r, int sign_theta);
 
 // A point of the ray, Mino time tau (0 <= tau < mino_time_limit) after its source, and the phi
-// and t that the ray has advanced since (phi and t are NaN where the radial case is NoneReal).
+// and t that the ray has advanced since.
 struct KerrPoint {
   double r = 0, cos_theta = 0, phi = 0, t = 0;
 };
