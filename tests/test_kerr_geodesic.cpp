@@ -1,6 +1,6 @@
 // The Kerr hole's exact null geodesics (physics/kerr_geodesic.hpp) against the geodesic equations
 // integrated numerically here (Boost.Odeint's Runge-Kutta-Fehlberg 7(8) in Mino time, in long
-// double to 1e-17 a step, the radial and polar motions in their second-order form so that turning
+// double to 1e-19 a step, the radial and polar motions in their second-order form so that turning
 // points need no care), the
 // Schwarzschild kernel in the limit of small spin, and the constants of motion along rays.
 #include <gtest/gtest.h>
@@ -69,7 +69,7 @@ std::vector<State> integrate(const Source& src, const std::vector<double>& times
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"  // inside Odeint's stepper's copy
   auto stepper =
-      make_controlled<runge_kutta_fehlberg78<State, Real, State, Real>>(Real(1e-17), Real(1e-17));
+      make_controlled<runge_kutta_fehlberg78<State, Real, State, Real>>(Real(1e-19), Real(1e-19));
 #pragma GCC diagnostic pop
   Real t = 0;
   for (Real target : times) {
@@ -96,8 +96,8 @@ Source random_source(std::mt19937& rng, double a) {
 }
 
 struct Counts {
-  int turning = 0, outgoing_four_real = 0, plunging_four_real = 0, two_real = 0, none_real = 0,
-      vortical = 0, ordinary = 0, many_crossings = 0;
+  int bound = 0, turning = 0, outgoing_four_real = 0, plunging_four_real = 0, two_real = 0,
+      none_real = 0, vortical = 0, ordinary = 0, many_crossings = 0;
 };
 
 // Compares a ray's closed form with its integration at points spread over its Mino time, up to
@@ -109,8 +109,6 @@ bool compare(const Source& src, Counts& counts, double tolerance = 1e-8) {
   if (rc.sign_r == 0 || rc.sign_theta == 0) return false;
   const KerrRay ray = kerr_ray(src.a, rc.constants, src.r, cth, rc.sign_r, rc.sign_theta);
   const RadialRoots& roots = ray.radial.roots;
-  // The bound orbits between the horizon and r3 (a source inside r3) are not covered.
-  if (roots.kind == RadialCase::FourReal && src.r < roots.r[3]) return false;
   double end = ray.mino_time_limit;
   // Stop short of the horizon or r = 200, where the integrator's steps shrink.
   for (int i = 0; i < 60; ++i) {
@@ -138,7 +136,9 @@ bool compare(const Source& src, Counts& counts, double tolerance = 1e-8) {
                   << int(roots.kind) << " vortical " << ray.polar.vortical;
     return true;
   }
-  if (roots.kind == RadialCase::FourReal) {
+  if (ray.radial.bound) {
+    ++counts.bound;
+  } else if (roots.kind == RadialCase::FourReal) {
     (rc.sign_r > 0                       ? counts.outgoing_four_real
      : roots.r[3] > outer_horizon(src.a) ? counts.turning
                                          : counts.plunging_four_real)++;
@@ -152,10 +152,10 @@ bool compare(const Source& src, Counts& counts, double tolerance = 1e-8) {
 
 void print(const Counts& c) {
   std::printf(
-      "turning %d, four real roots outgoing %d, plunging %d, two real %d, none real %d, "
+      "bound %d, turning %d, four real roots outgoing %d, plunging %d, two real %d, none real %d, "
       "vortical %d, ordinary %d, three equator crossings or more %d\n",
-      c.turning, c.outgoing_four_real, c.plunging_four_real, c.two_real, c.none_real, c.vortical,
-      c.ordinary, c.many_crossings);
+      c.bound, c.turning, c.outgoing_four_real, c.plunging_four_real, c.two_real, c.none_real,
+      c.vortical, c.ordinary, c.many_crossings);
 }
 
 TEST(KerrGeodesic, RandomRaysAgreeWithTheIntegratedGeodesicEquations) {
@@ -194,6 +194,24 @@ TEST(KerrGeodesic, RaysNearTheCriticalCurveAgree) {
   EXPECT_GT(counts.turning, 20);
   EXPECT_GT(counts.two_real, 20);
   EXPECT_GT(counts.many_crossings, 40);
+}
+
+// Rays from inside the photon shell, r_+ + 0.02 to 3.5 at spin 0.94, 0.999: those with four
+// real roots and r3 above the source turn there (outgoing) and fall.
+TEST(KerrGeodesic, RaysFromInsideThePhotonShellAgree) {
+  Counts counts;
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::normal_distribution<double> normal;
+  for (double a : {0.94, 0.999}) {
+    for (int i = 0; i < 150 && !HasFailure(); ++i) {
+      const double r = outer_horizon(a) + 0.02 + (3.5 - outer_horizon(a)) * unit(rng);
+      compare(zamo_source(a, r, 0.3 + 2.5 * unit(rng), normal(rng), normal(rng), normal(rng)),
+              counts);
+    }
+  }
+  print(counts);
+  EXPECT_GT(counts.bound, 20);
 }
 
 // Rays sent from near the axis nearly along it, in and out: lambda^2 < a^2 and eta < 0, so they

@@ -147,18 +147,27 @@ double pi_squared(double n, double m, double x, double s, double cn, double dn, 
          (2 * (n - 1) * (n - m));
 }
 
+// Bound (r2 <= r <= r3): sn^2 = (r3 - r1)(r - r2) / ((r3 - r2)(r - r1)), r = r1 + (r2 - r1) /
+// (1 - n sn^2), n = (r3 - r2) / (r3 - r1), the same m and rate (Byrd & Friedman 1971, 255.00);
+// X runs past K (r3) and the integrals are then 2j times their complete values plus their
+// principal values at X - 2jK.
+SquaredAmplitude bound_amplitude(const double* r, double radius) {
+  const double d = (r[2] - r[1]) * (radius - r[0]);
+  return {std::max((r[2] - r[0]) * (radius - r[1]) / d, 0.0), (r[1] - r[0]) * (r[2] - radius) / d};
+}
+
 struct FourRealSums {
   double pi, pi_plus, pi_minus, v2;
 };
-FourRealSums four_real_sums(const RadialMotion& m, double x, const Amplitude& a, double cn,
-                            double dn) {
-  const double s = a.s;
+// At X = 2jK + X', given the amplitude of X' and sn, cn, dn at X.
+FourRealSums four_real_sums(const RadialMotion& m, double x, const Amplitude& a, double j,
+                            const JacobiValues& at) {
   FourRealSums f;
-  f.pi = legendre_pi(a, m.n);
-  f.pi_plus = legendre_pi(a, m.n_plus);
-  f.pi_minus = legendre_pi(a, m.n_minus);
-  const double e = x - m.m * legendre_d(a);
-  f.v2 = pi_squared(m.n, m.m, x, s, cn, dn, f.pi, e);
+  f.pi = 2 * j * m.complete_pi[0] + legendre_pi(a, m.n);
+  f.pi_plus = 2 * j * m.complete_pi[1] + legendre_pi(a, m.n_plus);
+  f.pi_minus = 2 * j * m.complete_pi[2] + legendre_pi(a, m.n_minus);
+  const double e = x - m.m * (2 * j * m.complete_d + legendre_d(a));
+  f.v2 = pi_squared(m.n, m.m, x, at.sn, at.cn, at.dn, f.pi, e);
   return f;
 }
 
@@ -267,23 +276,45 @@ RadialMotion radial_motion(double a, const PhotonConstants& c, double r_s, int s
   const RadialRoots& q = m.roots;
   if (q.kind == RadialCase::FourReal) {
     const double* r = q.r;
-    m.n = (r[3] - r[0]) / (r[2] - r[0]);
-    const double d = (r[2] - r[0]) * (r[3] - r[1]);
+    const double d = (r[2] - r[0]) * (r[3] - r[1]), kc2 = (r[1] - r[0]) * (r[3] - r[2]) / d;
     m.m = (r[2] - r[1]) * (r[3] - r[0]) / d;
-    m.jacobi = jacobi_modulus(m.m, (r[1] - r[0]) * (r[3] - r[2]) / d);
+    m.jacobi = jacobi_modulus(m.m, kc2);
     m.rate = std::sqrt(d) / 2;
-    m.n_plus = m.n * (r[2] - r_plus) / (r[3] - r_plus);
-    m.n_minus = m.n * (r[2] - r_minus) / (r[3] - r_minus);
-    const SquaredAmplitude source = four_real_amplitude(r, r_s);
-    const Amplitude at = amplitude(sense_of(sign_r) * std::sqrt(source.s2), source.c2, m.m);
-    m.x_source = at.s * at.rf;
-    const SquaredAmplitude far = four_real_amplitude(r, kInf);
-    m.x_end = legendre_f(std::sqrt(far.s2), far.c2, m.m);
-    if (r[3] < r_plus && sign_r < 0) {
-      const SquaredAmplitude h = four_real_amplitude(r, r_plus);
-      m.x_end = -legendre_f(std::sqrt(h.s2), h.c2, m.m);
+    m.bound = r_s <= r[2] && r[2] > r_plus;
+    m.base = m.bound ? r[0] : r[2];
+    m.gap = m.bound ? r[1] - r[0] : r[3] - r[2];
+    m.n = m.bound ? (r[2] - r[1]) / (r[2] - r[0]) : (r[3] - r[0]) / (r[2] - r[0]);
+    const double top = m.base + m.gap;
+    m.n_plus = m.n * (m.base - r_plus) / (top - r_plus);
+    m.n_minus = m.n * (m.base - r_minus) / (top - r_minus);
+    SquaredAmplitude source;
+    if (m.bound) {
+      m.sense = sense_of(sign_r);
+      source = bound_amplitude(r, r_s);
+      m.quarter = carlson::rf(0, kc2, 1);
+      const Amplitude complete{1, 0, kc2, m.quarter};
+      m.complete_d = legendre_d(complete);
+      m.complete_pi[0] = legendre_pi(complete, m.n);
+      m.complete_pi[1] = legendre_pi(complete, m.n_plus);
+      m.complete_pi[2] = legendre_pi(complete, m.n_minus);
+      const SquaredAmplitude h = bound_amplitude(r, r_plus);
+      const double x_horizon = legendre_f(std::sqrt(h.s2), h.c2, m.m);
+      m.x_end = m.sense > 0 ? 2 * m.quarter - x_horizon : x_horizon;
+    } else {
+      // X < 0 on the way in, 0 at r4, so that X always grows.
+      source = four_real_amplitude(r, r_s);
+      const SquaredAmplitude far = four_real_amplitude(r, kInf);
+      m.x_end = legendre_f(std::sqrt(far.s2), far.c2, m.m);
+      if (r[3] < r_plus && sign_r < 0) {
+        const SquaredAmplitude h = four_real_amplitude(r, r_plus);
+        m.x_end = -legendre_f(std::sqrt(h.s2), h.c2, m.m);
+      }
     }
-    const FourRealSums f = four_real_sums(m, m.x_source, at, std::sqrt(source.c2), std::sqrt(at.y));
+    const double s = (m.bound ? 1 : sense_of(sign_r)) * std::sqrt(source.s2);
+    const Amplitude at = amplitude(s, source.c2, m.m);
+    m.x_source = at.s * at.rf;
+    const FourRealSums f =
+        four_real_sums(m, m.x_source, at, 0, {s, std::sqrt(source.c2), std::sqrt(at.y)});
     m.pi_source = f.pi, m.pi_plus_source = f.pi_plus, m.pi_minus_source = f.pi_minus;
     m.v2_source = f.v2;
     return m;
@@ -348,7 +379,7 @@ double radial_radius(const RadialMotion& m, const JacobiValues& v) {
   const RadialRoots& q = m.roots;
   switch (q.kind) {
     case RadialCase::FourReal:
-      return q.r[2] + (q.r[3] - q.r[2]) / (1 - m.n * v.sn * v.sn);
+      return m.base + m.gap / (1 - m.n * v.sn * v.sn);
     case RadialCase::TwoReal: {
       const double z = m.big_a * (1 - v.cn) / (1 + v.cn);
       return (q.r[1] - q.r[0] * z) / (1 - z);
@@ -363,15 +394,17 @@ double radial_radius(const RadialMotion& m, const JacobiValues& v) {
 // r_minus < 0: I_- is not needed (see point_with_polar) and left 0.
 RadialIntegrals four_real_integrals(const RadialMotion& m, double x, const JacobiValues& v,
                                     double tau, double r_plus, double r_minus) {
-  const double* r = m.roots.r;
-  const FourRealSums f = four_real_sums(m, x, amplitude(v.sn, v.cn * v.cn, m.m), v.cn, v.dn);
-  const double dpi = (f.pi - m.pi_source) / m.rate, gap = r[3] - r[2];
+  const double j = m.bound ? std::nearbyint(x / (2 * m.quarter)) : 0;
+  const double odd = std::fmod(j, 2.0) == 0 ? 1 : -1;  // sn, cn at X - 2jK
+  const FourRealSums f = four_real_sums(m, x, amplitude(odd * v.sn, v.cn * v.cn, m.m), j, v);
+  const double scale = m.sense / m.rate, dpi = scale * (f.pi - m.pi_source);
   RadialIntegrals i;
-  i.i1 = r[2] * tau + gap * dpi;
-  i.i2 = r[2] * r[2] * tau + 2 * r[2] * gap * dpi + gap * gap * (f.v2 - m.v2_source) / m.rate;
+  i.i1 = m.base * tau + m.gap * dpi;
+  i.i2 = m.base * m.base * tau + 2 * m.base * m.gap * dpi +
+         m.gap * m.gap * scale * (f.v2 - m.v2_source);
   const auto pole = [&](double n_pole, double sum, double sum_source, double r_pole) {
     const double ratio = m.n / n_pole;
-    return (ratio * tau + (1 - ratio) * (sum - sum_source) / m.rate) / (r[3] - r_pole);
+    return (ratio * tau + (1 - ratio) * scale * (sum - sum_source)) / (m.base + m.gap - r_pole);
   };
   i.i_plus = pole(m.n_plus, f.pi_plus, m.pi_plus_source, r_plus);
   i.i_minus = r_minus < 0 ? 0.0 : pole(m.n_minus, f.pi_minus, m.pi_minus_source, r_minus);

@@ -11,7 +11,8 @@
 //
 // The radial motion has three cases, by the roots r1..r4 of R (Gralla & Lupsasca's order):
 //   four real roots: the ray lives on r >= r4, turning there if r4 > r_+ (it scatters), else
-//                    falling through the horizon;
+//                    falling through the horizon; or, from a source between the horizon and
+//                    r3 > r_+, it turns at r3 and falls;
 //   two real roots r1 < r2 (inside the horizon) and a complex pair: no turning point outside it;
 //   no real root: the same.
 // Every coordinate is exact in all three. The polar motion is ordinary (eta > 0: the ray
@@ -60,17 +61,20 @@ struct RadialMotion {
   double m = 0;
   double x_source = 0;  // the Jacobi argument at the source
   double x_end = 0;     // where the ray leaves the exterior (infinity or the horizon)
-  int sense = 1;        // +1: the argument grows with tau (four real roots: always)
-  // FourReal: r = r3 + (r4 - r3) / (1 - n sn^2), and the characteristics of I_+-.
-  double n = 0, n_plus = 0, n_minus = 0;
+  int sense = 1;        // +1: the argument grows with tau (four real roots beyond r4: always)
+  // FourReal: r = base + gap / (1 - n sn^2), and the characteristics of I_+-: base r3 and gap
+  // r4 - r3 beyond r4; base r1 and gap r2 - r1 for a ray between the horizon and r3 (bound).
+  bool bound = false;
+  double base = 0, gap = 0, n = 0, n_plus = 0, n_minus = 0;
   // TwoReal: z = (r - r2) / (r - r1) = big_a (1 - cn) / (1 + cn); z's quadratic
   // h ((z - c)^2 + n^2) (Byrd & Friedman 1971, 239.00).
   double big_a = 0, quad_c = 0, quad_n = 0, quad_h = 0;
   // NoneReal: r = u + v (s + h) / (1 - h s), s = g_small sc(g_big w) (see kerr_geodesic.cpp).
   double rot_h = 0, g_small = 0, g_big = 0;
   // NoneReal: r = c0 + c1 t / (1 + gamma t), t = sc(w), and 1 / (r - r_+-) by kappa_+- (see
-  // kerr_geodesic.cpp); K, the complete (K - E) / m and Pi(1 + kappa^2) for gamma, kappa_+-, and
-  // the integrals T1(gamma), T2(gamma), T1(kappa_+), T1(kappa_-) at the source.
+  // kerr_geodesic.cpp), and the integrals T1(gamma), T2(gamma), T1(kappa_+), T1(kappa_-) at the
+  // source. NoneReal and bound FourReal: K, the complete (K - E) / m and the complete Pi of the
+  // three characteristics (1 + kappa^2, or n and n_+-).
   double c0 = 0, c1 = 0, kappa[3] = {}, quarter = 0, complete_d = 0, complete_pi[3] = {};
   double none_real_source[4] = {};
   double r_source = 0;
