@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "lightcone/frame/curved_bodies.hpp"
@@ -188,6 +189,43 @@ TEST(FallingPrism, HoldsTheBoxWhereverItIsSeen) {
       }
     }
   EXPECT_GE(checked, 12);
+}
+
+// infall.json's clocks as balls of the clocks' radius: every primary image of a point just inside
+// a ball, where `locate` finds one, is on it, the points across its line of fall (which the hole
+// sees farthest from the line's direction) and along it. A ray's window of a falling body is
+// narrowed to the angles its ball can be seen at from the hole over the window's times, within
+// asin(R / r) of its line's direction at its least radius r then: a window too narrow would let
+// the rays at the balls' edges through.
+TEST(FallWindow, HoldsTheBallWhereverItIsSeen) {
+  Scene s = test::load_repository_scene("infall.json");
+  const double radius = 0.8 * std::sqrt(3.0);
+  for (Object& o : s.objects) o.shape = Sphere{radius};
+  const ResolvedScene resolved = resolve_scene(s);
+  const Tracer tracer(resolved);
+  const CurvedBodies bodies(resolved, tracer);
+  int checked = 0;
+  for (std::size_t body = 0; body < s.objects.size(); ++body) {
+    const Vec3 d = std::get<HoleFall>(s.objects[body].motion.geodesic->path).direction;
+    const Vec3 across = normalize(cross(d, Vec3{0, 0, 1})), up = cross(d, across);
+    for (int k = 0; k < 10; ++k) {
+      const double angle = k * std::numbers::pi / 4;
+      const Vec3 direction =
+          k < 8 ? across * std::cos(angle) + up * std::sin(angle) : d * (k == 8 ? 1.0 : -1.0);
+      const Vec3 point = direction * (0.99 * radius);
+      const LocateResult located =
+          locate(s, {LocateQuery::Kind::ObjectPoint, s.objects[body].name, point});
+      for (const LocateImage& image : located.images) {
+        if (image.order != 0) continue;
+        SCOPED_TRACE(testing::Message() << s.objects[body].name << ", point " << k);
+        const CurvedRay ray = follow_curved_ray(*resolved.hole, image.direction, &bodies);
+        EXPECT_EQ(ray.end, CurvedRayEnd::kBody);
+        EXPECT_EQ(ray.hit.body, static_cast<int>(body));
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 15);
 }
 
 }  // namespace

@@ -94,6 +94,7 @@ struct Windows {
   double centre[2] = {0, 0};  // increasing
   double delta = kPi;
   double near = 0, reach = 0, inner = 0;
+  double line_in_plane = 0;  // a fall's: its line's direction projected on the plane, its length
 };
 
 // How far out a ray can meet a body that comes no nearer than `now` at the ray's start and
@@ -142,8 +143,9 @@ Windows body_windows(const HoleWorldLine& line, double radius, const CurvedPath&
                              : line.farthest() + radius;
     if (!(radius < 2 * m)) return everywhere(2 * m, reach);
     const Vec3 in_plane = fall->direction - n * dot(fall->direction, n);
+    w.line_in_plane = length(in_plane);
     const double least_cos =
-        std::sqrt((1 - radius / (2 * m)) * (1 + radius / (2 * m))) / length(in_plane);
+        std::sqrt((1 - radius / (2 * m)) * (1 + radius / (2 * m))) / w.line_in_plane;
     if (!(least_cos < 1)) return w;
     w.count = 1;
     w.centre[0] = at_angle(in_plane);
@@ -239,6 +241,18 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
                            ? (path.outward ? start.radius : orbit.periapsis)
                            : 2 * m;
   const double horizon = 2 * m * (1 + 1e-12);
+  // The light cone's bounds on the time of the path's point at phi (at x), from its start.
+  const auto bounds_from_start = [&](double phi, const Vec3& x) {
+    return light_cone_bounds({start.time, start.time}, path.offset(0, start.radius), x, phi,
+                             events.turned(phi) ? events.course.turning_radius : 0.0, path.impact);
+  };
+  // The same where the path's radius at phi is not yet known (none before it where the path has
+  // left for infinity or the horizon).
+  const auto bounds_at = [&](double phi) {
+    const double r = events.radius(phi);
+    return r > horizon && std::isfinite(r) ? bounds_from_start(phi, path.offset(phi, r))
+                                           : TimeBounds{-kInfinity, start.time};
+  };
   double best_phi = limit;
   for (const Body& body : bodies_) {
     const ResolvedBody& resolved = scene_.bodies[body.index];
@@ -264,6 +278,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
     // A moving body's chords are timed only once they come near where it is over the times
     // the light cone allows them.
     const bool straight = std::holds_alternative<HoleWorldLine::Straight>(body.line.path());
+    const bool falling = std::holds_alternative<HoleWorldLine::Fall>(body.line.path());
     // The windows of this winding and the next, in order of angle: the first met is nearest.
     for (int winding = -1;; ++winding) {
       bool past = true, met = false;
@@ -276,6 +291,29 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         past = false;
         lo = std::max(lo, from), hi = std::min(hi, best_phi);
         if (!(lo < hi)) continue;
+        // A fall's window narrowed to where its ball can be over the window's times: its origin
+        // is between the radii its fall has between the light cone's bounds at the window's
+        // ends, so every point of its ball is within asin(R / rho) of its line's direction seen
+        // from the hole (rho the least of those radii, or the path's least radius where larger:
+        // within acos(sqrt(1 - R^2 / rho^2) / p) of the direction's projection on the plane, p
+        // its length), no nearer the hole than the least radius less R, nor farther than the
+        // greatest plus R.
+        double near = windows.near, reach = windows.reach;
+        if (falling && windows.delta < kPi) {
+          double lowest, highest;
+          if (body.fall_radii_between(bounds_at(hi).early, bounds_at(lo).late, lowest, highest)) {
+            near = std::max(near, lowest - body.radius);
+            reach = std::min(reach, highest + body.radius);
+            const double rho = std::max({2 * m, floor, lowest});
+            const double least_cos = std::sqrt((1 - body.radius / rho) * (1 + body.radius / rho)) /
+                                     windows.line_in_plane;
+            if (!(least_cos < 1)) continue;
+            const double delta = std::acos(least_cos),
+                         centre = windows.centre[w] + kTwoPi * winding;
+            lo = std::max(lo, centre - delta), hi = std::min(hi, centre + delta);
+            if (!(lo < hi)) continue;
+          }
+        }
         double phi_a = lo, r_a;
         Vec4 a = events.event(phi_a, false, &r_a);
         bool a_timed = false;
@@ -283,9 +321,7 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
         // where a piece needs it), its time once a is timed.
         double a_early = 0, a_late = 0;
         if (moving) {
-          const TimeBounds bounds = light_cone_bounds(
-              {start.time, start.time}, path.offset(0, start.radius), a.x, phi_a,
-              events.turned(phi_a) ? events.course.turning_radius : 0.0, path.impact);
+          const TimeBounds bounds = bounds_from_start(phi_a, a.x);
           a_early = bounds.early, a_late = bounds.late;
         }
         Vec3 shape_a;
@@ -307,8 +343,8 @@ bool CurvedBodies::nearest(const PathStart& start, const CurvedPath& path, doubl
           const bool turned = events.turned(phi_a);
           const bool growing = turned ? !path.outward : path.outward;
           const bool turn_ahead = events.course.turning_radius > 0 && !turned;
-          if (growing && r_a > windows.reach) break;
-          if (!growing && !turn_ahead && r_a < windows.near) break;
+          if (growing && r_a > reach) break;
+          if (!growing && !turn_ahead && r_a < near) break;
           if (!(r_a > horizon)) break;
           // A chord ends where the path still has a finite radius outside the horizon (the path
           // leaves for infinity, or reaches the horizon, at its total angle).

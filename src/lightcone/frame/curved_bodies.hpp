@@ -113,6 +113,10 @@ class CurvedBodies : public CurvedShadowQuery {
     // test of a chord whose times are known only within the light cone's bounds, which needs no
     // solve of its path's times nor of the body's motion.
     bool may_meet_between(const Vec3& a, const Vec3& b, double t0, double t1, double margin) const;
+    // The radii a fall's origin can be at over the coordinate times [t0, t1] (t0 may be minus
+    // infinity), from its sampled times without solving its fall; false where they have no
+    // bound (a fall from infinity, before its first sample).
+    bool fall_radii_between(double t0, double t1, double& lowest, double& highest) const;
     // A fall's radius at coordinate times (increasing; the radius decreasing with them, from the
     // fall's start), which bound its radius over an interval of times without solving its fall.
     std::vector<double> fall_times, fall_radii;

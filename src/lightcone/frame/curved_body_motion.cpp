@@ -212,6 +212,17 @@ bool CurvedBodies::Body::may_meet_between(const Vec3& a, const Vec3& b, double t
     const double bow = orbit->radius * (1 - std::cos(swept / 2));
     return segment_distance(a, b, at(t0), at(t1)) <= reach + bow;
   }
+  const auto& fall = std::get<HoleWorldLine::Fall>(line.path());
+  double lowest, highest;
+  if (!fall_radii_between(t0, t1, lowest, highest)) return true;
+  if (!outline.empty())
+    return prism_near(a, b, lowest, highest, margin + 1e-9 * radius) &&
+           swept_box_near(a, b, lowest, highest, margin);
+  return segment_distance(a, b, fall.direction * lowest, fall.direction * highest) <= reach;
+}
+
+bool CurvedBodies::Body::fall_radii_between(double t0, double t1, double& lowest,
+                                            double& highest) const {
   // A fall's radius does not grow with time: over [t0, t1] it lies between its radii at the
   // sampled times just after t1 and just before t0 (the horizon's after the last, the start's,
   // or none from infinity, before the first).
@@ -222,13 +233,10 @@ bool CurvedBodies::Body::may_meet_between(const Vec3& a, const Vec3& b, double t
   };
   const auto k1 = static_cast<std::size_t>(first_after(u1)),
              k0 = static_cast<std::size_t>(first_after(u0));
-  const double lowest = k1 < fall_times.size() ? fall_radii[k1] : 2 * line.mass();
-  if (k0 == 0 && fall.fall.is_from_infinity()) return true;
-  const double highest = k0 == 0 ? fall_radii.front() : fall_radii[k0 - 1];
-  if (!outline.empty())
-    return prism_near(a, b, lowest, highest, margin + 1e-9 * radius) &&
-           swept_box_near(a, b, lowest, highest, margin);
-  return segment_distance(a, b, fall.direction * lowest, fall.direction * highest) <= reach;
+  lowest = k1 < fall_times.size() ? fall_radii[k1] : 2 * line.mass();
+  if (k0 == 0 && fall.fall.is_from_infinity()) return false;
+  highest = k0 == 0 ? fall_radii.front() : fall_radii[k0 - 1];
+  return true;
 }
 
 bool CurvedBodies::Body::prism_near(const Vec3& a, const Vec3& b, double lowest, double highest,
