@@ -8,8 +8,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -150,6 +152,8 @@ class ViewerTest : public test::TempDirTest {
       setenv("DISPLAY", display_.c_str(), 1);
       const std::string err = (dir_ / "viewer.err").string();
       if (!freopen(err.c_str(), "w", stderr)) _exit(126);
+      const std::string out = (dir_ / "viewer.out").string();
+      if (!freopen(out.c_str(), "w", stdout)) _exit(126);
       const std::string command =
           std::string("exec '") + LIGHTCONE_BINARY + "' view '" + scene.string() + "' " + options;
       execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
@@ -176,6 +180,12 @@ class ViewerTest : public test::TempDirTest {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     std::this_thread::sleep_for(std::chrono::milliseconds(200));  // renamed into place whole
     return file;
+  }
+
+  // A click of the left button at window point (x, y).
+  void click(int x, int y) {
+    output_of(fmt::format("DISPLAY={} xdotool mousemove --window {} {} {} click 1", display_,
+                          window_, x, y));
   }
 
   // Lets a few frames pass.
@@ -335,6 +345,60 @@ TEST_F(ViewerTest, RResetsTheViewToTheScenesCameraAndTime) {
   std::printf("differing from the scene's own picture: %.4f before R, %.4f after\n", before, after);
   EXPECT_GT(before, 0.3);
   EXPECT_LT(after, 0.15);  // 0.034 when written: the frame or two the clock ran since R
+}
+
+// A click probes the pixel under it as `lightcone locate --pixel` does, printing the same JSON
+// line on stdout; the F12 PNG carries the readouts (a band along its bottom, a ring at each
+// point) until X clears them.
+TEST_F(ViewerTest, AClickProbesThePixelAsLocateDoes) {
+  const fs::path scene = write("scene.json", kScene);
+  const auto centre = nlohmann::json::parse(
+      test::run_lightcone("locate '" + scene.string() + "' --object ball --point 0,0,0").out);
+  const int ball_x = static_cast<int>(centre["pixel"][0].get<double>());
+  const int ball_y = static_cast<int>(centre["pixel"][1].get<double>());
+  start_viewer(scene, "--time-scale 0 --tessellation cpu");
+  settle();
+  click(ball_x, ball_y);
+  settle();
+  click(700, 40);  // the sky, away from the panel
+  settle();
+  key("F12");
+  const fs::path with_readouts = wait_for_png(1);
+  key("x F12");
+  const fs::path cleared = wait_for_png(2);
+  ASSERT_TRUE(fs::exists(cleared)) << test::bytes_of(dir_ / "viewer.err");
+
+  std::istringstream lines(test::bytes_of(dir_ / "viewer.out"));
+  std::vector<nlohmann::json> probes;
+  for (std::string line; std::getline(lines, line);) probes.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(probes.size(), 2u) << test::bytes_of(dir_ / "viewer.out");
+  EXPECT_EQ(probes[0]["meets"], "object");
+  EXPECT_EQ(probes[0]["object"], "ball");
+  EXPECT_EQ(probes[1]["meets"], "sky");
+  for (const nlohmann::json& probe : probes) {
+    const double x = probe["pixel"][0], y = probe["pixel"][1];
+    EXPECT_EQ(x - std::floor(x), 0.5);  // the centre of the pixel clicked
+    const auto cli = nlohmann::json::parse(
+        test::run_lightcone(fmt::format("locate '{}' --pixel {},{}", scene.string(), x, y)).out);
+    ASSERT_EQ(cli.size(), probe.size());
+    for (const auto& [key, value] : cli.items()) {
+      SCOPED_TRACE(key);
+      if (value.is_number()) {
+        EXPECT_NEAR(probe[key].get<double>(), value.get<double>(), 1e-9);
+      } else if (value.is_array() && value.size() == 3) {
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(probe[key][k].get<double>(), value[k].get<double>(), 1e-9);
+      } else {
+        EXPECT_EQ(probe[key], value);
+      }
+    }
+  }
+  // The readouts darken the PNG's bottom rows (a band under their text); cleared, it is the view.
+  const auto marked = load_image_file(with_readouts), plain = load_image_file(cleared);
+  const auto marked_at = [&](int x, int y) { return png_level(*marked, x, y); };
+  const auto plain_at = [&](int x, int y) { return png_level(*plain, x, y); };
+  EXPECT_GT(fraction_different(marked_at, plain_at, 0, 440, 800, 500, 8), 0.5);
+  EXPECT_LT(fraction_different(marked_at, plain_at, 0, 0, 800, 400, 8), 0.01);
 }
 
 // Near a black hole the clock runs at the scene's own scale unless told: infall.json's clocks,

@@ -244,6 +244,7 @@ int run_view(const ViewArgs& a) {
     options.time_scale = a.time_scale;
     options.tessellation = tessellation_named(a.tessellation);
     options.curved_shadows = curved_body_shadows;
+    options.probe = probe_pixel;
     return run_viewer(scene, options);
   } catch (const GlUnavailable& e) {
     throw InputError(fmt::format(

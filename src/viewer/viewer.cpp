@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -43,6 +44,13 @@ std::string caption(bool split, double speed) {
 }
 
 // A name for the next screenshot in the working folder that is not taken yet.
+// The probes' points, for draw_notes.
+std::vector<std::array<double, 2>> marks_of(const ProbeReadouts& probes) {
+  std::vector<std::array<double, 2>> out;
+  for (const ProbeReadouts::Mark& m : probes.marks()) out.push_back({m.x, m.y});
+  return out;
+}
+
 std::filesystem::path next_screenshot() {
   for (int i = 1;; ++i) {
     const std::filesystem::path name = fmt::format("lightcone-view-{:04d}.png", i);
@@ -103,6 +111,21 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     if (action == GLFW_PRESS) pressed.push_back(key);
   });
 
+  // The left button's presses and releases, where the pointer was: a click can come and go
+  // between two frames, which polling the button would miss.
+  struct ButtonEvent {
+    bool down = false;
+    double x = 0, y = 0;
+  };
+  static std::vector<ButtonEvent> buttons;
+  buttons.clear();
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    ButtonEvent e{action == GLFW_PRESS};
+    glfwGetCursorPos(w, &e.x, &e.y);
+    buttons.push_back(e);
+  });
+
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
@@ -146,8 +169,10 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
     std::optional<std::string> slow;
     const bool gpu_available =
         renderer.driver().tessellation_shaders && !software_rasteriser(renderer.driver().renderer);
-    double last_x = 0, last_y = 0;
+    double last_x = 0, last_y = 0, press_x = 0, press_y = 0;
     bool dragging = false;
+    ProbeReadouts probes(options.probe);
+    bool readouts_in_screenshots = true;
     FrameDraw drawn;
     bool stopped_said = false;
     while (!glfwWindowShouldClose(window)) {
@@ -188,6 +213,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
             std::fprintf(stderr, "lightcone: back at the scene's camera, at t = %.6g\n",
                          flight.camera.world_line.time);
           }
+          if (key == GLFW_KEY_X) probes.clear();
           if (key == GLFW_KEY_H) hud = !hud;
           if (key == GLFW_KEY_P) presenting = !presenting;
           if (key == GLFW_KEY_F12) screenshot = true;
@@ -210,6 +236,23 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         last_x = x;
         last_y = y;
       }
+      for (const ButtonEvent& e : buttons) {
+        // A press and release that did not drag is a click: a probe of the pixel under it (its
+        // centre, in the framebuffer's pixels, which a high-density screen makes more). The
+        // panel's own clicks are not the picture's.
+        if (e.down) {
+          press_x = e.x, press_y = e.y;
+        } else if (!io.WantCaptureMouse && std::hypot(e.x - press_x, e.y - press_y) < 3) {
+          int window_width = 0, window_height = 0;
+          glfwGetWindowSize(window, &window_width, &window_height);
+          // (`frame` is still the scene as last drawn, the one clicked.)
+          const double sx = static_cast<double>(frame.camera.width) / std::max(window_width, 1);
+          const double sy = static_cast<double>(frame.camera.height) / std::max(window_height, 1);
+          probes.click(frame, std::floor(e.x * sx) + 0.5, std::floor(e.y * sy) + 0.5);
+        }
+      }
+      buttons.clear();
+      probes.poll();
       const bool moved =
           flight.advance(dt * time_scale, scene.black_hole ? &*scene.black_hole : nullptr);
       if (!moved && !stopped_said) {
@@ -262,6 +305,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         const std::filesystem::path file = next_screenshot();
         Image display = tone_map(linear, scene.render.tonemap);
         if (split || presenting) draw_caption(display, caption(split, flight.speed));
+        if (readouts_in_screenshots) draw_notes(display, probes.lines(), marks_of(probes));
         write_images(display, linear, {{file, ImageFormat::kPng}});
         std::fprintf(stderr, "lightcone: wrote %s\n", file.string().c_str());
       }
@@ -290,6 +334,21 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
             ImVec2((static_cast<float>(width) - size.x) / 2, (kCaptionHeight - size.y) / 2),
             IM_COL32(255, 255, 255, 255), text.c_str());
       }
+      {
+        // Each probe's point, marked and numbered.
+        ImDrawList* draw = ImGui::GetForegroundDrawList();
+        int window_width = 0, window_height = 0;
+        glfwGetWindowSize(window, &window_width, &window_height);
+        const float sx = static_cast<float>(window_width) / static_cast<float>(width);
+        const float sy = static_cast<float>(window_height) / static_cast<float>(height);
+        int number = 0;
+        for (const ProbeReadouts::Mark& m : probes.marks()) {
+          const ImVec2 at(static_cast<float>(m.x) * sx, static_cast<float>(m.y) * sy);
+          draw->AddCircle(at, 6, IM_COL32(255, 255, 255, 255), 0, 1.5f);
+          draw->AddText(ImVec2(at.x + 8, at.y - 16), IM_COL32(255, 255, 255, 255),
+                        std::to_string(++number).c_str());
+        }
+      }
       if (hud && !presenting) {
         ImGui::SetNextWindowPos(ImVec2(10, kCaptionHeight + 4), ImGuiCond_FirstUseEver);
         ImGui::Begin("lightcone", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
@@ -303,6 +362,13 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
           ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28);
           ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.3f, 1.0f), "%s", slow->c_str());
           ImGui::PopTextWrapPos();
+        }
+        if (probes.available()) {
+          const std::vector<std::string> lines = probes.lines();
+          if (lines.empty())
+            ImGui::TextUnformatted("click the picture: what is seen there, and when");
+          for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
+          if (!lines.empty()) ImGui::Checkbox("readouts in F12 PNGs", &readouts_in_screenshots);
         }
         float speed = static_cast<float>(flight.speed);
         if (ImGui::SliderFloat("speed (c)", &speed, 0.0f, 0.999f, "%.3f")) flight.set_speed(speed);
@@ -348,10 +414,11 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
             time_scale = scale;
           if (!scene.black_hole) ImGui::Checkbox("classical | relativistic (C)", &split);
           ImGui::TextUnformatted(
-              scene.black_hole ? "W/S boost, Space hover, O orbit, F fall, drag or arrows "
-                                 "look, R reset view, F12 PNG, H panel, P present"
-                               : "W/S speed, Space stop, drag or arrows look, R reset view, F12 "
-                                 "PNG, H panel, P present");
+              scene.black_hole
+                  ? "W/S boost, Space hover, O orbit, F fall, drag or arrows "
+                    "look, click probe, X clear probes, R reset view, F12 PNG, H panel, P present"
+                  : "W/S speed, Space stop, drag or arrows look, click probe, X clear "
+                    "probes, R reset view, F12 PNG, H panel, P present");
         }
         ImGui::End();
       }

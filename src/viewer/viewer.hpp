@@ -7,6 +7,7 @@
 
 #include "lightcone/raster/raster_renderer.hpp"
 #include "lightcone/scene/scene.hpp"
+#include "viewer/probe_readouts.hpp"
 
 namespace lightcone {
 
@@ -19,6 +20,7 @@ struct ViewerOptions {
   std::optional<double> time_scale;
   RasterTessellation tessellation = RasterTessellation::kAuto;
   CurvedShadowSource curved_shadows;  // near a black hole (RasterRenderer::set_curved_shadows)
+  PixelProbeSource probe;             // what a click probes with (none: clicks only look)
 };
 
 // Opens the window and runs until it is closed (Esc). Throws InputError when there is no

@@ -3,6 +3,7 @@
 #include <stb_easy_font.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace lightcone {
@@ -39,6 +40,33 @@ void draw_caption(Image& image, const std::string& caption) {
       for (int c = 0; c < 3; ++c)
         image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x) + c] *= 0.2f;
   draw_text(image, (image.width - text_width(caption)) / 2, 6, caption);
+}
+
+void draw_notes(Image& image, const std::vector<std::string>& lines,
+                const std::vector<std::array<double, 2>>& marks) {
+  constexpr int kLine = 18;  // a line of scale 2 (14 pixels) and its spacing
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    const int cx = static_cast<int>(std::floor(marks[k][0]));
+    const int cy = static_cast<int>(std::floor(marks[k][1]));
+    // A ring of radius 6 about the point, and its number beside it.
+    for (int dy = -7; dy <= 7; ++dy)
+      for (int dx = -7; dx <= 7; ++dx) {
+        const double r = std::hypot(dx, dy);
+        const int x = cx + dx, y = cy + dy;
+        if (r < 5.5 || r > 7 || x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+        float* p = &image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x)];
+        p[0] = p[1] = p[2] = 1.0f;
+      }
+    draw_text(image, cx + 9, cy - 18, std::to_string(k + 1));
+  }
+  if (lines.empty()) return;
+  const int band = static_cast<int>(lines.size()) * kLine + 8;
+  for (int y = std::max(image.height - band, 0); y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x) + c] *= 0.2f;
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    draw_text(image, 8, image.height - band + 6 + static_cast<int>(k) * kLine, lines[k]);
 }
 
 }  // namespace lightcone

@@ -2,7 +2,9 @@
 // caption of the viewer's split view, in the stb_easy_font bitmap font (Debian's libstb-dev).
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "lightcone/scene/scene.hpp"
 
@@ -17,5 +19,11 @@ int text_width(const std::string& text, int scale = 2);
 // (the picture beneath is dimmed to a fifth, so that the text reads over any picture).
 inline constexpr int kCaptionHeight = 26;
 void draw_caption(Image& image, const std::string& caption);
+
+// `lines` along the bottom left of the image, white on a dark band (as the caption's), and each
+// of `marks` (image points) circled in white and numbered from 1: the viewer's probe readouts in
+// its screenshots.
+void draw_notes(Image& image, const std::vector<std::string>& lines,
+                const std::vector<std::array<double, 2>>& marks);
 
 }  // namespace lightcone
