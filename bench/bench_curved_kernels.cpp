@@ -125,6 +125,31 @@ void CurvedPathPerPixel(benchmark::State& state) {
 }
 BENCHMARK(CurvedPathPerPixel)->Name("CurvedPath")->Unit(benchmark::kMillisecond);
 
+// The same paths eight at a time (curved_paths), as the renderer's packets of a tile's 4x2 pixels
+// take them.
+void CurvedPathsPerPacket(benchmark::State& state) {
+  HoleRays rays;
+  const int width = rays.scene.camera.width, height = rays.scene.camera.height;
+  std::vector<Vec3> packets;  // the looks of each 4x2 block of pixels, block after block
+  for (int by = 0; by < height; by += 2)
+    for (int bx = 0; bx < width; bx += 4)
+      for (int j = by; j < std::min(by + 2, height); ++j)
+        for (int i = bx; i < std::min(bx + 4, width); ++i)
+          packets.push_back(rays.looks[static_cast<std::size_t>(j) * width + i]);
+  CurvedPath paths[kMaxSweeps];
+  for (auto _ : state) {
+    double sum = 0;
+    for (std::size_t first = 0; first < packets.size(); first += kMaxSweeps) {
+      const std::size_t n = std::min<std::size_t>(kMaxSweeps, packets.size() - first);
+      curved_paths(*rays.resolved.hole, std::span(packets).subspan(first, n), std::span(paths, n));
+      for (std::size_t i = 0; i < n; ++i) sum += paths[i].sweep.phase;
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  per_call(state, packets.size());
+}
+BENCHMARK(CurvedPathsPerPacket)->Name("CurvedPaths")->Unit(benchmark::kMillisecond);
+
 // Each path's angles: 8 spread over the path up to its end, or over two turns where it winds
 // onto the photon sphere.
 struct PathPoints {

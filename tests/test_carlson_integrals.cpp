@@ -38,12 +38,22 @@ LinearFactors at(const Linear& l1, const Linear& l2, const Linear& l3, double t)
 
 TEST(CarlsonIntegrals, BatchedRfIsBoostsToTheBit) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(1e-3, 10);
-  // General arguments, and those Boost treats apart: a zero, two equal.
-  RfArgs args[kMaxBatch] = {{u(rng), u(rng), u(rng)}, {0, 1.5, 2.5}, {2, 2, 3}, {u(rng), 1e-9, 5}};
-  double out[kMaxBatch];
-  rf_batch(args, out, kMaxBatch);
-  for (int i = 0; i < kMaxBatch; ++i) EXPECT_EQ(out[i], rf(args[i].x, args[i].y, args[i].z)) << i;
+  std::uniform_real_distribution<double> u(1e-3, 10), decade(-12, 12);
+  // General arguments, near and far apart (their steps end at different counts in one vector),
+  // and those Boost treats apart: a zero, two equal; batches of every size.
+  RfArgs args[kMaxBatch];
+  for (int i = 0; i < kMaxBatch; ++i)
+    args[i] = {u(rng), std::pow(10.0, decade(rng)), std::pow(10.0, decade(rng))};
+  args[1] = {0, 1.5, 2.5};
+  args[2] = {2, 2, 3};
+  args[3] = {u(rng), 1e-9, 5};
+  args[kMaxBatch - 2] = {1, 1 + 1e-15, 1 - 1e-15};
+  for (int n = 1; n <= kMaxBatch; ++n) {
+    double out[kMaxBatch];
+    rf_batch(args, out, n);
+    for (int i = 0; i < n; ++i)
+      EXPECT_EQ(out[i], rf(args[i].x, args[i].y, args[i].z)) << i << " of " << n;
+  }
 }
 
 // Boost iterates on a NaN or an infinite argument until it gives up with an exception of its

@@ -24,13 +24,14 @@ int image_order(double phi) {
   return phi > 0 ? static_cast<int>(std::min(std::ceil(phi / kPi), kMaxImageOrder + 1)) - 1 : 0;
 }
 
-}  // namespace
-
-CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
+// curved_path but for its sweep (left as it was, but for a dark path's, which is reset): the ray's
+// plane, impact parameter and orbit, written in place (a path is large, and copies of it were a
+// tenth of its cost).
+void start_path(const HoleView& hole, const Vec3& u, CurvedPath& p) {
+  p.dark = false;
+  p.e1 = hole.outward;
   if (hole.falling) {
     // In the falling camera's own frame, whose radial axis is e1 and whose other axes are W's.
-    CurvedPath p;
-    p.e1 = hole.outward;
     const double cos_look = dot(u, p.e1);
     const Vec3 tangential = u - p.e1 * cos_look;
     const double sin_look = length(tangential);
@@ -38,23 +39,25 @@ CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
     const auto seen = observed_ray(*hole.falling, cos_look, sin_look);
     if (!seen) {
       p.dark = true;
-      return p;
+      p.impact = 0;
+      p.camera_energy = 1;
+      p.outward = false;
+      p.orbit = PhotonOrbit{};
+      p.sweep = AngleSweep{};
+      return;
     }
     p.impact = seen->impact;
     p.camera_energy = seen->energy;
     p.orbit = photon_orbit(hole.mass, p.impact);
     p.outward = seen->outward;
-    p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
-    return p;
+    return;
   }
   // The backward ray's direction in the static observer's frame: the F event (-1, u) maps to
   // (t, x) with t < 0.
   const Vec4 back = hole.trace_to_static * Vec4{-1, u};
   const Vec3 d = back.x / -back.t;
-  CurvedPath p;
   p.camera_energy = camera_photon_energy(hole, back);
   // e1 from the hole to the camera, e2 along the look direction's tangential part.
-  p.e1 = hole.outward;
   const double cos_alpha = dot(d, p.e1);
   const Vec3 tangential = d - p.e1 * cos_alpha;
   const double sin_alpha = length(tangential);
@@ -62,12 +65,10 @@ CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
   p.impact = static_impact_parameter(hole.mass, hole.camera_radius, sin_alpha);
   p.orbit = photon_orbit(hole.mass, p.impact);
   p.outward = cos_alpha > 0;
-  p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
-  return p;
 }
 
-CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBodies* bodies) {
-  const CurvedPath path = curved_path(hole, u);
+// The ray along a path, meeting the scene's bodies too when `bodies` is given.
+CurvedRay follow_path(const HoleView& hole, const CurvedPath& path, const CurvedBodies* bodies) {
   const Vec3 &e1 = path.e1, &e2 = path.e2;
   const double impact = path.impact, camera_energy = path.camera_energy;
   const AngleSweep& sweep = path.sweep;
@@ -129,6 +130,44 @@ CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBod
   ray.sky_direction = hole.to_pattern * (in_sky.x * inv_sky_t);
   ray.shift = camera_energy / sky_photon_energy(in_sky);
   return ray;
+}
+
+}  // namespace
+
+CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
+  CurvedPath p;
+  start_path(hole, u, p);
+  if (!p.dark) p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
+  return p;
+}
+
+void curved_paths(const HoleView& hole, std::span<const Vec3> u, std::span<CurvedPath> out) {
+  for (std::size_t first = 0; first < u.size(); first += kMaxSweeps) {
+    SweepStart starts[kMaxSweeps];
+    AngleSweep* sweeps[kMaxSweeps];
+    int n = 0;
+    for (std::size_t i = first; i < std::min(first + kMaxSweeps, u.size()); ++i) {
+      start_path(hole, u[i], out[i]);
+      if (out[i].dark) continue;
+      starts[n] = {&out[i].orbit, hole.camera_radius, out[i].outward};
+      sweeps[n++] = &out[i].sweep;
+    }
+    prepare_sweeps(starts, sweeps, n);
+  }
+}
+
+CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u, const CurvedBodies* bodies) {
+  return follow_path(hole, curved_path(hole, u), bodies);
+}
+
+void follow_curved_rays(const HoleView& hole, std::span<const Vec3> u, const CurvedBodies* bodies,
+                        std::span<CurvedRay> out) {
+  CurvedPath paths[kMaxSweeps];
+  for (std::size_t first = 0; first < u.size(); first += kMaxSweeps) {
+    const std::size_t n = std::min<std::size_t>(kMaxSweeps, u.size() - first);
+    curved_paths(hole, u.subspan(first, n), std::span(paths, n));
+    for (std::size_t i = 0; i < n; ++i) out[first + i] = follow_path(hole, paths[i], bodies);
+  }
 }
 
 }  // namespace lightcone

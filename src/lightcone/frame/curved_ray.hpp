@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <span>
 
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/surface_hit.hpp"
@@ -39,6 +40,9 @@ struct CurvedPath {
   }
 };
 CurvedPath curved_path(const HoleView& hole, const Vec3& u);
+// curved_path of each look direction (out[i] for u[i]), the same to the bit, several at once: their
+// sweeps' Carlson integrals run together (prepare_sweeps), which a ray's alone wait on.
+void curved_paths(const HoleView& hole, std::span<const Vec3> u, std::span<CurvedPath> out);
 
 enum class CurvedRayEnd { kSky, kDisk, kHorizon, kBody };
 
@@ -65,5 +69,9 @@ struct CurvedRay {
 // too when `bodies` is given (curved_bodies.hpp).
 CurvedRay follow_curved_ray(const HoleView& hole, const Vec3& u,
                             const CurvedBodies* bodies = nullptr);
+// follow_curved_ray for each look direction (out[i] for u[i]), the same rays, their paths
+// prepared together (curved_paths): a packet of camera rays.
+void follow_curved_rays(const HoleView& hole, std::span<const Vec3> u, const CurvedBodies* bodies,
+                        std::span<CurvedRay> out);
 
 }  // namespace lightcone

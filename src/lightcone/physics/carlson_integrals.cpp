@@ -6,6 +6,7 @@
 #include <boost/math/special_functions/ellint_rf.hpp>
 #include <boost/math/special_functions/ellint_rj.hpp>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <utility>
@@ -126,57 +127,106 @@ double rc(double x, double y) {
   return settled({x, y}, value) ? value : boost::math::ellint_rc(x, y, MathPolicy());
 }
 
+namespace {
+
+// Two doubles and a lane mask (all bits set where true), as vectors of the compiler's (SSE2 on
+// x86, SIMD128 in the browser; wider ones were split into scalar comparisons through memory):
+// each operation is the scalar one lane by lane, rounded alike.
+using Doubles2 = double __attribute__((vector_size(16)));
+using Lanes2 = std::int64_t __attribute__((vector_size(16)));
+constexpr int kLanes = 2;
+static_assert(kMaxBatch % kLanes == 0);
+
+inline Doubles2 sqrt2(Doubles2 v) {
+  return Doubles2{std::sqrt(v[0]), std::sqrt(v[1])};
+}
+inline Doubles2 abs2(Doubles2 v) {  // the sign bit cleared
+  return reinterpret_cast<Doubles2>(reinterpret_cast<Lanes2>(v) &
+                                    (Lanes2{} + std::numeric_limits<std::int64_t>::max()));
+}
+// `next` where `keep_old` is false, else `old`.
+inline Doubles2 select2(Lanes2 keep_old, Doubles2 old, Doubles2 next) {
+  return reinterpret_cast<Doubles2>((reinterpret_cast<Lanes2>(old) & keep_old) |
+                                    (reinterpret_cast<Lanes2>(next) & ~keep_old));
+}
+inline Doubles2 max2(Doubles2 a, Doubles2 b) {  // std::max's: a unless a < b
+  return select2(~(a < b), a, b);
+}
+inline bool any2(Lanes2 m) {
+  return (m[0] | m[1]) != 0;
+}
+
+}  // namespace
+
 // Boost's algorithm for double (ellint_rf_imp: the duplication theorem until Q / 4^n < |A_n|,
 // then its seventh-order series), operation for operation, so that the values are Boost's to the
-// bit. Arguments that Boost treats apart (a zero, two equal, anything not positive and finite) go
-// to Boost itself.
+// bit. The batch runs as vectors of two lanes, all of them in each step, so that the chains of
+// square roots (a step's latency, the duplication's whole cost for one argument) overlap; each
+// lane stops where its own test says (a settled lane keeps its values while the others go on).
+// Arguments that Boost treats apart (a zero, two equal, anything not positive and finite) go to
+// Boost itself.
 void rf_batch(const RfArgs* args, double* out, int n) {
   static const double kTolerance = std::pow(3 * std::numeric_limits<double>::epsilon(), -1.0 / 8);
-  double x[kMaxBatch], y[kMaxBatch], z[kMaxBatch], an[kMaxBatch], q[kMaxBatch], fn[kMaxBatch];
-  bool general[kMaxBatch], active[kMaxBatch];
+  constexpr int kGroups = kMaxBatch / kLanes;
+  Doubles2 x[kGroups], y[kGroups], z[kGroups], an[kGroups], q[kGroups], fn[kGroups];
+  Doubles2 x0[kGroups], y0[kGroups], a0[kGroups];  // the arguments and their mean
+  Lanes2 active[kGroups], general[kGroups];
+  const int groups = (n + kLanes - 1) / kLanes;
+  // Lanes outside the batch or given to Boost run on harmless values, settled from the start.
+  for (int g = 0; g < groups; ++g) {
+    x[g] = Doubles2{} + 1, y[g] = Doubles2{} + 2, z[g] = Doubles2{} + 3;
+    active[g] = Lanes2{};
+  }
   bool any = false;
   for (int i = 0; i < n; ++i) {
     const RfArgs& a = args[i];
-    general[i] = a.x > 0 && a.y > 0 && a.z > 0 && std::isfinite(a.x) && std::isfinite(a.y) &&
-                 std::isfinite(a.z) && a.x != a.y && a.x != a.z && a.y != a.z;
-    active[i] = general[i];
-    any |= general[i];
-    if (!general[i]) {
+    const bool lane_general = a.x > 0 && a.y > 0 && a.z > 0 && std::isfinite(a.x) &&
+                              std::isfinite(a.y) && std::isfinite(a.z) && a.x != a.y &&
+                              a.x != a.z && a.y != a.z;
+    if (!lane_general) {
       out[i] = rf(a.x, a.y, a.z);
       continue;
     }
-    x[i] = a.x, y[i] = a.y, z[i] = a.z;
-    an[i] = (a.x + a.y + a.z) / 3;
-    q[i] = kTolerance *
-           std::max(std::max(std::abs(an[i] - a.x), std::abs(an[i] - a.y)), std::abs(an[i] - a.z));
-    fn[i] = 1;
+    const int g = i / kLanes, l = i % kLanes;
+    x[g][l] = a.x, y[g][l] = a.y, z[g][l] = a.z;
+    active[g][l] = -1;
+    any = true;
+  }
+  if (!any) return;
+  for (int g = 0; g < groups; ++g) {
+    general[g] = active[g];
+    an[g] = (x[g] + y[g] + z[g]) / 3;
+    q[g] = kTolerance * max2(max2(abs2(an[g] - x[g]), abs2(an[g] - y[g])), abs2(an[g] - z[g]));
+    fn[g] = Doubles2{} + 1;
+    x0[g] = x[g], y0[g] = y[g], a0[g] = an[g];
   }
   while (any) {
     any = false;
-    for (int i = 0; i < n; ++i) {
-      if (!active[i]) continue;
-      const double rx = std::sqrt(x[i]), ry = std::sqrt(y[i]), rz = std::sqrt(z[i]);
-      const double lambda = rx * ry + rx * rz + ry * rz;
-      an[i] = (an[i] + lambda) / 4;
-      x[i] = (x[i] + lambda) / 4;
-      y[i] = (y[i] + lambda) / 4;
-      z[i] = (z[i] + lambda) / 4;
-      q[i] /= 4;
-      fn[i] *= 4;
-      active[i] = !(q[i] < std::abs(an[i]));
-      any |= active[i];
+    for (int g = 0; g < groups; ++g) {
+      if (!any2(active[g])) continue;
+      const Doubles2 rx = sqrt2(x[g]), ry = sqrt2(y[g]), rz = sqrt2(z[g]);
+      const Doubles2 lambda = rx * ry + rx * rz + ry * rz;
+      const Lanes2 settled = ~active[g];
+      an[g] = select2(settled, an[g], (an[g] + lambda) / 4);
+      x[g] = select2(settled, x[g], (x[g] + lambda) / 4);
+      y[g] = select2(settled, y[g], (y[g] + lambda) / 4);
+      z[g] = select2(settled, z[g], (z[g] + lambda) / 4);
+      q[g] = select2(settled, q[g], q[g] / 4);
+      fn[g] = select2(settled, fn[g], fn[g] * 4);
+      active[g] &= ~(q[g] < abs2(an[g]));
+      any |= any2(active[g]);
     }
   }
-  for (int i = 0; i < n; ++i) {
-    if (!general[i]) continue;
-    const RfArgs& a = args[i];
-    const double a0 = (a.x + a.y + a.z) / 3;
-    const double dx = (a0 - a.x) / (an[i] * fn[i]), dy = (a0 - a.y) / (an[i] * fn[i]);
-    const double dz = -dx - dy;
-    const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
-    out[i] = (1 + e3 * (1.0 / 14 + 3 * e3 / 104) +
-              e2 * (-1.0 / 10 + e2 / 24 - (3 * e3) / 44 - 5 * e2 * e2 / 208 + e2 * e3 / 16)) /
-             std::sqrt(an[i]);
+  for (int g = 0; g < groups; ++g) {
+    const Doubles2 dx = (a0[g] - x0[g]) / (an[g] * fn[g]), dy = (a0[g] - y0[g]) / (an[g] * fn[g]);
+    const Doubles2 dz = -dx - dy;
+    const Doubles2 e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
+    const Doubles2 value =
+        (1 + e3 * (1.0 / 14 + 3 * e3 / 104) +
+         e2 * (-1.0 / 10 + e2 / 24 - (3 * e3) / 44 - 5 * e2 * e2 / 208 + e2 * e3 / 16)) /
+        sqrt2(an[g]);
+    for (int l = 0; l < kLanes && kLanes * g + l < n; ++l)
+      if (general[g][l]) out[kLanes * g + l] = value[l];
   }
 }
 

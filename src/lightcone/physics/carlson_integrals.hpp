@@ -23,12 +23,13 @@ double rj(double x, double y, double z, double p);
 double rj(double x, double y, double z, double p, double rf_xyz);
 double rc(double x, double y);
 
-// Up to kMaxBatch of R_F at once, equal to rf's to the bit: run side by side, the independent
-// chains of square roots overlap instead of waiting on each other.
+// Up to kMaxBatch of R_F at once, equal to rf's to the bit: run side by side, two to a vector,
+// the independent chains of square roots overlap instead of waiting on each other (a few camera
+// rays' integrals together).
 struct RfArgs {
   double x, y, z;
 };
-inline constexpr int kMaxBatch = 4;
+inline constexpr int kMaxBatch = 32;
 void rf_batch(const RfArgs* args, double* out, int n);
 
 // Three real linear factors L_i = a_i + b_i t, positive between the limits: their values at one

@@ -48,31 +48,46 @@ LinearFactors turning_factors(const PhotonOrbit& o, double r, bool inner) {
 // with R_F (Carlson 1995, F = sin(phi) R_F(cos^2 phi, 1 - k^2 sin^2 phi, 1)) for z <= A (phi <=
 // pi/2) it is 2 sqrt(z) R_F((A - z)^2, (A - z)^2 + 4 k'^2 A z, (A + z)^2). Past A, phi -> pi -
 // phi is z -> A^2 / z, and F(pi - phi) = 2K - F(phi).
-// That integral at n (<= kMaxBatch) values z, their R_F together.
-void half_integrals(const PhotonOrbit& o, const double* z, double* out, int n) {
+// That integral at up to kMaxHalves values z (the two or three terms of an integral between two
+// radii and a sweep's start), in two halves so that several rays' R_F can run in one batch:
+// half_args appends their R_F's arguments to a batch, half_values reads the batch's results.
+constexpr int kMaxHalves = 4;
+struct Halves {
+  int n = 0;
+  double z[kMaxHalves];
+  int slot[kMaxHalves];  // the R_F's place in the batch, -1 where the integral is infinite
+};
+void half_args(const PhotonOrbit& o, Halves& h, RfArgs* args, int& used) {
   const double a = o.quad_a;
-  RfArgs args[kMaxBatch] = {};
-  double rfs[kMaxBatch];
-  int lane[kMaxBatch], lanes = 0;
-  for (int i = 0; i < n; ++i) {
-    lane[i] = -1;
-    if (z[i] == a && o.modulus_c2 == 0) continue;  // b = b_c: the double root r = 3M
-    const double d = (a - z[i]) * (a - z[i]);
-    args[lanes] = {d, d + 4 * o.modulus_c2 * a * z[i], (a + z[i]) * (a + z[i])};
-    lane[i] = lanes++;
+  for (int i = 0; i < h.n; ++i) {
+    h.slot[i] = -1;
+    if (h.z[i] == a && o.modulus_c2 == 0) continue;  // b = b_c: the double root r = 3M
+    const double d = (a - h.z[i]) * (a - h.z[i]);
+    args[used] = {d, d + 4 * o.modulus_c2 * a * h.z[i], (a + h.z[i]) * (a + h.z[i])};
+    h.slot[i] = used++;
   }
-  rf_batch(args, rfs, lanes);
-  for (int i = 0; i < n; ++i) out[i] = lane[i] < 0 ? kInf : 2 * std::sqrt(z[i]) * rfs[lane[i]];
 }
-// int between za and zb, from two or three half-integrals. With half_at, also the half-integral
-// at z = at (in the same batch, or one of those terms when it is the same z).
-double captured_integral(const PhotonOrbit& o, double za, double zb, double* half_at = nullptr,
-                         double at = 0) {
+void half_values(const Halves& h, const double* rfs, double* out) {
+  for (int i = 0; i < h.n; ++i)
+    out[i] = h.slot[i] < 0 ? kInf : 2 * std::sqrt(h.z[i]) * rfs[h.slot[i]];
+}
+
+// The integral between za and zb from two or three half-integrals, and with `with_half` also the
+// half-integral at z = at (another term of the batch, or one of those when it is the same z).
+struct CapturedPlan {
+  Halves halves;
+  int extra = -1;  // the term at `at`
+  bool empty = false, straddles = false;
+};
+CapturedPlan captured_plan(const PhotonOrbit& o, double za, double zb, bool with_half, double at) {
+  CapturedPlan p;
   const double a = o.quad_a;
   const double lo = std::min(za, zb), hi = std::max(za, zb);
-  double z[kMaxBatch], h[kMaxBatch];
-  int n = 0;
-  if (lo != hi) {
+  double* z = p.halves.z;
+  int& n = p.halves.n;
+  p.empty = lo == hi;
+  p.straddles = !(hi <= a || lo >= a);
+  if (!p.empty) {
     if (hi <= a) {
       z[0] = hi, z[1] = lo, n = 2;
     } else if (lo >= a) {
@@ -81,17 +96,33 @@ double captured_integral(const PhotonOrbit& o, double za, double zb, double* hal
       z[0] = a, z[1] = lo, z[2] = a * a / hi, n = 3;
     }
   }
-  int extra = -1;
-  if (half_at) {
+  if (with_half) {
     for (int i = 0; i < n; ++i)
-      if (z[i] == at) extra = i;
-    if (extra < 0) z[extra = n++] = at;
+      if (z[i] == at) p.extra = i;
+    if (p.extra < 0) z[p.extra = n++] = at;
   }
-  half_integrals(o, z, h, n);
-  if (half_at) *half_at = h[extra];
-  if (lo == hi) return 0;
-  if (hi <= a || lo >= a) return h[0] - h[1];
+  return p;
+}
+double captured_value(const CapturedPlan& p, const double* h, double* half_at) {
+  if (half_at) *half_at = h[p.extra];
+  if (p.empty) return 0;
+  if (!p.straddles) return h[0] - h[1];
   return (h[0] - h[1]) + (h[0] - h[2]);  // (K - F(lo)) + (K - F(A^2 / hi))
+}
+void half_integrals(const PhotonOrbit& o, Halves& h, double* out) {
+  RfArgs args[kMaxHalves] = {};
+  double rfs[kMaxHalves];
+  int used = 0;
+  half_args(o, h, args, used);
+  rf_batch(args, rfs, used);
+  half_values(h, rfs, out);
+}
+double captured_integral(const PhotonOrbit& o, double za, double zb, double* half_at = nullptr,
+                         double at = 0) {
+  CapturedPlan p = captured_plan(o, za, zb, half_at != nullptr, at);
+  double h[kMaxHalves];
+  half_integrals(o, p.halves, h);
+  return captured_value(p, h, half_at);
 }
 
 // A radius in the forbidden gap (r_3, r_p) whose orbit equation 1 - w^2 + 2 (M/b) w^3 fails
@@ -346,43 +377,57 @@ namespace {
 // ray_course for a turning orbit from r0 (snapped to a turning point) at or beyond the periapsis,
 // and with from_end also prepare_sweep's integral from w = w_1 to r0 (kOuter; not yet divided by
 // sqrt(scale)). The integrals are swept_angle's, term for term, but they share the factors' square
-// roots at r0 and at the periapsis, and their R_F run together.
-RayCourse outer_course(const PhotonOrbit& o, double r0, bool outward, double* from_end) {
-  RayCourse c;
-  c.fate = RayFate::kEscapes;
+// roots at r0 and at the periapsis, and their R_F run together: outer_args appends their arguments
+// to a batch (perhaps several rays'), outer_course_of reads the batch's results.
+struct OuterSlots {
+  int to_turn = -1, beyond = -1, from_end = -1;  // places in the batch (-1: none)
+};
+OuterSlots outer_args(const PhotonOrbit& o, double r0, bool outward, bool with_from_end,
+                      RfArgs* args, int& n) {
+  OuterSlots s;
   const double w0 = w_of(o, r0), w_p = w_of(o, o.periapsis);
   const LinearFactors f0 = turning_factors(o, r0, false);
   const LinearFactors fp = turning_factors(o, o.periapsis, false),
                       fi = turning_factors(o, kInf, false);
   const FactorRoots at_r0 = roots(f0), at_inf = roots(fi);
-  // The integrals' R_F: outward r0 -> inf; inward r0 -> r_p and r_p -> inf; then from_end.
-  RfArgs args[3] = {};
-  double rfs[3];
-  int n = 0, to_turn = -1;
+  // Outward r0 -> inf; inward r0 -> r_p and r_p -> inf; then from_end.
   if (outward) {
-    if (w0 != 0) args[n++] = cubic_args(w0, at_r0, at_inf);
+    if (w0 != 0) args[s.beyond = n++] = cubic_args(w0, at_r0, at_inf);
   } else {
     const FactorRoots at_p = roots(fp);
     const double d = std::abs(w0 - w_p);
-    if (r0 != o.periapsis && d != 0) args[to_turn = n++] = cubic_args(d, at_r0, at_p);
-    args[n++] = cubic_args(w_p, at_p, at_inf);
+    if (r0 != o.periapsis && d != 0) args[s.to_turn = n++] = cubic_args(d, at_r0, at_p);
+    args[s.beyond = n++] = cubic_args(w_p, at_p, at_inf);
   }
-  const int beyond = n - 1;
-  if (from_end) {
+  if (with_from_end) {
     const double v3 = o.inner_turning / o.impact;
-    args[n++] = cubic_args(f0.f1, at_r0, roots({0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3}));
+    args[s.from_end = n++] =
+        cubic_args(f0.f1, at_r0, roots({0, 1 / o.v_pos + o.w_neg, 1 + o.w_neg * v3}));
   }
-  rf_batch(args, rfs, n);
+  return s;
+}
+RayCourse outer_course_of(const PhotonOrbit& o, bool outward, const OuterSlots& s,
+                          const double* rfs, double* from_end) {
+  RayCourse c;
+  c.fate = RayFate::kEscapes;
   const double root_scale = std::sqrt(o.scale);
-  if (from_end) *from_end = 2 * rfs[n - 1];
+  if (from_end) *from_end = 2 * rfs[s.from_end];
   if (outward) {
-    c.angle_total = beyond < 0 ? 0.0 : 2 * rfs[beyond] / root_scale;
+    c.angle_total = s.beyond < 0 ? 0.0 : 2 * rfs[s.beyond] / root_scale;
   } else {
     c.turning_radius = o.periapsis;
-    c.angle_to_turn = to_turn < 0 ? 0.0 : 2 * rfs[to_turn] / root_scale;
-    c.angle_total = c.angle_to_turn + 2 * rfs[beyond] / root_scale;
+    c.angle_to_turn = s.to_turn < 0 ? 0.0 : 2 * rfs[s.to_turn] / root_scale;
+    c.angle_total = c.angle_to_turn + 2 * rfs[s.beyond] / root_scale;
   }
   return c;
+}
+RayCourse outer_course(const PhotonOrbit& o, double r0, bool outward, double* from_end) {
+  RfArgs args[3];
+  double rfs[3];
+  int n = 0;
+  const OuterSlots s = outer_args(o, r0, outward, from_end != nullptr, args, n);
+  rf_batch(args, rfs, n);
+  return outer_course_of(o, outward, s, rfs, from_end);
 }
 
 // ray_course, and what prepare_sweep needs besides: from_end, the integral from the end that
@@ -501,16 +546,16 @@ double coordinate_time_to_infinity(const PhotonOrbit& o, double r) {
   return ray_time(o, kInf, r, false, true);
 }
 
-AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
-  AngleSweep a;
+namespace {
+
+// prepare_sweep's rest, from the ray's course and from_end (`shared`: NaN where the course did not
+// compute it).
+void sweep_from_course(const PhotonOrbit& o, double r0, bool outward, const RayCourse& course,
+                       double shared, AngleSweep& a) {
+  a = AngleSweep{};
   a.r0 = r0;
   const double horizon = 2 * o.mass;
-  // kInvalid. Inside the horizon r falls along every future-directed ray: a backward ray from
-  // there moves outward.
-  if (!(r0 > 0) || (r0 < horizon && !outward)) return a;
-  double shared = kNaN;  // from_end, where the course computed it
-  const RayCourse course = course_of(o, r0, outward, &shared);
-  if (std::isnan(course.angle_total)) return a;
+  if (std::isnan(course.angle_total)) return;
   a.angle_total = course.angle_total;
   a.turning_radius = course.turning_radius;
   a.angle_to_turn = course.angle_to_turn;
@@ -523,7 +568,7 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   if (o.critical && r0 == 3 * o.mass) a.angle_total = 0;
   if (o.impact == 0 || a.angle_total == 0) {
     a.form = AngleSweep::Form::kAt;
-    return a;
+    return;
   }
   a.jacobi = o.jacobi;
   a.impact = o.impact, a.w_neg = o.w_neg;
@@ -550,7 +595,7 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
     a.form = outer ? AngleSweep::Form::kOuter : AngleSweep::Form::kInner;
     a.scale = outer ? o.periapsis : o.inner_turning;
     a.coef = outer ? o.w_neg * o.v_pos : o.w_neg * v3;
-    return a;
+    return;
   }
   // b <= b_c: the angle from z = 0, or (inside z > A) from z = infinity; z grows inward.
   const double z0 = w_of(o, r0) + o.w_neg, big_a = o.quad_a, root_scale = std::sqrt(o.scale);
@@ -559,13 +604,109 @@ AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
   // The half-integral at z0 (or A^2 / z0), computed with the course unless the ray winds onto
   // the photon sphere (b = b_c exactly).
   if (std::isnan(shared)) {
-    const double at = far ? big_a * big_a / z0 : z0;
-    half_integrals(o, &at, &shared, 1);
+    Halves at;
+    at.n = 1;
+    at.z[0] = far ? big_a * big_a / z0 : z0;
+    half_integrals(o, at, &shared);
   }
   const double from_end = shared / root_scale;
   a.phase = rate * from_end;
   a.rate = (outward != far) ? -rate : rate;
   a.scale = big_a;
+  return;
+}
+
+void prepare_sweep_alone(const PhotonOrbit& o, double r0, bool outward, AngleSweep& a) {
+  // kInvalid. Inside the horizon r falls along every future-directed ray: a backward ray from
+  // there moves outward.
+  if (!(r0 > 0) || (r0 < 2 * o.mass && !outward)) {
+    a = AngleSweep{};
+    a.r0 = r0;
+    return;
+  }
+  double shared = kNaN;  // from_end, where the course computed it
+  const RayCourse course = course_of(o, r0, outward, &shared);
+  sweep_from_course(o, r0, outward, course, shared, a);
+}
+
+// One ray's sweep while its course's R_F wait in a batch with other rays' (prepare_sweeps): those
+// of a turning orbit from beyond its periapsis (outer_course's) or of a captured one (its
+// captured_integral's, with the half-integral at the start), the course_of of nearly every
+// camera ray; any other is prepared alone.
+struct PendingSweep {
+  enum class Kind : unsigned char { kAlone, kOuter, kCaptured };
+  Kind kind = Kind::kAlone;
+  OuterSlots outer;
+  CapturedPlan captured;
+};
+PendingSweep pending_sweep(const PhotonOrbit& o, double r0, bool outward, RfArgs* args, int& n) {
+  PendingSweep p;
+  const double horizon = 2 * o.mass;
+  if (!(r0 > 0) || (r0 < horizon && !outward)) return p;
+  if (o.turning) {
+    const double snapped = snap_to_turning_point(o, r0);
+    if (snapped >= o.periapsis) {
+      p.kind = PendingSweep::Kind::kOuter;
+      p.outer = outer_args(o, snapped, outward, true, args, n);
+    }
+    return p;
+  }
+  const double r_end = outward ? kInf : horizon;
+  if (o.critical || o.impact == 0 || r0 == r_end) return p;
+  const double za = w_of(o, r0) + o.w_neg, zb = w_of(o, r_end) + o.w_neg;
+  const double big_a = o.quad_a, at = za > big_a ? big_a * big_a / za : za;
+  p.kind = PendingSweep::Kind::kCaptured;
+  p.captured = captured_plan(o, za, zb, true, at);
+  half_args(o, p.captured.halves, args, n);
+  return p;
+}
+void finished_sweep(const PhotonOrbit& o, double r0, bool outward, const PendingSweep& p,
+                    const double* rfs, AngleSweep& a) {
+  double shared = kNaN;
+  RayCourse course;
+  switch (p.kind) {
+    case PendingSweep::Kind::kAlone:
+      return prepare_sweep_alone(o, r0, outward, a);
+    case PendingSweep::Kind::kOuter:
+      course = outer_course_of(o, outward, p.outer, rfs, &shared);
+      break;
+    case PendingSweep::Kind::kCaptured: {
+      double h[kMaxHalves];
+      half_values(p.captured.halves, rfs, h);
+      course.fate = outward ? RayFate::kEscapes : RayFate::kCaptured;
+      course.angle_total = captured_value(p.captured, h, &shared) / std::sqrt(o.scale);
+      break;
+    }
+  }
+  sweep_from_course(o, r0, outward, course, shared, a);
+}
+
+// prepare_sweeps with room for `kRays` rays' integrals.
+template <int kRays>
+void sweeps_together(const SweepStart* starts, AngleSweep* const* out, int n) {
+  static_assert(kRays * kMaxHalves <= kMaxBatch && kMaxHalves >= 3);
+  RfArgs args[kRays * kMaxHalves] = {};
+  double rfs[kRays * kMaxHalves];
+  PendingSweep pending[kRays];
+  int used = 0;
+  for (int i = 0; i < n; ++i)
+    pending[i] = pending_sweep(*starts[i].orbit, starts[i].r0, starts[i].outward, args, used);
+  rf_batch(args, rfs, used);
+  for (int i = 0; i < n; ++i)
+    finished_sweep(*starts[i].orbit, starts[i].r0, starts[i].outward, pending[i], rfs, *out[i]);
+}
+
+}  // namespace
+
+void prepare_sweeps(const SweepStart* starts, AngleSweep* const* out, int n) {
+  sweeps_together<kMaxSweeps>(starts, out, n);
+}
+
+AngleSweep prepare_sweep(const PhotonOrbit& o, double r0, bool outward) {
+  AngleSweep a;
+  const SweepStart start{&o, r0, outward};
+  AngleSweep* const out = &a;
+  sweeps_together<1>(&start, &out, 1);
   return a;
 }
 

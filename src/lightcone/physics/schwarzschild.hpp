@@ -170,6 +170,16 @@ struct AngleSweep {
   double impact = 0, w_neg = 0;
 };
 AngleSweep prepare_sweep(const PhotonOrbit& orbit, double r0, bool outward);
+// prepare_sweep for up to kMaxSweeps rays at once (a packet of camera rays), each sweep the same
+// to the bit as its own: their Carlson integrals run together, where one ray's alone wait on
+// their chains of square roots (*out[i] from starts[i]).
+struct SweepStart {
+  const PhotonOrbit* orbit;
+  double r0;
+  bool outward;
+};
+inline constexpr int kMaxSweeps = 8;
+void prepare_sweeps(const SweepStart* starts, AngleSweep* const* out, int n);
 double radius_after_angle(const AngleSweep& sweep, double phi);
 
 // The total deflection of a ray from infinity that escapes again, b > b_c: 2 phi(r_p -> inf)

@@ -276,6 +276,7 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
         Vec3 directions[Tracer::kPacketSize];
         std::optional<Hit> hits[Tracer::kPacketSize];
         LinearRgb colours[Tracer::kPacketSize];
+        CurvedRay curved[Tracer::kPacketSize];
         for (int by = y0; by < y_end; by += kBlockHeight)
           for (int bx = x0; bx < x_end; bx += kBlockWidth) {
             // The block's pixels in the window, and their sums over the samples.
@@ -307,9 +308,10 @@ Image render_image(const Scene& scene, const RenderOptions& options, RenderStats
                                       return seen.straight_rays->straight(u);
                                     });
               if (resolved.hole && !straight) {
+                follow_curved_rays(*resolved.hole, std::span(directions, lanes),
+                                   seen.curved_bodies.get(), std::span(curved, lanes));
                 for (std::size_t l = 0; l < lanes; ++l) {
-                  const CurvedRay ray =
-                      follow_curved_ray(*resolved.hole, directions[l], seen.curved_bodies.get());
+                  const CurvedRay& ray = curved[l];
                   colours[l] = curved_radiance(resolved, seen.emission, ray, &seen.lighting,
                                                light[l], &leg_starts);
                   tile_orders += ray.order;
