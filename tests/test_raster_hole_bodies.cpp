@@ -13,6 +13,9 @@
 
 #include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/curved_ray.hpp"
+#include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/hole_leg_starts.hpp"
+#include "lightcone/frame/lighting.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/raster/hole_bodies.hpp"
@@ -318,6 +321,48 @@ TEST(RasterHoleBodies, SweptAngleIsTheTracersAlongThePath) {
     }
   EXPECT_GT(met[0], 50);
   EXPECT_GT(met[1], 10);
+}
+
+// A lit ball's vertices start their lights' legs from the last ones solved, as the tracer's tiles
+// do (some 5 evaluations of the sweep a leg where a cold solve takes 15): each light's start
+// holds a solved leg afterwards, and the vertices are those solved cold (their colours within
+// the legs' rounding; the same vertices).
+TEST(RasterHoleBodies, LitVerticesStartTheirLegsFromTheLast) {
+  Scene s = test::scene_from_json(R"({
+    "camera": {"position": [0, 6, 40], "forward": [0, -0.15, -1], "fov": 45,
+               "width": 320, "height": 180, "samples": 1},
+    "black_hole": {"mass": 1},
+    "objects": [{"name": "ball", "shape": {"sphere": {"radius": 1}}, "position": [7, 0.5, 2],
+                 "material": {"color": [0.9, 0.8, 0.6], "unlit": false}}],
+    "lights": [{"name": "lamp", "type": "point", "position": [-14, 10, 6], "intensity": 300},
+               {"name": "sun", "type": "directional", "direction": [-1, -0.3, -0.2],
+                "irradiance": 2}]
+  })");
+  const ResolvedScene resolved = resolve_scene(s);
+  const EmissionTable emission(resolved);
+  const Lighting lighting(resolved, nullptr);
+  const Object& ball = s.objects[0];
+  const RestMesh mesh = rest_mesh(ball.shape);
+  const HoleWorldLine line = hole_world_line(*resolved.hole, ball);
+  HoleLitBody lit{&lighting, 0, {&emission.object_colour(0, 0), &emission.object_colour(0, 0)}};
+  for (int order = 0; order <= 1; ++order) {
+    SCOPED_TRACE(order);
+    std::vector<float> cold, warm;
+    tessellate_hole_image(resolved, ball, line, mesh, order, {}, cold, &lit);
+    HoleLegStarts starts;
+    starts.begin_tile(1);
+    HoleLitBody started = lit;
+    started.leg_starts = &starts;
+    tessellate_hole_image(resolved, ball, line, mesh, order, {}, warm, &started);
+    for (std::size_t light = 0; light < 2; ++light)
+      for (int leg = 0; leg < HoleLegStarts::kOrders; ++leg) {
+        EXPECT_GT(starts.at(0, light, leg).rate, 0) << light << " " << leg;
+      }
+    ASSERT_EQ(warm.size(), cold.size());
+    ASSERT_GT(cold.size(), 1000u);
+    for (std::size_t i = 0; i < cold.size(); ++i)
+      ASSERT_NEAR(warm[i], cold[i], 1e-6 * std::max(1.0f, std::abs(cold[i]))) << i;
+  }
 }
 
 }  // namespace

@@ -110,7 +110,7 @@ struct HoleSeeing {
     // A closed shape is seen from outside (the tracer's normal faces the ray, outward but for
     // grazing rays); a plane or a mesh from either side.
     hit.shape_normal = closed || faces_camera(c) ? n : n * -1.0;
-    const Lighting::HoleSurface at{c.event, c.to_camera, c.local_velocity};
+    const Lighting::HoleSurface at{c.event, c.to_camera, c.local_velocity, lit->leg_starts};
     std::array<Lighting::LitPoint, 2> points;
     const PointEmission texel =
         lit->texture_albedo ? lit->texture_albedo->surface(lit->object, hit) : PointEmission{};
@@ -319,10 +319,14 @@ std::vector<std::vector<float>> hole_body_vertices(const ResolvedScene& scene,
   parallel_for(std::size_t{0}, parts.size(), [&](std::size_t k) {
     const HoleBodiesPass::Body& body = bodies[k / kRasterHoleOrders];
     const Object& object = *scene.bodies[body.index].object;
+    // Each image's legs start afresh, so that its colours do not depend on the threads' order.
+    HoleLegStarts leg_starts;
+    leg_starts.begin_tile(1);
     HoleLitBody lit{
         &lighting,
         body.index,
         {&emission.object_colour(body.index, 0), &emission.object_colour(body.index, 0)}};
+    lit.leg_starts = &leg_starts;
     Rgb colours[2];
     if (pattern_colours(object.material, colours) == 2)
       lit.albedo[1] = &emission.object_colour(body.index, 1);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/hole_leg_starts.hpp"
 #include "lightcone/frame/hole_view.hpp"
 #include "lightcone/frame/lighting.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
@@ -53,6 +54,9 @@ struct HoleLitBody {
   // object `object` (in the scene's objects); null for fixed colours.
   const EmissionTable* texture_albedo = nullptr;
   std::size_t object = 0;
+  // Where its lights' legs start their solves (the last ones solved), where given: its
+  // vertices follow one another across the body, as a tile's points do in the tracer.
+  HoleLegStarts* leg_starts = nullptr;
 };
 
 // Appends the triangles of image `order` of the body drawn with `mesh` on `line` (in units of the
