@@ -11,8 +11,8 @@
 #include <tuple>
 
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/pixel_probe.hpp"
 #include "lightcone/frame/request_rules.hpp"
-#include "lightcone/trace/probe_pixel.hpp"
 #include "support/test_support.hpp"
 
 namespace lightcone {

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -358,9 +359,18 @@ TEST_F(ViewerTest, AClickProbesThePixelAsLocateDoes) {
   const int ball_y = static_cast<int>(centre["pixel"][1].get<double>());
   start_viewer(scene, "--time-scale 0 --tessellation cpu");
   settle();
+  // Each probe's line, waited for (a loaded machine draws a few frames a second).
+  const auto wait_for_probes = [&](std::size_t count) {
+    for (int i = 0; i < 300; ++i) {
+      const std::string out = test::bytes_of(dir_ / "viewer.out");
+      if (static_cast<std::size_t>(std::count(out.begin(), out.end(), '\n')) >= count) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  };
   click(ball_x, ball_y);
-  settle();
+  wait_for_probes(1);
   click(700, 40);  // the sky, away from the panel
+  wait_for_probes(2);
   settle();
   key("F12");
   const fs::path with_readouts = wait_for_png(1);

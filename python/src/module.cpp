@@ -22,12 +22,12 @@
 #include <vector>
 
 #include "lightcone/frame/locate.hpp"
+#include "lightcone/frame/pixel_probe.hpp"
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/image_file.hpp"
 #include "lightcone/io/input_error.hpp"
 #include "lightcone/io/locate_json.hpp"
-#include "lightcone/trace/probe_pixel.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/raster/gl_context.hpp"

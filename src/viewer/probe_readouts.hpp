@@ -16,7 +16,7 @@
 
 namespace lightcone {
 
-// What the program probes with (trace/probe_pixel.hpp's probe_pixel in `lightcone view`): the
+// What the program probes with (pixel_probe.hpp's probe_pixel in `lightcone view`): the
 // scene as drawn and an image point of it, which request_rules' probe_refused lets through.
 // Called on a thread of its own.
 using PixelProbeSource = std::function<PixelProbe(const Scene& scene, double x, double y)>;

@@ -1,6 +1,12 @@
 #include "lightcone/frame/pixel_probe.hpp"
 
+#include <memory>
+
+#include "lightcone/frame/body_segments.hpp"
+#include "lightcone/frame/camera_model.hpp"
+#include "lightcone/frame/curved_bodies.hpp"
 #include "lightcone/frame/ray_seen.hpp"
+#include "lightcone/frame/straight_hit.hpp"
 
 namespace lightcone {
 namespace {
@@ -68,6 +74,17 @@ PixelProbe probe_on_curved_ray(const ResolvedScene& scene, double x, double y, c
       break;
   }
   return probe;
+}
+
+PixelProbe probe_pixel(const Scene& scene, double x, double y) {
+  const ResolvedScene resolved = resolve_scene(scene);
+  const DirectBodySegments segments(resolved);
+  const Vec3 u = look_direction(resolved.camera, x, y);
+  if (!resolved.hole)
+    return probe_on_straight_ray(resolved, x, y, u, first_straight_hit(resolved, segments, u));
+  const std::unique_ptr<CurvedBodies> bodies =
+      resolved.bodies.empty() ? nullptr : std::make_unique<CurvedBodies>(resolved, segments);
+  return probe_on_curved_ray(resolved, x, y, u, follow_curved_ray(*resolved.hole, u, bodies.get()));
 }
 
 }  // namespace lightcone

@@ -10,6 +10,7 @@
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/surface_hit.hpp"
 #include "lightcone/physics/vec.hpp"
+#include "lightcone/scene/scene.hpp"
 
 namespace lightcone {
 
@@ -33,8 +34,15 @@ struct PixelProbe {
   int order = 0;       // near a hole: the image order (how often the ray swept pi about it)
 };
 
-// The probe of look direction u through image point (x, y), from what the ray tracer's straight
-// ray met first (`hit`; none: the sky).
+// The probe of image point (x, y) of `scene`, which request_rules' probe_refused lets through:
+// `lightcone locate --pixel`, the Python module's locate(pixel=...), the viewer's and the web
+// page's clicks. The exact camera ray through the point, meeting each body directly
+// (straight_hit.hpp; near a hole along the chords of the curved ray, curved_bodies.hpp) with no
+// acceleration structure to build: a probe costs its one ray.
+PixelProbe probe_pixel(const Scene& scene, double x, double y);
+
+// The probe of look direction u through image point (x, y), from what the straight ray met
+// first (`hit`; none: the sky).
 PixelProbe probe_on_straight_ray(const ResolvedScene& scene, double x, double y, const Vec3& u,
                                  const std::optional<Hit>& hit);
 // The same near a black hole, from the exact curved ray (follow_curved_ray, with the scene's

@@ -1,9 +1,9 @@
-#include "lightcone/trace/spinning_intersection.hpp"
+#include "lightcone/frame/spinning_intersection.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "lightcone/trace/embree_rays.hpp"
+#include "lightcone/physics/lorentz.hpp"
 
 namespace lightcone {
 namespace {
@@ -19,9 +19,9 @@ struct CrossedSurface {
 
 }  // namespace
 
-ShapeHit intersect_spinning_body(const ResolvedSpin& spin, const Object& object, RTCScene mesh,
-                                 const ShapeRay& frozen, double tau0, double tau1, double tnear,
-                                 double tfar, RTCIntersectContext* context) {
+ShapeHit intersect_spinning_body(const ResolvedSpin& spin, const Object& object,
+                                 const MeshChordTest& mesh, const ShapeRay& frozen, double tau0,
+                                 double tau1, double tnear, double tfar) {
   const Vec3 o = spin.rest_from_shape * frozen.origin;
   const Vec3 d = spin.rest_from_shape * frozen.direction;
   ShapeHit hit;
@@ -91,11 +91,9 @@ ShapeHit intersect_spinning_body(const ResolvedSpin& spin, const Object& object,
         surface = {false, {0, pa.y >= 0 ? 1.0 : -1.0, 0}, 0};
       }
     } else if (mesh) {
-      RTCRayHit rh = mesh_ray(chord, 0, 1);
-      rtcIntersect1(mesh, context, &rh);
-      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      if (const std::optional<SegmentHit> met_mesh = mesh(pa, pb)) {
         met = true;
-        prim = rh.hit.primID;
+        prim = met_mesh->prim;
         const Mesh& m = *std::get<MeshShape>(shape).mesh;
         const auto& tri = m.triangles[prim];
         const Vec3 v0 = m.positions[tri[0]];
@@ -138,6 +136,18 @@ ShapeHit intersect_spinning_body(const ResolvedSpin& spin, const Object& object,
     pa = pb;
   }
   return hit;
+}
+
+Vec3 complete_spinning_hit(const ResolvedScene& scene, const ResolvedBody& body,
+                           const ShapeHit& exact, const Vec3& frozen_direction, Hit& hit) {
+  // The point's own motion: rate axis x r in the rest frame, carried to F.
+  const ResolvedSpin& spin = scene.spins[body.spin];
+  hit.proper_time = exact.proper_time;
+  hit.spin_angle = spin.rate * exact.proper_time;
+  const Vec3 rest_velocity = cross(spin.axis, exact.rest_point) * spin.rate;
+  hit.velocity = velocity_of(spin.trace_from_rest * Vec4{1, rest_velocity});
+  return spin.shape_of_rest *
+         rotated(spin.axis, -hit.spin_angle, spin.rest_from_shape * frozen_direction);
 }
 
 }  // namespace lightcone

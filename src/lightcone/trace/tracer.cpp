@@ -16,9 +16,9 @@
 
 #include "lightcone/frame/mesh_bvh.hpp"
 #include "lightcone/frame/shape_intersection.hpp"
+#include "lightcone/frame/spinning_intersection.hpp"
 #include "lightcone/trace/embree_rays.hpp"
 #include "lightcone/trace/image_bins.hpp"
-#include "lightcone/trace/spinning_intersection.hpp"
 
 namespace lightcone {
 namespace {
@@ -380,9 +380,17 @@ struct Tracer::Impl {
         shadow ? spin.shadow_proper_time_origin + row.t * origin.t + dot(row.x, origin.x)
                : body.proper_time(origin);
     const double tau1 = row.t * direction.t + dot(row.x, direction.x);
-    return intersect_spinning_body(spin, *body.object, body_mesh_scene[index],
+    MeshChordTest mesh;
+    if (RTCScene mesh_scene = body_mesh_scene[index])
+      mesh = [mesh_scene, context](const Vec3& from, const Vec3& to) -> std::optional<SegmentHit> {
+        RTCRayHit rh = mesh_ray(ShapeRay{from, to - from}, 0, 1);
+        rtcIntersect1(mesh_scene, context, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+        return SegmentHit{rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v};
+      };
+    return intersect_spinning_body(spin, *body.object, mesh,
                                    shape_ray(index, shadow, origin, direction), tau0, tau1, tnear,
-                                   tfar, context);
+                                   tfar);
   }
 
   // Embree calls back with packets of N rays (one for rtcIntersect1), of which those `valid`
@@ -637,14 +645,7 @@ std::optional<Hit> Tracer::Impl::camera_hit(const Vec3& u, const EmbreeHit& foun
   }
   Vec3 incoming = ray.direction;
   if (spinning) {
-    // The point's own motion: rate axis x r in the rest frame, carried to F.
-    const ResolvedSpin& spin = scene.spins[body.spin];
-    hit.proper_time = exact.proper_time;
-    hit.spin_angle = spin.rate * exact.proper_time;
-    const Vec3 rest_velocity = cross(spin.axis, exact.rest_point) * spin.rate;
-    hit.velocity = velocity_of(spin.trace_from_rest * Vec4{1, rest_velocity});
-    incoming = spin.shape_of_rest *
-               rotated(spin.axis, -hit.spin_angle, spin.rest_from_shape * ray.direction);
+    incoming = complete_spinning_hit(scene, body, exact, ray.direction, hit);
   } else {
     hit.proper_time = body.proper_time(Vec4{scene.ray_time * hit.s, u * hit.s});
     hit.velocity = body.velocity;

@@ -302,7 +302,7 @@ bool caster_meets(int kind, vec3 size, int root, vec3 a, vec3 d, float t_near, f
 }
 
 #ifdef LIGHTCONE_SPIN_SHADOWS
-// trace/spinning_intersection.cpp, intersect_spinning_body, whether it meets and not where: the
+// frame/spinning_intersection.cpp, intersect_spinning_body, whether it meets and not where: the
 // straight ray in the rest frame is a curve through the turning shape's coordinates, followed in
 // chords that turn by at most kSpinChordAngle, each met against the shape as the tracer meets
 // it (a sphere's or a box's entry, a plane's or a mesh's crossing, within the chord).
