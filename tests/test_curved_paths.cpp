@@ -1,9 +1,9 @@
-// A packet of camera rays near the hole has its paths prepared together (prepare_sweeps,
-// curved_paths, follow_curved_rays: their Carlson integrals run side by side): each must be the
-// ray's own to the bit, as prepare_sweep, curved_path and follow_curved_ray give it alone, for
-// every kind of path: radial (b = 0) and nearly so, at and beside the critical impact parameter,
-// turning and captured, from inside the photon sphere and the horizon, outward and inward, in
-// packets of every size. G = c = 1, M = 1.
+// A packet of camera rays near the hole has its paths prepared together (photon_orbits,
+// prepare_sweeps, curved_paths, follow_curved_rays: their Landen moduli and Carlson integrals run
+// side by side): each must be the ray's own to the bit, as photon_orbit, prepare_sweep, curved_path
+// and follow_curved_ray give it alone, for every kind of path: radial (b = 0) and nearly so, at
+// and beside the critical impact parameter, turning and captured, from inside the photon sphere
+// and the horizon, outward and inward, in packets of every size. G = c = 1, M = 1.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -76,6 +76,42 @@ std::vector<Start> starts() {
       for (const bool outward : {false, true}) s.push_back({b, r0, outward});
   }
   return s;
+}
+
+TEST(CurvedPaths, OrbitsTakenTogetherAreEachOwn) {
+  std::vector<double> impacts;
+  for (const Start& s : starts())
+    if (impacts.empty() || impacts.back() != s.impact) impacts.push_back(s.impact);
+  std::size_t first = 0;
+  for (int size = 1; first < impacts.size(); size = size % kMaxSweeps + 1) {
+    const int n = static_cast<int>(std::min<std::size_t>(size, impacts.size() - first));
+    PhotonOrbit orbits[kMaxSweeps];
+    PhotonOrbit* out[kMaxSweeps];
+    for (int i = 0; i < n; ++i) out[i] = &orbits[i];
+    photon_orbits(1, &impacts[first], out, n);
+    for (int i = 0; i < n; ++i) {
+      SCOPED_TRACE(testing::Message() << "b " << impacts[first + i] << " in a packet of " << n);
+      const PhotonOrbit alone = photon_orbit(1, impacts[first + i]);
+      const PhotonOrbit& o = orbits[i];
+      EXPECT_EQ(o.turning, alone.turning);
+      EXPECT_EQ(o.critical, alone.critical);
+      for (const auto field :
+           {&PhotonOrbit::periapsis, &PhotonOrbit::inner_turning, &PhotonOrbit::w_neg,
+            &PhotonOrbit::v_pos, &PhotonOrbit::v_gap, &PhotonOrbit::scale, &PhotonOrbit::quad_a,
+            &PhotonOrbit::modulus_c2, &PhotonOrbit::pair_c, &PhotonOrbit::pair_n})
+        EXPECT_TRUE(same_bits(o.*field, alone.*field));
+      ASSERT_EQ(o.jacobi.steps, alone.jacobi.steps);
+      EXPECT_EQ(o.jacobi.unit, alone.jacobi.unit);
+      for (int k = 0; k < o.jacobi.steps; ++k) {
+        EXPECT_TRUE(same_bits(o.jacobi.k[k], alone.jacobi.k[k]));
+        EXPECT_TRUE(same_bits(o.jacobi.c[k], alone.jacobi.c[k]));
+      }
+      EXPECT_TRUE(same_bits(o.jacobi.rate, alone.jacobi.rate));
+      EXPECT_TRUE(same_bits(o.jacobi.k2, alone.jacobi.k2));
+      EXPECT_TRUE(same_bits(o.jacobi.kc2, alone.jacobi.kc2));
+    }
+    first += n;
+  }
 }
 
 TEST(CurvedPaths, SweepsPreparedTogetherAreEachRaysOwn) {

@@ -24,9 +24,9 @@ int image_order(double phi) {
   return phi > 0 ? static_cast<int>(std::min(std::ceil(phi / kPi), kMaxImageOrder + 1)) - 1 : 0;
 }
 
-// curved_path but for its sweep (left as it was, but for a dark path's, which is reset): the ray's
-// plane, impact parameter and orbit, written in place (a path is large, and copies of it were a
-// tenth of its cost).
+// curved_path but for its orbit and sweep (left as they were, but for a dark path's, which are
+// reset): the ray's plane and impact parameter, written in place (a path is large, and copies of
+// it were a tenth of its cost).
 void start_path(const HoleView& hole, const Vec3& u, CurvedPath& p) {
   p.dark = false;
   p.e1 = hole.outward;
@@ -48,7 +48,6 @@ void start_path(const HoleView& hole, const Vec3& u, CurvedPath& p) {
     }
     p.impact = seen->impact;
     p.camera_energy = seen->energy;
-    p.orbit = photon_orbit(hole.mass, p.impact);
     p.outward = seen->outward;
     return;
   }
@@ -63,7 +62,6 @@ void start_path(const HoleView& hole, const Vec3& u, CurvedPath& p) {
   const double sin_alpha = length(tangential);
   p.e2 = sin_alpha > 0 ? tangential / sin_alpha : any_perpendicular(p.e1);
   p.impact = static_impact_parameter(hole.mass, hole.camera_radius, sin_alpha);
-  p.orbit = photon_orbit(hole.mass, p.impact);
   p.outward = cos_alpha > 0;
 }
 
@@ -137,21 +135,29 @@ CurvedRay follow_path(const HoleView& hole, const CurvedPath& path, const Curved
 CurvedPath curved_path(const HoleView& hole, const Vec3& u) {
   CurvedPath p;
   start_path(hole, u, p);
-  if (!p.dark) p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
+  if (p.dark) return p;
+  p.orbit = photon_orbit(hole.mass, p.impact);
+  p.sweep = prepare_sweep(p.orbit, hole.camera_radius, p.outward);
   return p;
 }
 
 void curved_paths(const HoleView& hole, std::span<const Vec3> u, std::span<CurvedPath> out) {
   for (std::size_t first = 0; first < u.size(); first += kMaxSweeps) {
+    double impacts[kMaxSweeps];
+    PhotonOrbit* orbits[kMaxSweeps];
     SweepStart starts[kMaxSweeps];
     AngleSweep* sweeps[kMaxSweeps];
     int n = 0;
     for (std::size_t i = first; i < std::min(first + kMaxSweeps, u.size()); ++i) {
-      start_path(hole, u[i], out[i]);
-      if (out[i].dark) continue;
-      starts[n] = {&out[i].orbit, hole.camera_radius, out[i].outward};
-      sweeps[n++] = &out[i].sweep;
+      CurvedPath& p = out[i];
+      start_path(hole, u[i], p);
+      if (p.dark) continue;
+      impacts[n] = p.impact;
+      orbits[n] = &p.orbit;
+      starts[n] = {&p.orbit, hole.camera_radius, p.outward};
+      sweeps[n++] = &p.sweep;
     }
+    photon_orbits(hole.mass, impacts, orbits, n);
     prepare_sweeps(starts, sweeps, n);
   }
 }

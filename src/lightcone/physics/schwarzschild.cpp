@@ -254,22 +254,54 @@ const double kAsymptoticModulus = boost::math::tools::forth_root_epsilon<double>
 
 }  // namespace
 
+namespace {
+
+// jacobi_modulus's arguments, for moduli taken together.
+struct ModulusArgs {
+  double k2, kc2, rate;
+};
+
+// jacobi_modulus for n moduli, step by step over all of them: each step's division and square
+// roots wait on the step before, and the moduli's chains overlap where one's alone would wait.
+void jacobi_moduli(const ModulusArgs* args, JacobiModulus* const* out, int n) {
+  double k2[kMaxSweeps], kc[kMaxSweeps], rate[kMaxSweeps];
+  bool going[kMaxSweeps];
+  for (int i = 0; i < n; ++i) {
+    JacobiModulus& m = *out[i];
+    m = JacobiModulus{};
+    m.unit = args[i].kc2 == 0;
+    m.k2 = args[i].k2, m.kc2 = args[i].kc2;
+    k2[i] = args[i].k2, rate[i] = args[i].rate;
+    kc[i] = std::sqrt(args[i].kc2);
+    going[i] = true;
+  }
+  for (bool any = n > 0; any;) {
+    any = false;
+    for (int i = 0; i < n; ++i) {
+      if (!going[i]) continue;
+      JacobiModulus& m = *out[i];
+      const double inv = 1 / (1 + kc[i]);
+      m.k[m.steps] = k2[i] * inv * inv;  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
+      m.c[m.steps] = 2 * kc[i] * inv;
+      rate[i] *= (1 + kc[i]) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
+      k2[i] = m.k[m.steps] * m.k[m.steps];
+      kc[i] = 2 * std::sqrt(kc[i]) * inv;  // k_i'
+      ++m.steps;
+      going[i] = m.steps < kMinLandenSteps || (!m.unit && m.k[m.steps - 1] >= kAsymptoticModulus &&
+                                               m.steps < JacobiModulus::kMaxSteps);
+      if (!going[i]) m.rate = rate[i];
+      any |= going[i];
+    }
+  }
+}
+
+}  // namespace
+
 JacobiModulus jacobi_modulus(double k2, double kc2, double rate) {
   JacobiModulus m;
-  m.unit = kc2 == 0;
-  m.k2 = k2, m.kc2 = kc2;
-  double kc = std::sqrt(kc2);
-  do {
-    const double inv = 1 / (1 + kc);
-    m.k[m.steps] = k2 * inv * inv;  // (1 - k') / (1 + k'), 1 - k' = k^2 / (1 + k')
-    m.c[m.steps] = 2 * kc * inv;
-    rate *= (1 + kc) / 2;  // / (1 + k_i), 1 + k_i = 2 / (1 + k')
-    k2 = m.k[m.steps] * m.k[m.steps];
-    kc = 2 * std::sqrt(kc) * inv;  // k_i'
-    ++m.steps;
-  } while (m.steps < kMinLandenSteps || (!m.unit && m.k[m.steps - 1] >= kAsymptoticModulus &&
-                                         m.steps < JacobiModulus::kMaxSteps));
-  m.rate = rate;
+  JacobiModulus* const out = &m;
+  const ModulusArgs args{k2, kc2, rate};
+  jacobi_moduli(&args, &out, 1);
   return m;
 }
 
@@ -304,11 +336,15 @@ double critical_impact_parameter(double mass) {
   return 3 * kSqrt3 * mass;
 }
 
-PhotonOrbit photon_orbit(double mass, double impact) {
-  PhotonOrbit o;
+namespace {
+
+// photon_orbit but for its Landen moduli, whose arguments it gives (false for b = 0, which has
+// none), so that several orbits' can be taken together.
+bool orbit_before_modulus(double mass, double impact, PhotonOrbit& o, ModulusArgs& modulus) {
+  o = PhotonOrbit{};
   o.mass = mass;
   o.impact = impact;
-  if (impact == 0) return o;  // radial: no angle is swept
+  if (impact == 0) return false;  // radial: no angle is swept
   const double bc = critical_impact_parameter(mass);
   const double gap = (impact - bc) / impact;  // 1 - b_c / b, without cancellation
   o.critical = gap == 0;
@@ -331,9 +367,9 @@ PhotonOrbit photon_orbit(double mass, double impact) {
     // radius_after_angle: k^2 = (w_2 - w_1) / (w_3 - w_1), k'^2 = (w_3 - w_2) / (w_3 - w_1), the
     // argument's rate sqrt((M/b)(w_3 - w_1) / 2) (schwarzschild.cpp, "The path r(phi)").
     const double spread = 1 + o.w_neg * v3;  // (w_3 - w_1) / w_3
-    o.jacobi = jacobi_modulus((1 / o.v_pos + o.w_neg) * v3 / spread, o.v_gap / o.v_pos / spread,
-                              std::sqrt(o.scale * spread) / 2);
-    return o;
+    modulus = {(1 / o.v_pos + o.w_neg) * v3 / spread, o.v_gap / o.v_pos / spread,
+               std::sqrt(o.scale * spread) / 2};
+    return true;
   }
   // One real root v_1 = -(2/sqrt 3) cosh(h), 3h = arccosh(b_c / b) = 2 asinh(sqrt(-gap / 2)),
   // and the pair v = -v_1/2 +- i sinh(h) (the roots sum to 0); in w = 1/v the pair is m +- i n.
@@ -349,8 +385,25 @@ PhotonOrbit photon_orbit(double mass, double impact) {
   o.modulus_c2 = n * n / (2 * o.quad_a * (o.quad_a + c));  // (A - c') / 2A, no cancellation
   // radius_after_angle: k^2 = (A + c) / 2A, and the argument of Byrd & Friedman 239.00 is
   // sqrt(2 (M/b) A) per radian.
-  o.jacobi =
-      jacobi_modulus((o.quad_a + c) / (2 * o.quad_a), o.modulus_c2, std::sqrt(o.scale * o.quad_a));
+  modulus = {(o.quad_a + c) / (2 * o.quad_a), o.modulus_c2, std::sqrt(o.scale * o.quad_a)};
+  return true;
+}
+
+}  // namespace
+
+void photon_orbits(double mass, const double* impacts, PhotonOrbit* const* out, int n) {
+  ModulusArgs args[kMaxSweeps];
+  JacobiModulus* moduli[kMaxSweeps];
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+    if (orbit_before_modulus(mass, impacts[i], *out[i], args[m])) moduli[m++] = &out[i]->jacobi;
+  jacobi_moduli(args, moduli, m);
+}
+
+PhotonOrbit photon_orbit(double mass, double impact) {
+  PhotonOrbit o;
+  PhotonOrbit* const out = &o;
+  photon_orbits(mass, &impact, &out, 1);
   return o;
 }
 

@@ -9,6 +9,10 @@
 
 namespace lightcone {
 
+// The most rays whose orbits and sweeps are prepared at once (photon_orbits, prepare_sweeps): a
+// packet of camera rays.
+inline constexpr int kMaxSweeps = 8;
+
 // Jacobi's elliptic functions sn, cn, dn of one modulus k at many arguments. Descending Landen
 // (Gauss) transformations k -> k_1 -> k_2 ..., k_{i+1} = (1 - k_i') / (1 + k_i') (DLMF 22.7.1-4),
 // taken from k' so that k -> 1 loses no digits, at least three and on (up to kMaxSteps) until the
@@ -75,6 +79,9 @@ struct PhotonOrbit {
 };
 
 PhotonOrbit photon_orbit(double mass, double impact);
+// photon_orbit for up to kMaxSweeps impact parameters at once (*out[i] for impacts[i]), each the
+// same to the bit: their Landen moduli are taken together, step by step.
+void photon_orbits(double mass, const double* impacts, PhotonOrbit* const* out, int n);
 
 // The angle (>= 0) swept about the hole by a ray of this orbit between radii r_a and r_b
 // (either may be infinity), along a stretch on which r is monotonic: the two radii lie in one
@@ -178,7 +185,6 @@ struct SweepStart {
   double r0;
   bool outward;
 };
-inline constexpr int kMaxSweeps = 8;
 void prepare_sweeps(const SweepStart* starts, AngleSweep* const* out, int n);
 double radius_after_angle(const AngleSweep& sweep, double phi);
 
