@@ -2,6 +2,7 @@
 // saw in headless Chromium (the ctest fixture WebPage.DriveThePageInChromium runs it first):
 // its pictures against `lightcone render --renderer raster`, its keys, links and dropped files,
 // and the spectrum table it fits.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -265,6 +266,56 @@ TEST(WebPage, NearAHoleTheClockRunsAtTheViewersScale) {
               clock.value("proper_time", 0.0), clock.value("wall_seconds", 0.0));
   EXPECT_GT(clock.value("proper_time", 0.0), 0);
   EXPECT_LE(clock.value("proper_time", 0.0), scale * clock.value("wall_seconds", 0.0) * 1.01);
+}
+
+// The page's probes are the program's: each is what `lightcone locate --pixel` says of that
+// pixel of the same picture (640 x 360); a link keeps them, the readouts are text in the page
+// with the ruler between two, a click adds one, X clears them.
+TEST(WebPage, ProbesAPixelAsLocateDoes) {
+  const auto r = results();
+  ASSERT_TRUE(r.is_object());
+  ASSERT_TRUE(r.contains("probes")) << "the probes are missing (see the fixture)";
+  const auto& from_link = r["probes"]["from_link"];
+  const auto& clicked = r["probes"]["clicked"];
+  ASSERT_EQ(from_link["probes"].size(), 2u);
+  ASSERT_EQ(clicked["probes"].size(), 1u);
+  EXPECT_EQ(from_link["probe"], "466.5,171.5;289.5,180.5");
+  EXPECT_EQ(from_link["marks"], 2);
+  const std::string text = from_link["text"];
+  EXPECT_NE(text.find("1: crate at ("), std::string::npos) << text;
+  EXPECT_NE(text.find("2: ball at ("), std::string::npos) << text;
+  EXPECT_NE(text.find("degrees apart"), std::string::npos) << text;
+  EXPECT_EQ(clicked["probes"][0]["meets"], "sky");
+  EXPECT_EQ(clicked["probe"], "100.5,20.5");
+  EXPECT_EQ(r["probes"]["cleared"]["text"], "");
+  EXPECT_TRUE(r["probes"]["cleared"]["probe"].is_null());
+  EXPECT_EQ(r["probes"]["cleared"]["marks"], 0);
+  std::vector<nlohmann::json> all(from_link["probes"].begin(), from_link["probes"].end());
+  all.push_back(clicked["probes"][0]);
+  for (const nlohmann::json& probe : all) {
+    const double x = probe["pixel"][0], y = probe["pixel"][1];
+    const auto cli = test::run_lightcone(
+        fmt::format("locate '{}' --pixel {},{} --set camera.width=640 --set camera.height=360",
+                    (kScenes / "terrell.json").string(), x, y));
+    ASSERT_EQ(cli.status, 0) << cli.err;
+    const auto native = nlohmann::json::parse(cli.out);
+    ASSERT_EQ(native.size(), probe.size());
+    for (const auto& [key, value] : native.items()) {
+      SCOPED_TRACE(fmt::format("pixel {}, {}: {}", x, y, key));
+      const auto near = [](double a, double b) { EXPECT_NEAR(a, b, 1e-9 * (1 + std::abs(b))); };
+      if (value.is_number()) {
+        near(probe[key].get<double>(), value.get<double>());
+      } else if (value.is_array()) {
+        for (std::size_t k = 0; k < value.size(); ++k)
+          near(probe[key][k].get<double>(), value[k].get<double>());
+      } else if (value.is_object()) {
+        for (std::size_t k = 0; k < 3; ++k)
+          near(probe[key]["direction"][k].get<double>(), value["direction"][k].get<double>());
+      } else {
+        EXPECT_EQ(probe[key], value);
+      }
+    }
+  }
 }
 
 TEST(WebPage, ADragTurnsTheViewAndTheJoystickSpeedsUp) {

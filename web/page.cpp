@@ -19,10 +19,12 @@
 #include "lightcone/color/rgb_spectrum.hpp"
 #include "lightcone/color/sigmoid_polynomial.hpp"
 #include "lightcone/frame/emission.hpp"
+#include "lightcone/frame/pixel_probe.hpp"
 #include "lightcone/frame/request_rules.hpp"
 #include "lightcone/frame/resolved_scene.hpp"
 #include "lightcone/frame/tone_map.hpp"
 #include "lightcone/io/input_error.hpp"
+#include "lightcone/io/locate_json.hpp"
 #include "lightcone/io/scene_file.hpp"
 #include "lightcone/io/star_catalogue.hpp"
 #include "lightcone/physics/lorentz.hpp"
@@ -33,6 +35,7 @@
 #include "page_images.hpp"
 #include "viewer/flight.hpp"
 #include "viewer/frame_loop.hpp"
+#include "viewer/probe_text.hpp"
 
 namespace lightcone {
 namespace {
@@ -52,7 +55,8 @@ struct Page {
   bool split = false;
   double proper_time = 0;  // the camera's clock
   ExposureFollower meter;
-  std::string result;  // what the last call returns to JavaScript
+  std::vector<PixelProbe> probes;  // the clicked points' (lc_probe), at most two
+  std::string result;              // what the last call returns to JavaScript
 };
 
 Page& page() {
@@ -130,6 +134,7 @@ EMSCRIPTEN_KEEPALIVE const char* lc_load(const char* path, const char* overrides
     p.scene = std::move(scene);
     p.frame = p.still = *p.scene;
     p.frame_emission.reset();
+    p.probes.clear();
     p.still_emission.reset();
     if (!keep) {
       p.flight = std::make_unique<Flight>(p.scene->camera);
@@ -167,6 +172,31 @@ EMSCRIPTEN_KEEPALIVE void lc_fly(double seconds) {
   if (!p.flight || !p.scene) return;
   p.flight->advance(seconds, p.scene->black_hole ? &*p.scene->black_hole : nullptr);
   p.proper_time += seconds;
+}
+
+// Probes image point (x, y) of the frame as last drawn (what `lightcone locate --pixel` answers
+// there, by the same function), as the next of at most two probes (a third starts again).
+// Returns {"probe": locate --pixel's JSON, "lines": the readouts of the probes kept, as the
+// native viewer's panel shows them} or {"error"} (a point off the picture: the library's rule).
+EMSCRIPTEN_KEEPALIVE const char* lc_probe(double x, double y) {
+  Page& p = page();
+  if (!p.scene) return failure("no scene");
+  if (const auto refused = probe_refused(p.frame, x, y)) return failure(*refused);
+  try {
+    const PixelProbe probe = probe_pixel(p.frame, x, y);
+    if (p.probes.size() >= 2) p.probes.clear();
+    p.probes.push_back(probe);
+    return answer(nlohmann::json{{"probe", nlohmann::json::parse(probe_json(probe, p.frame))},
+                                 {"lines", probe_lines(p.probes, p.frame)}}
+                      .dump());
+  } catch (const std::exception& e) {
+    return failure(e.what());
+  }
+}
+
+// Forgets the probes.
+EMSCRIPTEN_KEEPALIVE void lc_clear_probes() {
+  page().probes.clear();
 }
 
 // Advances the flight by `flown` of the camera's proper time and draws a frame of `width` x

@@ -13,6 +13,7 @@
 
 #include "lightcone/frame/pixel_probe.hpp"
 #include "lightcone/scene/scene.hpp"
+#include "viewer/probe_text.hpp"
 
 namespace lightcone {
 
@@ -34,8 +35,9 @@ class ProbeReadouts {
   // that no frame waits for it (a refusal is said at once, on stderr and in the readouts).
   void click(const Scene& frame, double x, double y);
   void clear();
-  // Takes the probe in flight once it is done, and prints it; call once a frame.
-  void poll();
+  // Takes the probe in flight once it is done, and prints it; call once a frame, with the scene
+  // as drawn (whose object names and units the readouts use).
+  void poll(const Scene& frame);
 
   // Each probe's lines, numbered from 1, then the ruler's between the first two; seven
   // significant digits or more, as a worksheet quotes them.
@@ -50,21 +52,13 @@ class ProbeReadouts {
   struct Done {
     PixelProbe probe;
     std::string json;
-    std::vector<std::string> what;  // the readout's lines, without its number
-    double speed_of_light = 1;      // the scene's, in whose units its times are read
   };
   PixelProbeSource source_;
   std::vector<Done> done_;
+  std::vector<std::string> lines_;  // done_'s readouts (probe_lines)
   std::optional<Mark> pending_mark_;
   std::future<Done> pending_;
   std::optional<std::string> refused_;
 };
-
-// The readout of one probe of `scene` (without its number): what it met, then its numbers.
-std::vector<std::string> probe_readout(const PixelProbe& probe, const Scene& scene);
-// The ruler between two probes: the angle between their look directions (degrees), and where
-// both met a surface, the difference of their emission times (the second's less the first's).
-// (Times in units of the scene's speed_of_light, as locate prints them.)
-std::string probe_ruler(const PixelProbe& first, const PixelProbe& second, double speed_of_light);
 
 }  // namespace lightcone

@@ -252,7 +252,7 @@ int run_viewer(Scene scene, const ViewerOptions& options) {
         }
       }
       buttons.clear();
-      probes.poll();
+      probes.poll(frame);
       const bool moved =
           flight.advance(dt * time_scale, scene.black_hole ? &*scene.black_hole : nullptr);
       if (!moved && !stopped_said) {

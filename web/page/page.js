@@ -75,6 +75,42 @@ createLightcone({ canvas }).then(async (lc) => {
     history.replaceState(null, "", "#" + Object.entries(settings)
       .map(([k, v]) => `${encodeURIComponent(k)}=${encodeURIComponent(v)}`).join("&"));
   };
+  // The probes: a click or tap on the picture asks what is seen there (locate --pixel's
+  // answer, from the same C++), a second the ruler between the two; the link keeps their
+  // points (probe=x,y;x,y) and the readouts are text in the page.
+  let probePoints = [];
+  const probed = [];  // locate --pixel's JSON of each, for the page's tests
+  const showProbes = (lines) => {
+    $("probes").textContent = lines.join("\n");
+    for (const mark of document.querySelectorAll(".probe-mark")) mark.remove();
+    probePoints.forEach(([x, y], k) => {
+      const mark = document.createElement("div");
+      mark.className = "probe-mark";
+      mark.style.left = `${(x / canvas.width) * 100}%`;
+      mark.style.top = `${(y / canvas.height) * 100}%`;
+      mark.innerHTML = `<span>${k + 1}</span>`;
+      $("view").appendChild(mark);
+    });
+    document.body.dataset.probes = JSON.stringify(probed);
+  };
+  const clearProbes = () => {
+    run("lc_clear_probes");
+    probePoints = [];
+    probed.length = 0;
+    delete settings.probe;
+    showProbes([]);
+  };
+  const probe = (x, y) => {
+    const result = JSON.parse(call("lc_probe", x, y));
+    if (result.error) { say(result.error); return; }
+    if (probePoints.length >= 2) { probePoints = []; probed.length = 0; }
+    probePoints.push([x, y]);
+    probed.push(result.probe);
+    settings.probe = probePoints.map(([px, py]) => `${px},${py}`).join(";");
+    showProbes(result.lines);
+    writeHash();
+  };
+
   // Reads the scene (bundled or the user's) with the switches. `keep`: a switch changed, so the
   // camera stays where it flew; else it starts at the scene's, moved as the link says when
   // `fromLink`. Returns whether it loaded; on failure the old scene stays.
@@ -102,6 +138,12 @@ createLightcone({ canvas }).then(async (lc) => {
     say(result.differences.concat(result.warnings).join("\n"));
     timeScale = result.time_scale;
     document.body.dataset.timeScale = String(timeScale);
+    if (!keep) {
+      // A probe is of the picture it was made on: a new camera or scene starts without.
+      const fromTheLink = fromLink ? settings.probe : undefined;
+      clearProbes();
+      if (fromTheLink) settings.probe = fromTheLink;
+    }
     if (!keep && fromLink) {
       if (yaw || pitch) run("lc_turn", yaw, pitch);
       if (settings.beta !== undefined) run("lc_set_speed", Number(settings.beta));
@@ -141,6 +183,7 @@ createLightcone({ canvas }).then(async (lc) => {
   $("scene").onchange = () => {
     settings.scene = $("scene").value;
     delete settings.beta;
+    delete settings.probe;
     yaw = pitch = tau = 0;
     load(false);
   };
@@ -222,6 +265,7 @@ createLightcone({ canvas }).then(async (lc) => {
     if (e.key === "s") run("lc_change_speed", -1);
     if (e.key === " ") { run("lc_set_speed", 0); e.preventDefault(); }
     if (e.key === "c") $("split").click();
+    if (e.key === "x") { clearProbes(); writeHash(); }
     if (e.key === "r") {
       // Back to the scene's camera, where and when it starts; the switches stay.
       delete settings.beta;
@@ -235,14 +279,28 @@ createLightcone({ canvas }).then(async (lc) => {
   // Turning: the keyboard's arrows, a drag on the picture (mouse or finger), the joystick's
   // and the gamepad's horizontal axes. Speed: the joystick's and gamepad's vertical axes.
   const turn = (dyaw, dpitch) => { yaw += dyaw; pitch += dpitch; run("lc_turn", dyaw, dpitch); };
-  let drag = null;
-  canvas.addEventListener("pointerdown", (e) => { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
+  let drag = null, pressed = null;
+  canvas.addEventListener("pointerdown", (e) => {
+    drag = pressed = [e.clientX, e.clientY];
+    canvas.setPointerCapture(e.pointerId);
+  });
   canvas.addEventListener("pointermove", (e) => {
     if (!drag) return;
     turn(-(e.clientX - drag[0]) * 0.004, -(e.clientY - drag[1]) * 0.004);
     drag = [e.clientX, e.clientY];
   });
-  canvas.addEventListener("pointerup", () => { drag = null; writeHash(); });
+  canvas.addEventListener("pointerup", (e) => {
+    // A press that did not drag is a click (or tap): a probe of the pixel under it, at its
+    // centre, in the canvas's own pixels.
+    if (pressed && Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) < 3) {
+      const box = canvas.getBoundingClientRect();
+      const x = Math.floor(((e.clientX - box.left) * canvas.width) / box.width) + 0.5;
+      const y = Math.floor(((e.clientY - box.top) * canvas.height) / box.height) + 0.5;
+      if (x >= 0 && x < canvas.width && y >= 0 && y < canvas.height) probe(x, y);
+    }
+    drag = pressed = null;
+    writeHash();
+  });
   const stick = { x: 0, y: 0, pointer: null };
   const joystick = $("joystick");
   if (matchMedia("(pointer: coarse)").matches) joystick.hidden = false;
@@ -309,7 +367,14 @@ createLightcone({ canvas }).then(async (lc) => {
       $("numbers").dataset.exposure = shown.exposure;
       $("numbers").dataset.properTime = shown.proper_time;
     }
-    if (!document.body.dataset.firstFrame) document.body.dataset.firstFrame = String(performance.now());
+    if (!document.body.dataset.firstFrame) {
+      document.body.dataset.firstFrame = String(performance.now());
+      // The link's probes, on the picture now drawn.
+      const points = (settings.probe || "").split(";").filter((p) => p)
+        .map((p) => p.split(",").map(Number));
+      probePoints = [];
+      for (const [x, y] of points) probe(x, y);
+    }
     document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);
     if (now - hashWritten > 1000) { hashWritten = now; writeHash(); }
     requestAnimationFrame(frame);

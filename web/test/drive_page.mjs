@@ -13,6 +13,8 @@
 //   reset.png                  street after W, a turn and R (back at the scene's camera)
 //   (results.json's infall_clock)  the clock near a hole: the page's time scale, and the proper
 //                              time shown after some frames against the wall time flown
+//   (results.json's probes)    terrell's probes: two from a link (probe=x,y;x,y), their readouts
+//                              and marks, then a click's, then none after X
 //   dragged.png                street after a drag on the picture
 //   preset.png, by-hand.png    a preset link, and the same switches set in the panel
 //   drop-before.png, drop-after.png  street before and after a scene with an error is dropped
@@ -162,6 +164,30 @@ try {
       proper_time: end[0] - start[0],
       wall_seconds: (end[1] - start[1]) / 1000,
     };
+    await page.close();
+  }
+
+  step("probes: a link's two and their ruler, a click, X");
+  {
+    const probes = (page) => page.evaluate(() => ({
+      probes: JSON.parse(document.body.dataset.probes || "[]"),
+      text: document.getElementById("probes").textContent,
+      marks: document.querySelectorAll(".probe-mark").length,
+      probe: new URLSearchParams(location.hash.slice(1)).get("probe"),
+    }));
+    const page = await open(`scene=terrell&${still}&probe=466.5,171.5;289.5,180.5`);
+    const from_link = await probes(page);
+    // A click on canvas pixel (100, 20), the sky: a third probe starts again.
+    const box = await page.evaluate(() => {
+      const b = document.getElementById("canvas").getBoundingClientRect();
+      return { x: b.left, y: b.top, w: b.width, h: b.height };
+    });
+    await page.mouse.click(box.x + (100.5 * box.w) / 640, box.y + (20.5 * box.h) / 360);
+    await settle(page);
+    const clicked = await probes(page);
+    await page.keyboard.press("x");
+    await settle(page);
+    results.probes = { from_link, clicked, cleared: await probes(page) };
     await page.close();
   }
 
