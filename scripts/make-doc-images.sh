@@ -67,9 +67,10 @@ echo "lightcone animate scenes/rocket.json --fps 10 --frames 0-40 --video rocket
 for t in 3.0 3.1 3.2; do
   render "slow-light-$t" slow-light.json --set camera.time=$t --width 480 --height 270
 done
-# The viewer's split view, as F12 saves it (under a virtual X server when there is no display):
-#   lightcone view scenes/street.json --split --time-scale 0, then F12.
-view_screenshot() {
+# The viewer's pictures, as F12 saves them (under a virtual X server when there is no display):
+#   view_png NAME SCENE "VIEW OPTIONS" "X,Y X,Y ...": clicks at those points of the window, then F12.
+view_png() {
+  local name=$1 scene=$2 options=$3 clicks=$4
   local dir
   dir=$(mktemp -d)
   local display=${DISPLAY:-}
@@ -78,24 +79,34 @@ view_screenshot() {
     display=:93
     Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
     xvfb=$!
-    sleep 1
+    for _ in $(seq 50); do [ -e "/tmp/.X11-unix/X${display#:}" ] && break; sleep 0.1; done
   fi
-  echo "lightcone view scenes/street.json --split --time-scale 0 (F12)" >&2
-  (cd "$dir" && DISPLAY=$display "$OLDPWD/$lc" view "$OLDPWD/scenes/street.json" --split \
-    --time-scale 0 --width 960 --height 540 2>/dev/null) &
+  echo "lightcone view scenes/$scene $options${clicks:+ (clicks at $clicks)} (F12)" >&2
+  # shellcheck disable=SC2086
+  (cd "$dir" && DISPLAY=$display "$OLDPWD/$lc" view "$OLDPWD/scenes/$scene" $options \
+    >/dev/null 2>&1) &
   local viewer=$!
   local window
   window=$(DISPLAY=$display timeout 30 xdotool search --sync --name 'lightcone view' | head -1)
   sleep 2
+  for click in $clicks; do
+    DISPLAY=$display xdotool mousemove --window "$window" "${click%,*}" "${click#*,}" click 1
+    sleep 2
+  done
   DISPLAY=$display xdotool key --window "$window" F12
   sleep 2
   DISPLAY=$display xdotool key --window "$window" Escape
   wait "$viewer" || true
-  [ -n "$xvfb" ] && kill "$xvfb"
-  mv "$dir/lightcone-view-0001.png" "$out/view-split.png"
+  if [ -n "$xvfb" ]; then
+    kill "$xvfb"
+    wait "$xvfb" || true  # (its display is free for the next picture's server)
+  fi
+  mv "$dir/lightcone-view-0001.png" "$out/$name.png"
   rm -rf "$dir"
 }
-view_screenshot
+view_png view-split street.json "--split --time-scale 0 --width 960 --height 540" ""
+# The guide's "Measuring a picture": two probes and their ruler on the Terrell scene.
+view_png view-probes terrell.json "--time-scale 0" "699,256 433,270"
 
 # The web page (docs/web.md): built and served as the docs show, opened on a link.
 web_screenshot() {
@@ -106,6 +117,11 @@ web_screenshot() {
   sleep 1
   node web/test/screenshot_page.mjs "http://127.0.0.1:8765/#scene=street&beta=0.9" \
     "$out/web-page.png"
+  # The guide's "Measuring a picture": a link with two probes.
+  echo "open #scene=terrell&paused=on&probe=466.5,171.5;289.5,180.5" >&2
+  node web/test/screenshot_page.mjs \
+    "http://127.0.0.1:8765/#scene=terrell&paused=on&probe=466.5,171.5;289.5,180.5" \
+    "$out/web-probes.png"
   kill "$server"
 }
 web_screenshot
