@@ -290,8 +290,9 @@ TEST_F(CliTest, LocatePixelRefusesPointsOffThePicture) {
   for (const char* pixel : {"64,1", "1,48", "-0.5,3"})
     expect_rejected(locate(scene, std::string("--pixel ") + pixel),
                     scene.string() + ": pixel: ", {"is not in the 64 x 48 picture"});
-  expect_rejected(locate(scene, "--pixel 1,2,3"), "--pixel 1,2,3: expected two numbers x,y");
-  expect_rejected(locate(scene, "--pixel 1,2 --object ball"), "locate: --pixel takes no --object");
+  expect_rejected(locate(scene, "--pixel 1,2,3"), "locate: pixel must be two numbers x, y, got 3");
+  expect_rejected(locate(scene, "--pixel 1,2 --object ball"), "locate: pixel takes no object");
+  expect_rejected(locate(scene, "--pixel 1,x"), "--pixel 1,x: expected numbers x,y");
 }
 
 // A big sphere at rest 1e7 away in direction d and the direction d itself land on the same

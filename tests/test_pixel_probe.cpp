@@ -124,6 +124,16 @@ TEST(PixelProbe, MeetsTheDiskAtItsRadiusAndFindsNothingInTheShadow) {
                shadow.emission_proper_time);
 }
 
+TEST(PixelProbe, RefusesARequestThatIsNotOnePixel) {
+  const double two[] = {1, 2}, three[] = {1, 2, 3};
+  EXPECT_EQ(probe_request_refused(two, false), std::nullopt);
+  EXPECT_EQ(probe_request_refused(three, false), "locate: pixel must be two numbers x, y, got 3");
+  EXPECT_EQ(probe_request_refused(std::span<const double>(two, 1), false),
+            "locate: pixel must be two numbers x, y, got 1");
+  EXPECT_EQ(probe_request_refused(two, true),
+            "locate: pixel takes no object: it finds what is seen");
+}
+
 TEST(PixelProbe, RefusesPointsOutsideThePicture) {
   const Scene scene = test::load_repository_scene("terrell.json");  // 960 x 540
   EXPECT_EQ(probe_refused(scene, 0, 0), std::nullopt);

@@ -291,14 +291,14 @@ def tonemap(image, exposure: float = 0.0, curve: str = "filmic") -> _np.ndarray:
     return _lightcone.tonemap(array, exposure, curve)
 
 
-def _pair(name: str, value) -> list:
-    """Two numbers, as given: whether they lie in the picture is the library's rule."""
+def _number_list(name: str, value) -> list:
+    """A sequence of numbers, as given: how many a request takes is the library's rule."""
     try:
         array = _np.asarray(value, dtype=_np.float64)
     except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"locate: {name} must be two numbers x, y, got {_shown(value)}") from None
-    if array.shape != (2,):
-        raise ValueError(f"locate: {name} must be two numbers x, y, got shape {array.shape}")
+        raise ValueError(f"locate: {name} must be numbers, got {_shown(value)}") from None
+    if array.ndim != 1:
+        raise ValueError(f"locate: {name} must be a sequence of numbers, got shape {array.shape}")
     return array.tolist()
 
 
@@ -330,10 +330,7 @@ def locate(scene: Scene, object: Optional[str] = None, point=None, world_point=N
         raise ValueError("locate: give exactly one of point (with object), world_point, "
                          "direction, pixel")
     if pixel is not None:
-        if object is not None:
-            raise ValueError("locate: pixel takes no object: it finds what is seen")
-        x, y = _pair("pixel", pixel)
-        return _json.loads(_lightcone.probe(scene, x, y))
+        return _json.loads(_lightcone.probe(scene, _number_list("pixel", pixel), object is not None))
     if point is not None:
         if not isinstance(object, str):
             raise ValueError("locate: point needs object=NAME")

@@ -284,9 +284,10 @@ std::string located(const Scene& scene, const std::string& kind, const std::stri
   return locate_json(r, scene);
 }
 
-std::string probed(const Scene& scene, double x, double y) {
-  throw_if_refused(probe_refused(scene, x, y));
-  return probe_json(probe_pixel(scene, x, y), scene);
+std::string probed(const Scene& scene, const std::vector<double>& pixel, bool object_named) {
+  throw_if_refused(probe_request_refused(pixel, object_named));
+  throw_if_refused(probe_refused(scene, pixel[0], pixel[1]));
+  return probe_json(probe_pixel(scene, pixel[0], pixel[1]), scene);
 }
 
 // "FILE:LINE: FIELD: what", "<dict>: FIELD: what" or "--set FIELD: what" into SceneError's
@@ -401,7 +402,7 @@ PYBIND11_MODULE(_lightcone, m) {
       },
       py::arg("image"), py::arg("exposure"), py::arg("curve"));
   m.def("locate", &located, py::arg("scene"), py::arg("kind"), py::arg("object"), py::arg("value"));
-  m.def("probe", &probed, py::arg("scene"), py::arg("x"), py::arg("y"));
+  m.def("probe", &probed, py::arg("scene"), py::arg("pixel"), py::arg("object_named"));
   m.def("aov_names", [] {
     std::vector<std::string> names;
     for (int i = 0; i <= static_cast<int>(Aov::kImageOrder); ++i)

@@ -127,8 +127,10 @@ def test_locate_pixel_equals_the_programs_json():
     assert ours["meets"] == "object" and ours["object"] == "crate"
     with pytest.raises(lc.SceneError, match=r"pixel: \(960, 1\) is not in the 960 x 540 picture"):
         lc.locate(lc.load(TERRELL), pixel=(960, 1))
-    with pytest.raises(ValueError, match="pixel must be two numbers"):
+    with pytest.raises(lc.SceneError, match="pixel must be two numbers x, y, got 3"):
         lc.locate(lc.load(TERRELL), pixel=(1, 2, 3))
+    with pytest.raises(lc.SceneError, match="pixel takes no object"):
+        lc.locate(lc.load(TERRELL), pixel=(1, 2), object="ball")
 
 
 def test_a_scene_with_an_error_raises_scene_error_with_its_line(tmp_path):

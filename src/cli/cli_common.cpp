@@ -187,7 +187,7 @@ std::vector<double> parse_numbers(const std::string& option, const std::string& 
     if (used != part.size() || part.empty() || !std::isfinite(x)) throw error;
     v.push_back(x);
   }
-  if (v.size() != count) throw error;
+  if (count != 0 && v.size() != count) throw error;
   return v;
 }
 

@@ -89,8 +89,8 @@ std::string partial_name(const std::string& path);
 CLI::Validator library_rule(std::optional<std::string> (*refused)(std::string_view),
                             const std::string& names);
 
-// `count` comma-separated finite numbers (integers if `integers`), or an error that says so:
-// "OPTION TEXT: expected WHAT".
+// `count` comma-separated finite numbers (any number of them for 0; integers if `integers`), or
+// an error that says so: "OPTION TEXT: expected WHAT".
 std::vector<double> parse_numbers(const std::string& option, const std::string& text,
                                   std::size_t count, bool integers, const std::string& what);
 

@@ -172,8 +172,8 @@ int run_locate(const LocateArgs& a) {
         "locate: give exactly one of --point (with --object), --world-point, --direction, "
         "--pixel");
   if (a.pixel) {
-    if (a.object) throw InputError("locate: --pixel takes no --object: it finds what is seen");
-    const std::vector<double> xy = parse_numbers("--pixel", *a.pixel, 2, false, "two numbers x,y");
+    const std::vector<double> xy = parse_numbers("--pixel", *a.pixel, 0, false, "numbers x,y");
+    throw_if_refused(probe_request_refused(xy, a.object.has_value()));
     const Scene scene = load(a.scene, a.overrides, a.scene_options);
     throw_if_refused(probe_refused(scene, xy[0], xy[1]));
     std::printf("%s\n", probe_json(probe_pixel(scene, xy[0], xy[1]), scene).c_str());

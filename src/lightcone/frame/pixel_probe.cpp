@@ -12,8 +12,7 @@ namespace lightcone {
 namespace {
 
 // The fields every probe has, and a surface's emission event from what the ray saw.
-PixelProbe probe_seen(const ResolvedScene& scene, double x, double y, const Vec3& u,
-                      const RaySeen& seen) {
+PixelProbe probe_seen(double x, double y, const Vec3& u, const RaySeen& seen) {
   PixelProbe probe;
   probe.pixel_x = x;
   probe.pixel_y = y;
@@ -38,7 +37,7 @@ Vec3 sky_direction_asked(const ResolvedScene& scene, const Vec3& pattern_directi
 
 PixelProbe probe_on_straight_ray(const ResolvedScene& scene, double x, double y, const Vec3& u,
                                  const std::optional<Hit>& hit) {
-  PixelProbe probe = probe_seen(scene, x, y, u, seen_on_straight_ray(scene, u, hit));
+  PixelProbe probe = probe_seen(x, y, u, seen_on_straight_ray(scene, u, hit));
   if (!hit) {
     probe.meets = ProbeMeets::kSky;
     probe.sky_direction = sky_direction_asked(scene, scene.sky_direction(u));
@@ -53,7 +52,7 @@ PixelProbe probe_on_straight_ray(const ResolvedScene& scene, double x, double y,
 
 PixelProbe probe_on_curved_ray(const ResolvedScene& scene, double x, double y, const Vec3& u,
                                const CurvedRay& ray) {
-  PixelProbe probe = probe_seen(scene, x, y, u, seen_on_curved_ray(scene, u, ray));
+  PixelProbe probe = probe_seen(x, y, u, seen_on_curved_ray(scene, u, ray));
   switch (ray.end) {
     case CurvedRayEnd::kSky:
       probe.meets = ProbeMeets::kSky;

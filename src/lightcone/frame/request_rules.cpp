@@ -96,6 +96,13 @@ std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery&
   return std::nullopt;
 }
 
+std::optional<std::string> probe_request_refused(std::span<const double> pixel, bool object_named) {
+  if (object_named) return "locate: pixel takes no object: it finds what is seen";
+  if (pixel.size() != 2)
+    return fmt::format("locate: pixel must be two numbers x, y, got {}", pixel.size());
+  return std::nullopt;
+}
+
 std::optional<std::string> probe_refused(const Scene& scene, double x, double y) {
   if (auto refused = scene_refused(scene)) return refused;
   const Camera& c = scene.camera;

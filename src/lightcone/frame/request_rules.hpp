@@ -40,6 +40,10 @@ std::optional<std::string> render_refused(const Scene& scene, const RenderReques
 // leave.
 std::optional<std::string> locate_refused(const Scene& scene, const LocateQuery& query);
 
+// A probe as a door received it, before the scene is read: its pixel two numbers x, y, and no
+// object named beside it (a probe finds what is seen). Why not, as "locate: ...", or nothing.
+std::optional<std::string> probe_request_refused(std::span<const double> pixel, bool object_named);
+
 // A probe of image point (x, y) (`locate --pixel`): the scene; a finite point of the picture,
 // 0 <= x < width and 0 <= y < height; near a black hole a camera outside the horizon, as locate.
 std::optional<std::string> probe_refused(const Scene& scene, double x, double y);
